@@ -1,0 +1,2 @@
+//! Embree backend (being written).
+#![allow(unsafe_code)]

@@ -1,0 +1,3 @@
+//! Camera (stub, being written).
+#[derive(Clone, Debug, Default)]
+pub struct Camera {}

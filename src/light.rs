@@ -1,0 +1,3 @@
+//! Lights (stub, being written).
+#[derive(Clone, Debug, Default)]
+pub struct LightSet {}

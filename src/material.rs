@@ -1,0 +1,3 @@
+//! Materials (stub, being written).
+#[derive(Clone, Debug, Default)]
+pub struct Material {}

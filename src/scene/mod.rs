@@ -1,0 +1,3 @@
+//! Scene files → `SceneDesc`.
+pub mod desc;
+pub use desc::*;

@@ -1,0 +1,60 @@
+//! Counters: rays by kind, hits, and (where the backend can observe them) BVH node visits and
+//! primitive tests. Each worker owns a plain struct; they are merged once at the end, so
+//! counting needs no atomics and the totals do not depend on the thread count.
+
+use std::ops::AddAssign;
+
+/// What a backend observed while traversing its acceleration structure.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraversalCounters {
+    /// BVH nodes whose children were tested against the ray.
+    pub node_visits: u64,
+    /// Ray-primitive intersection tests (triangles, spheres).
+    pub prim_tests: u64,
+}
+
+impl AddAssign for TraversalCounters {
+    fn add_assign(&mut self, other: Self) {
+        self.node_visits += other.node_visits;
+        self.prim_tests += other.prim_tests;
+    }
+}
+
+/// Rays traced and hits found, for one kind of ray.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayKindCounts {
+    pub rays: u64,
+    pub hits: u64,
+}
+
+impl AddAssign for RayKindCounts {
+    fn add_assign(&mut self, other: Self) {
+        self.rays += other.rays;
+        self.hits += other.hits;
+    }
+}
+
+/// All counters of a render (or of one worker's share of it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    pub camera: RayKindCounts,
+    /// Shadow rays; a "hit" means the light was occluded.
+    pub shadow: RayKindCounts,
+    pub indirect: RayKindCounts,
+    pub traversal: TraversalCounters,
+}
+
+impl RenderStats {
+    pub fn total_rays(&self) -> u64 {
+        self.camera.rays + self.shadow.rays + self.indirect.rays
+    }
+}
+
+impl AddAssign for RenderStats {
+    fn add_assign(&mut self, other: Self) {
+        self.camera += other.camera;
+        self.shadow += other.shadow;
+        self.indirect += other.indirect;
+        self.traversal += other.traversal;
+    }
+}
