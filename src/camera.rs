@@ -1,3 +1,129 @@
-//! Camera (stub, being written).
-#[derive(Clone, Debug, Default)]
-pub struct Camera {}
+//! The camera in render space: position, rotation, field of view and thin lens. Rays are
+//! generated in camera space (looking down -Z, +Y up) and rotated into render space.
+
+use crate::accel::Ray;
+use crate::sampling::concentric_disk;
+use glam::{DMat3, DVec3, Mat3, Vec2, Vec3};
+
+/// Orthonormal camera basis (columns: right, up, back) for a camera looking along `forward`.
+///
+/// Stays well defined when `up` is parallel to `forward` (looking straight up or down): the
+/// world axis least aligned with `forward` is used instead, which is what a user pointing a
+/// camera at the zenith expects (a stable, level-ish frame) rather than NaNs.
+pub fn camera_basis(forward: DVec3, up: DVec3) -> DMat3 {
+    let forward = forward.normalize();
+    let mut right = forward.cross(up);
+    if right.length_squared() <= 1e-20 * up.length_squared().max(f64::MIN_POSITIVE) {
+        let a = forward.abs();
+        let fallback = if a.x <= a.y && a.x <= a.z {
+            DVec3::X
+        } else if a.y <= a.z {
+            DVec3::Y
+        } else {
+            DVec3::Z
+        };
+        right = forward.cross(fallback);
+    }
+    let right = right.normalize();
+    let true_up = right.cross(forward);
+    DMat3::from_cols(right, true_up, -forward)
+}
+
+#[derive(Clone, Debug)]
+pub struct Camera {
+    /// Lens centre in render space (exactly zero in `cameraworld`).
+    pub position: Vec3,
+    /// Rotation from camera space to render space (identity in `camera` render space).
+    pub render_from_camera: Mat3,
+    /// Rotation from render space back to world space, for world-space normal AOVs.
+    pub world_from_render: Mat3,
+    pub width: u32,
+    pub height: u32,
+    pub tan_half_vfov: f32,
+    pub lens_radius: f32,
+    pub focus_distance: f32,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Camera {
+            position: Vec3::ZERO,
+            render_from_camera: Mat3::IDENTITY,
+            world_from_render: Mat3::IDENTITY,
+            width: 1,
+            height: 1,
+            tan_half_vfov: 1.0,
+            lens_radius: 0.0,
+            focus_distance: 1.0,
+        }
+    }
+}
+
+impl Camera {
+    pub fn has_lens(&self) -> bool {
+        self.lens_radius > 0.0
+    }
+
+    /// Direction (camera space, not normalised, z = -1) through raster position `raster`
+    /// (pixel centres at +0.5, y pointing down).
+    fn camera_direction(&self, raster: Vec2) -> Vec3 {
+        let aspect = self.width as f32 / self.height as f32;
+        let ndc_x = 2.0 * raster.x / self.width as f32 - 1.0;
+        let ndc_y = 1.0 - 2.0 * raster.y / self.height as f32;
+        Vec3::new(ndc_x * self.tan_half_vfov * aspect, ndc_y * self.tan_half_vfov, -1.0)
+    }
+
+    /// The primary ray through `raster`. `lens` is a uniform sample in [0,1)² and is only
+    /// read when the camera has an aperture.
+    pub fn generate_ray(&self, raster: Vec2, lens: Option<Vec2>) -> Ray {
+        let dir_camera = self.camera_direction(raster);
+        let (origin_camera, dir_camera) = match lens {
+            Some(u) if self.has_lens() => {
+                let on_lens = concentric_disk(u) * self.lens_radius;
+                let origin = Vec3::new(on_lens.x, on_lens.y, 0.0);
+                // dir_camera has z = -1, so scaling by the focus distance lands on the focal plane.
+                let focus = dir_camera * self.focus_distance;
+                (origin, focus - origin)
+            }
+            _ => (Vec3::ZERO, dir_camera),
+        };
+        let dir = (self.render_from_camera * dir_camera).normalize();
+        let origin = self.position + self.render_from_camera * origin_camera;
+        Ray::new(origin, dir, f32::INFINITY)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn basis_is_orthonormal_when_up_is_parallel_to_view() {
+        for forward in [DVec3::Y, DVec3::NEG_Y, DVec3::new(0.0, 1.0, 1e-12)] {
+            let b = camera_basis(forward, DVec3::Y);
+            assert!(b.is_finite());
+            assert!((b.determinant() - 1.0).abs() < 1e-9);
+            assert!((b.z_axis + forward.normalize()).length() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn centre_pixel_looks_forward() {
+        let cam = Camera { width: 3, height: 3, ..Default::default() };
+        let ray = cam.generate_ray(Vec2::new(1.5, 1.5), None);
+        assert!((ray.dir - Vec3::NEG_Z).length() < 1e-6);
+    }
+
+    #[test]
+    fn thin_lens_rays_converge_on_the_focal_plane() {
+        let cam = Camera { width: 4, height: 4, lens_radius: 0.5, focus_distance: 10.0, ..Default::default() };
+        let raster = Vec2::new(0.7, 3.1);
+        let pinhole = cam.generate_ray(raster, None);
+        let focal_point = pinhole.origin + pinhole.dir * (10.0 / -pinhole.dir.z);
+        for u in [Vec2::new(0.1, 0.9), Vec2::new(0.8, 0.3)] {
+            let r = cam.generate_ray(raster, Some(u));
+            let p = r.origin + r.dir * (10.0 / -r.dir.z);
+            assert!((p - focal_point).length() < 1e-4);
+        }
+    }
+}

@@ -1,1 +1,74 @@
-//! (being written)
+//! The image being rendered: HDR colour plus depth and normal AOVs, one value per pixel.
+
+use glam::Vec3;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Film {
+    pub width: u32,
+    pub height: u32,
+    /// Linear radiance, row-major from the top-left pixel.
+    pub color: Vec<Vec3>,
+    /// Mean distance from the camera to the first hit; +∞ where every sample missed.
+    pub depth: Vec<f32>,
+    /// Mean world-space shading normal at the first hit (zero where every sample missed).
+    pub normal: Vec<Vec3>,
+}
+
+impl Film {
+    pub fn new(width: u32, height: u32) -> Self {
+        let n = width as usize * height as usize;
+        Film {
+            width,
+            height,
+            color: vec![Vec3::ZERO; n],
+            depth: vec![f32::INFINITY; n],
+            normal: vec![Vec3::ZERO; n],
+        }
+    }
+
+    pub fn index(&self, x: u32, y: u32) -> usize {
+        y as usize * self.width as usize + x as usize
+    }
+
+    pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
+        self.color[self.index(x, y)]
+    }
+}
+
+/// A rectangle of pixels rendered by one task.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tile {
+    pub x0: u32,
+    pub y0: u32,
+    pub x1: u32,
+    pub y1: u32,
+}
+
+/// Square tiles of side `size` covering the image, in row-major order.
+pub fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
+    let mut out = Vec::new();
+    for y0 in (0..height).step_by(size as usize) {
+        for x0 in (0..width).step_by(size as usize) {
+            out.push(Tile { x0, y0, x1: (x0 + size).min(width), y1: (y0 + size).min(height) });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tiles_cover_every_pixel_once() {
+        let mut seen = vec![0u8; 37 * 19];
+        for t in tiles(37, 19, 16) {
+            for y in t.y0..t.y1 {
+                for x in t.x0..t.x1 {
+                    seen[(y * 37 + x) as usize] += 1;
+                }
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1));
+    }
+}

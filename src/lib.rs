@@ -20,4 +20,5 @@ pub mod sampling;
 pub mod scene;
 pub mod spawn;
 pub mod stats;
+pub mod surface;
 pub mod transform;

@@ -1,1 +1,208 @@
-//! (being written)
+//! One render from a scene description: convert to render space, build the backend, trace
+//! tiles in parallel, gather film and counters.
+
+use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind};
+use crate::film::{Film, Tile, tiles};
+use crate::integrator::PathTracer;
+use crate::render_scene::RenderScene;
+use crate::render_space::{RenderSpace, RenderSpaceError, to_render_scene};
+use crate::sampling::{SampleStream, pixel_sample};
+use crate::scene::SceneDesc;
+use crate::stats::RenderStats;
+use glam::{DVec3, Vec2, Vec3};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+use std::time::{Duration, Instant};
+
+const TILE_SIZE: u32 = 16;
+
+/// Validated options of one render (command line, or tests).
+#[derive(Clone, Debug)]
+pub struct RenderOptions {
+    pub spp: u32,
+    pub max_depth: u32,
+    pub seed: u64,
+    /// Jitter samples inside their strata (off: stratum centres, for reproducible tests).
+    pub jitter: bool,
+    /// Worker threads; `None` uses every core.
+    pub threads: Option<usize>,
+    pub backend: BackendKind,
+    pub render_space: RenderSpace,
+    /// Moves the whole scene and camera (world space, f64) before rendering.
+    pub offset: DVec3,
+    pub count_traversal: bool,
+    pub progress: bool,
+}
+
+impl RenderOptions {
+    /// Options taking spp and depth from the scene's own settings.
+    pub fn for_scene(scene: &SceneDesc) -> Self {
+        RenderOptions {
+            spp: scene.settings.spp,
+            max_depth: scene.settings.max_depth,
+            seed: 0,
+            jitter: true,
+            threads: None,
+            backend: BackendKind::default_compiled(),
+            render_space: RenderSpace::default(),
+            offset: DVec3::ZERO,
+            count_traversal: false,
+            progress: false,
+        }
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error(transparent)]
+    RenderSpace(#[from] RenderSpaceError),
+    #[error(transparent)]
+    Accel(#[from] AccelError),
+    #[error("could not start {threads} worker threads: {source}")]
+    Threads { threads: usize, source: rayon::ThreadPoolBuildError },
+}
+
+#[derive(Debug)]
+pub struct RenderOutput {
+    pub film: Film,
+    pub stats: RenderStats,
+    pub backend: &'static str,
+    pub build_time: Duration,
+    pub render_time: Duration,
+}
+
+/// The render-space scene for `desc` under `options` (offset applied first, in world space).
+pub fn prepare_scene(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderScene, RenderError> {
+    let mut desc = desc.clone();
+    if options.offset != DVec3::ZERO {
+        desc.translate(options.offset);
+    }
+    Ok(to_render_scene(&desc, options.render_space)?)
+}
+
+/// Renders `desc` from start to finish.
+pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput, RenderError> {
+    let run = || -> Result<RenderOutput, RenderError> {
+        let scene = prepare_scene(desc, options)?;
+        let build_start = Instant::now();
+        let accel_options = AccelOptions { count_traversal: options.count_traversal };
+        let accel = accel::build(options.backend, &scene, &accel_options)?;
+        let build_time = build_start.elapsed();
+        let render_start = Instant::now();
+        let (film, stats) = render_film(&scene, accel.as_ref(), options);
+        Ok(RenderOutput {
+            film,
+            stats,
+            backend: accel.name(),
+            build_time,
+            render_time: render_start.elapsed(),
+        })
+    };
+    match options.threads {
+        Some(threads) => rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|source| RenderError::Threads { threads, source })?
+            .install(run),
+        None => run(),
+    }
+}
+
+struct TileResult {
+    tile: Tile,
+    color: Vec<Vec3>,
+    depth: Vec<f32>,
+    normal: Vec<Vec3>,
+    stats: RenderStats,
+}
+
+fn render_tile(tracer: &PathTracer, tile: Tile, options: &RenderOptions) -> TileResult {
+    let camera = &tracer.scene.camera;
+    let n = ((tile.x1 - tile.x0) * (tile.y1 - tile.y0)) as usize;
+    let mut result = TileResult {
+        tile,
+        color: Vec::with_capacity(n),
+        depth: Vec::with_capacity(n),
+        normal: Vec::with_capacity(n),
+        stats: RenderStats::default(),
+    };
+    let spp = options.spp.max(1);
+    for y in tile.y0..tile.y1 {
+        for x in tile.x0..tile.x1 {
+            let pixel = y as u64 * camera.width as u64 + x as u64;
+            let mut color = DVec3::ZERO;
+            let (mut depth_sum, mut depth_count) = (0.0f64, 0u32);
+            let mut normal = DVec3::ZERO;
+            for s in 0..spp {
+                let mut stream = SampleStream::new(options.seed, pixel, s as u64);
+                let jitter = options.jitter.then(|| stream.next_2d());
+                let in_pixel = pixel_sample(s, spp, jitter, options.seed, pixel);
+                let raster = Vec2::new(x as f32, y as f32) + in_pixel;
+                let lens = camera.has_lens().then(|| stream.next_2d());
+                let ray = camera.generate_ray(raster, lens);
+                let sample = tracer.trace(ray, &mut stream, &mut result.stats);
+                color += sample.radiance.as_dvec3();
+                if let Some(d) = sample.depth {
+                    depth_sum += d as f64;
+                    depth_count += 1;
+                }
+                if let Some(nrm) = sample.normal {
+                    normal += nrm.as_dvec3();
+                }
+            }
+            result.color.push((color / spp as f64).as_vec3());
+            result.depth.push(if depth_count > 0 {
+                (depth_sum / depth_count as f64) as f32
+            } else {
+                f32::INFINITY
+            });
+            result.normal.push(normal.normalize_or_zero().as_vec3());
+        }
+    }
+    result
+}
+
+/// Traces every pixel of `scene` with `accel`. Each pixel is computed by one task from
+/// counter-based random numbers, so the image is bit-identical for any thread count.
+pub fn render_film(scene: &RenderScene, accel: &dyn Accel, options: &RenderOptions) -> (Film, RenderStats) {
+    let tracer = PathTracer { scene, accel, max_depth: options.max_depth };
+    let camera = &scene.camera;
+    let all_tiles = tiles(camera.width, camera.height, TILE_SIZE);
+    let progress = if options.progress {
+        let bar = ProgressBar::with_draw_target(
+            Some(all_tiles.len() as u64),
+            ProgressDrawTarget::stderr(),
+        );
+        if let Ok(style) = ProgressStyle::with_template("{bar:40} {percent:>3}% {elapsed}<{eta} {msg}") {
+            bar.set_style(style);
+        }
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let results: Vec<TileResult> = all_tiles
+        .par_iter()
+        .map(|&tile| {
+            let r = render_tile(&tracer, tile, options);
+            progress.inc(1);
+            r
+        })
+        .collect();
+    progress.finish_and_clear();
+    let mut film = Film::new(camera.width, camera.height);
+    let mut stats = RenderStats::default();
+    for r in results {
+        let mut i = 0;
+        for y in r.tile.y0..r.tile.y1 {
+            for x in r.tile.x0..r.tile.x1 {
+                let idx = film.index(x, y);
+                film.color[idx] = r.color[i];
+                film.depth[idx] = r.depth[i];
+                film.normal[idx] = r.normal[i];
+                i += 1;
+            }
+        }
+        stats += r.stats;
+    }
+    (film, stats)
+}

@@ -1,1 +1,60 @@
-//! (being written)
+//! f64 affine transforms (glam `DAffine3`, pbrt-style `x_from_y` naming) and the few
+//! operations on them that the renderer needs beyond glam.
+
+use glam::{DAffine3, DMat3, DVec3};
+
+/// Matrix that maps object-space normals: the inverse transpose of the linear part.
+/// `None` when the transform is singular.
+pub fn normal_matrix(transform: &DAffine3) -> Option<DMat3> {
+    let linear = transform.matrix3;
+    let det = linear.determinant();
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    Some(linear.inverse().transpose())
+}
+
+/// The uniform scale factor of a similarity transform (rotation × uniform scale ×
+/// translation), or `None` if the linear part shears or scales unevenly.
+pub fn uniform_scale(transform: &DAffine3) -> Option<f64> {
+    let m = transform.matrix3;
+    let gram = m.transpose() * m;
+    let s2 = gram.x_axis.x;
+    let tolerance = 1e-9 * s2.max(1e-300);
+    let off_diagonal = [gram.x_axis.y, gram.x_axis.z, gram.y_axis.z];
+    let uniform = (gram.y_axis.y - s2).abs() <= tolerance
+        && (gram.z_axis.z - s2).abs() <= tolerance
+        && off_diagonal.iter().all(|v| v.abs() <= tolerance);
+    (uniform && s2 > 0.0).then(|| s2.sqrt())
+}
+
+/// A rigid transform that maps the standard axes onto an orthonormal `basis` placed at
+/// `origin`.
+pub fn from_basis_and_origin(basis: DMat3, origin: DVec3) -> DAffine3 {
+    DAffine3 { matrix3: basis, translation: origin }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_scale_detects_similarity() {
+        let t = DAffine3::from_scale_rotation_translation(
+            DVec3::splat(2.5),
+            glam::DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7),
+            DVec3::new(1e7, -3.0, 2.0),
+        );
+        assert!((uniform_scale(&t).unwrap() - 2.5).abs() < 1e-12);
+        let stretched = DAffine3::from_scale(DVec3::new(1.0, 2.0, 1.0));
+        assert!(uniform_scale(&stretched).is_none());
+    }
+
+    #[test]
+    fn normal_matrix_keeps_normals_perpendicular_under_nonuniform_scale() {
+        let t = DAffine3::from_scale(DVec3::new(1.0, 4.0, 1.0));
+        let tangent = t.transform_vector3(DVec3::new(1.0, -1.0, 0.0));
+        let normal = normal_matrix(&t).unwrap() * DVec3::new(1.0, 1.0, 0.0);
+        assert!(tangent.dot(normal).abs() < 1e-12);
+    }
+}

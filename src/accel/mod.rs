@@ -7,6 +7,8 @@ use glam::Vec3;
 
 #[cfg(feature = "embree")]
 pub mod embree;
+#[cfg(feature = "obvhs")]
+pub mod obvhs;
 
 /// A ray in render space. `dir` need not be normalised; `t` is measured in units of `dir`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,7 +118,7 @@ pub fn build(
         #[cfg(not(feature = "embree"))]
         BackendKind::Embree => Err(AccelError::NotCompiled("embree")),
         #[cfg(feature = "obvhs")]
-        BackendKind::Obvhs => Err(AccelError::NotCompiled("obvhs")),
+        BackendKind::Obvhs => Ok(Box::new(obvhs::ObvhsAccel::build(scene, options))),
         #[cfg(not(feature = "obvhs"))]
         BackendKind::Obvhs => Err(AccelError::NotCompiled("obvhs")),
     }

@@ -1,3 +1,67 @@
 //! Scene files → `SceneDesc`.
+//!
+//! `load` reads a TOML scene, `load_str` parses text that came from `source` (used in
+//! messages and to resolve relative OBJ paths). The stages: TOML syntax (`source_map`), a
+//! scan rejecting every NaN/inf, serde into `toml_format` (unknown keys are errors), then
+//! `convert` validates and builds the world-space `SceneDesc`.
 pub mod desc;
 pub use desc::*;
+
+mod convert;
+mod error;
+mod obj;
+mod obj_scan;
+mod shapes;
+mod source_map;
+mod toml_format;
+mod transform_list;
+mod validate;
+
+pub use error::{Line, SceneError};
+
+use std::path::Path;
+
+/// Loads the scene file at `path`. Warnings (a missing MTL file) go to stderr.
+pub fn load(path: &Path) -> Result<SceneDesc, SceneError> {
+    let (scene, warnings) = load_with_warnings(path)?;
+    print_warnings(&warnings);
+    Ok(scene)
+}
+
+/// Parses scene text read from `source`. Warnings go to stderr.
+pub fn load_str(text: &str, source: &Path) -> Result<SceneDesc, SceneError> {
+    let (scene, warnings) = load_str_with_warnings(text, source)?;
+    print_warnings(&warnings);
+    Ok(scene)
+}
+
+/// As `load`, returning the warnings instead of printing them.
+pub fn load_with_warnings(path: &Path) -> Result<(SceneDesc, Vec<String>), SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|error| SceneError::Read {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    load_str_with_warnings(&text, path)
+}
+
+/// As `load_str`, returning the warnings instead of printing them.
+pub fn load_str_with_warnings(
+    text: &str,
+    source: &Path,
+) -> Result<(SceneDesc, Vec<String>), SceneError> {
+    let map = source_map::SourceMap::parse(text, source)?;
+    map.check_finite(source)?;
+    let file: toml_format::SceneFile =
+        toml::from_str(text).map_err(|e| source_map::toml_error(source, &e))?;
+    let ctx = validate::Ctx { file: source, map };
+    let base_dir = source.parent().unwrap_or(Path::new(""));
+    let mut warnings = Vec::new();
+    let scene = convert::scene_desc(file, &ctx, base_dir, &mut warnings)?;
+    Ok((scene, warnings))
+}
+
+fn print_warnings(warnings: &[String]) {
+    for warning in warnings {
+        eprintln!("warning: {warning}");
+    }
+}

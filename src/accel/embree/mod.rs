@@ -1,2 +1,4 @@
-//! Embree backend (being written).
+//! Embree backend.
 #![allow(unsafe_code)]
+
+mod ffi;

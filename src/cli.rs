@@ -1,0 +1,142 @@
+//! Command-line arguments (clap) and their validation into library options.
+
+use anyhow::{Context, Result, bail};
+use clap::{Args, Parser, Subcommand};
+use embray::accel::BackendKind;
+use embray::output::ToneMap;
+use embray::render::RenderOptions;
+use embray::render_space::RenderSpace;
+use embray::scene::SceneDesc;
+use glam::DVec3;
+use std::path::{Path, PathBuf};
+
+/// The scene rendered when none is named: a Cornell box.
+pub const DEFAULT_SCENE: &str = include_str!("../scenes/cornell.toml");
+pub const DEFAULT_SCENE_NAME: &str = "scenes/cornell.toml (built in)";
+
+#[derive(Parser, Debug)]
+#[command(name = "embray", version, about = "Ray tracer on Embree (FFI) or obvhs, rendering in camera-relative space")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a scene to EXR (with depth and normal AOVs) and PNG.
+    Render(RenderArgs),
+    /// Print what a scene contains.
+    Info {
+        /// Scene file (.toml); the built-in Cornell box if omitted.
+        scene: Option<PathBuf>,
+    },
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (.toml); the built-in Cornell box if omitted.
+    pub scene: Option<PathBuf>,
+    /// EXR output (linear RGB, Z, N.X/N.Y/N.Z).
+    #[arg(short, long, default_value = "render.exr")]
+    pub output: PathBuf,
+    /// PNG output (tone-mapped sRGB); defaults to the EXR path with a .png extension.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+    /// Samples per pixel (default: the scene's, else 16).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Maximum number of surface interactions per path (1 = direct light only).
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+    /// Worker threads (default: all cores). The image does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Space the committed scene lives in.
+    #[arg(long, value_enum, default_value_t = RenderSpace::Cameraworld)]
+    pub render_space: RenderSpace,
+    /// Move the whole scene and camera by X,Y,Z (e.g. 1e7,1e7,1e7) to test precision.
+    #[arg(long, value_parser = parse_offset, allow_hyphen_values = true)]
+    pub offset: Option<DVec3>,
+    /// Put samples at stratum centres instead of jittering them.
+    #[arg(long)]
+    pub no_jitter: bool,
+    /// Intersection backend.
+    #[arg(long, value_enum)]
+    pub backend: Option<BackendKind>,
+    #[arg(long, value_enum, default_value_t = ToneMap::Aces)]
+    pub tonemap: ToneMap,
+    /// Exposure adjustment in stops, applied before tone mapping (PNG only).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub exposure: f32,
+    /// Print ray and traversal counters as a table.
+    #[arg(long)]
+    pub stats: bool,
+    /// No progress bar or summary line.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn parse_offset(text: &str) -> Result<DVec3, String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("expected X,Y,Z, got '{text}'"));
+    }
+    let mut v = [0.0; 3];
+    for (slot, part) in v.iter_mut().zip(&parts) {
+        let value: f64 = part.trim().parse().map_err(|_| format!("'{part}' is not a number"))?;
+        if !value.is_finite() {
+            return Err(format!("'{part}' is not finite"));
+        }
+        *slot = value;
+    }
+    Ok(DVec3::from_array(v))
+}
+
+/// Loads the named scene, or the built-in default.
+pub fn load_scene(path: Option<&Path>) -> Result<SceneDesc> {
+    Ok(match path {
+        Some(path) => embray::scene::load(path)?,
+        None => embray::scene::load_str(DEFAULT_SCENE, Path::new(DEFAULT_SCENE_NAME))
+            .context("the built-in default scene failed to load")?,
+    })
+}
+
+impl RenderArgs {
+    pub fn png_path(&self) -> PathBuf {
+        self.png.clone().unwrap_or_else(|| self.output.with_extension("png"))
+    }
+
+    pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {
+        let mut options = RenderOptions::for_scene(scene);
+        if let Some(spp) = self.spp {
+            if spp == 0 {
+                bail!("--spp must be at least 1");
+            }
+            options.spp = spp;
+        }
+        if let Some(depth) = self.max_depth {
+            options.max_depth = depth;
+        }
+        if let Some(threads) = self.threads {
+            if threads == 0 {
+                bail!("--threads must be at least 1");
+            }
+            options.threads = Some(threads);
+        }
+        if !self.exposure.is_finite() {
+            bail!("--exposure must be a finite number");
+        }
+        options.seed = self.seed;
+        options.jitter = !self.no_jitter;
+        options.render_space = self.render_space;
+        options.offset = self.offset.unwrap_or(DVec3::ZERO);
+        if let Some(backend) = self.backend {
+            options.backend = backend;
+        }
+        options.count_traversal = self.stats;
+        options.progress = !self.quiet;
+        Ok(options)
+    }
+}

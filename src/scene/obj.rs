@@ -1,0 +1,276 @@
+//! OBJ files (through tobj) → meshes, one per OBJ model/material, with their MTL colours.
+
+use super::desc::MeshData;
+use super::error::{Line, SceneError};
+use super::obj_scan::{ScanProblem, scan_mtl, scan_obj};
+use glam::{DVec3, Vec2, Vec3};
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+
+/// The mesh object that names the OBJ file, for messages.
+pub(crate) struct ObjRef<'a> {
+    /// The OBJ path resolved against the scene directory.
+    pub obj: PathBuf,
+    pub scene: &'a Path,
+    /// `objects[3]`.
+    pub item: String,
+    /// Line of the `file` field in the scene.
+    pub line: Line,
+}
+
+impl ObjRef<'_> {
+    fn error(&self, file: &Path, problem: String, line: Line) -> SceneError {
+        SceneError::ObjData {
+            file: file.to_path_buf(),
+            scene: self.scene.to_path_buf(),
+            item: self.item.clone(),
+            problem,
+            line,
+        }
+    }
+
+    fn scan_error(&self, file: &Path, problem: ScanProblem) -> SceneError {
+        self.error(file, problem.message, Line(Some(problem.line)))
+    }
+}
+
+/// A material from the OBJ's MTL file, validated.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ObjMaterial {
+    pub name: String,
+    pub albedo: Vec3,
+    pub emission: Vec3,
+}
+
+pub(crate) struct ObjModel {
+    pub name: String,
+    pub mesh: MeshData,
+    /// Index into `LoadedObj::materials`; `None` for no (or an unknown) MTL material.
+    pub material: Option<usize>,
+}
+
+pub(crate) struct LoadedObj {
+    /// Models with at least one triangle.
+    pub models: Vec<ObjModel>,
+    /// The MTL materials the models use.
+    pub materials: Vec<ObjMaterial>,
+}
+
+/// Loads the OBJ file; a missing MTL file adds a warning and leaves its materials undefined.
+pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<LoadedObj, SceneError> {
+    let obj = obj_ref.obj.as_path();
+    let text = std::fs::read_to_string(obj).map_err(|error| SceneError::ObjRead {
+        obj: obj.to_path_buf(),
+        scene: obj_ref.scene.to_path_buf(),
+        item: obj_ref.item.clone(),
+        error,
+        line: obj_ref.line,
+    })?;
+    scan_obj(&text).map_err(|p| obj_ref.scan_error(obj, p))?;
+
+    let obj_dir = obj.parent().unwrap_or(Path::new("")).to_path_buf();
+    let mtl_error: RefCell<Option<SceneError>> = RefCell::new(None);
+    let missing_mtl: RefCell<Vec<String>> = RefCell::new(Vec::new());
+    let mtl_of_material: RefCell<HashMap<String, PathBuf>> = RefCell::new(HashMap::new());
+    let material_loader = |mtl_name: &Path| -> tobj::MTLLoadResult {
+        let mtl = obj_dir.join(mtl_name);
+        let mtl_text = match std::fs::read_to_string(&mtl) {
+            Ok(text) => text,
+            Err(e) => {
+                missing_mtl.borrow_mut().push(format!(
+                    "{}: material library '{}' cannot be read ({e}); its materials fall back \
+                     to the default",
+                    obj.display(),
+                    mtl.display()
+                ));
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+        };
+        if let Err(problem) = scan_mtl(&mtl_text) {
+            *mtl_error.borrow_mut() = Some(obj_ref.scan_error(&mtl, problem));
+            return Err(tobj::LoadError::MaterialParseError);
+        }
+        let loaded = tobj::load_mtl_buf(&mut mtl_text.as_bytes());
+        if let Ok((materials, _)) = &loaded {
+            for m in materials {
+                mtl_of_material
+                    .borrow_mut()
+                    .insert(m.name.clone(), mtl.clone());
+            }
+        }
+        loaded
+    };
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    // tobj has panicked on malformed input before; a scene file must never crash the loader.
+    let result = catch_unwind(AssertUnwindSafe(|| {
+        tobj::load_obj_buf(&mut text.as_bytes(), &options, material_loader)
+    }))
+    .map_err(|_| {
+        obj_ref.error(
+            obj,
+            "the OBJ parser (tobj) panicked on this file".to_owned(),
+            Line(None),
+        )
+    })?;
+    if let Some(error) = mtl_error.into_inner() {
+        return Err(error);
+    }
+    let missing_mtl = missing_mtl.into_inner();
+    let (models, materials) =
+        result.map_err(|e| obj_ref.error(obj, format!("invalid OBJ: {e}"), Line(None)))?;
+    let materials = match materials {
+        Ok(materials) => materials,
+        Err(tobj::LoadError::OpenFileFailed) if !missing_mtl.is_empty() => Vec::new(),
+        Err(e) => return Err(obj_ref.error(obj, format!("invalid MTL file: {e}"), Line(None))),
+    };
+    warnings.extend(missing_mtl);
+
+    let mtl_of_material = mtl_of_material.into_inner();
+    let mut used: HashMap<usize, usize> = HashMap::new();
+    let mut loaded = LoadedObj {
+        models: Vec::new(),
+        materials: Vec::new(),
+    };
+    for model in models {
+        let name = model.name.clone();
+        let Some(mesh) = mesh_data(&model.mesh)
+            .map_err(|p| obj_ref.error(obj, format!("model '{name}': {p}"), Line(None)))?
+        else {
+            continue;
+        };
+        let material = match model
+            .mesh
+            .material_id
+            .and_then(|id| materials.get(id).map(|m| (id, m)))
+        {
+            Some((id, m)) => Some(match used.get(&id) {
+                Some(&index) => index,
+                None => {
+                    let mtl = mtl_of_material.get(&m.name).map_or(obj, PathBuf::as_path);
+                    let material =
+                        obj_material(m).map_err(|p| obj_ref.error(mtl, p, Line(None)))?;
+                    loaded.materials.push(material);
+                    used.insert(id, loaded.materials.len() - 1);
+                    loaded.materials.len() - 1
+                }
+            }),
+            None => None,
+        };
+        loaded.models.push(ObjModel {
+            name,
+            mesh,
+            material,
+        });
+    }
+    if loaded.models.is_empty() {
+        return Err(obj_ref.error(obj, "the OBJ file has no triangles".to_owned(), Line(None)));
+    }
+    Ok(loaded)
+}
+
+/// One tobj mesh → `MeshData` in f64, or `None` if it has no triangles. Checks every index
+/// and every number.
+fn mesh_data(mesh: &tobj::Mesh) -> Result<Option<MeshData>, String> {
+    if mesh.indices.is_empty() {
+        return Ok(None);
+    }
+    let count = mesh.positions.len() / 3;
+    if mesh.indices.len() % 3 != 0 {
+        return Err(format!(
+            "{} indices is not a whole number of triangles",
+            mesh.indices.len()
+        ));
+    }
+    if let Some(&bad) = mesh.indices.iter().find(|&&i| i as usize >= count) {
+        return Err(format!(
+            "vertex index {bad} is out of range ({count} vertices)"
+        ));
+    }
+    let positions: Vec<DVec3> = mesh
+        .positions
+        .chunks_exact(3)
+        .map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into()))
+        .collect();
+    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(format!("vertex {} has a non-finite coordinate", i + 1));
+    }
+    let normals = (mesh.normals.len() == 3 * count).then(|| {
+        mesh.normals
+            .chunks_exact(3)
+            .map(|n| DVec3::new(n[0].into(), n[1].into(), n[2].into()))
+            .collect::<Vec<_>>()
+    });
+    if normals
+        .as_ref()
+        .is_some_and(|n| n.iter().any(|n| !n.is_finite()))
+    {
+        return Err("a normal has a non-finite coordinate".to_owned());
+    }
+    let uvs = (mesh.texcoords.len() == 2 * count).then(|| {
+        mesh.texcoords
+            .chunks_exact(2)
+            .map(|t| Vec2::new(t[0], t[1]))
+            .collect::<Vec<_>>()
+    });
+    if uvs
+        .as_ref()
+        .is_some_and(|t| t.iter().any(|t| !t.is_finite()))
+    {
+        return Err("a texture coordinate is not finite".to_owned());
+    }
+    let indices = mesh
+        .indices
+        .chunks_exact(3)
+        .map(|t| [t[0], t[1], t[2]])
+        .collect();
+    Ok(Some(MeshData {
+        positions,
+        indices,
+        normals,
+        uvs,
+    }))
+}
+
+/// MTL `Kd` → albedo (default 0.8 grey), `Ke` → emission (default 0), validated.
+fn obj_material(m: &tobj::Material) -> Result<ObjMaterial, String> {
+    let ke_param = m.unknown_param.get("Ke").and_then(|s| parse_rgb(s));
+    let albedo = m.diffuse.unwrap_or([0.8; 3]);
+    let emission = m.emissive.or(ke_param).unwrap_or([0.0; 3]);
+    let name = &m.name;
+    for (i, &c) in albedo.iter().enumerate() {
+        if !(0.0..=1.0).contains(&c) {
+            return Err(format!(
+                "material '{name}': Kd[{i}] is {c}, but must be in [0, 1]"
+            ));
+        }
+    }
+    for (i, &c) in emission.iter().enumerate() {
+        if !c.is_finite() || c < 0.0 {
+            return Err(format!(
+                "material '{name}': Ke[{i}] is {c}, but must be finite and >= 0"
+            ));
+        }
+    }
+    Ok(ObjMaterial {
+        name: name.clone(),
+        albedo: Vec3::from_array(albedo),
+        emission: Vec3::from_array(emission),
+    })
+}
+
+fn parse_rgb(text: &str) -> Option<[f32; 3]> {
+    let values: Vec<f32> = text
+        .split_whitespace()
+        .map(str::parse)
+        .collect::<Result<_, _>>()
+        .ok()?;
+    values.try_into().ok()
+}

@@ -1,0 +1,135 @@
+//! Built-in shapes that become triangle meshes: the quad (parallelogram) and the
+//! axis-aligned box.
+
+use super::desc::MeshData;
+use super::transform_list::fmt_vec;
+use glam::{DVec3, Vec2};
+
+/// The parallelogram corner, corner+u, corner+u+v, corner+v as two triangles with uvs
+/// (0,0), (1,0), (1,1), (0,1). Errors (with the reason) if u and v span no area.
+pub(crate) fn quad_mesh(corner: DVec3, u: DVec3, v: DVec3) -> Result<MeshData, String> {
+    // The sine of the angle between u and v (0 for a zero edge): parallel edges give
+    // rounding noise rather than exactly 0, so the test is relative.
+    let sine = u.normalize_or_zero().cross(v.normalize_or_zero()).length();
+    if sine <= 1e-12 {
+        return Err(format!(
+            "u {} and v {} are zero or parallel, so the quad has no area",
+            fmt_vec(&u.to_array()),
+            fmt_vec(&v.to_array())
+        ));
+    }
+    let positions = vec![corner, corner + u, corner + u + v, corner + v];
+    if !positions.iter().all(|p| p.is_finite()) {
+        return Err("a corner of the quad overflows".to_owned());
+    }
+    Ok(MeshData {
+        positions,
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        normals: None,
+        uvs: Some(vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(0.0, 1.0),
+        ]),
+    })
+}
+
+/// The box from `min` to `max`: 8 vertices, 12 triangles wound counter-clockwise seen from
+/// outside (so `(b - a) × (c - a)` points out). Errors if min >= max on some axis.
+pub(crate) fn box_mesh(min: DVec3, max: DVec3) -> Result<MeshData, String> {
+    for (axis, name) in ["x", "y", "z"].iter().enumerate() {
+        if min[axis] >= max[axis] {
+            return Err(format!(
+                "min {} must be less than max {} on every axis, but not on {name} ({} >= {})",
+                fmt_vec(&min.to_array()),
+                fmt_vec(&max.to_array()),
+                min[axis],
+                max[axis]
+            ));
+        }
+    }
+    // Vertex i has x from bit 0, y from bit 1, z from bit 2 (0 → min, 1 → max).
+    let positions: Vec<DVec3> = (0..8)
+        .map(|i| {
+            DVec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            )
+        })
+        .collect();
+    // Faces as quads, each listed counter-clockwise seen from outside.
+    const FACES: [[u32; 4]; 6] = [
+        [0, 4, 6, 2], // -x
+        [1, 3, 7, 5], // +x
+        [0, 1, 5, 4], // -y
+        [2, 6, 7, 3], // +y
+        [0, 2, 3, 1], // -z
+        [4, 5, 7, 6], // +z
+    ];
+    let indices = FACES
+        .iter()
+        .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+        .collect();
+    Ok(MeshData {
+        positions,
+        indices,
+        normals: None,
+        uvs: None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn face_normal(mesh: &MeshData, tri: [u32; 3]) -> DVec3 {
+        let [a, b, c] = tri.map(|i| mesh.positions[i as usize]);
+        (b - a).cross(c - a)
+    }
+
+    #[test]
+    fn box_triangles_face_outward() {
+        let (min, max) = (DVec3::new(-1.0, 0.0, 2.0), DVec3::new(3.0, 1.0, 2.5));
+        let mesh = box_mesh(min, max).unwrap();
+        assert_eq!(mesh.indices.len(), 12);
+        let center = (min + max) / 2.0;
+        for &tri in &mesh.indices {
+            let centroid = tri
+                .map(|i| mesh.positions[i as usize])
+                .iter()
+                .sum::<DVec3>()
+                / 3.0;
+            let n = face_normal(&mesh, tri);
+            assert!(n.length() > 0.0);
+            assert!(
+                n.dot(centroid - center) > 0.0,
+                "triangle {tri:?} faces inward"
+            );
+        }
+    }
+
+    #[test]
+    fn box_needs_min_below_max() {
+        let err = box_mesh(DVec3::ZERO, DVec3::new(1.0, 0.0, 1.0)).unwrap_err();
+        assert!(err.contains("on y"), "{err}");
+    }
+
+    #[test]
+    fn quad_vertices_and_uvs() {
+        let mesh = quad_mesh(DVec3::ONE, DVec3::X * 2.0, DVec3::Z).unwrap();
+        assert_eq!(mesh.positions[2], DVec3::new(3.0, 1.0, 2.0));
+        assert_eq!(mesh.uvs.as_ref().unwrap()[2], Vec2::ONE);
+        // Both triangles wind the same way: normal along u × v.
+        for &tri in &mesh.indices {
+            assert!(face_normal(&mesh, tri).dot(DVec3::X.cross(DVec3::Z)) > 0.0);
+        }
+    }
+
+    #[test]
+    fn parallel_quad_edges_are_rejected() {
+        assert!(quad_mesh(DVec3::ZERO, DVec3::X, DVec3::X * 3.0).is_err());
+        assert!(quad_mesh(DVec3::ZERO, DVec3::ZERO, DVec3::Y).is_err());
+    }
+}

@@ -1,0 +1,173 @@
+//! The scene file as written: serde structs for the TOML format. Every struct denies unknown
+//! keys. Objects and lights are flat structs (one optional field per key any type uses)
+//! rather than internally tagged enums, because serde buffers tagged enums and toml then
+//! loses the line of the offending key; `convert` checks which fields each type takes.
+
+use serde::Deserialize;
+use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use std::collections::BTreeMap;
+use std::fmt;
+
+pub(crate) type Vec3 = [f64; 3];
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SceneFile {
+    pub camera: CameraToml,
+    pub render: Option<RenderToml>,
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialToml>,
+    #[serde(default)]
+    pub objects: Vec<ObjectToml>,
+    #[serde(default)]
+    pub lights: Vec<LightToml>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CameraToml {
+    pub lookfrom: Vec3,
+    pub lookat: Vec3,
+    pub up: Option<Vec3>,
+    pub vfov: f64,
+    pub resolution: [u32; 2],
+    pub aperture: Option<f64>,
+    pub focus_distance: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RenderToml {
+    pub spp: Option<u32>,
+    pub max_depth: Option<u32>,
+    pub background: Option<Vec3>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct MaterialToml {
+    pub albedo: Option<Vec3>,
+    pub emission: Option<Vec3>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum ObjectKind {
+    Quad,
+    Sphere,
+    Box,
+    Mesh,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ObjectToml {
+    #[serde(rename = "type")]
+    pub kind: ObjectKind,
+    pub material: Option<String>,
+    pub corner: Option<Vec3>,
+    pub u: Option<Vec3>,
+    pub v: Option<Vec3>,
+    pub center: Option<Vec3>,
+    pub radius: Option<f64>,
+    pub min: Option<Vec3>,
+    pub max: Option<Vec3>,
+    pub file: Option<String>,
+    pub transform: Option<Vec<TransformOp>>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum LightKind {
+    Point,
+    Quad,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct LightToml {
+    #[serde(rename = "type")]
+    pub kind: LightKind,
+    pub position: Option<Vec3>,
+    pub intensity: Option<Vec3>,
+    pub corner: Option<Vec3>,
+    pub u: Option<Vec3>,
+    pub v: Option<Vec3>,
+    pub emission: Option<Vec3>,
+    pub transform: Option<Vec<TransformOp>>,
+}
+
+/// One entry of a transform list: an inline table with exactly one key.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub(crate) enum TransformOp {
+    Scale(Scale),
+    Rotate(Rotate),
+    Translate(Vec3),
+    /// Row-major 4×4; the last row must be 0 0 0 1.
+    Matrix([[f64; 4]; 4]),
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Rotate {
+    pub axis: Vec3,
+    pub degrees: f64,
+}
+
+/// `scale = 2.0` or `scale = [1.0, 2.0, 1.0]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Scale {
+    Uniform(f64),
+    PerAxis(Vec3),
+}
+
+impl Scale {
+    pub(crate) fn factors(self) -> Vec3 {
+        match self {
+            Scale::Uniform(s) => [s; 3],
+            Scale::PerAxis(v) => v,
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Scale {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct ScaleVisitor;
+
+        impl<'de> Visitor<'de> for ScaleVisitor {
+            type Value = Scale;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a number or an array of 3 numbers")
+            }
+
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Scale, E> {
+                Ok(Scale::Uniform(v))
+            }
+
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Scale, E> {
+                Ok(Scale::Uniform(v as f64))
+            }
+
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Scale, E> {
+                Ok(Scale::Uniform(v as f64))
+            }
+
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Scale, A::Error> {
+                let mut v = [0.0; 3];
+                for (i, slot) in v.iter_mut().enumerate() {
+                    *slot = seq
+                        .next_element()?
+                        .ok_or_else(|| de::Error::invalid_length(i, &self))?;
+                }
+                if seq.next_element::<de::IgnoredAny>()?.is_some() {
+                    return Err(de::Error::invalid_length(4, &self));
+                }
+                Ok(Scale::PerAxis(v))
+            }
+        }
+
+        deserializer.deserialize_any(ScaleVisitor)
+    }
+}
