@@ -10,7 +10,7 @@ use super::shapes::{box_mesh, quad_mesh};
 use super::source_map::FieldPath;
 use super::toml_format::{
     CameraToml, LightKind, LightToml, MaterialToml, ObjectKind, ObjectToml, RenderToml, SceneFile,
-    TransformOp, Vec3,
+    TransformEntry, Vec3,
 };
 use super::transform_list::{self, fmt_vec};
 use super::validate::Ctx;
@@ -253,11 +253,27 @@ impl Builder<'_> {
     fn transform(
         &self,
         path: &FieldPath,
-        ops: Option<&Vec<TransformOp>>,
+        entries: Option<&Vec<TransformEntry>>,
     ) -> Result<DAffine3, SceneError> {
-        let ops = ops.map_or(&[][..], Vec::as_slice);
-        transform_list::world_from_object(ops).map_err(|problem| {
-            let list = path.key("transform");
+        let list = path.key("transform");
+        let mut ops = Vec::new();
+        for (i, entry) in entries.map_or(&[][..], Vec::as_slice).iter().enumerate() {
+            let op = entry.op().map_err(|keys| {
+                let field = list.index(i);
+                SceneError::TransformEntry {
+                    file: self.ctx.file.to_path_buf(),
+                    field: field.to_string(),
+                    found: if keys.is_empty() {
+                        "none".to_owned()
+                    } else {
+                        keys.join(", ")
+                    },
+                    line: self.ctx.line(&field),
+                }
+            })?;
+            ops.push(op);
+        }
+        transform_list::world_from_object(&ops).map_err(|problem| {
             let field = problem.entry.map_or(list.clone(), |i| list.index(i));
             SceneError::Transform {
                 file: self.ctx.file.to_path_buf(),

@@ -108,7 +108,7 @@ pub enum SceneError {
 
     /// The OBJ file named by a mesh object is missing or unreadable.
     #[error(
-        "OBJ file '{}': {error} (named by {item} in scene file '{}'{line})",
+        "OBJ file '{}': {error}; named by {item}.file in '{}'{line}",
         .obj.display(), .scene.display()
     )]
     ObjRead {
@@ -120,14 +120,23 @@ pub enum SceneError {
     },
 
     /// The OBJ or MTL data is invalid: parse error (tobj's message), out-of-range vertex
-    /// index, non-finite coordinate, no triangles, bad MTL colour.
-    /// `file` is the OBJ file, or the MTL file for a bad material.
-    #[error("{}: {problem}{line} (named by {item} in scene file '{}')", .file.display(), .scene.display())]
+    /// index, non-finite coordinate, no triangles, bad MTL colour. `file` is the OBJ file, or
+    /// the MTL file for a bad material; `line` is in that file.
+    #[error("{}: {problem}{line}; named by {item} in '{}'", .file.display(), .scene.display())]
     ObjData {
         file: PathBuf,
         scene: PathBuf,
         item: String,
         problem: String,
+        line: Line,
+    },
+
+    /// A transform list entry without exactly one of scale, rotate, translate, matrix.
+    #[error("{}: {field} must have exactly one of the keys scale, rotate, translate, matrix; it has {found}{line}", .file.display())]
+    TransformEntry {
+        file: PathBuf,
+        field: String,
+        found: String,
         line: Line,
     },
 }

@@ -73,7 +73,7 @@ pub(crate) struct ObjectToml {
     pub min: Option<Vec3>,
     pub max: Option<Vec3>,
     pub file: Option<String>,
-    pub transform: Option<Vec<TransformOp>>,
+    pub transform: Option<Vec<TransformEntry>>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -94,12 +94,43 @@ pub(crate) struct LightToml {
     pub u: Option<Vec3>,
     pub v: Option<Vec3>,
     pub emission: Option<Vec3>,
-    pub transform: Option<Vec<TransformOp>>,
+    pub transform: Option<Vec<TransformEntry>>,
 }
 
-/// One entry of a transform list: an inline table with exactly one key.
+/// One entry of a transform list as written: an inline table that should have exactly one
+/// of these keys (checked in `convert`, which then makes a `TransformOp`).
 #[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct TransformEntry {
+    pub scale: Option<Scale>,
+    pub rotate: Option<Rotate>,
+    pub translate: Option<Vec3>,
+    pub matrix: Option<[[f64; 4]; 4]>,
+}
+
+impl TransformEntry {
+    /// The operation if exactly one key is set, else the keys that are set.
+    pub(crate) fn op(&self) -> Result<TransformOp, Vec<&'static str>> {
+        let ops = [
+            self.scale.map(|s| ("scale", TransformOp::Scale(s))),
+            self.rotate
+                .clone()
+                .map(|r| ("rotate", TransformOp::Rotate(r))),
+            self.translate
+                .map(|t| ("translate", TransformOp::Translate(t))),
+            self.matrix.map(|m| ("matrix", TransformOp::Matrix(m))),
+        ];
+        let mut set: Vec<(&'static str, TransformOp)> = ops.into_iter().flatten().collect();
+        if set.len() == 1 {
+            Ok(set.remove(0).1)
+        } else {
+            Err(set.into_iter().map(|(name, _)| name).collect())
+        }
+    }
+}
+
+/// One transform operation.
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) enum TransformOp {
     Scale(Scale),
     Rotate(Rotate),

@@ -1,0 +1,118 @@
+//! `Scene` (being built) and `CommittedScene` (read-only, traced from many threads).
+
+use super::device::Device;
+use super::geometry::Geometry;
+use super::{compat, ffi, ray};
+use crate::accel::{AccelError, Hit, Ray};
+use std::any::Any;
+use std::sync::Arc;
+
+/// An Embree scene that geometries can still be attached to.
+pub struct Scene {
+    handle: ffi::RTCScene,
+    device: Arc<Device>,
+    /// Data the attached geometries' callbacks read. Freed after the Embree scene is
+    /// released (fields drop after `Drop::drop`), so no callback can outlive it.
+    callback_data: Vec<Box<dyn Any + Send + Sync>>,
+}
+
+impl Scene {
+    pub fn new(
+        device: &Arc<Device>,
+        quality: ffi::RTCBuildQuality,
+        flags: ffi::RTCSceneFlags,
+    ) -> Result<Scene, AccelError> {
+        // SAFETY: the device handle is live (the `Arc` keeps it alive).
+        let handle = unsafe { ffi::rtcNewScene(device.handle()) };
+        if handle.is_null() {
+            device.check()?;
+            return Err(AccelError::Embree("cannot create a scene".into()));
+        }
+        // Wrapped before anything can fail, so an error still releases the handle.
+        let scene = Scene { handle, device: Arc::clone(device), callback_data: Vec::new() };
+        // SAFETY: `handle` is a live scene.
+        unsafe {
+            ffi::rtcSetSceneBuildQuality(handle, quality);
+            ffi::rtcSetSceneFlags(handle, flags);
+        }
+        device.check()?;
+        Ok(scene)
+    }
+
+    /// Attaches `geometry` with geometry id `id` (what hits report as `geomID`).
+    pub fn attach(&mut self, mut geometry: Geometry, id: u32) -> Result<(), AccelError> {
+        if !Arc::ptr_eq(geometry.device(), &self.device) {
+            return Err(AccelError::Embree("geometry and scene belong to different devices".into()));
+        }
+        // SAFETY: both handles are live and belong to the same device. The scene takes its
+        // own reference to the geometry; ours is released when `geometry` drops below.
+        unsafe { ffi::rtcAttachGeometryByID(self.handle, geometry.handle(), id) };
+        // Kept even if attaching failed: harmless, and never too short-lived.
+        self.callback_data.extend(geometry.take_callback_data());
+        drop(geometry);
+        self.device.check()
+    }
+
+    /// Builds the acceleration structure. The result can no longer be modified.
+    pub fn commit(self) -> Result<CommittedScene, AccelError> {
+        // SAFETY: `self.handle` is a live scene; every attached geometry is committed and
+        // its callback data is owned by `self`.
+        unsafe { ffi::rtcCommitScene(self.handle) };
+        self.device.check()?;
+        Ok(CommittedScene { scene: self })
+    }
+}
+
+impl Drop for Scene {
+    fn drop(&mut self) {
+        // SAFETY: we own the one reference to the live handle; releasing it releases the
+        // attached geometries too. Callback data is freed afterwards (field drop order).
+        unsafe { ffi::rtcReleaseScene(self.handle) };
+    }
+}
+
+/// A committed scene: only queries, which Embree allows from any number of threads.
+pub struct CommittedScene {
+    scene: Scene,
+}
+
+// SAFETY: after `rtcCommitScene`, Embree scenes are safe to query concurrently from any
+// thread (rtcIntersect/rtcOccluded are documented thread-safe on a committed scene), and
+// `CommittedScene` offers no way to modify the scene. The callback data is `Send + Sync`.
+unsafe impl Send for CommittedScene {}
+// SAFETY: as above.
+unsafe impl Sync for CommittedScene {}
+
+impl CommittedScene {
+    /// Closest hit with `tmin <= t <= tmax`. Rays Embree would reject are a miss.
+    pub fn intersect(&self, r: &Ray) -> Option<Hit> {
+        if !embree_accepts(r) {
+            return None;
+        }
+        let mut rayhit = ray::to_rtc_ray_hit(r);
+        // SAFETY: the scene is live and committed; the ray passed `embree_accepts`, so
+        // Debian's assertion-enabled Embree will not abort on it.
+        unsafe { compat::intersect1(self.scene.handle, &mut rayhit) };
+        ray::from_rtc_ray_hit(&rayhit)
+    }
+
+    /// Whether anything lies on the ray within `[tmin, tmax]`. Invalid rays are unoccluded.
+    pub fn occluded(&self, r: &Ray) -> bool {
+        if !embree_accepts(r) {
+            return false;
+        }
+        let mut rtc_ray = ray::to_rtc_ray(r);
+        // SAFETY: as in `intersect`.
+        unsafe { compat::occluded1(self.scene.handle, &mut rtc_ray) };
+        rtc_ray.tfar == f32::NEG_INFINITY
+    }
+}
+
+/// Embree's own validity test (`RayK::valid`, asserted in Debian's build) rejects
+/// coordinates above `FLT_LARGE` even when finite, on top of what `Ray::is_valid` checks.
+fn embree_accepts(r: &Ray) -> bool {
+    const FLT_LARGE: f32 = 1.844e18;
+    r.is_valid()
+        && r.origin.abs().max_element() <= FLT_LARGE
+        && r.dir.abs().max_element() <= FLT_LARGE
+}

@@ -1,0 +1,164 @@
+//! The `embray` command as a user runs it: good renders write both images; bad input gives a
+//! clear message, a non-zero exit, no panic and no output file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn embray(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_embray"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("embray runs")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("embray-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+const GOOD_SCENE: &str = r#"
+[camera]
+lookfrom = [0.0, 1.0, 4.0]
+lookat = [0.0, 0.0, 0.0]
+vfov = 40.0
+resolution = [16, 12]
+
+[materials.white]
+albedo = [0.8, 0.8, 0.8]
+
+[[objects]]
+type = "sphere"
+material = "white"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+
+[[lights]]
+type = "point"
+position = [2.0, 3.0, 2.0]
+intensity = [10.0, 10.0, 10.0]
+"#;
+
+/// Writes `scene` (and extra files) into a fresh folder, renders it, and checks that the
+/// command failed cleanly with a message containing every one of `expected`.
+fn assert_rejected(name: &str, scene: Option<&str>, extra: &[(&str, &str)], args: &[&str], expected: &[&str]) {
+    let dir = temp_dir(name);
+    if let Some(text) = scene {
+        std::fs::write(dir.join("scene.toml"), text).unwrap();
+    }
+    for (file, text) in extra {
+        std::fs::write(dir.join(file), text).unwrap();
+    }
+    let mut all_args = vec!["render", "scene.toml", "-o", "out.exr", "--quiet"];
+    all_args.extend_from_slice(args);
+    let out = embray(&all_args, &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{name}: should fail; stderr: {stderr}");
+    assert!(!stderr.contains("panicked"), "{name}: panicked: {stderr}");
+    for needle in expected {
+        assert!(stderr.contains(needle), "{name}: message lacks '{needle}': {stderr}");
+    }
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains("out"))
+        .collect();
+    assert!(leftovers.is_empty(), "{name}: output written despite the error: {leftovers:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn render_writes_exr_and_png() {
+    let dir = temp_dir("good");
+    std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
+    let out = embray(&["render", "scene.toml", "-o", "img.exr", "--spp", "2", "--stats"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.join("img.exr").metadata().unwrap().len() > 0);
+    let png = image::open(dir.join("img.png")).unwrap().to_rgb8();
+    assert_eq!(png.dimensions(), (16, 12));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("camera") && stdout.contains("shadow"), "stats table: {stdout}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("Mrays/s"), "summary line: {stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn render_without_a_scene_draws_the_default_cornell_box() {
+    let dir = temp_dir("default");
+    let out = embray(&["render", "--spp", "1", "--quiet", "-o", "cornell.exr"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let png = image::open(dir.join("cornell.png")).unwrap().to_rgb8();
+    assert_eq!(png.dimensions(), (256, 256));
+    // The left wall is red, the right wall green.
+    let left = png.get_pixel(20, 128);
+    let right = png.get_pixel(235, 128);
+    assert!(left[0] > 2 * left[1] && right[1] as u32 * 2 > right[0] as u32 * 3, "{left:?} {right:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn missing_scene_is_a_clear_error() {
+    assert_rejected("missing", None, &[], &[], &["scene.toml", "No such file"]);
+}
+
+#[test]
+fn toml_syntax_error_names_the_line() {
+    let broken = GOOD_SCENE.replace("vfov = 40.0", "vfov = = 40.0");
+    assert_rejected("syntax", Some(&broken), &[], &[], &["scene.toml", "line 5"]);
+}
+
+#[test]
+fn unknown_key_is_rejected() {
+    let text = GOOD_SCENE.replace("vfov = 40.0", "vfov = 40.0\nfocal_lenght = 3.0");
+    assert_rejected("unknown-key", Some(&text), &[], &[], &["scene.toml", "focal_lenght"]);
+}
+
+#[test]
+fn nan_and_infinite_numbers_are_rejected() {
+    let nan = GOOD_SCENE.replace("lookfrom = [0.0, 1.0, 4.0]", "lookfrom = [0.0, nan, 4.0]");
+    assert_rejected("nan", Some(&nan), &[], &[], &["scene.toml", "lookfrom", "NaN"]);
+    let inf = GOOD_SCENE.replace("radius = 1.0", "radius = inf");
+    assert_rejected("inf", Some(&inf), &[], &[], &["scene.toml", "radius", "inf"]);
+}
+
+#[test]
+fn zero_resolution_or_spp_is_rejected() {
+    let zero_res = GOOD_SCENE.replace("resolution = [16, 12]", "resolution = [0, 12]");
+    assert_rejected("zero-res", Some(&zero_res), &[], &[], &["scene.toml", "resolution"]);
+    let zero_spp = format!("{GOOD_SCENE}\n[render]\nspp = 0\n");
+    assert_rejected("zero-spp-file", Some(&zero_spp), &[], &[], &["scene.toml", "spp"]);
+    assert_rejected("zero-spp-flag", Some(GOOD_SCENE), &[], &["--spp", "0"], &["--spp"]);
+}
+
+#[test]
+fn missing_obj_is_rejected() {
+    let text = format!("{GOOD_SCENE}\n[[objects]]\ntype = \"mesh\"\nfile = \"nothere.obj\"\nmaterial = \"white\"\n");
+    assert_rejected("missing-obj", Some(&text), &[], &[], &["nothere.obj"]);
+}
+
+#[test]
+fn obj_with_out_of_range_indices_is_rejected() {
+    let text = format!("{GOOD_SCENE}\n[[objects]]\ntype = \"mesh\"\nfile = \"bad.obj\"\nmaterial = \"white\"\n");
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+    assert_rejected("bad-obj", Some(&text), &[("bad.obj", obj)], &[], &["bad.obj"]);
+}
+
+#[test]
+fn degenerate_camera_is_rejected() {
+    let text = GOOD_SCENE.replace("lookat = [0.0, 0.0, 0.0]", "lookat = [0.0, 1.0, 4.0]");
+    assert_rejected("camera", Some(&text), &[], &[], &["scene.toml", "lookfrom", "lookat"]);
+}
+
+#[test]
+fn unwritable_output_is_an_error_not_a_panic() {
+    let dir = temp_dir("unwritable");
+    std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
+    let out = embray(&["render", "scene.toml", "-o", "no/such/dir/x.exr", "--quiet", "--spp", "1"], &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("x.exr") && !stderr.contains("panicked"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
