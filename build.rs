@@ -8,15 +8,15 @@ fn main() {
     // Declared unconditionally so `cfg(embree4)` never warns, whatever the features.
     println!("cargo::rustc-check-cfg=cfg(embree4)");
     println!("cargo:rerun-if-changed=build.rs");
-    if std::env::var_os("CARGO_FEATURE_EMBREE").is_none() {
-        return;
-    }
+    // Cargo compiles this script with `feature = "embree"` exactly when it sets
+    // CARGO_FEATURE_EMBREE; the cfg is needed anyway, since bindgen is only a build
+    // dependency with that feature.
+    #[cfg(feature = "embree")]
     if std::env::var_os("CARGO_FEATURE_EMBREE4_SYS").is_some() {
         println!("cargo:rustc-cfg=embree4");
-        return;
+    } else {
+        embree::generate();
     }
-    #[cfg(feature = "embree")]
-    embree::generate();
 }
 
 #[cfg(feature = "embree")]

@@ -25,11 +25,40 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene to EXR (with depth and normal AOVs) and PNG.
     Render(RenderArgs),
+    /// Measure renders over backends, render spaces and offsets.
+    #[command(subcommand)]
+    Bench(BenchCommand),
     /// Print what a scene contains.
     Info {
         /// Scene file (.toml); the built-in Cornell box if omitted.
         scene: Option<PathBuf>,
     },
+}
+
+#[derive(Subcommand, Debug)]
+pub enum BenchCommand {
+    /// Render space × backend (× offset) on one scene: time, counters and image error against
+    /// the cameraworld render at offset 0. Default scene: scenes/city_block.toml.
+    Spaces(BenchArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Scene file; scenes/city_block.toml if omitted.
+    pub scene: Option<PathBuf>,
+    /// Timed runs per configuration (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    pub runs: usize,
+    #[arg(long)]
+    pub spp: Option<u32>,
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Offsets from the origin to test, comma separated (applied on all three axes).
+    #[arg(long, value_delimiter = ',', default_value = "0")]
+    pub offsets: Vec<f64>,
+    /// Also write the table as CSV.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -70,9 +99,13 @@ pub struct RenderArgs {
     /// Exposure adjustment in stops, applied before tone mapping (PNG only).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
-    /// Print ray and traversal counters as a table.
+    /// Print ray and traversal counters as a table (counting node visits and primitive
+    /// tests costs time; the summary's Mrays/s is then not representative).
     #[arg(long)]
     pub stats: bool,
+    /// Write the counters as JSON to this file (implies counting, like --stats).
+    #[arg(long)]
+    pub stats_json: Option<PathBuf>,
     /// No progress bar or summary line.
     #[arg(short, long)]
     pub quiet: bool,
@@ -135,7 +168,7 @@ impl RenderArgs {
         if let Some(backend) = self.backend {
             options.backend = backend;
         }
-        options.count_traversal = self.stats;
+        options.count_traversal = self.stats || self.stats_json.is_some();
         options.progress = !self.quiet;
         Ok(options)
     }

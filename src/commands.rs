@@ -1,7 +1,7 @@
 //! What each subcommand does.
 
-use crate::cli::{Cli, Command, RenderArgs, load_scene};
-use anyhow::Result;
+use crate::cli::{BenchArgs, BenchCommand, Cli, Command, RenderArgs, load_scene};
+use anyhow::{Context, Result};
 use embray::output::{write_exr, write_png};
 use embray::render::{RenderOutput, render};
 use embray::scene::{LightDesc, SceneDesc, ShapeDesc};
@@ -10,6 +10,7 @@ use embray::stats::RenderStats;
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(args) => render_command(&args),
+        Command::Bench(BenchCommand::Spaces(args)) => bench_spaces(&args),
         Command::Info { scene } => {
             let scene = load_scene(scene.as_deref())?;
             print!("{}", describe(&scene));
@@ -30,6 +31,60 @@ fn render_command(args: &RenderArgs) -> Result<()> {
     }
     if args.stats {
         print!("{}", stats_table(&output.stats));
+    }
+    if let Some(path) = &args.stats_json {
+        let json = serde_json::json!({
+            "backend": output.backend,
+            "render_space": options.render_space.name(),
+            "spp": options.spp,
+            "render_seconds": output.render_time.as_secs_f64(),
+            "build_seconds": output.build_time.as_secs_f64(),
+            "traversal_counted": output.traversal_counted,
+            "stats": output.stats,
+        });
+        std::fs::write(path, serde_json::to_string_pretty(&json)? + "\n")
+            .with_context(|| format!("cannot write '{}'", path.display()))?;
+    }
+    Ok(())
+}
+
+/// A scene shipped in `scenes/`: found from the working directory (a checkout), else from
+/// the source tree this binary was built from.
+fn bundled_scene(name: &str) -> std::path::PathBuf {
+    let local = std::path::Path::new("scenes").join(name);
+    if local.exists() {
+        local
+    } else {
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name)
+    }
+}
+
+fn bench_spaces(args: &BenchArgs) -> Result<()> {
+    use embray::bench::{grid, table};
+    use embray::render_space::RenderSpace;
+    let path = args.scene.clone().unwrap_or_else(|| bundled_scene("city_block.toml"));
+    let scene = load_scene(Some(&path))?;
+    let mut options = embray::render::RenderOptions::for_scene(&scene);
+    if let Some(spp) = args.spp {
+        anyhow::ensure!(spp > 0, "--spp must be at least 1");
+        options.spp = spp;
+    }
+    options.threads = args.threads;
+    anyhow::ensure!(args.offsets.iter().all(|o| o.is_finite()), "--offsets must be finite numbers");
+    let backends = embray::accel::BackendKind::compiled();
+    let spaces = vec![RenderSpace::World, RenderSpace::Camera, RenderSpace::Cameraworld];
+    let grid = grid::Grid { backends, spaces, offsets: args.offsets.clone(), runs: args.runs };
+    let total = (grid.backends.len() * grid.spaces.len() * grid.offsets.len()) as u64;
+    let bar = indicatif::ProgressBar::new(total);
+    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let rows = grid::measure(&name, &scene, &options, &grid, |row| {
+        bar.set_message(format!("{} {} {:e}", row.backend, row.render_space, row.offset));
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    print!("{}", table::markdown(&rows));
+    if let Some(csv) = &args.csv {
+        std::fs::write(csv, table::csv(&rows)).with_context(|| format!("cannot write '{}'", csv.display()))?;
     }
     Ok(())
 }

@@ -9,7 +9,7 @@ use crate::sampling::{SampleStream, cosine_hemisphere};
 use crate::spawn::SurfacePoint;
 use crate::stats::RenderStats;
 use crate::surface::{SurfaceInteraction, interaction};
-use glam::{Vec3, Mat3};
+use glam::{Mat3, Quat, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
 /// What one camera sample contributes to a pixel.
@@ -23,10 +23,22 @@ pub struct PathSample {
 }
 
 pub struct PathTracer<'a> {
-    pub scene: &'a RenderScene,
-    pub accel: &'a dyn Accel,
+    scene: &'a RenderScene,
+    accel: &'a dyn Accel,
     /// Number of surface interactions that gather light (1 = direct lighting only).
-    pub max_depth: u32,
+    max_depth: u32,
+    /// Rotation into the space where bounce directions are sampled (see `sampling_space`).
+    sampling_from_render: Mat3,
+}
+
+/// A fixed rotation of world space in which no common surface normal lies on the
+/// discontinuity of `frame_from_normal` (normals with z = 0): it maps a generic direction to
+/// +Z, so axis-aligned walls (world normals ±X, ±Y, ±Z) are far from it. Sampling in a
+/// world-fixed frame makes every render space turn the same random numbers into the same
+/// directions; render spaces then differ by rounding only, not by noise pattern.
+fn sampling_from_world() -> Mat3 {
+    let generic = Vec3::new(0.267_261_24, 0.534_522_5, 0.801_783_7);
+    Mat3::from_quat(Quat::from_rotation_arc(generic, Vec3::Z))
 }
 
 /// Orthonormal basis whose Z axis is `n` (Duff et al. 2017, branchless).
@@ -41,7 +53,16 @@ fn frame_from_normal(n: Vec3) -> Mat3 {
     )
 }
 
-impl PathTracer<'_> {
+impl<'a> PathTracer<'a> {
+    pub fn new(scene: &'a RenderScene, accel: &'a dyn Accel, max_depth: u32) -> Self {
+        let sampling_from_render = sampling_from_world() * scene.camera.world_from_render;
+        PathTracer { scene, accel, max_depth, sampling_from_render }
+    }
+
+    pub fn scene(&self) -> &RenderScene {
+        self.scene
+    }
+
     fn occluded(&self, ray: &Ray, stats: &mut RenderStats) -> bool {
         if !ray.is_valid() {
             return true;
@@ -142,7 +163,8 @@ impl PathTracer<'_> {
                 break;
             }
             let local = cosine_hemisphere(stream.next_2d());
-            let dir = frame_from_normal(si.shading_normal) * local;
+            let sampling_normal = (self.sampling_from_render * si.shading_normal).normalize();
+            let dir = self.sampling_from_render.transpose() * (frame_from_normal(sampling_normal) * local);
             if dir.dot(si.surface.normal) <= 0.0 {
                 break;
             }

@@ -6,9 +6,11 @@
 #![deny(unsafe_code)]
 
 pub mod accel;
+pub mod bench;
 pub mod camera;
 pub mod film;
 pub mod geometry;
+pub mod image_error;
 pub mod integrator;
 pub mod light;
 pub mod material;

@@ -67,6 +67,8 @@ pub struct RenderOutput {
     pub film: Film,
     pub stats: RenderStats,
     pub backend: &'static str,
+    /// Whether `stats.traversal` was filled in by the backend.
+    pub traversal_counted: bool,
     pub build_time: Duration,
     pub render_time: Duration,
 }
@@ -94,6 +96,7 @@ pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput,
             film,
             stats,
             backend: accel.name(),
+            traversal_counted: accel.counts_traversal(),
             build_time,
             render_time: render_start.elapsed(),
         })
@@ -117,7 +120,7 @@ struct TileResult {
 }
 
 fn render_tile(tracer: &PathTracer, tile: Tile, options: &RenderOptions) -> TileResult {
-    let camera = &tracer.scene.camera;
+    let camera = &tracer.scene().camera;
     let n = ((tile.x1 - tile.x0) * (tile.y1 - tile.y0)) as usize;
     let mut result = TileResult {
         tile,
@@ -165,7 +168,7 @@ fn render_tile(tracer: &PathTracer, tile: Tile, options: &RenderOptions) -> Tile
 /// Traces every pixel of `scene` with `accel`. Each pixel is computed by one task from
 /// counter-based random numbers, so the image is bit-identical for any thread count.
 pub fn render_film(scene: &RenderScene, accel: &dyn Accel, options: &RenderOptions) -> (Film, RenderStats) {
-    let tracer = PathTracer { scene, accel, max_depth: options.max_depth };
+    let tracer = PathTracer::new(scene, accel, options.max_depth);
     let camera = &scene.camera;
     let all_tiles = tiles(camera.width, camera.height, TILE_SIZE);
     let progress = if options.progress {

@@ -41,17 +41,19 @@ pub struct SurfacePoint {
 
 impl SurfacePoint {
     /// Ray origin for leaving the surface in direction `w`.
+    ///
+    /// Unlike pbrt, every axis along which the normal has a component is rounded at least one
+    /// ulp outwards even when the error bound is zero (a hit exactly on an axis-aligned plane
+    /// at integer coordinates): otherwise the origin stays on the plane and the surface is hit
+    /// again at t = -0, which compares equal to a zero `tmin`.
     pub fn offset_origin(&self, w: Vec3) -> Vec3 {
         let d = self.normal.abs().dot(self.error);
-        let mut offset = self.normal * d;
-        if w.dot(self.normal) < 0.0 {
-            offset = -offset;
-        }
-        let mut origin = self.point + offset;
+        let outward = if w.dot(self.normal) < 0.0 { -self.normal } else { self.normal };
+        let mut origin = self.point + outward * d;
         for axis in 0..3 {
-            if offset[axis] > 0.0 {
+            if outward[axis] > 0.0 {
                 origin[axis] = next_float_up(origin[axis]);
-            } else if offset[axis] < 0.0 {
+            } else if outward[axis] < 0.0 {
                 origin[axis] = next_float_down(origin[axis]);
             }
         }
@@ -78,14 +80,26 @@ impl SurfacePoint {
     }
 }
 
-/// Hit point on a triangle from barycentrics, with its error bound (pbrt-v4, eq. 6.24).
+/// Hit point on a triangle from barycentrics, with its error bound.
+///
+/// Two terms: pbrt-v4's bound on evaluating the barycentric sum (eq. 6.24), which grows with
+/// the coordinates' magnitude; and the error of the ray-triangle test itself, which computes
+/// relative to a vertex and so grows with the triangle's edge lengths. The second term matters
+/// in camera-relative space, where a huge ground plane passes close to the origin: there the
+/// first term is tiny, but an intersector re-testing the same plane can still report a small
+/// positive t unless the origin is pushed past its own rounding error.
 pub fn triangle_point(tri: &[Vec3; 3], b1: f32, b2: f32) -> (Vec3, Vec3) {
     let b0 = 1.0 - b1 - b2;
     let terms = [tri[0] * b0, tri[1] * b1, tri[2] * b2];
     let point = terms[0] + terms[1] + terms[2];
     let abs_sum = terms[0].abs() + terms[1].abs() + terms[2].abs();
-    (point, abs_sum * gamma(7))
+    let edges = (tri[1] - tri[0]).abs() + (tri[2] - tri[0]).abs();
+    (point, abs_sum * gamma(7) + edges * gamma(8) + Vec3::splat(MIN_OFFSET))
 }
+
+/// Floor of every error bound: far below any geometric feature, but large enough that
+/// t = -offset / |dir| cannot underflow to -0.0 (which compares equal to a zero `tmin`).
+const MIN_OFFSET: f32 = 1e-20;
 
 /// Hit point on a sphere: `origin + t·dir` reprojected onto the surface, with its bound.
 pub fn sphere_point(center: Vec3, radius: f32, origin: Vec3, dir: Vec3, t: f32) -> (Vec3, Vec3) {
@@ -96,7 +110,7 @@ pub fn sphere_point(center: Vec3, radius: f32, origin: Vec3, dir: Vec3, t: f32) 
     }
     let point = center + local;
     // Reprojection (pbrt: γ5·|p|) plus the final addition of the centre.
-    let error = local.abs() * gamma(5) + (center.abs() + local.abs()) * gamma(1);
+    let error = local.abs() * gamma(5) + (center.abs() + local.abs()) * gamma(1) + Vec3::splat(radius * gamma(8) + MIN_OFFSET);
     (point, error)
 }
 
@@ -109,6 +123,13 @@ mod tests {
         assert!(next_float_up(1.0) > 1.0 && next_float_down(1.0) < 1.0);
         assert_eq!(next_float_up(-0.0), f32::from_bits(1));
         assert_eq!(next_float_down(0.0), -f32::from_bits(1));
+    }
+
+    #[test]
+    fn exact_points_on_axis_aligned_planes_still_leave_the_plane() {
+        let sp = SurfacePoint { point: Vec3::new(9.0, 14.0, 0.0), error: Vec3::ZERO, normal: Vec3::NEG_Z };
+        assert!(sp.offset_origin(Vec3::new(1.0, 1.0, -1.0)).z < 0.0);
+        assert!(sp.offset_origin(Vec3::new(1.0, 1.0, 1.0)).z > 0.0);
     }
 
     #[test]

@@ -5,7 +5,7 @@
 use std::ops::AddAssign;
 
 /// What a backend observed while traversing its acceleration structure.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct TraversalCounters {
     /// BVH nodes whose children were tested against the ray.
     pub node_visits: u64,
@@ -21,7 +21,7 @@ impl AddAssign for TraversalCounters {
 }
 
 /// Rays traced and hits found, for one kind of ray.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct RayKindCounts {
     pub rays: u64,
     pub hits: u64,
@@ -35,7 +35,7 @@ impl AddAssign for RayKindCounts {
 }
 
 /// All counters of a render (or of one worker's share of it).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct RenderStats {
     pub camera: RayKindCounts,
     /// Shadow rays; a "hit" means the light was occluded.

@@ -891,8 +891,16 @@ fn scene_file_on_disk_loads_and_resolves_obj_paths() {
 }
 
 #[test]
-fn bundled_cornell_scene_loads() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.toml");
-    let scene = scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
-    assert!(!scene.objects.is_empty());
+fn bundled_scenes_load() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let scene = scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            assert!(!scene.objects.is_empty(), "{}", path.display());
+            count += 1;
+        }
+    }
+    assert!(count > 0, "no scenes in {}", dir.display());
 }

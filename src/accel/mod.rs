@@ -84,6 +84,18 @@ impl BackendKind {
         }
     }
 
+    /// Every backend compiled into this build, Embree first.
+    pub fn compiled() -> Vec<Self> {
+        let mut all = Vec::new();
+        if cfg!(feature = "embree") {
+            all.push(BackendKind::Embree);
+        }
+        if cfg!(feature = "obvhs") {
+            all.push(BackendKind::Obvhs);
+        }
+        all
+    }
+
     /// The backend used when none is asked for: Embree when compiled in.
     pub fn default_compiled() -> Self {
         if cfg!(feature = "embree") { BackendKind::Embree } else { BackendKind::Obvhs }

@@ -1,24 +1,20 @@
-//! The deserialised file (`toml_format`) → a validated `SceneDesc`: camera, render settings,
-//! materials, objects and lights, each checked with its field path and line.
+//! The deserialised file (`toml_format`) → a validated `SceneDesc`: materials, objects and
+//! lights, each checked with its field path and line (camera and settings: `camera_settings`).
 
-use super::desc::{
-    CameraDesc, LightDesc, MaterialDesc, ObjectDesc, RenderSettings, SceneDesc, ShapeDesc,
-};
+use super::camera_settings::{camera, settings};
+use super::desc::{LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use super::error::SceneError;
 use super::obj::{self, ObjRef};
 use super::shapes::{box_mesh, quad_mesh};
 use super::source_map::FieldPath;
 use super::toml_format::{
-    CameraToml, LightKind, LightToml, MaterialToml, ObjectKind, ObjectToml, RenderToml, SceneFile,
-    TransformEntry, Vec3,
+    LightKind, LightToml, MaterialToml, ObjectKind, ObjectToml, SceneFile, TransformEntry, Vec3,
 };
-use super::transform_list::{self, fmt_vec};
+use super::transform_list;
 use super::validate::Ctx;
 use glam::{DAffine3, DVec3};
 use std::collections::BTreeMap;
 use std::path::Path;
-
-const MAX_RESOLUTION: u32 = 16384;
 
 /// Builds the scene; `base_dir` resolves relative OBJ paths, `warnings` collects non-fatal
 /// problems (a missing MTL file).
@@ -61,89 +57,6 @@ pub(crate) fn scene_desc(
 
 fn dvec(v: Vec3) -> DVec3 {
     DVec3::from_array(v)
-}
-
-fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneError> {
-    let path = FieldPath::root("camera");
-    let degenerate = |field: &str, reason: String| SceneError::DegenerateCamera {
-        file: ctx.file.to_path_buf(),
-        reason,
-        line: ctx.line(&path.key(field)),
-    };
-    let (lookfrom, lookat) = (dvec(cam.lookfrom), dvec(cam.lookat));
-    if lookfrom == lookat {
-        return Err(degenerate(
-            "lookat",
-            format!(
-                "camera.lookfrom and camera.lookat are the same point {}, so there is no view \
-                 direction",
-                fmt_vec(&cam.lookfrom)
-            ),
-        ));
-    }
-    if !(lookat - lookfrom).length().is_finite() {
-        return Err(degenerate(
-            "lookat",
-            "the distance from camera.lookfrom to camera.lookat overflows".to_owned(),
-        ));
-    }
-    let up = cam.up.unwrap_or([0.0, 1.0, 0.0]);
-    if dvec(up).try_normalize().is_none() {
-        return Err(degenerate(
-            "up",
-            format!("camera.up {} is the zero vector", fmt_vec(&up)),
-        ));
-    }
-    let vfov = path.key("vfov");
-    ctx.require(
-        cam.vfov > 0.0 && cam.vfov < 180.0,
-        &vfov,
-        cam.vfov,
-        "between 0 and 180 degrees (exclusive)",
-    )?;
-    for (i, &r) in cam.resolution.iter().enumerate() {
-        let requirement = format!("between 1 and {MAX_RESOLUTION}");
-        ctx.require(
-            (1..=MAX_RESOLUTION).contains(&r),
-            &path.key("resolution").index(i),
-            r,
-            &requirement,
-        )?;
-    }
-    let aperture = ctx.non_negative(&path.key("aperture"), cam.aperture.unwrap_or(0.0))?;
-    let focus_distance = cam
-        .focus_distance
-        .map(|d| ctx.positive(&path.key("focus_distance"), d))
-        .transpose()?;
-    Ok(CameraDesc {
-        lookfrom,
-        lookat,
-        up: dvec(up),
-        vfov_deg: cam.vfov,
-        width: cam.resolution[0],
-        height: cam.resolution[1],
-        aperture,
-        focus_distance,
-    })
-}
-
-fn settings(render: Option<&RenderToml>, ctx: &Ctx) -> Result<RenderSettings, SceneError> {
-    let mut settings = RenderSettings::default();
-    let Some(render) = render else {
-        return Ok(settings);
-    };
-    let path = FieldPath::root("render");
-    if let Some(spp) = render.spp {
-        ctx.require(spp >= 1, &path.key("spp"), spp, ">= 1")?;
-        settings.spp = spp;
-    }
-    if let Some(max_depth) = render.max_depth {
-        settings.max_depth = max_depth;
-    }
-    if let Some(background) = render.background {
-        settings.background = ctx.color(&path.key("background"), background, false)?;
-    }
-    Ok(settings)
 }
 
 struct Builder<'a> {

@@ -7,6 +7,7 @@
 pub mod desc;
 pub use desc::*;
 
+mod camera_settings;
 mod convert;
 mod error;
 mod obj;
@@ -17,6 +18,7 @@ mod toml_format;
 mod transform_list;
 mod validate;
 
+pub use camera_settings::MAX_RESOLUTION;
 pub use error::{Line, SceneError};
 
 use std::path::Path;

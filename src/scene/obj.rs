@@ -107,7 +107,6 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     // tobj has panicked on malformed input before; a scene file must never crash the loader.
     let result = catch_unwind(AssertUnwindSafe(|| {
@@ -273,4 +272,52 @@ fn parse_rgb(text: &str) -> Option<[f32; 3]> {
         .collect::<Result<_, _>>()
         .ok()?;
     values.try_into().ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn material(diffuse: Option<[f32; 3]>, emissive: Option<[f32; 3]>) -> tobj::Material {
+        tobj::Material {
+            name: "m".to_owned(),
+            diffuse,
+            emissive,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn mtl_colours_become_albedo_and_emission() {
+        let m = obj_material(&material(Some([0.5, 0.25, 0.0]), Some([2.0, 3.0, 4.0]))).unwrap();
+        assert_eq!(
+            (m.albedo, m.emission),
+            (Vec3::new(0.5, 0.25, 0.0), Vec3::new(2.0, 3.0, 4.0))
+        );
+        let m = obj_material(&material(None, None)).unwrap();
+        assert_eq!((m.albedo, m.emission), (Vec3::splat(0.8), Vec3::ZERO));
+    }
+
+    #[test]
+    fn mtl_colours_out_of_range_are_rejected() {
+        let err = obj_material(&material(Some([0.5, 1.5, 0.0]), None)).unwrap_err();
+        assert_eq!(err, "material 'm': Kd[1] is 1.5, but must be in [0, 1]");
+        assert!(obj_material(&material(Some([f32::NAN, 0.0, 0.0]), None)).is_err());
+        assert!(obj_material(&material(None, Some([0.0, -1.0, 0.0]))).is_err());
+        assert!(obj_material(&material(None, Some([f32::INFINITY, 0.0, 0.0]))).is_err());
+    }
+
+    #[test]
+    fn mesh_indices_are_checked() {
+        let mesh = tobj::Mesh {
+            positions: vec![0.0; 9],
+            indices: vec![0, 1, 3],
+            ..Default::default()
+        };
+        assert!(
+            mesh_data(&mesh)
+                .unwrap_err()
+                .contains("vertex index 3 is out of range")
+        );
+    }
 }

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use embray::accel::BackendKind;
-use embray::film::Film;
+pub use embray::image_error::image_error;
 use embray::render::{RenderOptions, RenderOutput, render};
 use embray::scene::{SceneDesc, load, load_str};
 use std::path::{Path, PathBuf};
@@ -48,39 +48,3 @@ pub fn backends() -> Vec<BackendKind> {
     all
 }
 
-/// Image difference statistics of `test` against `reference`.
-#[derive(Debug, Clone, Copy)]
-pub struct ImageError {
-    /// Σ(a−b)² / Σ b² over all channels.
-    pub relative_mse: f64,
-    pub max_abs: f64,
-    /// Fraction of pixels with any channel off by more than 1 % of the reference's mean.
-    pub fraction_off: f64,
-    pub non_finite: usize,
-}
-
-pub fn image_error(test: &Film, reference: &Film) -> ImageError {
-    assert_eq!((test.width, test.height), (reference.width, reference.height));
-    let mean = reference.color.iter().map(|c| c.element_sum() as f64).sum::<f64>()
-        / (3.0 * reference.color.len() as f64);
-    let (mut err2, mut ref2, mut max_abs, mut off, mut non_finite) = (0.0, 0.0, 0.0f64, 0, 0);
-    for (a, b) in test.color.iter().zip(&reference.color) {
-        if !a.is_finite() {
-            non_finite += 1;
-            continue;
-        }
-        let d = (*a - *b).as_dvec3();
-        err2 += d.length_squared();
-        ref2 += b.as_dvec3().length_squared();
-        max_abs = max_abs.max(d.abs().max_element());
-        if d.abs().max_element() > 0.01 * mean {
-            off += 1;
-        }
-    }
-    ImageError {
-        relative_mse: err2 / ref2.max(1e-300),
-        max_abs,
-        fraction_off: off as f64 / test.color.len() as f64,
-        non_finite,
-    }
-}

@@ -108,8 +108,9 @@ impl CommittedScene {
     }
 }
 
-/// Embree's own validity test (`RayK::valid`, asserted in Debian's build) rejects
-/// coordinates above `FLT_LARGE` even when finite, on top of what `Ray::is_valid` checks.
+/// Embree's own validity test (`RayK::valid`, asserted in Debian's build) also rejects
+/// finite coordinates above `FLT_LARGE`: measured, an origin at 1e30 or a direction of 1e20
+/// aborts the process, though `Ray::is_valid` accepts both.
 fn embree_accepts(r: &Ray) -> bool {
     const FLT_LARGE: f32 = 1.844e18;
     r.is_valid()

@@ -1,0 +1,61 @@
+//! How far one rendered image is from a reference: the numbers every comparison reports.
+
+use crate::film::Film;
+
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ImageError {
+    /// Σ(a−b)² / Σ b² over all channels.
+    pub relative_mse: f64,
+    /// Largest absolute difference of any channel.
+    pub max_abs: f64,
+    /// Fraction of pixels with a channel off by more than 1 % of the reference's mean value.
+    pub fraction_off: f64,
+    /// Pixels of the test image that are NaN or infinite (excluded from the other numbers).
+    pub non_finite: usize,
+}
+
+/// Compares `test` with `reference` (same size).
+pub fn image_error(test: &Film, reference: &Film) -> ImageError {
+    assert_eq!((test.width, test.height), (reference.width, reference.height), "image sizes differ");
+    let mean = reference.color.iter().map(|c| c.element_sum() as f64).sum::<f64>()
+        / (3.0 * reference.color.len().max(1) as f64);
+    let (mut err2, mut ref2, mut max_abs, mut off, mut non_finite) = (0.0, 0.0, 0.0f64, 0, 0);
+    for (a, b) in test.color.iter().zip(&reference.color) {
+        if !a.is_finite() {
+            non_finite += 1;
+            continue;
+        }
+        let d = (*a - *b).as_dvec3();
+        err2 += d.length_squared();
+        ref2 += b.as_dvec3().length_squared();
+        max_abs = max_abs.max(d.abs().max_element());
+        if d.abs().max_element() > 0.01 * mean {
+            off += 1;
+        }
+    }
+    ImageError {
+        relative_mse: if ref2 > 0.0 { err2 / ref2 } else { err2 },
+        max_abs,
+        fraction_off: off as f64 / test.color.len().max(1) as f64,
+        non_finite,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn identical_images_have_zero_error_and_nan_is_counted() {
+        let mut a = Film::new(2, 1);
+        a.color = vec![Vec3::ONE, Vec3::splat(2.0)];
+        assert_eq!(image_error(&a, &a).relative_mse, 0.0);
+        let mut b = a.clone();
+        b.color[0] = Vec3::NAN;
+        b.color[1] = Vec3::splat(3.0);
+        let e = image_error(&b, &a);
+        assert_eq!(e.non_finite, 1);
+        assert!((e.max_abs - 1.0).abs() < 1e-12 && e.fraction_off == 0.5);
+    }
+}

@@ -1,0 +1,202 @@
+//! Every backend against a brute-force linear scan, on random rays against random triangles,
+//! spheres and quads — including rays that start on a surface and rays aimed at edges.
+
+mod common;
+
+use common::backends;
+use embray::accel::{AccelOptions, Hit, Ray, build};
+use embray::camera::Camera;
+use embray::geometry::{intersect_sphere, intersect_triangle};
+use embray::light::LightSet;
+use embray::material::Material;
+use embray::render_scene::{Geometry, RenderScene, Shape, Sphere, TriangleMesh};
+use embray::sampling::{hash4, to_unit_f32};
+use embray::stats::TraversalCounters;
+use glam::Vec3;
+
+struct Rng(u64);
+
+impl Rng {
+    fn f(&mut self) -> f32 {
+        self.0 += 1;
+        to_unit_f32(hash4(99, self.0, 0, 0))
+    }
+    fn in_box(&mut self, half: f32) -> Vec3 {
+        Vec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5) * 2.0 * half
+    }
+}
+
+fn random_scene(rng: &mut Rng) -> RenderScene {
+    let mut shapes = Vec::new();
+    // Two meshes of random triangles.
+    for _ in 0..2 {
+        let mut mesh = TriangleMesh::default();
+        for t in 0..300u32 {
+            let c = rng.in_box(10.0);
+            for _ in 0..3 {
+                mesh.positions.push(c + rng.in_box(1.5));
+            }
+            mesh.indices.push([3 * t, 3 * t + 1, 3 * t + 2]);
+        }
+        shapes.push(mesh);
+    }
+    let mut shapes: Vec<Shape> = shapes
+        .into_iter()
+        .map(|m| Shape { geometry: Geometry::Triangles(m), material: 0, name: "tris".into() })
+        .collect();
+    // Quads (two triangles sharing an edge), axis-aligned and not.
+    for q in 0..20 {
+        let corner = rng.in_box(10.0);
+        let (u, v) = if q % 2 == 0 { (Vec3::X * 3.0, Vec3::Z * 2.0) } else { (rng.in_box(2.0), rng.in_box(2.0)) };
+        let mesh = TriangleMesh {
+            positions: vec![corner, corner + u, corner + u + v, corner + v],
+            indices: vec![[0, 1, 2], [0, 2, 3]],
+            normals: None,
+            uvs: None,
+        };
+        shapes.push(Shape { geometry: Geometry::Triangles(mesh), material: 0, name: "quad".into() });
+    }
+    for _ in 0..15 {
+        let sphere = Sphere { center: rng.in_box(10.0), radius: 0.2 + 1.5 * rng.f() };
+        shapes.push(Shape { geometry: Geometry::Sphere(sphere), material: 0, name: "sphere".into() });
+    }
+    RenderScene {
+        camera: Camera::default(),
+        shapes,
+        materials: vec![Material::default()],
+        lights: LightSet::default(),
+        background: Vec3::ZERO,
+    }
+}
+
+fn brute_force(scene: &RenderScene, ray: &Ray) -> Option<Hit> {
+    let mut best: Option<Hit> = None;
+    let mut tmax = ray.tmax;
+    for (geom_id, shape) in scene.shapes.iter().enumerate() {
+        match &shape.geometry {
+            Geometry::Triangles(mesh) => {
+                for prim in 0..mesh.indices.len() as u32 {
+                    if let Some((t, u, v)) =
+                        intersect_triangle(ray.origin, ray.dir, ray.tmin, tmax, &mesh.triangle(prim))
+                    {
+                        tmax = t;
+                        best = Some(Hit { t, geom_id: geom_id as u32, prim_id: prim, u, v });
+                    }
+                }
+            }
+            Geometry::Sphere(s) => {
+                if let Some(t) = intersect_sphere(ray.origin, ray.dir, ray.tmin, tmax, s.center, s.radius) {
+                    tmax = t;
+                    best = Some(Hit { t, geom_id: geom_id as u32, prim_id: 0, u: 0.0, v: 0.0 });
+                }
+            }
+        }
+    }
+    best
+}
+
+/// Random rays of three kinds: through the scene, from a point on a triangle, and aimed at
+/// a triangle edge (grazing the shared edge of quads).
+fn random_rays(scene: &RenderScene, rng: &mut Rng, count: usize) -> Vec<Ray> {
+    let mut rays = Vec::with_capacity(count);
+    for i in 0..count {
+        let (origin, target) = match i % 3 {
+            0 => (rng.in_box(15.0), rng.in_box(10.0)),
+            1 => {
+                let Geometry::Triangles(mesh) = &scene.shapes[i % 2].geometry else { unreachable!() };
+                let tri = mesh.triangle((rng.f() * 299.0) as u32);
+                let (a, b) = (rng.f() * 0.5, rng.f() * 0.5);
+                (tri[0] + (tri[1] - tri[0]) * a + (tri[2] - tri[0]) * b, rng.in_box(10.0))
+            }
+            _ => {
+                let Geometry::Triangles(mesh) = &scene.shapes[2 + i % 20].geometry else { unreachable!() };
+                let s = rng.f();
+                let on_edge = mesh.positions[0] + (mesh.positions[2] - mesh.positions[0]) * s;
+                (rng.in_box(15.0), on_edge)
+            }
+        };
+        rays.push(Ray::new(origin, target - origin, f32::INFINITY));
+    }
+    rays
+}
+
+fn same_hit(a: Option<Hit>, b: Option<Hit>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => (a.t - b.t).abs() <= 1e-4 * a.t.abs().max(1.0),
+        _ => false,
+    }
+}
+
+#[test]
+fn backends_agree_with_linear_scan_on_random_rays() {
+    let mut rng = Rng(0);
+    let scene = random_scene(&mut rng);
+    let rays = random_rays(&scene, &mut rng, 6000);
+    let reference: Vec<Option<Hit>> = rays.iter().map(|r| brute_force(&scene, r)).collect();
+    let hits = reference.iter().filter(|h| h.is_some()).count();
+    assert!(hits > rays.len() / 4, "the rays must actually hit things: {hits}");
+    for backend in backends() {
+        let accel = build(backend, &scene, &AccelOptions::default()).unwrap();
+        let mut counters = TraversalCounters::default();
+        let (mut disagree, mut occluded_disagree, mut id_mismatch) = (0, 0, 0);
+        for (ray, expected) in rays.iter().zip(&reference) {
+            let got = accel.intersect(ray, &mut counters);
+            if !same_hit(got, *expected) {
+                disagree += 1;
+            } else if let (Some(g), Some(e)) = (got, expected) {
+                if (g.geom_id, g.prim_id) != (e.geom_id, e.prim_id) {
+                    id_mismatch += 1;
+                }
+            }
+            if accel.occluded(ray, &mut counters) != expected.is_some() {
+                occluded_disagree += 1;
+            }
+        }
+        println!(
+            "{}: {} rays, {hits} hits; {disagree} closest-hit disagreements, {id_mismatch} ties \
+             resolved to another primitive at the same t, {occluded_disagree} occlusion disagreements",
+            backend.name(),
+            rays.len()
+        );
+        // Only rays that graze a shared edge or start on a surface may legitimately differ.
+        let limit = rays.len() / 1000;
+        assert!(disagree <= limit, "{}: {disagree} disagreements", backend.name());
+        assert!(occluded_disagree <= limit, "{}: {occluded_disagree}", backend.name());
+    }
+}
+
+#[test]
+fn invalid_rays_never_reach_a_backend() {
+    let mut rng = Rng(5);
+    let scene = random_scene(&mut rng);
+    for backend in backends() {
+        let accel = build(backend, &scene, &AccelOptions::default()).unwrap();
+        let mut counters = TraversalCounters::default();
+        for ray in [
+            Ray::new(Vec3::new(f32::NAN, 0.0, 0.0), Vec3::X, 1.0),
+            Ray::new(Vec3::ZERO, Vec3::new(0.0, f32::INFINITY, 0.0), 1.0),
+            Ray::new(Vec3::ZERO, Vec3::ZERO, 1.0),
+            Ray { tmin: -1.0, ..Ray::new(Vec3::ZERO, Vec3::X, 1.0) },
+        ] {
+            assert!(accel.intersect(&ray, &mut counters).is_none());
+            assert!(!accel.occluded(&ray, &mut counters));
+        }
+    }
+}
+
+#[test]
+fn empty_scene_has_no_hits() {
+    let scene = RenderScene {
+        camera: Camera::default(),
+        shapes: Vec::new(),
+        materials: Vec::new(),
+        lights: LightSet::default(),
+        background: Vec3::ZERO,
+    };
+    for backend in backends() {
+        let accel = build(backend, &scene, &AccelOptions::default()).unwrap();
+        let ray = Ray::new(Vec3::ZERO, Vec3::X, f32::INFINITY);
+        assert!(accel.intersect(&ray, &mut TraversalCounters::default()).is_none());
+    }
+}
