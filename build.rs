@@ -25,12 +25,12 @@ mod embree {
     use std::path::{Path, PathBuf};
     use std::process::Command;
 
-    const NOT_FOUND: &str = "embray: Embree not found (looked in EMBREE_DIR, pkg-config, \
+    const NOT_FOUND: &str = "Embree not found (looked in EMBREE_DIR, pkg-config, \
         /usr/include/embree4, /usr/include/embree3). On Debian/Ubuntu: \
         sudo apt-get install libembree-dev libclang-dev — or build without Embree: \
         cargo build --no-default-features --features obvhs";
 
-    const NO_LIBCLANG: &str = "embray: bindgen could not load libclang, which it needs to read \
+    const NO_LIBCLANG: &str = "bindgen could not load libclang, which it needs to read \
         the Embree headers. On Debian/Ubuntu: sudo apt-get install libclang-dev (or set \
         LIBCLANG_PATH) — or build without Embree: \
         cargo build --no-default-features --features obvhs";
@@ -73,13 +73,16 @@ mod embree {
         let out = PathBuf::from(env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
         let path = out.join("embree_bindings.rs");
         std::fs::write(&path, source)
-            .unwrap_or_else(|e| fail(&format!("embray: cannot write {}: {e}", path.display())));
+            .unwrap_or_else(|e| fail(&format!("cannot write {}: {e}", path.display())));
     }
 
+    /// Stops the build with `msg` as cargo's one top-level error. A panic (or a nonzero
+    /// exit) would bury it under "failed to run custom build command", the script's whole
+    /// output and, with RUST_BACKTRACE set, a backtrace. `cargo::error` fails the build by
+    /// itself (Cargo >= 1.84, below our rust-version), hence the exit status 0.
     fn fail(msg: &str) -> ! {
-        // A plain panic prints "thread 'main' panicked at build.rs:..." in front of the
-        // message; it is still the only message, which is what matters to the user.
-        panic!("{msg}");
+        println!("cargo::error={msg}");
+        std::process::exit(0);
     }
 
     fn find() -> Result<Install, String> {
@@ -89,13 +92,14 @@ mod embree {
             let lib_dirs: Vec<PathBuf> =
                 ["lib", "lib64"].iter().map(|l| dir.join(l)).filter(|d| d.is_dir()).collect();
             for major in [4, 3] {
-                let install = Install { major, include_dir: include_dir.clone(), lib_dirs: lib_dirs.clone() };
+                let install =
+                    Install { major, include_dir: include_dir.clone(), lib_dirs: lib_dirs.clone() };
                 if install.header().is_file() {
                     return Ok(install);
                 }
             }
             return Err(format!(
-                "embray: EMBREE_DIR={} contains neither include/embree4/rtcore.h nor \
+                "EMBREE_DIR={} contains neither include/embree4/rtcore.h nor \
                  include/embree3/rtcore.h. Point EMBREE_DIR at an Embree install prefix, or \
                  unset it to use the system Embree (Debian/Ubuntu: sudo apt-get install \
                  libembree-dev libclang-dev), or build without Embree: \
@@ -122,7 +126,11 @@ mod embree {
     fn pkg_config(major: u32) -> Option<Install> {
         let name = format!("embree{major}");
         let var = |v: &str| -> Option<String> {
-            let out = Command::new("pkg-config").arg(format!("--variable={v}")).arg(&name).output().ok()?;
+            let out = Command::new("pkg-config")
+                .arg(format!("--variable={v}"))
+                .arg(&name)
+                .output()
+                .ok()?;
             let s = String::from_utf8(out.stdout).ok()?.trim().to_string();
             (out.status.success() && !s.is_empty()).then_some(s)
         };
@@ -144,7 +152,7 @@ mod embree {
         let generated = match result {
             Ok(Ok(b)) => b.to_string(),
             Ok(Err(e)) => fail(&format!(
-                "embray: bindgen failed on {}: {e}. Is the Embree header complete? \
+                "bindgen failed on {}: {e}. Is the Embree header complete? \
                  Reinstall libembree-dev, or build without Embree: \
                  cargo build --no-default-features --features obvhs",
                 header.display()

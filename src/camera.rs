@@ -116,7 +116,13 @@ mod tests {
 
     #[test]
     fn thin_lens_rays_converge_on_the_focal_plane() {
-        let cam = Camera { width: 4, height: 4, lens_radius: 0.5, focus_distance: 10.0, ..Default::default() };
+        let cam = Camera {
+            width: 4,
+            height: 4,
+            lens_radius: 0.5,
+            focus_distance: 10.0,
+            ..Default::default()
+        };
         let raster = Vec2::new(0.7, 3.1);
         let pinhole = cam.generate_ray(raster, None);
         let focal_point = pinhole.origin + pinhole.dir * (10.0 / -pinhole.dir.z);

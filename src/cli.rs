@@ -15,7 +15,11 @@ pub const DEFAULT_SCENE: &str = include_str!("../scenes/cornell.toml");
 pub const DEFAULT_SCENE_NAME: &str = "scenes/cornell.toml (built in)";
 
 #[derive(Parser, Debug)]
-#[command(name = "embray", version, about = "Ray tracer on Embree (FFI) or obvhs, rendering in camera-relative space")]
+#[command(
+    name = "embray",
+    version,
+    about = "Ray tracer on Embree (FFI) or obvhs, rendering in camera-relative space"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,

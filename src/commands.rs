@@ -84,7 +84,8 @@ fn bench_spaces(args: &BenchArgs) -> Result<()> {
     bar.finish_and_clear();
     print!("{}", table::markdown(&rows));
     if let Some(csv) = &args.csv {
-        std::fs::write(csv, table::csv(&rows)).with_context(|| format!("cannot write '{}'", csv.display()))?;
+        std::fs::write(csv, table::csv(&rows))
+            .with_context(|| format!("cannot write '{}'", csv.display()))?;
     }
     Ok(())
 }
@@ -116,10 +117,15 @@ fn summary(
 /// Counters as a plain-text table.
 pub fn stats_table(stats: &RenderStats) -> String {
     let mut out = String::from("ray kind   rays          hits\n");
-    for (name, c) in [("camera", stats.camera), ("shadow", stats.shadow), ("indirect", stats.indirect)] {
+    for (name, c) in
+        [("camera", stats.camera), ("shadow", stats.shadow), ("indirect", stats.indirect)]
+    {
         out += &format!("{name:<10} {:<13} {}\n", c.rays, c.hits);
     }
-    out += &format!("node visits      {}\nprimitive tests  {}\n", stats.traversal.node_visits, stats.traversal.prim_tests);
+    out += &format!(
+        "node visits      {}\nprimitive tests  {}\n",
+        stats.traversal.node_visits, stats.traversal.prim_tests
+    );
     out
 }
 
@@ -128,7 +134,12 @@ fn describe(scene: &SceneDesc) -> String {
     let mut out = format!("scene: {}\n", scene.source.display());
     out += &format!(
         "camera: {}x{}, vfov {}°, lookfrom {:?}, lookat {:?}, aperture {}\n",
-        c.width, c.height, c.vfov_deg, c.lookfrom.to_array(), c.lookat.to_array(), c.aperture
+        c.width,
+        c.height,
+        c.vfov_deg,
+        c.lookfrom.to_array(),
+        c.lookat.to_array(),
+        c.aperture
     );
     out += &format!("render: {} spp, max depth {}\n", scene.settings.spp, scene.settings.max_depth);
     let (mut meshes, mut triangles, mut spheres) = (0, 0, 0);
@@ -142,10 +153,15 @@ fn describe(scene: &SceneDesc) -> String {
         }
     }
     let points = scene.lights.iter().filter(|l| matches!(l, LightDesc::Point { .. })).count();
-    let emissive = scene.objects.iter()
+    let emissive = scene
+        .objects
+        .iter()
         .filter(|o| scene.materials[o.material as usize].emission.max_element() > 0.0)
         .count();
     out += &format!("objects: {meshes} meshes ({triangles} triangles), {spheres} spheres\n");
-    out += &format!("materials: {}\nlights: {points} point, {emissive} emissive objects\n", scene.materials.len());
+    out += &format!(
+        "materials: {}\nlights: {points} point, {emissive} emissive objects\n",
+        scene.materials.len()
+    );
     out
 }

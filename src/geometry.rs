@@ -1,6 +1,7 @@
 //! Ray-primitive intersection routines shared by every backend (Embree calls the sphere test
 //! from a user-geometry callback), so both backends agree on what a hit is.
 
+use crate::spawn::gamma;
 use glam::Vec3;
 
 /// Closest intersection of a ray with a sphere in `[tmin, tmax]`, or `None`.
@@ -41,9 +42,11 @@ pub fn intersect_sphere(
     }
 }
 
-/// Watertight-enough Möller–Trumbore test returning `(t, u, v)` with Embree's barycentric
-/// convention (u weights vertex 1, v weights vertex 2). Used by the pure-Rust backend and
-/// as the brute-force reference in tests.
+/// Watertight ray-triangle test (Woop, Benthin, Wald 2013, with pbrt-v4's conservative
+/// t > 0 bound), returning `(t, u, v)` with Embree's barycentric convention (u weights vertex
+/// 1, v weights vertex 2). A ray through an edge shared by two triangles hits at least one of
+/// them, as with Embree's robust mode. Used by the pure-Rust backend and as the brute-force
+/// reference in tests.
 pub fn intersect_triangle(
     origin: Vec3,
     dir: Vec3,
@@ -51,26 +54,73 @@ pub fn intersect_triangle(
     tmax: f32,
     tri: &[Vec3; 3],
 ) -> Option<(f32, f32, f32)> {
-    let e1 = tri[1] - tri[0];
-    let e2 = tri[2] - tri[0];
-    let pvec = dir.cross(e2);
-    let det = e1.dot(pvec);
+    // Translate to the ray origin and permute so the largest direction component is z.
+    let kz = dir.abs().max_position();
+    let kx = (kz + 1) % 3;
+    let ky = (kx + 1) % 3;
+    let permute = |v: Vec3| Vec3::new(v[kx], v[ky], v[kz]);
+    let d = permute(dir);
+    let mut p0 = permute(tri[0] - origin);
+    let mut p1 = permute(tri[1] - origin);
+    let mut p2 = permute(tri[2] - origin);
+    // Shear so the ray runs along +z.
+    let (sx, sy, sz) = (-d.x / d.z, -d.y / d.z, 1.0 / d.z);
+    for p in [&mut p0, &mut p1, &mut p2] {
+        p.x += sx * p.z;
+        p.y += sy * p.z;
+    }
+    let mut e0 = difference_of_products(p1.x, p2.y, p1.y, p2.x);
+    let mut e1 = difference_of_products(p2.x, p0.y, p2.y, p0.x);
+    let mut e2 = difference_of_products(p0.x, p1.y, p0.y, p1.x);
+    if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
+        // Exactly on an edge in f32: decide in f64 so shared edges are never both missed.
+        let f = |a: f32, b: f32, c: f32, d: f32| (a as f64 * b as f64 - c as f64 * d as f64) as f32;
+        e0 = f(p1.x, p2.y, p1.y, p2.x);
+        e1 = f(p2.x, p0.y, p2.y, p0.x);
+        e2 = f(p0.x, p1.y, p0.y, p1.x);
+    }
+    if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
+        return None;
+    }
+    let det = e0 + e1 + e2;
     if det == 0.0 || !det.is_finite() {
         return None;
     }
+    p0.z *= sz;
+    p1.z *= sz;
+    p2.z *= sz;
+    let t_scaled = e0 * p0.z + e1 * p1.z + e2 * p2.z;
+    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < tmax * det) {
+        return None;
+    }
+    if det > 0.0 && (t_scaled <= 0.0 || t_scaled > tmax * det) {
+        return None;
+    }
     let inv_det = 1.0 / det;
-    let tvec = origin - tri[0];
-    let u = tvec.dot(pvec) * inv_det;
-    if !(0.0..=1.0).contains(&u) {
+    let t = t_scaled * inv_det;
+    // Conservative bound on t's rounding error: reject hits that might really be at t <= 0.
+    let max_zt = Vec3::new(p0.z, p1.z, p2.z).abs().max_element();
+    let max_xt = Vec3::new(p0.x, p1.x, p2.x).abs().max_element();
+    let max_yt = Vec3::new(p0.y, p1.y, p2.y).abs().max_element();
+    let delta_z = gamma(3) * max_zt;
+    let delta_x = gamma(5) * (max_xt + max_zt);
+    let delta_y = gamma(5) * (max_yt + max_zt);
+    let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+    let max_e = Vec3::new(e0, e1, e2).abs().max_element();
+    let delta_t =
+        3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
+    if t <= delta_t || t < tmin || t > tmax {
         return None;
     }
-    let qvec = tvec.cross(e1);
-    let v = dir.dot(qvec) * inv_det;
-    if v < 0.0 || u + v > 1.0 {
-        return None;
-    }
-    let t = e2.dot(qvec) * inv_det;
-    if t >= tmin && t <= tmax { Some((t, u, v)) } else { None }
+    Some((t, e1 * inv_det, e2 * inv_det))
+}
+
+/// a·b − c·d with one rounding (Kahan's algorithm with FMA).
+fn difference_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
+    let cd = c * d;
+    let err = (-c).mul_add(d, cd);
+    let dop = a.mul_add(b, -cd);
+    dop + err
 }
 
 #[cfg(test)]
@@ -97,14 +147,9 @@ mod tests {
     #[test]
     fn triangle_barycentrics_follow_embree_convention() {
         let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
-        let (t, u, v) = intersect_triangle(
-            Vec3::new(0.25, 0.5, 1.0),
-            Vec3::NEG_Z,
-            0.0,
-            f32::INFINITY,
-            &tri,
-        )
-        .unwrap();
+        let (t, u, v) =
+            intersect_triangle(Vec3::new(0.25, 0.5, 1.0), Vec3::NEG_Z, 0.0, f32::INFINITY, &tri)
+                .unwrap();
         assert!((t - 1.0).abs() < 1e-6 && (u - 0.25).abs() < 1e-6 && (v - 0.5).abs() < 1e-6);
     }
 }

@@ -16,7 +16,11 @@ pub struct ImageError {
 
 /// Compares `test` with `reference` (same size).
 pub fn image_error(test: &Film, reference: &Film) -> ImageError {
-    assert_eq!((test.width, test.height), (reference.width, reference.height), "image sizes differ");
+    assert_eq!(
+        (test.width, test.height),
+        (reference.width, reference.height),
+        "image sizes differ"
+    );
     let mean = reference.color.iter().map(|c| c.element_sum() as f64).sum::<f64>()
         / (3.0 * reference.color.len().max(1) as f64);
     let (mut err2, mut ref2, mut max_abs, mut off, mut non_finite) = (0.0, 0.0, 0.0f64, 0, 0);

@@ -131,7 +131,12 @@ impl<'a> PathTracer<'a> {
     }
 
     /// Traces one camera path.
-    pub fn trace(&self, camera_ray: Ray, stream: &mut SampleStream, stats: &mut RenderStats) -> PathSample {
+    pub fn trace(
+        &self,
+        camera_ray: Ray,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+    ) -> PathSample {
         let mut result = PathSample::default();
         let mut ray = camera_ray;
         let mut throughput = Vec3::ONE;
@@ -164,7 +169,8 @@ impl<'a> PathTracer<'a> {
             }
             let local = cosine_hemisphere(stream.next_2d());
             let sampling_normal = (self.sampling_from_render * si.shading_normal).normalize();
-            let dir = self.sampling_from_render.transpose() * (frame_from_normal(sampling_normal) * local);
+            let dir = self.sampling_from_render.transpose()
+                * (frame_from_normal(sampling_normal) * local);
             if dir.dot(si.surface.normal) <= 0.0 {
                 break;
             }

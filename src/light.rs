@@ -1,10 +1,10 @@
 //! Lights in render space: point lights (one shadow ray each) and emissive shapes, which are
 //! sampled by area in proportion to their emitted power.
 
+use crate::material::Material;
 use crate::render_scene::{Geometry, Shape};
 use crate::sampling::uniform_triangle;
 use crate::spawn::{gamma, triangle_point};
-use crate::material::Material;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug, PartialEq)]

@@ -32,10 +32,8 @@ fn write_atomically(
     path: &Path,
     write: impl FnOnce(&Path) -> Result<(), String>,
 ) -> Result<(), OutputError> {
-    let file_name = path
-        .file_name()
-        .ok_or_else(|| write_error(path, "not a file name"))?
-        .to_string_lossy();
+    let file_name =
+        path.file_name().ok_or_else(|| write_error(path, "not a file name"))?.to_string_lossy();
     let temp = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
     if let Err(message) = write(&temp) {
         let _ = std::fs::remove_file(&temp);
@@ -85,11 +83,7 @@ fn tone_map(c: Vec3, curve: ToneMap) -> Vec3 {
 }
 
 fn srgb_encode(linear: f32) -> f32 {
-    if linear <= 0.003_130_8 {
-        12.92 * linear
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
+    if linear <= 0.003_130_8 { 12.92 * linear } else { 1.055 * linear.powf(1.0 / 2.4) - 0.055 }
 }
 
 /// 8-bit sRGB pixels of `film` after exposure (in stops) and tone mapping. NaN becomes 0.
@@ -107,7 +101,12 @@ pub fn to_srgb8(film: &Film, curve: ToneMap, exposure: f32) -> Vec<u8> {
         .collect()
 }
 
-pub fn write_png(film: &Film, path: &Path, curve: ToneMap, exposure: f32) -> Result<(), OutputError> {
+pub fn write_png(
+    film: &Film,
+    path: &Path,
+    curve: ToneMap,
+    exposure: f32,
+) -> Result<(), OutputError> {
     let pixels = to_srgb8(film, curve, exposure);
     let image = image::RgbImage::from_raw(film.width, film.height, pixels)
         .ok_or_else(|| write_error(path, "image buffer has the wrong size"))?;
@@ -138,8 +137,11 @@ mod tests {
         let ok = dir.join("ok.exr");
         write_exr(&film, &ok).unwrap();
         assert!(ok.exists());
-        let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().filter_map(|e| e.ok())
-            .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp")).collect();
+        let leftovers: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+            .collect();
         assert!(leftovers.is_empty());
         std::fs::remove_dir_all(&dir).unwrap();
     }

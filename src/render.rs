@@ -74,7 +74,10 @@ pub struct RenderOutput {
 }
 
 /// The render-space scene for `desc` under `options` (offset applied first, in world space).
-pub fn prepare_scene(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderScene, RenderError> {
+pub fn prepare_scene(
+    desc: &SceneDesc,
+    options: &RenderOptions,
+) -> Result<RenderScene, RenderError> {
     let mut desc = desc.clone();
     if options.offset != DVec3::ZERO {
         desc.translate(options.offset);
@@ -167,7 +170,11 @@ fn render_tile(tracer: &PathTracer, tile: Tile, options: &RenderOptions) -> Tile
 
 /// Traces every pixel of `scene` with `accel`. Each pixel is computed by one task from
 /// counter-based random numbers, so the image is bit-identical for any thread count.
-pub fn render_film(scene: &RenderScene, accel: &dyn Accel, options: &RenderOptions) -> (Film, RenderStats) {
+pub fn render_film(
+    scene: &RenderScene,
+    accel: &dyn Accel,
+    options: &RenderOptions,
+) -> (Film, RenderStats) {
     let tracer = PathTracer::new(scene, accel, options.max_depth);
     let camera = &scene.camera;
     let all_tiles = tiles(camera.width, camera.height, TILE_SIZE);
@@ -176,7 +183,9 @@ pub fn render_film(scene: &RenderScene, accel: &dyn Accel, options: &RenderOptio
             Some(all_tiles.len() as u64),
             ProgressDrawTarget::stderr(),
         );
-        if let Ok(style) = ProgressStyle::with_template("{bar:40} {percent:>3}% {elapsed}<{eta} {msg}") {
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {percent:>3}% {elapsed}<{eta} {msg}")
+        {
             bar.set_style(style);
         }
         bar

@@ -104,12 +104,7 @@ fn place_mesh(
         }
         None => None,
     };
-    Ok(TriangleMesh {
-        positions,
-        indices: mesh.indices.clone(),
-        normals,
-        uvs: mesh.uvs.clone(),
-    })
+    Ok(TriangleMesh { positions, indices: mesh.indices.clone(), normals, uvs: mesh.uvs.clone() })
 }
 
 fn place_camera(desc: &CameraDesc, camera_transform: &CameraTransform) -> Camera {
@@ -213,7 +208,9 @@ mod tests {
         let t = CameraTransform::new(RenderSpace::Camera, &desc);
         let ahead = t.render_from_world.transform_point3(desc.lookat);
         assert!(ahead.x.abs() < 1e-12 && ahead.y.abs() < 1e-12 && ahead.z < 0.0);
-        assert!((t.render_from_camera_rotation() - DMat3::IDENTITY).abs_diff_eq(DMat3::ZERO, 1e-12));
+        assert!(
+            (t.render_from_camera_rotation() - DMat3::IDENTITY).abs_diff_eq(DMat3::ZERO, 1e-12)
+        );
     }
 
     #[test]

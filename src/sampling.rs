@@ -59,7 +59,10 @@ pub fn pixel_sample(index: u32, count: u32, jitter: Option<Vec2>, seed: u64, pix
     let side = (count as f64).sqrt().round() as u32;
     if side * side == count {
         let (col, row) = (index % side, index / side);
-        return Vec2::new((col as f32 + offset.x) / side as f32, (row as f32 + offset.y) / side as f32);
+        return Vec2::new(
+            (col as f32 + offset.x) / side as f32,
+            (row as f32 + offset.y) / side as f32,
+        );
     }
     // Pair column stratum `index` with row stratum perm(index): an affine permutation whose
     // stride is coprime with `count`, chosen per pixel from the hash.

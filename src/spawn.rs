@@ -110,7 +110,9 @@ pub fn sphere_point(center: Vec3, radius: f32, origin: Vec3, dir: Vec3, t: f32) 
     }
     let point = center + local;
     // Reprojection (pbrt: γ5·|p|) plus the final addition of the centre.
-    let error = local.abs() * gamma(5) + (center.abs() + local.abs()) * gamma(1) + Vec3::splat(radius * gamma(8) + MIN_OFFSET);
+    let error = local.abs() * gamma(5)
+        + (center.abs() + local.abs()) * gamma(1)
+        + Vec3::splat(radius * gamma(8) + MIN_OFFSET);
     (point, error)
 }
 
@@ -127,7 +129,11 @@ mod tests {
 
     #[test]
     fn exact_points_on_axis_aligned_planes_still_leave_the_plane() {
-        let sp = SurfacePoint { point: Vec3::new(9.0, 14.0, 0.0), error: Vec3::ZERO, normal: Vec3::NEG_Z };
+        let sp = SurfacePoint {
+            point: Vec3::new(9.0, 14.0, 0.0),
+            error: Vec3::ZERO,
+            normal: Vec3::NEG_Z,
+        };
         assert!(sp.offset_origin(Vec3::new(1.0, 1.0, -1.0)).z < 0.0);
         assert!(sp.offset_origin(Vec3::new(1.0, 1.0, 1.0)).z > 0.0);
     }

@@ -46,13 +46,15 @@ fn diffuse_quad_lit_by_point_light_matches_closed_form_radiance() {
         let mut worst = 0.0f32;
         for y in 0..33 {
             for x in 0..33 {
-                let ray = camera.generate_ray(glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5), None);
+                let ray =
+                    camera.generate_ray(glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5), None);
                 let t = -ray.origin.y / ray.dir.y;
                 assert!(t > 0.0, "every pixel sees the plane");
                 let p = ray.origin + ray.dir * t;
                 let to_light = light - p;
                 let cos = to_light.y / to_light.length();
-                let expected = albedo / std::f32::consts::PI * 100.0 * cos / to_light.length_squared();
+                let expected =
+                    albedo / std::f32::consts::PI * 100.0 * cos / to_light.length_squared();
                 let got = out.film.pixel(x, y);
                 let rel = ((got - expected).abs() / expected).max_element();
                 worst = worst.max(rel);

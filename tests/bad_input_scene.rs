@@ -44,10 +44,7 @@ fn load_err(text: &str) -> String {
 #[track_caller]
 fn assert_contains(message: &str, parts: &[&str]) {
     for part in parts {
-        assert!(
-            message.contains(part),
-            "expected {part:?} in the message:\n{message}"
-        );
+        assert!(message.contains(part), "expected {part:?} in the message:\n{message}");
     }
 }
 
@@ -69,15 +66,10 @@ fn mesh_of(scene: &SceneDesc, object: usize) -> &embray::scene::MeshData {
 
 #[test]
 fn missing_scene_file_names_the_file() {
-    let err = scene::load(Path::new("no/such/dir/absent_scene.toml"))
-        .unwrap_err()
-        .to_string();
+    let err = scene::load(Path::new("no/such/dir/absent_scene.toml")).unwrap_err().to_string();
     assert_contains(
         &err,
-        &[
-            "scene file 'no/such/dir/absent_scene.toml'",
-            "No such file or directory",
-        ],
+        &["scene file 'no/such/dir/absent_scene.toml'", "No such file or directory"],
     );
 }
 
@@ -107,27 +99,19 @@ fn unknown_key_in_a_transform_entry_is_named() {
         "[[objects]]\ntype = \"box\"\nmaterial = \"white\"\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n\
          transform = [{ rotate = { axis = [0, 1, 0], degrees = 10, turns = 2 } }]\n",
     ));
-    assert_contains(
-        &err,
-        &["scene.toml", "unknown field `turns`", "line 13, column 59"],
-    );
+    assert_contains(&err, &["scene.toml", "unknown field `turns`", "line 13, column 59"]);
 }
 
 #[test]
 fn unknown_object_type_is_named() {
-    let err = load_err(&scene_with(
-        "[[objects]]\ntype = \"cone\"\nmaterial = \"white\"\n",
-    ));
+    let err = load_err(&scene_with("[[objects]]\ntype = \"cone\"\nmaterial = \"white\"\n"));
     assert_contains(&err, &["scene.toml", "unknown variant `cone`", "line 9"]);
 }
 
 #[test]
 fn wrong_array_length_names_the_line() {
     let err = load_err("[camera]\nlookfrom = [1.0, 2.0]\n");
-    assert_contains(
-        &err,
-        &["scene.toml", "line 2", "expected an array of length 3"],
-    );
+    assert_contains(&err, &["scene.toml", "line 2", "expected an array of length 3"]);
 }
 
 #[test]
@@ -135,13 +119,7 @@ fn missing_required_field_is_named() {
     let err = load_err(&scene_with(
         "[[objects]]\ntype = \"quad\"\nmaterial = \"white\"\ncorner = [0, 0, 0]\nu = [1, 0, 0]\n",
     ));
-    assert_contains(
-        &err,
-        &[
-            "scene.toml: objects[0] (quad) is missing the field `v`",
-            "(line 8)",
-        ],
-    );
+    assert_contains(&err, &["scene.toml: objects[0] (quad) is missing the field `v`", "(line 8)"]);
 }
 
 #[test]
@@ -151,10 +129,7 @@ fn field_of_another_type_is_rejected() {
     ));
     assert_contains(
         &err,
-        &[
-            "scene.toml: objects[0] (quad) does not take the field `radius`",
-            "(line 14)",
-        ],
+        &["scene.toml: objects[0] (quad) does not take the field `radius`", "(line 14)"],
     );
 }
 
@@ -180,13 +155,8 @@ fn inf_radius_names_the_object() {
 
 #[test]
 fn nan_in_material_is_named() {
-    let err = load_err(&format!(
-        "{CAMERA}[materials.white]\nalbedo = [0.5, 0.5, -nan]\n"
-    ));
-    assert_contains(
-        &err,
-        &["scene.toml: materials.white.albedo[2] is NaN", "(line 7)"],
-    );
+    let err = load_err(&format!("{CAMERA}[materials.white]\nalbedo = [0.5, 0.5, -nan]\n"));
+    assert_contains(&err, &["scene.toml: materials.white.albedo[2] is NaN", "(line 7)"]);
 }
 
 #[test]
@@ -197,10 +167,7 @@ fn infinite_transform_entry_is_named() {
     ));
     assert_contains(
         &err,
-        &[
-            "scene.toml: objects[0].transform[1].rotate.degrees is -inf",
-            "(line 13)",
-        ],
+        &["scene.toml: objects[0].transform[1].rotate.degrees is -inf", "(line 13)"],
     );
 }
 
@@ -212,9 +179,7 @@ fn nan_in_render_background_is_named() {
 
 #[test]
 fn non_finite_obj_vertex_names_the_obj_and_vertex() {
-    let err = load_err(&scene_with(
-        "[[objects]]\ntype = \"mesh\"\nfile = \"nan_vertex.obj\"\n",
-    ));
+    let err = load_err(&scene_with("[[objects]]\ntype = \"mesh\"\nfile = \"nan_vertex.obj\"\n"));
     assert_contains(
         &err,
         &[
@@ -235,20 +200,14 @@ fn zero_resolution_is_rejected() {
     let err = load_err(&CAMERA.replace("[32, 24]", "[32, 0]"));
     assert_contains(
         &err,
-        &[
-            "scene.toml: camera.resolution[1] is 0, but must be between 1 and 16384",
-            "(line 5)",
-        ],
+        &["scene.toml: camera.resolution[1] is 0, but must be between 1 and 16384", "(line 5)"],
     );
 }
 
 #[test]
 fn resolution_above_16384_is_rejected() {
     let err = load_err(&CAMERA.replace("[32, 24]", "[16385, 24]"));
-    assert_contains(
-        &err,
-        &["camera.resolution[0] is 16385", "between 1 and 16384"],
-    );
+    assert_contains(&err, &["camera.resolution[0] is 16385", "between 1 and 16384"]);
 }
 
 #[test]
@@ -260,24 +219,14 @@ fn negative_resolution_is_a_type_error_with_line() {
 #[test]
 fn zero_spp_is_rejected() {
     let err = load_err(&format!("{CAMERA}[render]\nspp = 0\n"));
-    assert_contains(
-        &err,
-        &["scene.toml: render.spp is 0, but must be >= 1", "(line 7)"],
-    );
+    assert_contains(&err, &["scene.toml: render.spp is 0, but must be >= 1", "(line 7)"]);
 }
 
 #[test]
 fn vfov_outside_0_180_is_rejected() {
     for vfov in ["0.0", "180.0", "-10", "200.0"] {
         let err = load_err(&CAMERA.replace("vfov = 40.0", &format!("vfov = {vfov}")));
-        assert_contains(
-            &err,
-            &[
-                "scene.toml: camera.vfov is",
-                "between 0 and 180",
-                "(line 4)",
-            ],
-        );
+        assert_contains(&err, &["scene.toml: camera.vfov is", "between 0 and 180", "(line 4)"]);
     }
 }
 
@@ -290,10 +239,7 @@ fn non_positive_radius_is_rejected() {
         assert_contains(
             &err,
             &[
-                &format!(
-                    "scene.toml: objects[0].radius is {}",
-                    radius.trim_end_matches(".0")
-                ),
+                &format!("scene.toml: objects[0].radius is {}", radius.trim_end_matches(".0")),
                 "> 0",
             ],
         );
@@ -302,38 +248,23 @@ fn non_positive_radius_is_rejected() {
 
 #[test]
 fn negative_albedo_is_rejected() {
-    let err = load_err(&format!(
-        "{CAMERA}[materials.grey]\nalbedo = [0.5, -0.1, 0.5]\n"
-    ));
+    let err = load_err(&format!("{CAMERA}[materials.grey]\nalbedo = [0.5, -0.1, 0.5]\n"));
     assert_contains(
         &err,
-        &[
-            "scene.toml: materials.grey.albedo[1] is -0.1, but must be in [0, 1]",
-            "(line 7)",
-        ],
+        &["scene.toml: materials.grey.albedo[1] is -0.1, but must be in [0, 1]", "(line 7)"],
     );
 }
 
 #[test]
 fn albedo_above_one_is_rejected() {
-    let err = load_err(&format!(
-        "{CAMERA}[materials.grey]\nalbedo = [1.5, 0.5, 0.5]\n"
-    ));
-    assert_contains(
-        &err,
-        &["materials.grey.albedo[0] is 1.5, but must be in [0, 1]"],
-    );
+    let err = load_err(&format!("{CAMERA}[materials.grey]\nalbedo = [1.5, 0.5, 0.5]\n"));
+    assert_contains(&err, &["materials.grey.albedo[0] is 1.5, but must be in [0, 1]"]);
 }
 
 #[test]
 fn negative_emission_is_rejected() {
-    let err = load_err(&format!(
-        "{CAMERA}[materials.lamp]\nemission = [1, 1, -2]\n"
-    ));
-    assert_contains(
-        &err,
-        &["scene.toml: materials.lamp.emission[2] is -2, but must be >= 0"],
-    );
+    let err = load_err(&format!("{CAMERA}[materials.lamp]\nemission = [1, 1, -2]\n"));
+    assert_contains(&err, &["scene.toml: materials.lamp.emission[2] is -2, but must be >= 0"]);
 }
 
 #[test]
@@ -343,10 +274,7 @@ fn negative_light_intensity_is_rejected() {
     ));
     assert_contains(
         &err,
-        &[
-            "scene.toml: lights[0].intensity[0] is -1, but must be >= 0",
-            "(line 9)",
-        ],
+        &["scene.toml: lights[0].intensity[0] is -1, but must be >= 0", "(line 9)"],
     );
 }
 
@@ -387,11 +315,7 @@ fn zero_up_vector_is_a_degenerate_camera() {
     let err = load_err(&format!("{CAMERA}up = [0, 0, 0]\n"));
     assert_contains(
         &err,
-        &[
-            "scene.toml: degenerate camera",
-            "camera.up [0, 0, 0] is the zero vector",
-            "(line 6)",
-        ],
+        &["scene.toml: degenerate camera", "camera.up [0, 0, 0] is the zero vector", "(line 6)"],
     );
 }
 
@@ -424,13 +348,9 @@ fn unknown_material_lists_the_defined_ones() {
 
 #[test]
 fn object_without_material_is_rejected() {
-    let err = load_err(&scene_with(
-        "[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1.0\n",
-    ));
-    assert_contains(
-        &err,
-        &["objects[0] (sphere) is missing the field `material`"],
-    );
+    let err =
+        load_err(&scene_with("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1.0\n"));
+    assert_contains(&err, &["objects[0] (sphere) is missing the field `material`"]);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -439,9 +359,7 @@ fn object_without_material_is_rejected() {
 
 #[test]
 fn missing_obj_file_names_the_obj_and_the_scene() {
-    let err = load_err(&scene_with(
-        "[[objects]]\ntype = \"mesh\"\nfile = \"models/absent.obj\"\n",
-    ));
+    let err = load_err(&scene_with("[[objects]]\ntype = \"mesh\"\nfile = \"models/absent.obj\"\n"));
     assert_contains(
         &err,
         &[
@@ -456,37 +374,22 @@ fn missing_obj_file_names_the_obj_and_the_scene() {
 
 #[test]
 fn obj_with_out_of_range_index_names_the_obj() {
-    let err = load_err(&scene_with(
-        "[[objects]]\ntype = \"mesh\"\nfile = \"bad_index.obj\"\n",
-    ));
+    let err = load_err(&scene_with("[[objects]]\ntype = \"mesh\"\nfile = \"bad_index.obj\"\n"));
     assert_contains(
         &err,
-        &[
-            "bad_index.obj: a face refers to vertex 9, but the file has 3 vertices",
-            "(line 5)",
-        ],
+        &["bad_index.obj: a face refers to vertex 9, but the file has 3 vertices", "(line 5)"],
     );
 }
 
 #[test]
 fn obj_without_triangles_is_rejected() {
-    let err = load_err(&scene_with(
-        "[[objects]]\ntype = \"mesh\"\nfile = \"no_triangles.obj\"\n",
-    ));
-    assert_contains(
-        &err,
-        &[
-            "no_triangles.obj: the OBJ file has no triangles",
-            "objects[0]",
-        ],
-    );
+    let err = load_err(&scene_with("[[objects]]\ntype = \"mesh\"\nfile = \"no_triangles.obj\"\n"));
+    assert_contains(&err, &["no_triangles.obj: the OBJ file has no triangles", "objects[0]"]);
 }
 
 #[test]
 fn mtl_colour_with_two_numbers_is_an_error_not_a_panic() {
-    let err = load_err(&scene_with(
-        "[[objects]]\ntype = \"mesh\"\nfile = \"short_kd.obj\"\n",
-    ));
+    let err = load_err(&scene_with("[[objects]]\ntype = \"mesh\"\nfile = \"short_kd.obj\"\n"));
     assert_contains(&err, &["short_kd.mtl: Kd needs 3 numbers", "(line 2)"]);
 }
 
@@ -504,10 +407,7 @@ fn zero_scale_is_a_singular_transform() {
     )));
     assert_contains(
         &err,
-        &[
-            "scene.toml: objects[0].transform[1]: scale [1, 0, 1] is singular",
-            "(line 13)",
-        ],
+        &["scene.toml: objects[0].transform[1]: scale [1, 0, 1] is singular", "(line 13)"],
     );
 }
 
@@ -538,10 +438,7 @@ fn zero_rotation_axis_is_rejected() {
     let err = load_err(&scene_with(&format!(
         "{BOX}transform = [{{ rotate = {{ axis = [0, 0, 0], degrees = 30 }} }}]\n"
     )));
-    assert_contains(
-        &err,
-        &["objects[0].transform[0]: rotate axis [0, 0, 0] has zero length"],
-    );
+    assert_contains(&err, &["objects[0].transform[0]: rotate axis [0, 0, 0] has zero length"]);
 }
 
 #[test]
@@ -561,9 +458,7 @@ fn transform_entry_with_two_keys_is_rejected() {
 
 #[test]
 fn unknown_transform_kind_is_named() {
-    let err = load_err(&scene_with(&format!(
-        "{BOX}transform = [{{ shear = 2.0 }}]\n"
-    )));
+    let err = load_err(&scene_with(&format!("{BOX}transform = [{{ shear = 2.0 }}]\n")));
     assert_contains(&err, &["scene.toml", "unknown field `shear`", "line 13"]);
 }
 
@@ -572,10 +467,7 @@ fn singular_quad_light_transform_names_the_light() {
     let err = load_err(&format!(
         "{CAMERA}[[lights]]\ntype = \"quad\"\ncorner = [0, 1, 0]\nu = [1, 0, 0]\nv = [0, 0, 1]\nemission = [1, 1, 1]\ntransform = [{{ scale = 0.0 }}]\n"
     ));
-    assert_contains(
-        &err,
-        &["scene.toml: lights[0].transform[0]: scale [0, 0, 0] is singular"],
-    );
+    assert_contains(&err, &["scene.toml: lights[0].transform[0]: scale [0, 0, 0] is singular"]);
 }
 
 #[test]
@@ -750,13 +642,7 @@ fn example_scene_with_every_feature_loads() {
     );
     assert_eq!(mesh_of(&scene, 2).indices.len(), 12);
     assert_eq!(mesh_of(&scene, 0).indices.len(), 2);
-    assert_eq!(
-        scene.objects[1].shape,
-        ShapeDesc::Sphere {
-            center: DVec3::ZERO,
-            radius: 1.0
-        }
-    );
+    assert_eq!(scene.objects[1].shape, ShapeDesc::Sphere { center: DVec3::ZERO, radius: 1.0 });
 }
 
 #[test]
@@ -770,17 +656,9 @@ fn transform_list_applies_in_listed_order() {
     let object = &scene.objects[0];
     let mesh = mesh_of(&scene, 0);
     let world = |i: usize| object.world_from_object.transform_point3(mesh.positions[i]);
-    assert!(
-        (world(3) - DVec3::new(11.0, 20.0, 30.0)).length() < 1e-12,
-        "{}",
-        world(3)
-    );
+    assert!((world(3) - DVec3::new(11.0, 20.0, 30.0)).length() < 1e-12, "{}", world(3));
     // corner+u = (0, 1, 0) → (0, 2, 0) → (0, 2, 0) → (10, 22, 30).
-    assert!(
-        (world(1) - DVec3::new(10.0, 22.0, 30.0)).length() < 1e-12,
-        "{}",
-        world(1)
-    );
+    assert!((world(1) - DVec3::new(10.0, 22.0, 30.0)).length() < 1e-12, "{}", world(1));
 }
 
 #[test]
@@ -788,9 +666,7 @@ fn matrix_transform_is_row_major() {
     let scene = load(&scene_with(&format!(
         "{BOX}transform = [{{ matrix = [[0, -1, 0, 5], [1, 0, 0, 6], [0, 0, 1, 7], [0, 0, 0, 1]] }}]\n"
     )));
-    let p = scene.objects[0]
-        .world_from_object
-        .transform_point3(DVec3::X);
+    let p = scene.objects[0].world_from_object.transform_point3(DVec3::X);
     assert_eq!(p, DVec3::new(5.0, 7.0, 7.0));
 }
 
@@ -798,10 +674,7 @@ fn matrix_transform_is_row_major() {
 fn defaults_apply_when_fields_are_absent() {
     let scene = load(&scene_with(BOX));
     assert_eq!(scene.camera.up, DVec3::Y);
-    assert_eq!(
-        (scene.camera.aperture, scene.camera.focus_distance),
-        (0.0, None)
-    );
+    assert_eq!((scene.camera.aperture, scene.camera.focus_distance), (0.0, None));
     assert_eq!(scene.settings, embray::scene::RenderSettings::default());
     assert_eq!(scene.objects[0].world_from_object, glam::DAffine3::IDENTITY);
     let scene = load(&format!("{CAMERA}[materials.plain]\n"));
@@ -811,21 +684,13 @@ fn defaults_apply_when_fields_are_absent() {
 
 #[test]
 fn obj_with_mtl_colours_loads_one_object_per_material() {
-    let scene = load(&scene_with(
-        "[[objects]]\ntype = \"mesh\"\nfile = \"two_materials.obj\"\n",
-    ));
+    let scene = load(&scene_with("[[objects]]\ntype = \"mesh\"\nfile = \"two_materials.obj\"\n"));
     assert_eq!(scene.objects.len(), 2);
     let material = |i: usize| &scene.materials[scene.objects[i].material as usize];
     assert_eq!(material(0).name, "two_materials.obj: Red");
-    assert_eq!(
-        (material(0).albedo, material(0).emission),
-        (Vec3::new(0.7, 0.1, 0.1), Vec3::ZERO)
-    );
+    assert_eq!((material(0).albedo, material(0).emission), (Vec3::new(0.7, 0.1, 0.1), Vec3::ZERO));
     assert_eq!(material(1).name, "two_materials.obj: Glow");
-    assert_eq!(
-        (material(1).albedo, material(1).emission),
-        (Vec3::ZERO, Vec3::new(4.0, 3.0, 2.0))
-    );
+    assert_eq!((material(1).albedo, material(1).emission), (Vec3::ZERO, Vec3::new(4.0, 3.0, 2.0)));
     for i in 0..2 {
         let mesh = mesh_of(&scene, i);
         assert_eq!(mesh.indices.len(), 1);
@@ -839,12 +704,7 @@ fn material_in_scene_overrides_the_obj_materials() {
     let scene = load(&scene_with(
         "[[objects]]\ntype = \"mesh\"\nfile = \"two_materials.obj\"\nmaterial = \"white\"\n",
     ));
-    assert!(
-        scene
-            .objects
-            .iter()
-            .all(|o| scene.materials[o.material as usize].name == "white")
-    );
+    assert!(scene.objects.iter().all(|o| scene.materials[o.material as usize].name == "white"));
     assert_eq!(scene.materials.len(), 1);
 }
 
@@ -859,26 +719,17 @@ fn obj_naming_a_missing_mtl_loads_with_a_warning() {
     assert_contains(&warnings[0], &["missing_mtl.obj", "does_not_exist.mtl"]);
     assert_eq!(scene.objects.len(), 1);
     let material = &scene.materials[scene.objects[0].material as usize];
-    assert_eq!(
-        (material.albedo, material.emission),
-        (Vec3::splat(0.8), Vec3::ZERO)
-    );
+    assert_eq!((material.albedo, material.emission), (Vec3::splat(0.8), Vec3::ZERO));
 }
 
 #[test]
 fn scene_file_on_disk_loads_and_resolves_obj_paths() {
     let dir = std::env::temp_dir().join(format!("embray-scene-test-{}", std::process::id()));
     std::fs::create_dir_all(dir.join("models")).unwrap();
-    std::fs::copy(
-        data_dir().join("two_materials.obj"),
-        dir.join("models/two_materials.obj"),
-    )
-    .unwrap();
-    std::fs::copy(
-        data_dir().join("two_materials.mtl"),
-        dir.join("models/two_materials.mtl"),
-    )
-    .unwrap();
+    std::fs::copy(data_dir().join("two_materials.obj"), dir.join("models/two_materials.obj"))
+        .unwrap();
+    std::fs::copy(data_dir().join("two_materials.mtl"), dir.join("models/two_materials.mtl"))
+        .unwrap();
     let path = dir.join("on_disk.toml");
     std::fs::write(
         &path,

@@ -43,7 +43,13 @@ intensity = [10.0, 10.0, 10.0]
 
 /// Writes `scene` (and extra files) into a fresh folder, renders it, and checks that the
 /// command failed cleanly with a message containing every one of `expected`.
-fn assert_rejected(name: &str, scene: Option<&str>, extra: &[(&str, &str)], args: &[&str], expected: &[&str]) {
+fn assert_rejected(
+    name: &str,
+    scene: Option<&str>,
+    extra: &[(&str, &str)],
+    args: &[&str],
+    expected: &[&str],
+) {
     let dir = temp_dir(name);
     if let Some(text) = scene {
         std::fs::write(dir.join("scene.toml"), text).unwrap();
@@ -96,7 +102,10 @@ fn render_without_a_scene_draws_the_default_cornell_box() {
     // The left wall is red, the right wall green.
     let left = png.get_pixel(20, 128);
     let right = png.get_pixel(235, 128);
-    assert!(left[0] > 2 * left[1] && right[1] as u32 * 2 > right[0] as u32 * 3, "{left:?} {right:?}");
+    assert!(
+        left[0] > 2 * left[1] && right[1] as u32 * 2 > right[0] as u32 * 3,
+        "{left:?} {right:?}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -136,13 +145,17 @@ fn zero_resolution_or_spp_is_rejected() {
 
 #[test]
 fn missing_obj_is_rejected() {
-    let text = format!("{GOOD_SCENE}\n[[objects]]\ntype = \"mesh\"\nfile = \"nothere.obj\"\nmaterial = \"white\"\n");
+    let text = format!(
+        "{GOOD_SCENE}\n[[objects]]\ntype = \"mesh\"\nfile = \"nothere.obj\"\nmaterial = \"white\"\n"
+    );
     assert_rejected("missing-obj", Some(&text), &[], &[], &["nothere.obj"]);
 }
 
 #[test]
 fn obj_with_out_of_range_indices_is_rejected() {
-    let text = format!("{GOOD_SCENE}\n[[objects]]\ntype = \"mesh\"\nfile = \"bad.obj\"\nmaterial = \"white\"\n");
+    let text = format!(
+        "{GOOD_SCENE}\n[[objects]]\ntype = \"mesh\"\nfile = \"bad.obj\"\nmaterial = \"white\"\n"
+    );
     let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
     assert_rejected("bad-obj", Some(&text), &[("bad.obj", obj)], &[], &["bad.obj"]);
 }
@@ -157,8 +170,12 @@ fn degenerate_camera_is_rejected() {
 fn unwritable_output_is_an_error_not_a_panic() {
     let dir = temp_dir("unwritable");
     std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
-    let out = embray(&["render", "scene.toml", "-o", "no/such/dir/x.exr", "--quiet", "--spp", "1"], &dir);
+    let out =
+        embray(&["render", "scene.toml", "-o", "no/such/dir/x.exr", "--quiet", "--spp", "1"], &dir);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success() && stderr.contains("x.exr") && !stderr.contains("panicked"), "{stderr}");
+    assert!(
+        !out.status.success() && stderr.contains("x.exr") && !stderr.contains("panicked"),
+        "{stderr}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -44,7 +44,13 @@ fn grazing_light_at_offset_1e6_causes_no_self_shadowing() {
             let out = render_ok(&scene, &o);
             println!("{} {}: {:?}", backend.name(), space.name(), out.stats.shadow);
             assert!(out.stats.shadow.rays > 1000, "the test must trace shadow rays");
-            assert_eq!(out.stats.shadow.hits, 0, "{} {}: self-shadowed rays", backend.name(), space.name());
+            assert_eq!(
+                out.stats.shadow.hits,
+                0,
+                "{} {}: self-shadowed rays",
+                backend.name(),
+                space.name()
+            );
             let lit = out.film.color.iter().filter(|c| c.x > 0.0).count();
             assert!(lit > out.film.color.len() / 2, "the plane must be lit");
         }

@@ -28,9 +28,15 @@ impl Ray {
 
     /// Debian's Embree aborts the process on a NaN/Inf ray or a negative `tnear`, so every
     /// ray is checked before it reaches a backend.
+    ///
+    /// Embree also aborts on finite coordinates above about 1.8e18, so those are refused too
+    /// (by both backends, so they agree).
     pub fn is_valid(&self) -> bool {
+        const LIMIT: f32 = 1.0e18;
         self.origin.is_finite()
             && self.dir.is_finite()
+            && self.origin.abs().max_element() < LIMIT
+            && self.dir.abs().max_element() < LIMIT
             && self.dir != Vec3::ZERO
             && self.tmin.is_finite()
             && self.tmin >= 0.0

@@ -164,15 +164,20 @@ impl ObvhsAccel {
                     let mut closest = None;
                     match &self.blases[geom_id as usize] {
                         Blas::Mesh(mesh) => Self::intersect_mesh::<COUNT>(
-                            mesh, ray, &mut closest, &mut tmax, counters, any_hit,
+                            mesh,
+                            ray,
+                            &mut closest,
+                            &mut tmax,
+                            counters,
+                            any_hit,
                         ),
                         Blas::Sphere(s) => {
                             if COUNT {
                                 counters.prim_tests += 1;
                             }
-                            if let Some(t) =
-                                intersect_sphere(ray.origin, ray.dir, ray.tmin, tmax, s.center, s.radius)
-                            {
+                            if let Some(t) = intersect_sphere(
+                                ray.origin, ray.dir, ray.tmin, tmax, s.center, s.radius,
+                            ) {
                                 tmax = t;
                                 closest = Some((t, 0, 0.0, 0.0));
                             }

@@ -18,10 +18,7 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
         reason,
         line: ctx.line(&path.key(field)),
     };
-    let (lookfrom, lookat) = (
-        DVec3::from_array(cam.lookfrom),
-        DVec3::from_array(cam.lookat),
-    );
+    let (lookfrom, lookat) = (DVec3::from_array(cam.lookfrom), DVec3::from_array(cam.lookat));
     if lookfrom == lookat {
         return Err(degenerate(
             "lookat",
@@ -40,10 +37,7 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
     }
     let up = cam.up.unwrap_or([0.0, 1.0, 0.0]);
     if DVec3::from_array(up).try_normalize().is_none() {
-        return Err(degenerate(
-            "up",
-            format!("camera.up {} is the zero vector", fmt_vec(&up)),
-        ));
+        return Err(degenerate("up", format!("camera.up {} is the zero vector", fmt_vec(&up))));
     }
     let vfov = path.key("vfov");
     ctx.require(
@@ -62,10 +56,8 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
         )?;
     }
     let aperture = ctx.non_negative(&path.key("aperture"), cam.aperture.unwrap_or(0.0))?;
-    let focus_distance = cam
-        .focus_distance
-        .map(|d| ctx.positive(&path.key("focus_distance"), d))
-        .transpose()?;
+    let focus_distance =
+        cam.focus_distance.map(|d| ctx.positive(&path.key("focus_distance"), d)).transpose()?;
     Ok(CameraDesc {
         lookfrom,
         lookat,

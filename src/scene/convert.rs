@@ -80,17 +80,10 @@ impl Builder<'_> {
 
     fn named_material(&mut self, name: &str, m: &MaterialToml) -> Result<(), SceneError> {
         let path = FieldPath::root("materials").key(name);
-        let albedo = self
-            .ctx
-            .color(&path.key("albedo"), m.albedo.unwrap_or([0.8; 3]), true)?;
+        let albedo = self.ctx.color(&path.key("albedo"), m.albedo.unwrap_or([0.8; 3]), true)?;
         let emission =
-            self.ctx
-                .color(&path.key("emission"), m.emission.unwrap_or([0.0; 3]), false)?;
-        let index = self.add_material(MaterialDesc {
-            name: name.to_owned(),
-            albedo,
-            emission,
-        });
+            self.ctx.color(&path.key("emission"), m.emission.unwrap_or([0.0; 3]), false)?;
+        let index = self.add_material(MaterialDesc { name: name.to_owned(), albedo, emission });
         self.named.insert(name.to_owned(), index);
         Ok(())
     }
@@ -102,11 +95,7 @@ impl Builder<'_> {
                 file: self.ctx.file.to_path_buf(),
                 field: path.to_string(),
                 name: name.to_owned(),
-                defined: if defined.is_empty() {
-                    "(none)".to_owned()
-                } else {
-                    defined.join(", ")
-                },
+                defined: if defined.is_empty() { "(none)".to_owned() } else { defined.join(", ") },
                 line: self.ctx.line(path),
             }
         })
@@ -133,9 +122,7 @@ impl Builder<'_> {
         present: &[(&str, bool)],
         allowed: &[&str],
     ) -> Result<(), SceneError> {
-        let Some((field, _)) = present
-            .iter()
-            .find(|(name, set)| *set && !allowed.contains(name))
+        let Some((field, _)) = present.iter().find(|(name, set)| *set && !allowed.contains(name))
         else {
             return Ok(());
         };
@@ -176,11 +163,7 @@ impl Builder<'_> {
                 SceneError::TransformEntry {
                     file: self.ctx.file.to_path_buf(),
                     field: field.to_string(),
-                    found: if keys.is_empty() {
-                        "none".to_owned()
-                    } else {
-                        keys.join(", ")
-                    },
+                    found: if keys.is_empty() { "none".to_owned() } else { keys.join(", ") },
                     line: self.ctx.line(&field),
                 }
             })?;
@@ -209,14 +192,10 @@ impl Builder<'_> {
     fn object(&mut self, i: usize, o: &ObjectToml) -> Result<(), SceneError> {
         let path = FieldPath::root("objects").index(i);
         let (kind, allowed): (&str, &[&str]) = match o.kind {
-            ObjectKind::Quad => (
-                "quad",
-                &["type", "material", "corner", "u", "v", "transform"],
-            ),
-            ObjectKind::Sphere => (
-                "sphere",
-                &["type", "material", "center", "radius", "transform"],
-            ),
+            ObjectKind::Quad => ("quad", &["type", "material", "corner", "u", "v", "transform"]),
+            ObjectKind::Sphere => {
+                ("sphere", &["type", "material", "center", "radius", "transform"])
+            }
             ObjectKind::Box => ("box", &["type", "material", "min", "max", "transform"]),
             ObjectKind::Mesh => ("mesh", &["type", "material", "file", "transform"]),
         };
@@ -266,10 +245,7 @@ impl Builder<'_> {
                         line: self.ctx.line(&field),
                     });
                 }
-                ShapeDesc::Sphere {
-                    center: dvec(center),
-                    radius,
-                }
+                ShapeDesc::Sphere { center: dvec(center), radius }
             }
             ObjectKind::Box => {
                 let min = self.required(&path, &item, "min", o.min)?;
@@ -280,12 +256,7 @@ impl Builder<'_> {
             }
         };
         let material = self.required(&path, &item, "material", material)?;
-        self.objects.push(ObjectDesc {
-            name: item,
-            shape,
-            material,
-            world_from_object,
-        });
+        self.objects.push(ObjectDesc { name: item, shape, material, world_from_object });
         Ok(())
     }
 
@@ -337,10 +308,9 @@ impl Builder<'_> {
         let path = FieldPath::root("lights").index(i);
         let (kind, allowed): (&str, &[&str]) = match l.kind {
             LightKind::Point => ("point light", &["type", "position", "intensity"]),
-            LightKind::Quad => (
-                "quad light",
-                &["type", "corner", "u", "v", "emission", "transform"],
-            ),
+            LightKind::Quad => {
+                ("quad light", &["type", "corner", "u", "v", "emission", "transform"])
+            }
         };
         let item = format!("{path} ({kind})");
         let present = [
@@ -358,10 +328,7 @@ impl Builder<'_> {
                 let position = self.required(&path, &item, "position", l.position)?;
                 let intensity = self.required(&path, &item, "intensity", l.intensity)?;
                 let intensity = self.ctx.color(&path.key("intensity"), intensity, false)?;
-                self.lights.push(LightDesc::Point {
-                    position: dvec(position),
-                    intensity,
-                });
+                self.lights.push(LightDesc::Point { position: dvec(position), intensity });
             }
             LightKind::Quad => {
                 let corner = self.required(&path, &item, "corner", l.corner)?;

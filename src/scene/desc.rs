@@ -70,11 +70,7 @@ pub struct RenderSettings {
 
 impl Default for RenderSettings {
     fn default() -> Self {
-        RenderSettings {
-            spp: 16,
-            max_depth: 5,
-            background: Vec3::ZERO,
-        }
+        RenderSettings { spp: 16, max_depth: 5, background: Vec3::ZERO }
     }
 }
 

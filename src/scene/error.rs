@@ -22,10 +22,7 @@ impl fmt::Display for Line {
 pub enum SceneError {
     /// The scene file is missing or unreadable.
     #[error("scene file '{}': {error}", .path.display())]
-    Read {
-        path: PathBuf,
-        error: std::io::Error,
-    },
+    Read { path: PathBuf, error: std::io::Error },
 
     /// TOML syntax error, unknown key or wrong value type. `message` is toml's own report,
     /// which gives the line and column and quotes the offending text.
@@ -34,109 +31,50 @@ pub enum SceneError {
 
     /// A NaN or infinite float (TOML accepts `nan` and `inf`).
     #[error("{}: {field} is {value}{line}", .file.display())]
-    NonFinite {
-        file: PathBuf,
-        field: String,
-        value: String,
-        line: Line,
-    },
+    NonFinite { file: PathBuf, field: String, value: String, line: Line },
 
     /// A number outside its allowed range.
     #[error("{}: {field} is {value}, but must be {requirement}{line}", .file.display())]
-    OutOfRange {
-        file: PathBuf,
-        field: String,
-        value: String,
-        requirement: String,
-        line: Line,
-    },
+    OutOfRange { file: PathBuf, field: String, value: String, requirement: String, line: Line },
 
     /// A field that the object or light type needs is absent.
     #[error("{}: {item} is missing the field `{field}`{line}", .file.display())]
-    MissingField {
-        file: PathBuf,
-        item: String,
-        field: String,
-        line: Line,
-    },
+    MissingField { file: PathBuf, item: String, field: String, line: Line },
 
     /// A field that exists in the format but means nothing for this object or light type.
     #[error("{}: {item} does not take the field `{field}` (it takes: {allowed}){line}", .file.display())]
-    FieldNotAllowed {
-        file: PathBuf,
-        item: String,
-        field: String,
-        allowed: String,
-        line: Line,
-    },
+    FieldNotAllowed { file: PathBuf, item: String, field: String, allowed: String, line: Line },
 
     /// lookfrom == lookat, or a zero up vector.
     #[error("{}: degenerate camera: {reason}{line}", .file.display())]
-    DegenerateCamera {
-        file: PathBuf,
-        reason: String,
-        line: Line,
-    },
+    DegenerateCamera { file: PathBuf, reason: String, line: Line },
 
     #[error("{}: {field} '{name}' is not defined; defined: {defined}{line}", .file.display())]
-    UnknownMaterial {
-        file: PathBuf,
-        field: String,
-        name: String,
-        defined: String,
-        line: Line,
-    },
+    UnknownMaterial { file: PathBuf, field: String, name: String, defined: String, line: Line },
 
     /// A singular transform entry, a matrix whose last row is not 0 0 0 1, a zero rotation
     /// axis, or a composed transform that is singular or overflows.
     #[error("{}: {field}: {problem}{line}", .file.display())]
-    Transform {
-        file: PathBuf,
-        field: String,
-        problem: String,
-        line: Line,
-    },
+    Transform { file: PathBuf, field: String, problem: String, line: Line },
 
     /// A quad without area or a box with min >= max.
     #[error("{}: {item}: {problem}{line}", .file.display())]
-    DegenerateShape {
-        file: PathBuf,
-        item: String,
-        problem: String,
-        line: Line,
-    },
+    DegenerateShape { file: PathBuf, item: String, problem: String, line: Line },
 
     /// The OBJ file named by a mesh object is missing or unreadable.
     #[error(
         "OBJ file '{}': {error}; named by {item}.file in '{}'{line}",
         .obj.display(), .scene.display()
     )]
-    ObjRead {
-        obj: PathBuf,
-        scene: PathBuf,
-        item: String,
-        error: std::io::Error,
-        line: Line,
-    },
+    ObjRead { obj: PathBuf, scene: PathBuf, item: String, error: std::io::Error, line: Line },
 
     /// The OBJ or MTL data is invalid: parse error (tobj's message), out-of-range vertex
     /// index, non-finite coordinate, no triangles, bad MTL colour. `file` is the OBJ file, or
     /// the MTL file for a bad material; `line` is in that file.
     #[error("{}: {problem}{line}; named by {item} in '{}'", .file.display(), .scene.display())]
-    ObjData {
-        file: PathBuf,
-        scene: PathBuf,
-        item: String,
-        problem: String,
-        line: Line,
-    },
+    ObjData { file: PathBuf, scene: PathBuf, item: String, problem: String, line: Line },
 
     /// A transform list entry without exactly one of scale, rotate, translate, matrix.
     #[error("{}: {field} must have exactly one of the keys scale, rotate, translate, matrix; it has {found}{line}", .file.display())]
-    TransformEntry {
-        file: PathBuf,
-        field: String,
-        found: String,
-        line: Line,
-    },
+    TransformEntry { file: PathBuf, field: String, found: String, line: Line },
 }

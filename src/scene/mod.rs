@@ -39,10 +39,8 @@ pub fn load_str(text: &str, source: &Path) -> Result<SceneDesc, SceneError> {
 
 /// As `load`, returning the warnings instead of printing them.
 pub fn load_with_warnings(path: &Path) -> Result<(SceneDesc, Vec<String>), SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|error| SceneError::Read {
-        path: path.to_path_buf(),
-        error,
-    })?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|error| SceneError::Read { path: path.to_path_buf(), error })?;
     load_str_with_warnings(&text, path)
 }
 

@@ -95,9 +95,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         let loaded = tobj::load_mtl_buf(&mut mtl_text.as_bytes());
         if let Ok((materials, _)) = &loaded {
             for m in materials {
-                mtl_of_material
-                    .borrow_mut()
-                    .insert(m.name.clone(), mtl.clone());
+                mtl_of_material.borrow_mut().insert(m.name.clone(), mtl.clone());
             }
         }
         loaded
@@ -113,11 +111,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         tobj::load_obj_buf(&mut text.as_bytes(), &options, material_loader)
     }))
     .map_err(|_| {
-        obj_ref.error(
-            obj,
-            "the OBJ parser (tobj) panicked on this file".to_owned(),
-            Line(None),
-        )
+        obj_ref.error(obj, "the OBJ parser (tobj) panicked on this file".to_owned(), Line(None))
     })?;
     if let Some(error) = mtl_error.into_inner() {
         return Err(error);
@@ -134,10 +128,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
 
     let mtl_of_material = mtl_of_material.into_inner();
     let mut used: HashMap<usize, usize> = HashMap::new();
-    let mut loaded = LoadedObj {
-        models: Vec::new(),
-        materials: Vec::new(),
-    };
+    let mut loaded = LoadedObj { models: Vec::new(), materials: Vec::new() };
     for model in models {
         let name = model.name.clone();
         let Some(mesh) = mesh_data(&model.mesh)
@@ -145,29 +136,22 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         else {
             continue;
         };
-        let material = match model
-            .mesh
-            .material_id
-            .and_then(|id| materials.get(id).map(|m| (id, m)))
-        {
-            Some((id, m)) => Some(match used.get(&id) {
-                Some(&index) => index,
-                None => {
-                    let mtl = mtl_of_material.get(&m.name).map_or(obj, PathBuf::as_path);
-                    let material =
-                        obj_material(m).map_err(|p| obj_ref.error(mtl, p, Line(None)))?;
-                    loaded.materials.push(material);
-                    used.insert(id, loaded.materials.len() - 1);
-                    loaded.materials.len() - 1
-                }
-            }),
-            None => None,
-        };
-        loaded.models.push(ObjModel {
-            name,
-            mesh,
-            material,
-        });
+        let material =
+            match model.mesh.material_id.and_then(|id| materials.get(id).map(|m| (id, m))) {
+                Some((id, m)) => Some(match used.get(&id) {
+                    Some(&index) => index,
+                    None => {
+                        let mtl = mtl_of_material.get(&m.name).map_or(obj, PathBuf::as_path);
+                        let material =
+                            obj_material(m).map_err(|p| obj_ref.error(mtl, p, Line(None)))?;
+                        loaded.materials.push(material);
+                        used.insert(id, loaded.materials.len() - 1);
+                        loaded.materials.len() - 1
+                    }
+                }),
+                None => None,
+            };
+        loaded.models.push(ObjModel { name, mesh, material });
     }
     if loaded.models.is_empty() {
         return Err(obj_ref.error(obj, "the OBJ file has no triangles".to_owned(), Line(None)));
@@ -183,15 +167,10 @@ fn mesh_data(mesh: &tobj::Mesh) -> Result<Option<MeshData>, String> {
     }
     let count = mesh.positions.len() / 3;
     if mesh.indices.len() % 3 != 0 {
-        return Err(format!(
-            "{} indices is not a whole number of triangles",
-            mesh.indices.len()
-        ));
+        return Err(format!("{} indices is not a whole number of triangles", mesh.indices.len()));
     }
     if let Some(&bad) = mesh.indices.iter().find(|&&i| i as usize >= count) {
-        return Err(format!(
-            "vertex index {bad} is out of range ({count} vertices)"
-        ));
+        return Err(format!("vertex index {bad} is out of range ({count} vertices)"));
     }
     let positions: Vec<DVec3> = mesh
         .positions
@@ -207,35 +186,16 @@ fn mesh_data(mesh: &tobj::Mesh) -> Result<Option<MeshData>, String> {
             .map(|n| DVec3::new(n[0].into(), n[1].into(), n[2].into()))
             .collect::<Vec<_>>()
     });
-    if normals
-        .as_ref()
-        .is_some_and(|n| n.iter().any(|n| !n.is_finite()))
-    {
+    if normals.as_ref().is_some_and(|n| n.iter().any(|n| !n.is_finite())) {
         return Err("a normal has a non-finite coordinate".to_owned());
     }
-    let uvs = (mesh.texcoords.len() == 2 * count).then(|| {
-        mesh.texcoords
-            .chunks_exact(2)
-            .map(|t| Vec2::new(t[0], t[1]))
-            .collect::<Vec<_>>()
-    });
-    if uvs
-        .as_ref()
-        .is_some_and(|t| t.iter().any(|t| !t.is_finite()))
-    {
+    let uvs = (mesh.texcoords.len() == 2 * count)
+        .then(|| mesh.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])).collect::<Vec<_>>());
+    if uvs.as_ref().is_some_and(|t| t.iter().any(|t| !t.is_finite())) {
         return Err("a texture coordinate is not finite".to_owned());
     }
-    let indices = mesh
-        .indices
-        .chunks_exact(3)
-        .map(|t| [t[0], t[1], t[2]])
-        .collect();
-    Ok(Some(MeshData {
-        positions,
-        indices,
-        normals,
-        uvs,
-    }))
+    let indices = mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+    Ok(Some(MeshData { positions, indices, normals, uvs }))
 }
 
 /// MTL `Kd` → albedo (default 0.8 grey), `Ke` → emission (default 0), validated.
@@ -246,16 +206,12 @@ fn obj_material(m: &tobj::Material) -> Result<ObjMaterial, String> {
     let name = &m.name;
     for (i, &c) in albedo.iter().enumerate() {
         if !(0.0..=1.0).contains(&c) {
-            return Err(format!(
-                "material '{name}': Kd[{i}] is {c}, but must be in [0, 1]"
-            ));
+            return Err(format!("material '{name}': Kd[{i}] is {c}, but must be in [0, 1]"));
         }
     }
     for (i, &c) in emission.iter().enumerate() {
         if !c.is_finite() || c < 0.0 {
-            return Err(format!(
-                "material '{name}': Ke[{i}] is {c}, but must be finite and >= 0"
-            ));
+            return Err(format!("material '{name}': Ke[{i}] is {c}, but must be finite and >= 0"));
         }
     }
     Ok(ObjMaterial {
@@ -266,11 +222,8 @@ fn obj_material(m: &tobj::Material) -> Result<ObjMaterial, String> {
 }
 
 fn parse_rgb(text: &str) -> Option<[f32; 3]> {
-    let values: Vec<f32> = text
-        .split_whitespace()
-        .map(str::parse)
-        .collect::<Result<_, _>>()
-        .ok()?;
+    let values: Vec<f32> =
+        text.split_whitespace().map(str::parse).collect::<Result<_, _>>().ok()?;
     values.try_into().ok()
 }
 
@@ -279,21 +232,13 @@ mod tests {
     use super::*;
 
     fn material(diffuse: Option<[f32; 3]>, emissive: Option<[f32; 3]>) -> tobj::Material {
-        tobj::Material {
-            name: "m".to_owned(),
-            diffuse,
-            emissive,
-            ..Default::default()
-        }
+        tobj::Material { name: "m".to_owned(), diffuse, emissive, ..Default::default() }
     }
 
     #[test]
     fn mtl_colours_become_albedo_and_emission() {
         let m = obj_material(&material(Some([0.5, 0.25, 0.0]), Some([2.0, 3.0, 4.0]))).unwrap();
-        assert_eq!(
-            (m.albedo, m.emission),
-            (Vec3::new(0.5, 0.25, 0.0), Vec3::new(2.0, 3.0, 4.0))
-        );
+        assert_eq!((m.albedo, m.emission), (Vec3::new(0.5, 0.25, 0.0), Vec3::new(2.0, 3.0, 4.0)));
         let m = obj_material(&material(None, None)).unwrap();
         assert_eq!((m.albedo, m.emission), (Vec3::splat(0.8), Vec3::ZERO));
     }
@@ -309,15 +254,8 @@ mod tests {
 
     #[test]
     fn mesh_indices_are_checked() {
-        let mesh = tobj::Mesh {
-            positions: vec![0.0; 9],
-            indices: vec![0, 1, 3],
-            ..Default::default()
-        };
-        assert!(
-            mesh_data(&mesh)
-                .unwrap_err()
-                .contains("vertex index 3 is out of range")
-        );
+        let mesh =
+            tobj::Mesh { positions: vec![0.0; 9], indices: vec![0, 1, 3], ..Default::default() };
+        assert!(mesh_data(&mesh).unwrap_err().contains("vertex index 3 is out of range"));
     }
 }

@@ -25,10 +25,7 @@ pub(crate) fn scan_obj(text: &str) -> Result<(), ScanProblem> {
     }
     let mut seen = [0usize; 3];
     for (n, line) in text.lines().enumerate() {
-        let problem = |message: String| ScanProblem {
-            line: n + 1,
-            message,
-        };
+        let problem = |message: String| ScanProblem { line: n + 1, message };
         let mut words = line.split_whitespace();
         match words.next() {
             Some("f") => {
@@ -70,9 +67,7 @@ fn check_face_vertex(word: &str, seen: &[usize; 3], totals: &[usize; 3]) -> Resu
         }; // empty or malformed: tobj reports it
         let (_, name, plural) = KINDS[kind];
         if index == 0 {
-            return Err(format!(
-                "a face refers to {name} 0, but OBJ indices start at 1"
-            ));
+            return Err(format!("a face refers to {name} 0, but OBJ indices start at 1"));
         }
         if index > 0 && index.unsigned_abs() > totals[kind] as u64 {
             return Err(format!(
@@ -131,17 +126,9 @@ mod tests {
             (err.line, err.message.as_str()),
             (4, "a face refers to vertex 9, but the file has 3 vertices")
         );
+        assert!(scan_obj(&format!("{verts}f 1 2 0\n")).unwrap_err().message.contains("start at 1"));
         assert!(
-            scan_obj(&format!("{verts}f 1 2 0\n"))
-                .unwrap_err()
-                .message
-                .contains("start at 1")
-        );
-        assert!(
-            scan_obj(&format!("{verts}f -1 -2 -4\n"))
-                .unwrap_err()
-                .message
-                .contains("relative")
+            scan_obj(&format!("{verts}f -1 -2 -4\n")).unwrap_err().message.contains("relative")
         );
         assert!(
             scan_obj(&format!("{verts}vn 0 0 1\nf 1//1 2//1 3//2\n"))

@@ -68,16 +68,8 @@ pub(crate) fn box_mesh(min: DVec3, max: DVec3) -> Result<MeshData, String> {
         [0, 2, 3, 1], // -z
         [4, 5, 7, 6], // +z
     ];
-    let indices = FACES
-        .iter()
-        .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
-        .collect();
-    Ok(MeshData {
-        positions,
-        indices,
-        normals: None,
-        uvs: None,
-    })
+    let indices = FACES.iter().flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]]).collect();
+    Ok(MeshData { positions, indices, normals: None, uvs: None })
 }
 
 #[cfg(test)]
@@ -96,17 +88,10 @@ mod tests {
         assert_eq!(mesh.indices.len(), 12);
         let center = (min + max) / 2.0;
         for &tri in &mesh.indices {
-            let centroid = tri
-                .map(|i| mesh.positions[i as usize])
-                .iter()
-                .sum::<DVec3>()
-                / 3.0;
+            let centroid = tri.map(|i| mesh.positions[i as usize]).iter().sum::<DVec3>() / 3.0;
             let n = face_normal(&mesh, tri);
             assert!(n.length() > 0.0);
-            assert!(
-                n.dot(centroid - center) > 0.0,
-                "triangle {tri:?} faces inward"
-            );
+            assert!(n.dot(centroid - center) > 0.0, "triangle {tri:?} faces inward");
         }
     }
 

@@ -38,10 +38,7 @@ impl FieldPath {
 }
 
 fn is_bare_key(key: &str) -> bool {
-    !key.is_empty()
-        && key
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
 }
 
 impl fmt::Display for FieldPath {
@@ -81,11 +78,7 @@ impl<'a> SourceMap<'a> {
     /// 1-based line of byte `offset`.
     fn line_of_offset(&self, offset: usize) -> usize {
         let end = offset.min(self.text.len());
-        self.text.as_bytes()[..end]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1
+        self.text.as_bytes()[..end].iter().filter(|&&b| b == b'\n').count() + 1
     }
 
     /// The line where the value at `path` starts; for a path that does not exist (a missing
@@ -159,10 +152,7 @@ impl<'a> SourceMap<'a> {
 }
 
 fn table_get<'t, 'a>(table: &'t DeTable<'a>, key: &str) -> Option<&'t Spanned<DeValue<'a>>> {
-    table
-        .iter()
-        .find(|(k, _)| k.get_ref() == key)
-        .map(|(_, v)| v)
+    table.iter().find(|(k, _)| k.get_ref() == key).map(|(_, v)| v)
 }
 
 /// `Some("NaN" | "inf" | "-inf")` for TOML's special float literals.
@@ -182,10 +172,7 @@ fn non_finite_name(literal: &str) -> Option<&'static str> {
 
 /// toml's error report (line, column, quoted text, message) prefixed by the file name.
 pub(crate) fn toml_error(file: &Path, error: &toml::de::Error) -> SceneError {
-    SceneError::Toml {
-        file: file.to_path_buf(),
-        message: error.to_string().trim_end().to_owned(),
-    }
+    SceneError::Toml { file: file.to_path_buf(), message: error.to_string().trim_end().to_owned() }
 }
 
 #[cfg(test)]
@@ -194,38 +181,19 @@ mod tests {
 
     #[test]
     fn paths_display_like_toml() {
-        let path = FieldPath::root("objects")
-            .index(2)
-            .key("transform")
-            .index(0)
-            .key("scale");
+        let path = FieldPath::root("objects").index(2).key("transform").index(0).key("scale");
         assert_eq!(path.to_string(), "objects[2].transform[0].scale");
-        assert_eq!(
-            FieldPath::root("materials").key("a b").to_string(),
-            "materials.\"a b\""
-        );
+        assert_eq!(FieldPath::root("materials").key("a b").to_string(), "materials.\"a b\"");
     }
 
     #[test]
     fn line_of_nested_fields() {
         let text = "[camera]\nlookfrom = [1, 2, 3]\n\n[[objects]]\ntype = 'sphere'\nradius = 2\n";
         let map = SourceMap::parse(text, Path::new("s.toml")).unwrap();
-        assert_eq!(
-            map.line(&FieldPath::root("camera").key("lookfrom")),
-            Line(Some(2))
-        );
-        assert_eq!(
-            map.line(&FieldPath::root("camera").key("lookfrom").index(2)),
-            Line(Some(2))
-        );
-        assert_eq!(
-            map.line(&FieldPath::root("objects").index(0).key("radius")),
-            Line(Some(6))
-        );
-        assert_eq!(
-            map.line(&FieldPath::root("objects").index(0)),
-            Line(Some(4))
-        );
+        assert_eq!(map.line(&FieldPath::root("camera").key("lookfrom")), Line(Some(2)));
+        assert_eq!(map.line(&FieldPath::root("camera").key("lookfrom").index(2)), Line(Some(2)));
+        assert_eq!(map.line(&FieldPath::root("objects").index(0).key("radius")), Line(Some(6)));
+        assert_eq!(map.line(&FieldPath::root("objects").index(0)), Line(Some(4)));
         assert_eq!(map.line(&FieldPath::root("nothing")), Line(None));
     }
 

@@ -113,11 +113,8 @@ impl TransformEntry {
     pub(crate) fn op(&self) -> Result<TransformOp, Vec<&'static str>> {
         let ops = [
             self.scale.map(|s| ("scale", TransformOp::Scale(s))),
-            self.rotate
-                .clone()
-                .map(|r| ("rotate", TransformOp::Rotate(r))),
-            self.translate
-                .map(|t| ("translate", TransformOp::Translate(t))),
+            self.rotate.clone().map(|r| ("rotate", TransformOp::Rotate(r))),
+            self.translate.map(|t| ("translate", TransformOp::Translate(t))),
             self.matrix.map(|m| ("matrix", TransformOp::Matrix(m))),
         ];
         let mut set: Vec<(&'static str, TransformOp)> = ops.into_iter().flatten().collect();
@@ -188,9 +185,8 @@ impl<'de> Deserialize<'de> for Scale {
             fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Scale, A::Error> {
                 let mut v = [0.0; 3];
                 for (i, slot) in v.iter_mut().enumerate() {
-                    *slot = seq
-                        .next_element()?
-                        .ok_or_else(|| de::Error::invalid_length(i, &self))?;
+                    *slot =
+                        seq.next_element()?.ok_or_else(|| de::Error::invalid_length(i, &self))?;
                 }
                 if seq.next_element::<de::IgnoredAny>()?.is_some() {
                     return Err(de::Error::invalid_length(4, &self));

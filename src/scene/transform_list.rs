@@ -14,10 +14,7 @@ pub(crate) struct TransformProblem {
 }
 
 fn problem(entry: usize, message: String) -> TransformProblem {
-    TransformProblem {
-        entry: Some(entry),
-        message,
-    }
+    TransformProblem { entry: Some(entry), message }
 }
 
 /// Composes the list into `world_from_object` (identity for an empty list).
@@ -42,10 +39,7 @@ fn entry_transform(op: &TransformOp) -> Result<DAffine3, String> {
         TransformOp::Scale(scale) => {
             let factors = scale.factors();
             if factors.contains(&0.0) {
-                return Err(format!(
-                    "scale {} is singular (a factor is 0)",
-                    fmt_vec(&factors)
-                ));
+                return Err(format!("scale {} is singular (a factor is 0)", fmt_vec(&factors)));
             }
             Ok(DAffine3::from_scale(DVec3::from_array(factors)))
         }
@@ -83,10 +77,7 @@ fn matrix_transform(rows: &[[f64; 4]; 4]) -> Result<DAffine3, String> {
     if det == 0.0 || unit_det.abs() <= 1e-12 {
         return Err(format!("matrix is singular (determinant {det})"));
     }
-    Ok(DAffine3 {
-        matrix3,
-        translation: column(3),
-    })
+    Ok(DAffine3 { matrix3, translation: column(3) })
 }
 
 /// `[1, 0.5, -2]`.
@@ -111,30 +102,19 @@ mod tests {
 
     #[test]
     fn entries_apply_in_listed_order() {
-        let ops = [
-            TransformOp::Scale(Scale::Uniform(2.0)),
-            TransformOp::Translate([10.0, 0.0, 0.0]),
-        ];
+        let ops =
+            [TransformOp::Scale(Scale::Uniform(2.0)), TransformOp::Translate([10.0, 0.0, 0.0])];
         let t = world_from_object(&ops).unwrap();
         // Scale first, then translate: (1,1,1) → (2,2,2) → (12,2,2).
-        assert!(close(
-            t.transform_point3(DVec3::ONE),
-            DVec3::new(12.0, 2.0, 2.0)
-        ));
+        assert!(close(t.transform_point3(DVec3::ONE), DVec3::new(12.0, 2.0, 2.0)));
         let reversed = [ops[1].clone(), ops[0].clone()];
         let t = world_from_object(&reversed).unwrap();
-        assert!(close(
-            t.transform_point3(DVec3::ONE),
-            DVec3::new(22.0, 2.0, 2.0)
-        ));
+        assert!(close(t.transform_point3(DVec3::ONE), DVec3::new(22.0, 2.0, 2.0)));
     }
 
     #[test]
     fn rotation_is_right_handed_about_normalised_axis() {
-        let ops = [TransformOp::Rotate(Rotate {
-            axis: [0.0, 0.0, 5.0],
-            degrees: 90.0,
-        })];
+        let ops = [TransformOp::Rotate(Rotate { axis: [0.0, 0.0, 5.0], degrees: 90.0 })];
         let t = world_from_object(&ops).unwrap();
         assert!(close(t.transform_point3(DVec3::X), DVec3::Y));
     }
@@ -148,19 +128,13 @@ mod tests {
             [0.0, 0.0, 0.0, 1.0],
         ];
         let t = world_from_object(&[TransformOp::Matrix(rows)]).unwrap();
-        assert!(close(
-            t.transform_point3(DVec3::X),
-            DVec3::new(5.0, 7.0, 7.0)
-        ));
+        assert!(close(t.transform_point3(DVec3::X), DVec3::new(5.0, 7.0, 7.0)));
     }
 
     #[test]
     fn per_axis_scale() {
         let t = world_from_object(&[TransformOp::Scale(Scale::PerAxis([1.0, 2.0, 3.0]))]).unwrap();
-        assert!(close(
-            t.transform_point3(DVec3::ONE),
-            DVec3::new(1.0, 2.0, 3.0)
-        ));
+        assert!(close(t.transform_point3(DVec3::ONE), DVec3::new(1.0, 2.0, 3.0)));
     }
 
     #[test]
@@ -199,16 +173,8 @@ mod tests {
 
     #[test]
     fn zero_rotation_axis_is_rejected() {
-        let ops = [TransformOp::Rotate(Rotate {
-            axis: [0.0; 3],
-            degrees: 10.0,
-        })];
-        assert!(
-            world_from_object(&ops)
-                .unwrap_err()
-                .message
-                .contains("zero length")
-        );
+        let ops = [TransformOp::Rotate(Rotate { axis: [0.0; 3], degrees: 10.0 })];
+        assert!(world_from_object(&ops).unwrap_err().message.contains("zero length"));
     }
 
     #[test]

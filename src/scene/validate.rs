@@ -40,11 +40,7 @@ impl Ctx<'_> {
         value: impl Display,
         requirement: &str,
     ) -> Result<(), SceneError> {
-        if ok {
-            Ok(())
-        } else {
-            Err(self.out_of_range(path, value, requirement))
-        }
+        if ok { Ok(()) } else { Err(self.out_of_range(path, value, requirement)) }
     }
 
     pub(crate) fn positive(&self, path: &FieldPath, value: f64) -> Result<f64, SceneError> {
@@ -71,12 +67,7 @@ impl Ctx<'_> {
                 self.require((0.0..=1.0).contains(&c), &component, c, "in [0, 1]")?;
             } else {
                 self.non_negative(&component, c)?;
-                self.require(
-                    (c as f32).is_finite(),
-                    &component,
-                    c,
-                    "small enough for f32",
-                )?;
+                self.require((c as f32).is_finite(), &component, c, "small enough for f32")?;
             }
         }
         Ok(DVec3::from_array(value).as_vec3())

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 use embray::accel::BackendKind;
+#[allow(unused_imports)]
 pub use embray::image_error::image_error;
 use embray::render::{RenderOptions, RenderOutput, render};
 use embray::scene::{SceneDesc, load, load_str};
@@ -47,4 +48,3 @@ pub fn backends() -> Vec<BackendKind> {
     }
     all
 }
-

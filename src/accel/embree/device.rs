@@ -73,10 +73,9 @@ impl Device {
             (None, ffi::RTCError::NONE) => Ok(()),
             (None, code) => Err(AccelError::Embree(format!("error {code:?}"))),
             (Some(first), _) if reported.count <= 1 => Err(AccelError::Embree(first)),
-            (Some(first), _) => Err(AccelError::Embree(format!(
-                "{first} (and {} more errors)",
-                reported.count - 1
-            ))),
+            (Some(first), _) => {
+                Err(AccelError::Embree(format!("{first} (and {} more errors)", reported.count - 1)))
+            }
         }
     }
 }

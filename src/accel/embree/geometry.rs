@@ -60,7 +60,8 @@ impl Geometry {
     ) -> Result<Geometry, AccelError> {
         validate_mesh(positions, indices).map_err(AccelError::Embree)?;
         let geometry = Geometry::new(device, ffi::RTCGeometryType::TRIANGLE)?;
-        geometry.set_new_buffer(ffi::RTCBufferType::VERTEX, positions.iter().map(|p| p.to_array()))?;
+        geometry
+            .set_new_buffer(ffi::RTCBufferType::VERTEX, positions.iter().map(|p| p.to_array()))?;
         geometry.set_new_buffer(ffi::RTCBufferType::INDEX, indices.iter().copied())?;
         geometry.commit()?;
         Ok(geometry)
@@ -169,7 +170,9 @@ fn validate_mesh(positions: &[Vec3], indices: &[[u32; 3]]) -> Result<(), String>
     let n = positions.len();
     for (t, tri) in indices.iter().enumerate() {
         if let Some(&bad) = tri.iter().find(|&&i| i as usize >= n) {
-            return Err(format!("triangle {t} refers to vertex {bad}, but the mesh has {n} vertices"));
+            return Err(format!(
+                "triangle {t} refers to vertex {bad}, but the mesh has {n} vertices"
+            ));
         }
     }
     Ok(())

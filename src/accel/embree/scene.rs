@@ -42,7 +42,9 @@ impl Scene {
     /// Attaches `geometry` with geometry id `id` (what hits report as `geomID`).
     pub fn attach(&mut self, mut geometry: Geometry, id: u32) -> Result<(), AccelError> {
         if !Arc::ptr_eq(geometry.device(), &self.device) {
-            return Err(AccelError::Embree("geometry and scene belong to different devices".into()));
+            return Err(AccelError::Embree(
+                "geometry and scene belong to different devices".into(),
+            ));
         }
         // SAFETY: both handles are live and belong to the same device. The scene takes its
         // own reference to the geometry; ours is released when `geometry` drops below.

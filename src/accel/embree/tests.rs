@@ -237,7 +237,8 @@ fn sphere_respects_ray_interval() {
 
 #[test]
 fn invalid_rays_miss_without_reaching_embree() {
-    let scene = render_scene(vec![shape("ball", sphere(Vec3::ZERO, 1.0)), shape("terrain", grid(2))]);
+    let scene =
+        render_scene(vec![shape("ball", sphere(Vec3::ZERO, 1.0)), shape("terrain", grid(2))]);
     let accel = EmbreeAccel::build(&scene, &AccelOptions::default()).unwrap();
     let mut c = TraversalCounters::default();
     let good = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z, f32::INFINITY);
