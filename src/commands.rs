@@ -30,7 +30,7 @@ fn render_command(args: &RenderArgs) -> Result<()> {
         eprintln!("{}", summary(&output, &options, args, &png));
     }
     if args.stats {
-        print!("{}", stats_table(&output.stats));
+        print!("{}", stats_table(&output.stats, output.observes));
     }
     if let Some(path) = &args.stats_json {
         let json = serde_json::json!({
@@ -39,7 +39,7 @@ fn render_command(args: &RenderArgs) -> Result<()> {
             "spp": options.spp,
             "render_seconds": output.render_time.as_secs_f64(),
             "build_seconds": output.build_time.as_secs_f64(),
-            "traversal_counted": output.traversal_counted,
+            "observes": output.observes,
             "stats": output.stats,
         });
         std::fs::write(path, serde_json::to_string_pretty(&json)? + "\n")
@@ -115,16 +115,20 @@ fn summary(
 }
 
 /// Counters as a plain-text table.
-pub fn stats_table(stats: &RenderStats) -> String {
+pub fn stats_table(stats: &RenderStats, observes: embray::accel::Observes) -> String {
     let mut out = String::from("ray kind   rays          hits\n");
     for (name, c) in
         [("camera", stats.camera), ("shadow", stats.shadow), ("indirect", stats.indirect)]
     {
         out += &format!("{name:<10} {:<13} {}\n", c.rays, c.hits);
     }
+    let shown = |value: u64, observed: bool| {
+        if observed { value.to_string() } else { "not observable".to_string() }
+    };
     out += &format!(
         "node visits      {}\nprimitive tests  {}\n",
-        stats.traversal.node_visits, stats.traversal.prim_tests
+        shown(stats.traversal.node_visits, observes.node_visits),
+        shown(stats.traversal.prim_tests, observes.prim_tests)
     );
     out
 }

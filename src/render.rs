@@ -67,8 +67,8 @@ pub struct RenderOutput {
     pub film: Film,
     pub stats: RenderStats,
     pub backend: &'static str,
-    /// Whether `stats.traversal` was filled in by the backend.
-    pub traversal_counted: bool,
+    /// Which of `stats.traversal` the backend filled in.
+    pub observes: crate::accel::Observes,
     pub build_time: Duration,
     pub render_time: Duration,
 }
@@ -99,7 +99,7 @@ pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput,
             film,
             stats,
             backend: accel.name(),
-            traversal_counted: accel.counts_traversal(),
+            observes: accel.observes(),
             build_time,
             render_time: render_start.elapsed(),
         })

@@ -61,6 +61,13 @@ pub struct Hit {
     pub v: f32,
 }
 
+/// Which traversal counters a backend can observe.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Observes {
+    pub node_visits: bool,
+    pub prim_tests: bool,
+}
+
 /// A built acceleration structure over one `RenderScene`, safe to query from many threads.
 pub trait Accel: Send + Sync {
     /// Short name for reports ("embree", "obvhs").
@@ -69,9 +76,9 @@ pub trait Accel: Send + Sync {
     fn intersect(&self, ray: &Ray, counters: &mut TraversalCounters) -> Option<Hit>;
     /// True if anything lies on the ray with `tmin <= t <= tmax`.
     fn occluded(&self, ray: &Ray, counters: &mut TraversalCounters) -> bool;
-    /// Whether `counters` are filled in by this backend (node visits / primitive tests).
-    fn counts_traversal(&self) -> bool {
-        false
+    /// Which counters this backend fills in (with `AccelOptions::count_traversal`).
+    fn observes(&self) -> Observes {
+        Observes::default()
     }
 }
 

@@ -7,7 +7,7 @@
 //! meets the neighbouring wall in a corner. Node tests therefore use the ray with its origin
 //! moved back by `NODE_RAY_BACKOFF` (in units of t); primitive tests use the real ray.
 
-use crate::accel::{Accel, AccelOptions, Hit, Ray};
+use crate::accel::{Accel, AccelOptions, Hit, Observes, Ray};
 use crate::geometry::{intersect_sphere, intersect_triangle};
 use crate::render_scene::{Geometry, RenderScene, Sphere};
 use crate::stats::TraversalCounters;
@@ -224,7 +224,7 @@ impl Accel for ObvhsAccel {
         }
     }
 
-    fn counts_traversal(&self) -> bool {
-        self.count_traversal
+    fn observes(&self) -> Observes {
+        Observes { node_visits: self.count_traversal, prim_tests: self.count_traversal }
     }
 }

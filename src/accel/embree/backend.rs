@@ -20,7 +20,7 @@ pub struct EmbreeAccel {
 impl EmbreeAccel {
     /// Builds an Embree scene over `scene.shapes`; shape `i` gets geometry id `i`.
     pub fn build(scene: &RenderScene, options: &AccelOptions) -> Result<EmbreeAccel, AccelError> {
-        // Counting mode is not implemented yet: see `counts_traversal`.
+        // Counting mode is not implemented yet: see `observes`.
         let _ = options.count_traversal;
         let device = Arc::new(Device::new(DEVICE_CONFIG)?);
         // ROBUST: watertight-enough traversal for rays grazing edges and box faces.
@@ -67,7 +67,7 @@ impl Accel for EmbreeAccel {
     /// in a query context extended past Embree's own struct (the usual trick; callbacks
     /// receive the context) and count primitive tests in the user-geometry and filter
     /// callbacks; Embree exposes no node-visit count.
-    fn counts_traversal(&self) -> bool {
-        false
+    fn observes(&self) -> crate::accel::Observes {
+        crate::accel::Observes::default()
     }
 }

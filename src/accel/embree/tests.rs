@@ -345,7 +345,7 @@ fn queries_from_many_threads_through_the_trait() {
     let scene = random_scene();
     let accel = accel::build(BackendKind::Embree, &scene, &AccelOptions::default()).unwrap();
     assert_eq!(accel.name(), "embree");
-    assert!(!accel.counts_traversal());
+    assert_eq!(accel.observes(), crate::accel::Observes::default());
     let rays = random_rays(2000);
     let mut c = TraversalCounters::default();
     let serial: Vec<_> = rays.iter().map(|r| accel.intersect(r, &mut c)).collect();
