@@ -19,8 +19,11 @@ def box(x0, y0, z0, x1, y1, z1):
 N, pitch, street = 24, 20.0, 6.0
 for i in range(N):
     for j in range(N):
-        x0, z0 = i * pitch, j * pitch
-        w = pitch - street
+        # Jittered lots: a perfectly regular grid gives the BVH builder exact ties, whose
+        # arbitrary resolution would dominate the render-space comparison.
+        x0 = i * pitch + 2.0 * random.random()
+        z0 = j * pitch + 2.0 * random.random()
+        w = (pitch - street) * (0.75 + 0.25 * random.random())
         h = random.choice([8, 12, 16, 24, 40, 60]) * (0.75 + 0.5 * random.random())
         # Some lots hold two slim towers, giving long thin axis-aligned slabs.
         if random.random() < 0.3:
