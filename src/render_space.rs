@@ -161,11 +161,12 @@ pub fn to_render_scene(
     let points = desc
         .lights
         .iter()
-        .map(|light| match light {
-            LightDesc::Point { position, intensity } => PointLight {
+        .filter_map(|light| match light {
+            LightDesc::Point { position, intensity } => Some(PointLight {
                 position: to_f32(render_from_world.transform_point3(*position)),
                 intensity: *intensity,
-            },
+            }),
+            _ => None,
         })
         .collect();
     let lights = LightSet::new(points, &shapes, &materials);

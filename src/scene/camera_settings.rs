@@ -67,6 +67,7 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
         height: cam.resolution[1],
         aperture,
         focus_distance,
+        lens_shape: Default::default(),
     })
 }
 

@@ -83,7 +83,7 @@ impl Builder<'_> {
         let albedo = self.ctx.color(&path.key("albedo"), m.albedo.unwrap_or([0.8; 3]), true)?;
         let emission =
             self.ctx.color(&path.key("emission"), m.emission.unwrap_or([0.0; 3]), false)?;
-        let index = self.add_material(MaterialDesc { name: name.to_owned(), albedo, emission });
+        let index = self.add_material(MaterialDesc { name: name.to_owned(), albedo, emission, ..Default::default() });
         self.named.insert(name.to_owned(), index);
         Ok(())
     }
@@ -109,6 +109,7 @@ impl Builder<'_> {
             name: "default".to_owned(),
             albedo: glam::Vec3::splat(0.8),
             emission: glam::Vec3::ZERO,
+            ..Default::default()
         });
         self.default_material = Some(index);
         index
@@ -228,7 +229,7 @@ impl Builder<'_> {
                 let v = self.required(&path, &item, "v", o.v)?;
                 let mesh = quad_mesh(dvec(corner), dvec(u), dvec(v))
                     .map_err(|p| self.degenerate(&path, &item, p))?;
-                ShapeDesc::Mesh(mesh)
+                ShapeDesc::Mesh(std::sync::Arc::new(mesh))
             }
             ObjectKind::Sphere => {
                 let center = self.required(&path, &item, "center", o.center)?;
@@ -252,11 +253,11 @@ impl Builder<'_> {
                 let max = self.required(&path, &item, "max", o.max)?;
                 let mesh =
                     box_mesh(dvec(min), dvec(max)).map_err(|p| self.degenerate(&path, &item, p))?;
-                ShapeDesc::Mesh(mesh)
+                ShapeDesc::Mesh(std::sync::Arc::new(mesh))
             }
         };
         let material = self.required(&path, &item, "material", material)?;
-        self.objects.push(ObjectDesc { name: item, shape, material, world_from_object });
+        self.objects.push(ObjectDesc { name: item, shape, material, world_from_object, world_from_object_end: None });
         Ok(())
     }
 
@@ -287,6 +288,7 @@ impl Builder<'_> {
                             name: format!("{file}: {}", mtl.name),
                             albedo: mtl.albedo,
                             emission: mtl.emission,
+                            ..Default::default()
                         });
                         mtl_indices[m] = Some(index);
                         index
@@ -296,9 +298,10 @@ impl Builder<'_> {
             };
             self.objects.push(ObjectDesc {
                 name: format!("{path} ({file}: {})", model.name),
-                shape: ShapeDesc::Mesh(model.mesh),
+                shape: ShapeDesc::Mesh(std::sync::Arc::new(model.mesh)),
                 material: index,
                 world_from_object,
+                world_from_object_end: None,
             });
         }
         Ok(())
@@ -343,12 +346,14 @@ impl Builder<'_> {
                     name: item.clone(),
                     albedo: glam::Vec3::ZERO,
                     emission,
+                    ..Default::default()
                 });
                 self.objects.push(ObjectDesc {
                     name: item,
-                    shape: ShapeDesc::Mesh(mesh),
+                    shape: ShapeDesc::Mesh(std::sync::Arc::new(mesh)),
                     material,
                     world_from_object,
+                    world_from_object_end: None,
                 });
             }
         }

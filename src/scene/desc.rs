@@ -17,15 +17,86 @@ pub struct CameraDesc {
     pub aperture: f64,
     /// Distance to the plane in focus; `None` means the lookat distance.
     pub focus_distance: Option<f64>,
+    pub lens_shape: LensShape,
 }
 
+/// The shape of the lens aperture (`aperture` is its diameter, or its side for a square).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LensShape {
+    #[default]
+    Disk,
+    /// The course's square lens.
+    Square,
+}
+
+/// How a surface reflects light. Every material has a Lambertian part (`albedo`, possibly
+/// replaced by a `texture`) and optionally one specular part.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MaterialDesc {
     pub name: String,
     /// Diffuse reflectance in [0, 1].
     pub albedo: Vec3,
-    /// Emitted radiance.
+    /// Emitted radiance (two-sided).
     pub emission: Vec3,
+    pub specular: SpecularDesc,
+    /// GGX roughness α of the specular part (0 = perfectly smooth).
+    pub roughness: f32,
+    /// A pattern that replaces `albedo`.
+    pub texture: Option<TextureDesc>,
+    /// Terms only the course's Whitted shading model uses (ambient, Blinn-Phong highlight).
+    pub phong: Option<PhongDesc>,
+}
+
+impl Default for MaterialDesc {
+    fn default() -> Self {
+        MaterialDesc {
+            name: String::new(),
+            albedo: Vec3::splat(0.8),
+            emission: Vec3::ZERO,
+            specular: SpecularDesc::None,
+            roughness: 0.0,
+            texture: None,
+            phong: None,
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum SpecularDesc {
+    None,
+    /// Perfect (or, with roughness, glossy) reflection scaled by `reflectance`.
+    Mirror { reflectance: Vec3 },
+    /// Metal: Fresnel reflectance from the complex index `eta + i·k` (per channel), scaled
+    /// by `reflectance`.
+    Conductor { eta: Vec3, k: Vec3, reflectance: Vec3 },
+    /// Glass: Fresnel reflection and refraction with index `ior`; light travelling inside is
+    /// attenuated by exp(−absorption · distance) (Beer's law).
+    Dielectric { ior: f32, absorption: Vec3 },
+}
+
+/// The course's shading terms (CENG795): ambient reflectance and a Blinn-Phong highlight.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhongDesc {
+    pub ambient: Vec3,
+    pub specular: Vec3,
+    pub exponent: f32,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureDesc {
+    pub pattern: PatternDesc,
+    /// Maps the space of the object the material is attached to (the mesh's own vertex
+    /// space, or for a material given at the instance level the instance's space) to the
+    /// pattern's space. Set by the loader; identity for object-level materials.
+    pub texture_from_object: DAffine3,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum PatternDesc {
+    /// Checkerboard in texture coordinates: `scale` checks per unit of u and v.
+    Checker2d { scale: f64, even: Vec3, odd: Vec3 },
+    /// Solid checkerboard in the object's space: cubes of side 1/`scale`.
+    Checker3d { scale: f64, even: Vec3, odd: Vec3 },
 }
 
 /// Mesh data in object space. Positions are f64 so that no precision is lost before the
@@ -40,7 +111,9 @@ pub struct MeshData {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum ShapeDesc {
-    Mesh(MeshData),
+    /// Shared (`Arc`) so that every placement of one mesh uses the same data: objects whose
+    /// meshes are the same `Arc` become instances of one prototype, O(1) memory each.
+    Mesh(std::sync::Arc<MeshData>),
     Sphere { center: DVec3, radius: f64 },
 }
 
@@ -51,26 +124,62 @@ pub struct ObjectDesc {
     pub shape: ShapeDesc,
     /// Index into `SceneDesc::materials`.
     pub material: u32,
+    /// Placement at shutter open (t = 0).
     pub world_from_object: DAffine3,
+    /// Placement at shutter close (t = 1) for a moving object; interpolated as translation,
+    /// rotation (slerp) and scale in between. `None` for a static object.
+    pub world_from_object_end: Option<DAffine3>,
+}
+
+impl ObjectDesc {
+    pub fn is_moving(&self) -> bool {
+        self.world_from_object_end.is_some_and(|end| end != self.world_from_object)
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum LightDesc {
     /// Isotropic point light; `intensity` is radiant intensity (W/sr per channel).
     Point { position: DVec3, intensity: Vec3 },
+    /// Light from infinitely far away arriving along `direction` (pointing from the light
+    /// into the scene); `irradiance` on a surface facing it.
+    Directional { direction: DVec3, irradiance: Vec3 },
+    /// Constant light added to every surface's ambient reflectance (the course's
+    /// AmbientLight; only the Whitted integrator uses it).
+    Ambient { radiance: Vec3 },
 }
 
 /// Defaults for the renderer that a scene may carry; command-line options override them.
+/// Which light-transport algorithm renders the scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum IntegratorKind {
+    /// Path tracing with next-event estimation and MIS.
+    #[default]
+    Path,
+    /// The CENG795 course model: ambient + Blinn-Phong direct light with shadow rays,
+    /// recursive mirror/conductor/dielectric, values in 0–255 units clamped.
+    Whitted,
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderSettings {
     pub spp: u32,
     pub max_depth: u32,
     pub background: Vec3,
+    /// Shadow rays towards area lights per shading point.
+    pub light_samples: u32,
+    pub integrator: IntegratorKind,
 }
 
 impl Default for RenderSettings {
     fn default() -> Self {
-        RenderSettings { spp: 16, max_depth: 5, background: Vec3::ZERO }
+        RenderSettings {
+            spp: 16,
+            max_depth: 5,
+            background: Vec3::ZERO,
+            light_samples: 1,
+            integrator: IntegratorKind::Path,
+        }
     }
 }
 
@@ -94,10 +203,13 @@ impl SceneDesc {
         self.camera.lookat += offset;
         for object in &mut self.objects {
             object.world_from_object = shift * object.world_from_object;
+            if let Some(end) = &mut object.world_from_object_end {
+                *end = shift * *end;
+            }
         }
         for light in &mut self.lights {
-            match light {
-                LightDesc::Point { position, .. } => *position += offset,
+            if let LightDesc::Point { position, .. } = light {
+                *position += offset;
             }
         }
     }
