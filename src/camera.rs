@@ -40,8 +40,11 @@ pub struct Camera {
     pub width: u32,
     pub height: u32,
     pub tan_half_vfov: f32,
+    /// Half the aperture: the disk's radius, or half the side of a square lens.
     pub lens_radius: f32,
     pub focus_distance: f32,
+    /// The course's square lens instead of a disk.
+    pub square_lens: bool,
 }
 
 impl Default for Camera {
@@ -55,6 +58,7 @@ impl Default for Camera {
             tan_half_vfov: 1.0,
             lens_radius: 0.0,
             focus_distance: 1.0,
+            square_lens: false,
         }
     }
 }
@@ -79,7 +83,8 @@ impl Camera {
         let dir_camera = self.camera_direction(raster);
         let (origin_camera, dir_camera) = match lens {
             Some(u) if self.has_lens() => {
-                let on_lens = concentric_disk(u) * self.lens_radius;
+                let unit = if self.square_lens { 2.0 * u - Vec2::ONE } else { concentric_disk(u) };
+                let on_lens = unit * self.lens_radius;
                 let origin = Vec3::new(on_lens.x, on_lens.y, 0.0);
                 // dir_camera has z = -1, so scaling by the focus distance lands on the focal plane.
                 let focus = dir_camera * self.focus_distance;

@@ -110,6 +110,13 @@ pub struct RenderArgs {
     /// Write the counters as JSON to this file (implies counting, like --stats).
     #[arg(long)]
     pub stats_json: Option<PathBuf>,
+    /// Shadow rays to area lights per shading point (default: the scene's, else 1).
+    #[arg(long)]
+    pub light_samples: Option<u32>,
+    /// Sample every effect (time, lens) and build motion BVHs even where the scene needs
+    /// none: measures what the effects machinery would cost a static scene.
+    #[arg(long)]
+    pub force_all_effects: bool,
     /// No progress bar or summary line.
     #[arg(short, long)]
     pub quiet: bool,
@@ -173,6 +180,15 @@ impl RenderArgs {
             options.backend = backend;
         }
         options.count_traversal = self.stats || self.stats_json.is_some();
+        if let Some(n) = self.light_samples {
+            if n == 0 {
+                bail!("--light-samples must be at least 1");
+            }
+            options.light_samples = n;
+        }
+        if self.force_all_effects {
+            options.effects_mode = embray::render_space::EffectsMode::ForceAll;
+        }
         options.progress = !self.quiet;
         Ok(options)
     }

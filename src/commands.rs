@@ -157,6 +157,8 @@ fn describe(scene: &SceneDesc) -> String {
         }
     }
     let points = scene.lights.iter().filter(|l| matches!(l, LightDesc::Point { .. })).count();
+    let directional =
+        scene.lights.iter().filter(|l| matches!(l, LightDesc::Directional { .. })).count();
     let emissive = scene
         .objects
         .iter()
@@ -164,8 +166,25 @@ fn describe(scene: &SceneDesc) -> String {
         .count();
     out += &format!("objects: {meshes} meshes ({triangles} triangles), {spheres} spheres\n");
     out += &format!(
-        "materials: {}\nlights: {points} point, {emissive} emissive objects\n",
+        "materials: {}\nlights: {points} point, {directional} directional, {emissive} emissive objects\n",
         scene.materials.len()
     );
+    let moving = scene.objects.iter().filter(|o| o.is_moving()).count();
+    out += &format!("moving objects: {moving}\n");
+    match embray::render_space::to_render_scene(
+        scene,
+        embray::render_space::RenderSpace::Cameraworld,
+        embray::render_space::EffectsMode::Auto,
+    ) {
+        Ok(render_scene) => {
+            out += &format!(
+                "prototypes: {}, instances: {}\neffects: {}\n",
+                render_scene.prototypes.len(),
+                render_scene.instances.len(),
+                render_scene.effects
+            );
+        }
+        Err(e) => out += &format!("effects: cannot prepare the scene: {e}\n"),
+    }
     out
 }

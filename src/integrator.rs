@@ -1,16 +1,17 @@
-//! Path tracing with next-event estimation: at every diffuse hit, one shadow ray per point
-//! light and one to a point sampled on the emitters; then a cosine-weighted bounce. Emission
-//! is counted only where a camera ray sees it directly, since every later bounce already
-//! sampled the emitters explicitly.
+//! Path tracing with next-event estimation and multiple importance sampling (power
+//! heuristic): at every non-specular hit, one shadow ray per point/directional light and
+//! `light_samples` to points sampled on emitters; then the BSDF picks the next direction.
+//! Only the random dimensions the scene's effects call for are drawn.
 
 use crate::accel::{Accel, Ray};
+use crate::bsdf::Bsdf;
+use crate::material::Material;
 use crate::render_scene::RenderScene;
-use crate::sampling::{SampleStream, cosine_hemisphere};
+use crate::sampling::SampleStream;
 use crate::spawn::SurfacePoint;
 use crate::stats::RenderStats;
 use crate::surface::{SurfaceInteraction, interaction};
 use glam::{Mat3, Quat, Vec3};
-use std::f32::consts::FRAC_1_PI;
 
 /// What one camera sample contributes to a pixel.
 #[derive(Clone, Copy, Debug, Default)]
@@ -27,18 +28,10 @@ pub struct PathTracer<'a> {
     accel: &'a dyn Accel,
     /// Number of surface interactions that gather light (1 = direct lighting only).
     max_depth: u32,
-    /// Rotation into the space where bounce directions are sampled (see `sampling_space`).
+    /// Shadow rays to emitters per shading point.
+    light_samples: u32,
+    /// Rotation into the space where directions are sampled (see `sampling_from_world`).
     sampling_from_render: Mat3,
-}
-
-/// A fixed rotation of world space in which no common surface normal lies on the
-/// discontinuity of `frame_from_normal` (normals with z = 0): it maps a generic direction to
-/// +Z, so axis-aligned walls (world normals ±X, ±Y, ±Z) are far from it. Sampling in a
-/// world-fixed frame makes every render space turn the same random numbers into the same
-/// directions; render spaces then differ by rounding only, not by noise pattern.
-fn sampling_from_world() -> Mat3 {
-    let generic = Vec3::new(0.267_261_24, 0.534_522_5, 0.801_783_7);
-    Mat3::from_quat(Quat::from_rotation_arc(generic, Vec3::Z))
 }
 
 /// Orthonormal basis whose Z axis is `n` (Duff et al. 2017, branchless).
@@ -53,10 +46,26 @@ fn frame_from_normal(n: Vec3) -> Mat3 {
     )
 }
 
+/// A fixed rotation of world space in which no common surface normal lies on the
+/// discontinuity of `frame_from_normal` (normals with z = 0): it maps a generic direction to
+/// +Z, so axis-aligned walls (world normals ±X, ±Y, ±Z) are far from it. Sampling in a
+/// world-fixed frame makes every render space turn the same random numbers into the same
+/// directions; render spaces then differ by rounding only, not by noise pattern.
+fn sampling_from_world() -> Mat3 {
+    let generic = Vec3::new(0.267_261_24, 0.534_522_5, 0.801_783_7);
+    Mat3::from_quat(Quat::from_rotation_arc(generic, Vec3::Z))
+}
+
+/// Power-heuristic weight of a strategy with density `a` against one with density `b`.
+fn power_heuristic(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 && a2.is_finite() { a2 / (a2 + b2) } else if a2.is_infinite() { 1.0 } else { 0.0 }
+}
+
 impl<'a> PathTracer<'a> {
-    pub fn new(scene: &'a RenderScene, accel: &'a dyn Accel, max_depth: u32) -> Self {
+    pub fn new(scene: &'a RenderScene, accel: &'a dyn Accel, max_depth: u32, light_samples: u32) -> Self {
         let sampling_from_render = sampling_from_world() * scene.camera.world_from_render;
-        PathTracer { scene, accel, max_depth, sampling_from_render }
+        PathTracer { scene, accel, max_depth, light_samples: light_samples.max(1), sampling_from_render }
     }
 
     pub fn scene(&self) -> &RenderScene {
@@ -73,73 +82,126 @@ impl<'a> PathTracer<'a> {
         blocked
     }
 
-    /// Light arriving directly from lights at `si`, reflected towards the viewer, for a
-    /// Lambertian surface of reflectance `albedo`.
+    /// Local shading frame (normal = +Z) → render space, built in the world-fixed sampling
+    /// space.
+    fn shading_frame(&self, normal: Vec3) -> Mat3 {
+        let n = (self.sampling_from_render * normal).normalize();
+        self.sampling_from_render.transpose() * frame_from_normal(n)
+    }
+
+    fn albedo(&self, material: &Material, si: &SurfaceInteraction, time: f32) -> Vec3 {
+        match &material.texture {
+            None => material.albedo,
+            Some(texture) => {
+                let p_object = if texture.needs_object_point() {
+                    let placement = &self.scene.instances[si.geom_id as usize].placement;
+                    placement.texture_object_from_render(time).transform_point3(si.surface.point)
+                } else {
+                    Vec3::ZERO
+                };
+                texture.eval(p_object, si.uv)
+            }
+        }
+    }
+
+    /// Light arriving directly from the lights at `si` and scattered towards `wo`.
     fn direct_light(
         &self,
         si: &SurfaceInteraction,
-        albedo: Vec3,
+        bsdf: &Bsdf,
+        wo: Vec3,
         time: f32,
+        bsdf_continues: bool,
         stream: &mut SampleStream,
         stats: &mut RenderStats,
     ) -> Vec3 {
-        let brdf = albedo * FRAC_1_PI;
+        let lights = &self.scene.lights;
         let p = si.surface.point;
+        let faces = |wi: Vec3| si.surface.normal.dot(wi) > 0.0;
         let mut sum = Vec3::ZERO;
-        for light in &self.scene.lights.points {
+        for light in &lights.points {
             let to_light = light.position - p;
             let dist2 = to_light.length_squared();
             let wi = to_light / dist2.sqrt();
-            let cos = si.shading_normal.dot(wi);
-            if cos <= 0.0 || si.surface.normal.dot(wi) <= 0.0 || dist2 == 0.0 {
+            let (f_cos, _) = bsdf.eval(wo, wi);
+            if f_cos == Vec3::ZERO || !faces(wi) || !(dist2 > 0.0) {
                 continue;
             }
             let shadow = si.surface.spawn_ray_to(&SurfacePoint::exact(light.position), time);
             if !self.occluded(&shadow, stats) {
-                sum += brdf * light.intensity * (cos / dist2);
+                sum += f_cos * light.intensity / dist2;
             }
         }
-        if self.scene.lights.has_emitters() {
-            let pick = stream.next_1d();
-            let on_surface = stream.next_2d();
-            if let Some(sample) = self.scene.lights.sample_emitter(pick, on_surface) {
+        for light in &lights.directional {
+            let wi = -light.direction;
+            let (f_cos, _) = bsdf.eval(wo, wi);
+            if f_cos == Vec3::ZERO || !faces(wi) {
+                continue;
+            }
+            if !self.occluded(&si.surface.spawn_ray(wi, time), stats) {
+                sum += f_cos * light.irradiance;
+            }
+        }
+        if lights.has_emitters() {
+            let n = self.light_samples as f32;
+            for _ in 0..self.light_samples {
+                let pick = stream.next_1d();
+                let on_surface = stream.next_2d();
+                let Some(sample) = lights.sample_emitter(pick, on_surface) else { continue };
+                if sample.geom_id == si.geom_id {
+                    continue;
+                }
                 let to_light = sample.point - p;
                 let dist2 = to_light.length_squared();
                 let wi = to_light / dist2.sqrt();
-                let cos_surface = si.shading_normal.dot(wi);
                 let cos_light = sample.normal.dot(wi).abs();
-                if cos_surface > 0.0
-                    && si.surface.normal.dot(wi) > 0.0
-                    && cos_light > 0.0
-                    && dist2 > 0.0
-                    && sample.geom_id != si.geom_id
-                {
-                    let target = SurfacePoint {
-                        point: sample.point,
-                        error: sample.error,
-                        normal: sample.normal,
-                    };
-                    let shadow = si.surface.spawn_ray_to(&target, time);
-                    if !self.occluded(&shadow, stats) {
-                        let pdf_solid_angle = sample.pdf_area * dist2 / cos_light;
-                        sum += brdf * sample.emission * (cos_surface / pdf_solid_angle);
-                    }
+                if !faces(wi) || !(cos_light > 0.0) || !(dist2 > 0.0) {
+                    continue;
                 }
+                let (f_cos, pdf_bsdf) = bsdf.eval(wo, wi);
+                if f_cos == Vec3::ZERO {
+                    continue;
+                }
+                let target =
+                    SurfacePoint { point: sample.point, error: sample.error, normal: sample.normal };
+                if self.occluded(&si.surface.spawn_ray_to(&target, time), stats) {
+                    continue;
+                }
+                let pdf_light = sample.pdf_area * dist2 / cos_light;
+                // Without a following BSDF sample (last bounce) light sampling is the only
+                // strategy and gets full weight.
+                let weight =
+                    if bsdf_continues { power_heuristic(n * pdf_light, pdf_bsdf) } else { 1.0 };
+                sum += f_cos * sample.emission * (weight / (n * pdf_light));
             }
         }
         sum
     }
 
+    /// MIS weight of emission found by BSDF sampling with density `pdf_bsdf`.
+    fn emission_weight(&self, ray: &Ray, si: &SurfaceInteraction, t: f32, pdf_bsdf: f32) -> f32 {
+        let Some(pdf_area) = self.scene.lights.pdf_area(si.geom_id, si.prim_id) else {
+            return 1.0; // not sampled by next-event estimation
+        };
+        let distance = t * ray.dir.length();
+        let cos_light = si.surface.normal.dot(ray.dir.normalize()).abs();
+        if cos_light <= 0.0 {
+            return 0.0;
+        }
+        let pdf_light = pdf_area * distance * distance / cos_light;
+        power_heuristic(pdf_bsdf, self.light_samples as f32 * pdf_light)
+    }
+
     /// Traces one camera path.
-    pub fn trace(
-        &self,
-        camera_ray: Ray,
-        stream: &mut SampleStream,
-        stats: &mut RenderStats,
-    ) -> PathSample {
+    pub fn trace(&self, camera_ray: Ray, stream: &mut SampleStream, stats: &mut RenderStats) -> PathSample {
         let mut result = PathSample::default();
         let mut ray = camera_ray;
         let mut throughput = Vec3::ONE;
+        // Camera rays and specular bounces see emission in full (nothing else sampled it).
+        let mut specular_bounce = true;
+        let mut pdf_bsdf = 0.0;
+        // Beer's-law absorption of the medium the ray travels through.
+        let mut absorption = Vec3::ZERO;
         for depth in 0..self.max_depth.max(1) {
             if !ray.is_valid() {
                 break;
@@ -152,30 +214,51 @@ impl<'a> PathTracer<'a> {
             };
             let counts = if depth == 0 { &mut stats.camera } else { &mut stats.indirect };
             counts.hits += 1;
+            if absorption != Vec3::ZERO {
+                let distance = hit.t * ray.dir.length();
+                throughput *= (-absorption * distance).exp();
+            }
             let si = interaction(self.scene, &ray, &hit);
             let material = &self.scene.materials[si.material as usize];
             if depth == 0 {
                 result.depth = Some(hit.t);
                 result.normal = Some(self.scene.camera.world_from_render * si.shading_normal);
-                result.radiance += throughput * material.emission;
             }
-            if self.max_depth == 0 || material.albedo == Vec3::ZERO {
+            if material.is_emissive() {
+                let weight = if specular_bounce { 1.0 } else { self.emission_weight(&ray, &si, hit.t, pdf_bsdf) };
+                result.radiance += throughput * material.emission * weight;
+            }
+            if self.max_depth == 0 {
                 break;
             }
-            result.radiance +=
-                throughput * self.direct_light(&si, material.albedo, ray.time, stream, stats);
-            if depth + 1 >= self.max_depth {
+            let albedo = self.albedo(material, &si, ray.time);
+            let bsdf = Bsdf::new(material, albedo, self.shading_frame(si.shading_normal), si.front_face);
+            let wo = -ray.dir.normalize();
+            let last = depth + 1 >= self.max_depth;
+            if bsdf.has_smooth_lobe() {
+                let direct = self.direct_light(&si, &bsdf, wo, ray.time, !last, stream, stats);
+                result.radiance += throughput * direct;
+            }
+            if last {
                 break;
             }
-            let local = cosine_hemisphere(stream.next_2d());
-            let sampling_normal = (self.sampling_from_render * si.shading_normal).normalize();
-            let dir = self.sampling_from_render.transpose()
-                * (frame_from_normal(sampling_normal) * local);
-            if dir.dot(si.surface.normal) <= 0.0 {
+            let u_lobe = stream.next_1d();
+            let u = stream.next_2d();
+            let Some(sample) = bsdf.sample(wo, u_lobe, u) else { break };
+            // The geometric surface must agree with the shading normal about the side.
+            let below = sample.wi.dot(si.surface.normal) < 0.0;
+            if below != sample.transmitted || sample.weight == Vec3::ZERO {
                 break;
             }
-            // Lambertian: f·cos/pdf = albedo.
-            throughput *= material.albedo;
+            throughput *= sample.weight;
+            specular_bounce = sample.delta;
+            pdf_bsdf = sample.pdf;
+            if sample.transmitted {
+                absorption = match material.specular {
+                    crate::material::Specular::Dielectric { absorption: a, .. } if si.front_face => a,
+                    _ => Vec3::ZERO,
+                };
+            }
             if depth >= 3 {
                 let survive = throughput.max_element().min(0.95);
                 if stream.next_1d() >= survive {
@@ -183,7 +266,7 @@ impl<'a> PathTracer<'a> {
                 }
                 throughput /= survive;
             }
-            ray = si.surface.spawn_ray(dir, ray.time);
+            ray = si.surface.spawn_ray(sample.wi, ray.time);
         }
         result
     }
@@ -201,5 +284,12 @@ mod tests {
             assert!((f.z_axis - n).length() < 1e-6);
             assert!(f.x_axis.dot(f.y_axis).abs() < 1e-5 && f.x_axis.dot(n).abs() < 1e-5);
         }
+    }
+
+    #[test]
+    fn power_heuristic_handles_extremes() {
+        assert_eq!(power_heuristic(1.0, 0.0), 1.0);
+        assert_eq!(power_heuristic(0.0, 0.0), 0.0);
+        assert!((power_heuristic(1.0, 1.0) - 0.5).abs() < 1e-6);
     }
 }

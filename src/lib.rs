@@ -7,7 +7,9 @@
 
 pub mod accel;
 pub mod bench;
+pub mod bsdf;
 pub mod camera;
+pub mod effects;
 pub mod film;
 pub mod geometry;
 pub mod image_error;
@@ -24,3 +26,4 @@ pub mod spawn;
 pub mod stats;
 pub mod surface;
 pub mod transform;
+pub mod whitted;

@@ -1,8 +1,8 @@
-//! Lights in render space: point lights (one shadow ray each) and emissive shapes, which are
-//! sampled by area in proportion to their emitted power.
+//! Lights in render space: point and directional lights (one shadow ray each) and emissive
+//! primitives, which are sampled by area in proportion to their emitted power.
 
 use crate::material::Material;
-use crate::render_scene::{Geometry, Shape};
+use crate::render_scene::{Geometry, Instance, Placement, Prototype};
 use crate::sampling::uniform_triangle;
 use crate::spawn::{gamma, triangle_point};
 use glam::{Vec2, Vec3};
@@ -14,7 +14,15 @@ pub struct PointLight {
     pub intensity: Vec3,
 }
 
-/// One emitting primitive.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DirectionalLight {
+    /// Unit direction the light travels in.
+    pub direction: Vec3,
+    /// Irradiance on a surface facing the light.
+    pub irradiance: Vec3,
+}
+
+/// One emitting primitive, in render space.
 #[derive(Clone, Debug, PartialEq)]
 pub enum EmitterShape {
     Triangle([Vec3; 3]),
@@ -47,53 +55,87 @@ pub struct EmitterSample {
 #[derive(Clone, Debug, Default)]
 pub struct LightSet {
     pub points: Vec<PointLight>,
+    pub directional: Vec<DirectionalLight>,
+    /// Ambient radiance (used by the Whitted integrator only).
+    pub ambient: Vec3,
     pub emitters: Vec<Emitter>,
     /// Cumulative emitted power of `emitters`, normalised so the last entry is 1.
     emitter_cdf: Vec<f32>,
+    /// Per instance: index of its first emitter (emitter of primitive p = first + p).
+    first_emitter: Vec<Option<u32>>,
 }
 
 fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
+fn instance_emitters(geom_id: u32, prototype: &Prototype, instance: &Instance, emission: Vec3) -> Vec<Emitter> {
+    // Emitters that really move are not sampled: their emission is counted where rays hit
+    // them (an emitter "moving" from a pose to the same pose is static).
+    let transform = match &instance.placement {
+        Placement::Baked { .. } => None,
+        Placement::Static { render_from_object, .. } => Some(*render_from_object),
+        Placement::Moving { start, end } if start == end => Some(start.to_affine()),
+        Placement::Moving { .. } => return Vec::new(),
+    };
+    match &prototype.geometry {
+        Geometry::Triangles(mesh) => (0..mesh.indices.len() as u32)
+            .map(|prim| {
+                let mut tri = mesh.triangle(prim);
+                if let Some(m) = transform {
+                    tri = tri.map(|p| m.transform_point3(p));
+                }
+                let area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
+                Emitter { geom_id, shape: EmitterShape::Triangle(tri), emission, area }
+            })
+            .collect(),
+        Geometry::Sphere(s) => {
+            if transform.is_some() {
+                // Ellipsoids are not sampled either (no closed-form area sampling).
+                return Vec::new();
+            }
+            let area = 4.0 * std::f32::consts::PI * s.radius * s.radius;
+            vec![Emitter {
+                geom_id,
+                shape: EmitterShape::Sphere { center: s.center, radius: s.radius },
+                emission,
+                area,
+            }]
+        }
+    }
+}
+
 impl LightSet {
-    /// Collects the emissive primitives of `shapes`.
-    pub fn new(points: Vec<PointLight>, shapes: &[Shape], materials: &[Material]) -> Self {
+    /// Collects the emissive primitives of the scene's instances.
+    pub fn new(
+        points: Vec<PointLight>,
+        directional: Vec<DirectionalLight>,
+        prototypes: &[Prototype],
+        instances: &[Instance],
+        materials: &[Material],
+    ) -> Self {
         let mut emitters = Vec::new();
-        for (geom_id, shape) in shapes.iter().enumerate() {
-            let material = &materials[shape.material as usize];
+        let mut first_emitter = vec![None; instances.len()];
+        for (geom_id, instance) in instances.iter().enumerate() {
+            let material = &materials[instance.material as usize];
             if !material.is_emissive() {
                 continue;
             }
-            let geom_id = geom_id as u32;
-            match &shape.geometry {
-                Geometry::Triangles(mesh) => {
-                    for prim in 0..mesh.indices.len() as u32 {
-                        let tri = mesh.triangle(prim);
-                        let area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
-                        if area > 0.0 && area.is_finite() {
-                            emitters.push(Emitter {
-                                geom_id,
-                                shape: EmitterShape::Triangle(tri),
-                                emission: material.emission,
-                                area,
-                            });
-                        }
-                    }
-                }
-                Geometry::Sphere(s) => emitters.push(Emitter {
-                    geom_id,
-                    shape: EmitterShape::Sphere { center: s.center, radius: s.radius },
-                    emission: material.emission,
-                    area: 4.0 * std::f32::consts::PI * s.radius * s.radius,
-                }),
+            let prototype = &prototypes[instance.prototype as usize];
+            let mine = instance_emitters(geom_id as u32, prototype, instance, material.emission);
+            if !mine.is_empty() {
+                first_emitter[geom_id] = Some(emitters.len() as u32);
+                emitters.extend(mine);
             }
         }
         let mut total = 0.0f64;
         let mut emitter_cdf: Vec<f32> = emitters
             .iter()
             .map(|e| {
-                total += (e.area * luminance(e.emission)).max(0.0) as f64;
+                let power = e.area * luminance(e.emission);
+                if power.is_finite() && power > 0.0 {
+                    total += power as f64;
+                }
                 total as f32
             })
             .collect();
@@ -107,17 +149,33 @@ impl LightSet {
         } else {
             emitters.clear();
             emitter_cdf.clear();
+            first_emitter.iter_mut().for_each(|f| *f = None);
         }
-        LightSet { points, emitters, emitter_cdf }
+        LightSet { points, directional, ambient: Vec3::ZERO, emitters, emitter_cdf, first_emitter }
     }
 
     pub fn has_emitters(&self) -> bool {
         !self.emitters.is_empty()
     }
 
+    pub fn has_delta_lights(&self) -> bool {
+        !self.points.is_empty() || !self.directional.is_empty()
+    }
+
     fn emitter_probability(&self, index: usize) -> f32 {
         let below = if index == 0 { 0.0 } else { self.emitter_cdf[index - 1] };
         self.emitter_cdf[index] - below
+    }
+
+    /// Density per unit area with which `sample_emitter` picks a point on primitive `prim`
+    /// of instance `geom_id`; `None` if that primitive is not sampled (its emission must be
+    /// counted in full wherever a ray hits it).
+    pub fn pdf_area(&self, geom_id: u32, prim: u32) -> Option<f32> {
+        let first = (*self.first_emitter.get(geom_id as usize)?)?;
+        let index = (first + prim) as usize;
+        let emitter = self.emitters.get(index)?;
+        (emitter.geom_id == geom_id && emitter.area > 0.0)
+            .then(|| self.emitter_probability(index) / emitter.area)
     }
 
     /// Picks an emitter in proportion to its power (with `pick`) and a point on it uniformly
@@ -129,7 +187,7 @@ impl LightSet {
         let index = self.emitter_cdf.partition_point(|&c| c <= pick).min(self.emitters.len() - 1);
         let emitter = &self.emitters[index];
         let probability = self.emitter_probability(index);
-        if probability <= 0.0 {
+        if probability <= 0.0 || emitter.area <= 0.0 {
             return None;
         }
         let (point, error, normal) = match emitter.shape {
@@ -144,7 +202,9 @@ impl LightSet {
                 let phi = 2.0 * std::f32::consts::PI * on_surface.y;
                 let n = Vec3::new(r * phi.cos(), r * phi.sin(), z);
                 let local = radius * n;
-                let error = local.abs() * gamma(5) + (center.abs() + local.abs()) * gamma(1);
+                let error = local.abs() * gamma(5)
+                    + (center.abs() + local.abs()) * gamma(1)
+                    + Vec3::splat(radius * gamma(8));
                 (center + local, error, n)
             }
         };

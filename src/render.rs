@@ -3,10 +3,13 @@
 
 use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind};
 use crate::film::{Film, Tile, tiles};
-use crate::integrator::PathTracer;
+use crate::accel::Ray;
+use crate::integrator::{PathSample, PathTracer};
+use crate::scene::IntegratorKind;
+use crate::whitted::WhittedTracer;
 use crate::render_scene::RenderScene;
-use crate::render_space::{RenderSpace, RenderSpaceError, to_render_scene};
-use crate::sampling::{SampleStream, pixel_sample};
+use crate::render_space::{EffectsMode, RenderSpace, RenderSpaceError, to_render_scene};
+use crate::sampling::{SLOT_LENS, SLOT_TIME, SampleStream, pixel_sample};
 use crate::scene::SceneDesc;
 use crate::stats::RenderStats;
 use glam::{DVec3, Vec2, Vec3};
@@ -32,6 +35,10 @@ pub struct RenderOptions {
     pub offset: DVec3,
     pub count_traversal: bool,
     pub progress: bool,
+    /// Shadow rays to emitters per shading point.
+    pub light_samples: u32,
+    pub effects_mode: EffectsMode,
+    pub integrator: IntegratorKind,
 }
 
 impl RenderOptions {
@@ -48,6 +55,9 @@ impl RenderOptions {
             offset: DVec3::ZERO,
             count_traversal: false,
             progress: false,
+            light_samples: scene.settings.light_samples,
+            effects_mode: EffectsMode::Auto,
+            integrator: scene.settings.integrator,
         }
     }
 }
@@ -82,7 +92,7 @@ pub fn prepare_scene(
     if options.offset != DVec3::ZERO {
         desc.translate(options.offset);
     }
-    Ok(to_render_scene(&desc, options.render_space)?)
+    Ok(to_render_scene(&desc, options.render_space, options.effects_mode)?)
 }
 
 /// Renders `desc` from start to finish.
@@ -122,7 +132,41 @@ struct TileResult {
     stats: RenderStats,
 }
 
-fn render_tile(tracer: &PathTracer, tile: Tile, options: &RenderOptions) -> TileResult {
+/// The light-transport algorithm of one render.
+enum Tracer<'a> {
+    Path(PathTracer<'a>),
+    Whitted(WhittedTracer<'a>),
+}
+
+impl<'a> Tracer<'a> {
+    fn new(scene: &'a RenderScene, accel: &'a dyn Accel, options: &RenderOptions) -> Self {
+        match options.integrator {
+            IntegratorKind::Path => Tracer::Path(PathTracer::new(
+                scene,
+                accel,
+                options.max_depth,
+                options.light_samples,
+            )),
+            IntegratorKind::Whitted => Tracer::Whitted(WhittedTracer::new(scene, accel, options.max_depth)),
+        }
+    }
+
+    fn scene(&self) -> &RenderScene {
+        match self {
+            Tracer::Path(t) => t.scene(),
+            Tracer::Whitted(t) => t.scene(),
+        }
+    }
+
+    fn trace(&self, ray: Ray, stream: &mut SampleStream, stats: &mut RenderStats) -> PathSample {
+        match self {
+            Tracer::Path(t) => t.trace(ray, stream, stats),
+            Tracer::Whitted(t) => t.trace(ray, stream, stats),
+        }
+    }
+}
+
+fn render_tile(tracer: &Tracer, tile: Tile, options: &RenderOptions) -> TileResult {
     let camera = &tracer.scene().camera;
     let n = ((tile.x1 - tile.x0) * (tile.y1 - tile.y0)) as usize;
     let mut result = TileResult {
@@ -144,8 +188,12 @@ fn render_tile(tracer: &PathTracer, tile: Tile, options: &RenderOptions) -> Tile
                 let jitter = options.jitter.then(|| stream.next_2d());
                 let in_pixel = pixel_sample(s, spp, jitter, options.seed, pixel);
                 let raster = Vec2::new(x as f32, y as f32) + in_pixel;
-                let lens = camera.has_lens().then(|| stream.next_2d());
-                let ray = camera.generate_ray(raster, lens);
+                let effects = &tracer.scene().effects;
+                let lens = effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS));
+                let mut ray = camera.generate_ray(raster, lens);
+                if effects.motion_blur {
+                    ray.time = stream.reserved_1d(SLOT_TIME);
+                }
                 let sample = tracer.trace(ray, &mut stream, &mut result.stats);
                 color += sample.radiance.as_dvec3();
                 if let Some(d) = sample.depth {
@@ -175,7 +223,7 @@ pub fn render_film(
     accel: &dyn Accel,
     options: &RenderOptions,
 ) -> (Film, RenderStats) {
-    let tracer = PathTracer::new(scene, accel, options.max_depth);
+    let tracer = Tracer::new(scene, accel, options);
     let camera = &scene.camera;
     let all_tiles = tiles(camera.width, camera.height, TILE_SIZE);
     let progress = if options.progress {

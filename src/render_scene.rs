@@ -1,17 +1,23 @@
 //! The scene as the backends and the integrator see it: f32 geometry in render space.
 //! Built once from a `SceneDesc` by `render_space::to_render_scene`.
+//!
+//! Geometry lives in *prototypes*; the scene is a list of *instances* placing them. Most
+//! objects are `Placement::Baked`: their prototype's vertices were transformed into render
+//! space in f64 and then rounded (the most precise and fastest form). Meshes placed more than
+//! once, moving objects and ellipsoids keep object-space prototypes and a transform.
 
 use crate::camera::Camera;
+use crate::effects::Effects;
 use crate::light::LightSet;
 use crate::material::Material;
-use glam::{Vec2, Vec3};
+use glam::{Affine3A, Mat3, Quat, Vec2, Vec3};
 
-/// A triangle mesh in render space.
+/// A triangle mesh (in render space when baked, else in object space).
 #[derive(Clone, Debug, Default)]
 pub struct TriangleMesh {
     pub positions: Vec<Vec3>,
     pub indices: Vec<[u32; 3]>,
-    /// Per-vertex shading normals (unit length), if the mesh has them.
+    /// Per-vertex shading normals (unit length, or zero where undefined), if any.
     pub normals: Option<Vec<Vec3>>,
     /// Per-vertex texture coordinates, if the mesh has them.
     pub uvs: Option<Vec<Vec2>>,
@@ -36,21 +42,165 @@ pub enum Geometry {
     Sphere(Sphere),
 }
 
-/// One geometry of the scene; its index in `RenderScene::shapes` is the backends' geometry id.
+impl Geometry {
+    /// Axis-aligned bounds as (min, max).
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        match self {
+            Geometry::Triangles(mesh) => {
+                let mut lo = Vec3::splat(f32::INFINITY);
+                let mut hi = Vec3::splat(f32::NEG_INFINITY);
+                for tri in &mesh.indices {
+                    for &i in tri {
+                        lo = lo.min(mesh.positions[i as usize]);
+                        hi = hi.max(mesh.positions[i as usize]);
+                    }
+                }
+                (lo, hi)
+            }
+            Geometry::Sphere(s) => (s.center - s.radius, s.center + s.radius),
+        }
+    }
+}
+
+/// Geometry that one or more instances place in the scene.
 #[derive(Clone, Debug)]
-pub struct Shape {
+pub struct Prototype {
     pub geometry: Geometry,
+    pub name: String,
+}
+
+/// Translation · rotation · scale, the form in which motion is interpolated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trs {
+    pub translation: Vec3,
+    pub rotation: Quat,
+    pub scale: Vec3,
+}
+
+impl Trs {
+    pub fn to_affine(&self) -> Affine3A {
+        Affine3A::from_scale_rotation_translation(self.scale, self.rotation, self.translation)
+    }
+
+    /// Linear in translation and scale, spherical in rotation.
+    pub fn lerp(&self, end: &Trs, t: f32) -> Trs {
+        Trs {
+            translation: self.translation.lerp(end.translation, t),
+            rotation: self.rotation.slerp(end.rotation, t),
+            scale: self.scale.lerp(end.scale, t),
+        }
+    }
+}
+
+/// Where an instance's prototype sits in render space.
+#[derive(Clone, Debug)]
+pub enum Placement {
+    /// The prototype is already in render space. `object_from_render` maps back to the
+    /// object's own space (for solid textures).
+    Baked { object_from_render: Affine3A },
+    /// A fixed transform of an object-space prototype.
+    Static { render_from_object: Affine3A, object_from_render: Affine3A },
+    /// Moves over the shutter interval: `start` at time 0, `end` at time 1.
+    Moving { start: Trs, end: Trs },
+}
+
+impl Placement {
+    /// `render_from_object` at `time`; `None` for baked geometry (identity).
+    pub fn render_from_object(&self, time: f32) -> Option<Affine3A> {
+        match self {
+            Placement::Baked { .. } => None,
+            Placement::Static { render_from_object, .. } => Some(*render_from_object),
+            Placement::Moving { start, end } => Some(start.lerp(end, time).to_affine()),
+        }
+    }
+
+    /// `object_from_render` at `time`; `None` for baked geometry (identity).
+    pub fn object_from_render(&self, time: f32) -> Option<Affine3A> {
+        match self {
+            Placement::Baked { .. } => None,
+            Placement::Static { object_from_render, .. } => Some(*object_from_render),
+            Placement::Moving { .. } => self.render_from_object(time).map(|m| m.inverse()),
+        }
+    }
+
+    /// The object's own space for textures, at `time`.
+    pub fn texture_object_from_render(&self, time: f32) -> Affine3A {
+        match self {
+            Placement::Baked { object_from_render } => *object_from_render,
+            _ => self.object_from_render(time).unwrap_or(Affine3A::IDENTITY),
+        }
+    }
+
+    pub fn is_moving(&self) -> bool {
+        matches!(self, Placement::Moving { .. })
+    }
+}
+
+/// Render-space bounds of object-space box (`lo`, `hi`) under `transform`.
+pub fn transformed_bounds(transform: &Affine3A, lo: Vec3, hi: Vec3) -> (Vec3, Vec3) {
+    let center = transform.transform_point3((lo + hi) * 0.5);
+    let half = (hi - lo) * 0.5;
+    let m = Mat3::from(transform.matrix3);
+    let abs = Mat3::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
+    let extent = abs * half;
+    (center - extent, center + extent)
+}
+
+/// One placement of a prototype; its index in `RenderScene::instances` is the backends'
+/// geometry id.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    pub prototype: u32,
     pub material: u32,
-    /// The scene object this shape came from (for messages).
+    pub placement: Placement,
+    /// The scene object it came from (for messages).
     pub name: String,
 }
 
 #[derive(Clone, Debug)]
 pub struct RenderScene {
     pub camera: Camera,
-    pub shapes: Vec<Shape>,
+    pub prototypes: Vec<Prototype>,
+    pub instances: Vec<Instance>,
     pub materials: Vec<Material>,
     pub lights: LightSet,
     /// Radiance of rays that leave the scene.
     pub background: Vec3,
+    pub effects: Effects,
 }
+
+impl RenderScene {
+    /// A scene of baked shapes (one prototype per instance), for tests and tools.
+    pub fn from_baked_shapes(
+        camera: Camera,
+        shapes: Vec<(Geometry, u32)>,
+        materials: Vec<Material>,
+    ) -> RenderScene {
+        let mut prototypes = Vec::new();
+        let mut instances = Vec::new();
+        for (i, (geometry, material)) in shapes.into_iter().enumerate() {
+            prototypes.push(Prototype { geometry, name: format!("shape {i}") });
+            instances.push(Instance {
+                prototype: i as u32,
+                material,
+                placement: Placement::Baked { object_from_render: Affine3A::IDENTITY },
+                name: format!("shape {i}"),
+            });
+        }
+        let lights = LightSet::new(Vec::new(), Vec::new(), &prototypes, &instances, &materials);
+        RenderScene {
+            camera,
+            prototypes,
+            instances,
+            materials,
+            lights,
+            background: Vec3::ZERO,
+            effects: Effects::default(),
+        }
+    }
+
+    pub fn prototype_of(&self, instance: u32) -> &Prototype {
+        &self.prototypes[self.instances[instance as usize].prototype as usize]
+    }
+}
+

@@ -49,7 +49,24 @@ impl SampleStream {
         let x = self.next_1d();
         Vec2::new(x, self.next_1d())
     }
+
+    /// A value from a reserved dimension `slot`, outside the sequential stream: effects that
+    /// only some scenes use (lens, time) draw from here, so turning them on or off does not
+    /// shift the numbers every other decision sees.
+    pub fn reserved_1d(&self, slot: u64) -> f32 {
+        to_unit_f32(hash4(self.seed, self.pixel, self.sample, RESERVED_BASE + slot))
+    }
+
+    pub fn reserved_2d(&self, slot: u64) -> Vec2 {
+        Vec2::new(self.reserved_1d(slot), self.reserved_1d(slot + 1))
+    }
 }
+
+/// Reserved dimensions start far beyond any path's sequential use.
+const RESERVED_BASE: u64 = 1 << 40;
+/// Reserved slots: lens position (2 dimensions) and time.
+pub const SLOT_LENS: u64 = 0;
+pub const SLOT_TIME: u64 = 2;
 
 /// Position of sample `index` of `count` inside the unit pixel square. Perfect squares get a
 /// jittered grid; other counts get Latin-hypercube strata (one per row and per column), both

@@ -4,8 +4,8 @@
 
 use crate::accel::{Hit, Ray};
 use crate::render_scene::{Geometry, RenderScene};
-use crate::spawn::{SurfacePoint, sphere_point, triangle_point};
-use glam::{Vec2, Vec3};
+use crate::spawn::{SurfacePoint, gamma, sphere_point, triangle_point};
+use glam::{Affine3A, Mat3, Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug)]
 pub struct SurfaceInteraction {
@@ -16,11 +16,32 @@ pub struct SurfaceInteraction {
     pub uv: Vec2,
     pub material: u32,
     pub geom_id: u32,
+    pub prim_id: u32,
+    /// The ray arrived on the side the surface's own normal points to (outside, for closed
+    /// meshes wound counter-clockwise and for spheres).
+    pub front_face: bool,
 }
 
-pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteraction {
-    let shape = &scene.shapes[hit.geom_id as usize];
-    let (point, error, geometric, shading, uv) = match &shape.geometry {
+/// Applies `m` to a point with error bound `error`, returning the point and its new bound
+/// (pbrt-v4's interval transform).
+fn transform_point_with_error(m: &Affine3A, p: Vec3, error: Vec3) -> (Vec3, Vec3) {
+    let linear = Mat3::from(m.matrix3);
+    let abs = Mat3::from_cols(linear.x_axis.abs(), linear.y_axis.abs(), linear.z_axis.abs());
+    let point = m.transform_point3(p);
+    let rounding = (abs * p.abs() + Vec3::from(m.translation).abs()) * gamma(3);
+    (point, abs * error * (1.0 + gamma(3)) + rounding)
+}
+
+struct LocalHit {
+    point: Vec3,
+    error: Vec3,
+    geometric: Vec3,
+    shading: Vec3,
+    uv: Vec2,
+}
+
+fn local_hit(geometry: &Geometry, hit: &Hit, origin: Vec3, dir: Vec3) -> LocalHit {
+    match geometry {
         Geometry::Triangles(mesh) => {
             let tri = mesh.triangle(hit.prim_id);
             let (point, error) = triangle_point(&tri, hit.u, hit.v);
@@ -29,37 +50,81 @@ pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteract
             let b0 = 1.0 - hit.u - hit.v;
             let shading = match &mesh.normals {
                 Some(n) => (n[i0] * b0 + n[i1] * hit.u + n[i2] * hit.v).normalize_or_zero(),
-                None => geometric,
+                None => Vec3::ZERO,
             };
             let uv = match &mesh.uvs {
                 Some(t) => t[i0] * b0 + t[i1] * hit.u + t[i2] * hit.v,
                 None => Vec2::new(hit.u, hit.v),
             };
-            (point, error, geometric, shading, uv)
+            LocalHit { point, error, geometric, shading, uv }
         }
         Geometry::Sphere(s) => {
-            let (point, error) = sphere_point(s.center, s.radius, ray.origin, ray.dir, hit.t);
+            let (point, error) = sphere_point(s.center, s.radius, origin, dir, hit.t);
             let n = ((point - s.center) / s.radius).normalize_or_zero();
             let uv = Vec2::new(
                 0.5 + n.z.atan2(n.x) / std::f32::consts::TAU,
                 n.y.clamp(-1.0, 1.0).acos() / std::f32::consts::PI,
             );
-            (point, error, n, n, uv)
+            LocalHit { point, error, geometric: n, shading: n, uv }
+        }
+    }
+}
+
+pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteraction {
+    let instance = &scene.instances[hit.geom_id as usize];
+    let geometry = &scene.prototypes[instance.prototype as usize].geometry;
+    let mut local = match instance.placement.render_from_object(ray.time) {
+        None => local_hit(geometry, hit, ray.origin, ray.dir),
+        Some(render_from_object) => {
+            let object_from_render = render_from_object.inverse();
+            let origin = object_from_render.transform_point3(ray.origin);
+            let dir = object_from_render.transform_vector3(ray.dir);
+            let mut l = local_hit(geometry, hit, origin, dir);
+            (l.point, l.error) = transform_point_with_error(&render_from_object, l.point, l.error);
+            let normal_from_object = Mat3::from(object_from_render.matrix3).transpose();
+            l.geometric = (normal_from_object * l.geometric).normalize_or_zero();
+            l.shading = (normal_from_object * l.shading).normalize_or_zero();
+            l
         }
     };
-    let geometric = if geometric.dot(ray.dir) > 0.0 { -geometric } else { geometric };
-    let shading = if shading == Vec3::ZERO {
-        geometric
-    } else if shading.dot(geometric) < 0.0 {
-        -shading
+    let front_face = local.geometric.dot(ray.dir) < 0.0;
+    if !front_face {
+        local.geometric = -local.geometric;
+    }
+    let shading = if local.shading == Vec3::ZERO {
+        local.geometric
+    } else if local.shading.dot(local.geometric) < 0.0 {
+        -local.shading
     } else {
-        shading
+        local.shading
     };
     SurfaceInteraction {
-        surface: SurfacePoint { point, error, normal: geometric },
+        surface: SurfacePoint { point: local.point, error: local.error, normal: local.geometric },
         shading_normal: shading,
-        uv,
-        material: shape.material,
+        uv: local.uv,
+        material: instance.material,
         geom_id: hit.geom_id,
+        prim_id: hit.prim_id,
+        front_face,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn transformed_error_bound_covers_the_rounding() {
+        let m = Affine3A::from_scale_rotation_translation(
+            Vec3::new(3.0, 0.5, 2.0),
+            glam::Quat::from_rotation_y(0.7),
+            Vec3::new(100.0, -50.0, 7.0),
+        );
+        let p = Vec3::new(1.234, -5.678, 9.1011);
+        let (q, err) = transform_point_with_error(&m, p, Vec3::ZERO);
+        let exact = glam::DAffine3::from_mat4(glam::Mat4::from(m).as_dmat4())
+            .transform_point3(p.as_dvec3());
+        let off = (q.as_dvec3() - exact).abs();
+        assert!(off.x <= err.x as f64 && off.y <= err.y as f64 && off.z <= err.z as f64);
     }
 }

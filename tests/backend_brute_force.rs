@@ -7,9 +7,8 @@ use common::backends;
 use embray::accel::{AccelOptions, Hit, Ray, build};
 use embray::camera::Camera;
 use embray::geometry::{intersect_sphere, intersect_triangle};
-use embray::light::LightSet;
 use embray::material::Material;
-use embray::render_scene::{Geometry, RenderScene, Shape, Sphere, TriangleMesh};
+use embray::render_scene::{Geometry, RenderScene, Sphere, TriangleMesh};
 use embray::sampling::{hash4, to_unit_f32};
 use embray::spawn::{SurfacePoint, triangle_point};
 use embray::stats::TraversalCounters;
@@ -41,10 +40,8 @@ fn random_scene(rng: &mut Rng) -> RenderScene {
         }
         shapes.push(mesh);
     }
-    let mut shapes: Vec<Shape> = shapes
-        .into_iter()
-        .map(|m| Shape { geometry: Geometry::Triangles(m), material: 0, name: "tris".into() })
-        .collect();
+    let mut shapes: Vec<(Geometry, u32)> =
+        shapes.into_iter().map(|m| (Geometry::Triangles(m), 0)).collect();
     // Quads (two triangles sharing an edge), axis-aligned and not.
     for q in 0..20 {
         let corner = rng.in_box(10.0);
@@ -59,33 +56,19 @@ fn random_scene(rng: &mut Rng) -> RenderScene {
             normals: None,
             uvs: None,
         };
-        shapes.push(Shape {
-            geometry: Geometry::Triangles(mesh),
-            material: 0,
-            name: "quad".into(),
-        });
+        shapes.push((Geometry::Triangles(mesh), 0));
     }
     for _ in 0..15 {
         let sphere = Sphere { center: rng.in_box(10.0), radius: 0.2 + 1.5 * rng.f() };
-        shapes.push(Shape {
-            geometry: Geometry::Sphere(sphere),
-            material: 0,
-            name: "sphere".into(),
-        });
+        shapes.push((Geometry::Sphere(sphere), 0));
     }
-    RenderScene {
-        camera: Camera::default(),
-        shapes,
-        materials: vec![Material::default()],
-        lights: LightSet::default(),
-        background: Vec3::ZERO,
-    }
+    RenderScene::from_baked_shapes(Camera::default(), shapes, vec![Material::default()])
 }
 
 fn brute_force(scene: &RenderScene, ray: &Ray) -> Option<Hit> {
     let mut best: Option<Hit> = None;
     let mut tmax = ray.tmax;
-    for (geom_id, shape) in scene.shapes.iter().enumerate() {
+    for (geom_id, shape) in scene.instances.iter().enumerate().map(|(i, inst)| (i, &scene.prototypes[inst.prototype as usize])) {
         match &shape.geometry {
             Geometry::Triangles(mesh) => {
                 for prim in 0..mesh.indices.len() as u32 {
@@ -134,7 +117,7 @@ fn random_rays(scene: &RenderScene, rng: &mut Rng, count: usize) -> Vec<(RayKind
             }
             1 => {
                 let geom_id = (i % 2) as u32;
-                let Geometry::Triangles(mesh) = &scene.shapes[geom_id as usize].geometry else {
+                let Geometry::Triangles(mesh) = &scene.prototypes[geom_id as usize].geometry else {
                     unreachable!()
                 };
                 let prim_id = (rng.f() * 299.0) as u32;
@@ -147,7 +130,7 @@ fn random_rays(scene: &RenderScene, rng: &mut Rng, count: usize) -> Vec<(RayKind
                 (RayKind::FromSurface { geom_id, prim_id }, ray)
             }
             _ => {
-                let Geometry::Triangles(mesh) = &scene.shapes[2 + i % 20].geometry else {
+                let Geometry::Triangles(mesh) = &scene.prototypes[2 + i % 20].geometry else {
                     unreachable!()
                 };
                 let s = rng.f();
@@ -240,13 +223,7 @@ fn invalid_rays_never_reach_a_backend() {
 
 #[test]
 fn empty_scene_has_no_hits() {
-    let scene = RenderScene {
-        camera: Camera::default(),
-        shapes: Vec::new(),
-        materials: Vec::new(),
-        lights: LightSet::default(),
-        background: Vec3::ZERO,
-    };
+    let scene = RenderScene::from_baked_shapes(Camera::default(), Vec::new(), Vec::new());
     for backend in backends() {
         let accel = build(backend, &scene, &AccelOptions::default()).unwrap();
         let ray = Ray::new(Vec3::ZERO, Vec3::X, f32::INFINITY);

@@ -48,3 +48,82 @@ pub fn backends() -> Vec<BackendKind> {
     }
     all
 }
+
+/// Programmatic scenes for effect tests (independent of the file format).
+pub mod build {
+    use embray::scene::*;
+    use glam::{DAffine3, DVec3, Vec2, Vec3};
+    use std::sync::Arc;
+
+    pub fn camera(lookfrom: [f64; 3], lookat: [f64; 3], vfov: f64, width: u32, height: u32) -> CameraDesc {
+        CameraDesc {
+            lookfrom: DVec3::from_array(lookfrom),
+            lookat: DVec3::from_array(lookat),
+            up: DVec3::Y,
+            vfov_deg: vfov,
+            width,
+            height,
+            aperture: 0.0,
+            focus_distance: None,
+            lens_shape: LensShape::Disk,
+        }
+    }
+
+    pub fn scene(camera: CameraDesc) -> SceneDesc {
+        SceneDesc {
+            source: "test".into(),
+            camera,
+            settings: RenderSettings::default(),
+            materials: Vec::new(),
+            objects: Vec::new(),
+            lights: Vec::new(),
+        }
+    }
+
+    pub fn add_material(scene: &mut SceneDesc, material: MaterialDesc) -> u32 {
+        scene.materials.push(material);
+        (scene.materials.len() - 1) as u32
+    }
+
+    pub fn diffuse(albedo: f32) -> MaterialDesc {
+        MaterialDesc { name: "diffuse".into(), albedo: Vec3::splat(albedo), ..Default::default() }
+    }
+
+    pub fn emissive(radiance: f32) -> MaterialDesc {
+        MaterialDesc {
+            name: "light".into(),
+            albedo: Vec3::ZERO,
+            emission: Vec3::splat(radiance),
+            ..Default::default()
+        }
+    }
+
+    pub fn object(name: &str, shape: ShapeDesc, material: u32, world_from_object: DAffine3) -> ObjectDesc {
+        ObjectDesc { name: name.into(), shape, material, world_from_object, world_from_object_end: None }
+    }
+
+    pub fn sphere(radius: f64) -> ShapeDesc {
+        ShapeDesc::Sphere { center: DVec3::ZERO, radius }
+    }
+
+    /// A parallelogram as two triangles with uvs.
+    pub fn quad(corner: [f64; 3], u: [f64; 3], v: [f64; 3]) -> ShapeDesc {
+        let (c, u, v) = (DVec3::from_array(corner), DVec3::from_array(u), DVec3::from_array(v));
+        ShapeDesc::Mesh(Arc::new(MeshData {
+            positions: vec![c, c + u, c + u + v, c + v],
+            indices: vec![[0, 1, 2], [0, 2, 3]],
+            normals: None,
+            uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y]),
+        }))
+    }
+
+    /// A closed unit cube [0,1]³ with outward winding.
+    pub fn cube() -> Arc<MeshData> {
+        let positions = (0..8)
+            .map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+            .collect();
+        let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+        let indices = quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
+        Arc::new(MeshData { positions, indices, normals: None, uvs: None })
+    }
+}
