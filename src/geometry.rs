@@ -1,7 +1,6 @@
 //! Ray-primitive intersection routines shared by every backend (Embree calls the sphere test
 //! from a user-geometry callback), so both backends agree on what a hit is.
 
-use crate::spawn::gamma;
 use glam::Vec3;
 
 /// Closest intersection of a ray with a sphere in `[tmin, tmax]`, or `None`.
@@ -42,8 +41,7 @@ pub fn intersect_sphere(
     }
 }
 
-/// Watertight ray-triangle test (Woop, Benthin, Wald 2013, with pbrt-v4's conservative
-/// t > 0 bound), returning `(t, u, v)` with Embree's barycentric convention (u weights vertex
+/// Watertight ray-triangle test (Woop, Benthin, Wald 2013) for the inside decision, returning `(t, u, v)` with Embree's barycentric convention (u weights vertex
 /// 1, v weights vertex 2). A ray through an edge shared by two triangles hits at least one of
 /// them, as with Embree's robust mode. Used by the pure-Rust backend and as the brute-force
 /// reference in tests.
@@ -64,7 +62,7 @@ pub fn intersect_triangle(
     let mut p1 = permute(tri[1] - origin);
     let mut p2 = permute(tri[2] - origin);
     // Shear so the ray runs along +z.
-    let (sx, sy, sz) = (-d.x / d.z, -d.y / d.z, 1.0 / d.z);
+    let (sx, sy) = (-d.x / d.z, -d.y / d.z);
     for p in [&mut p0, &mut p1, &mut p2] {
         p.x += sx * p.z;
         p.y += sy * p.z;
@@ -86,30 +84,18 @@ pub fn intersect_triangle(
     if det == 0.0 || !det.is_finite() {
         return None;
     }
-    p0.z *= sz;
-    p1.z *= sz;
-    p2.z *= sz;
-    let t_scaled = e0 * p0.z + e1 * p1.z + e2 * p2.z;
-    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < tmax * det) {
-        return None;
-    }
-    if det > 0.0 && (t_scaled <= 0.0 || t_scaled > tmax * det) {
-        return None;
-    }
     let inv_det = 1.0 / det;
-    let t = t_scaled * inv_det;
-    // Conservative bound on t's rounding error: reject hits that might really be at t <= 0.
-    let max_zt = Vec3::new(p0.z, p1.z, p2.z).abs().max_element();
-    let max_xt = Vec3::new(p0.x, p1.x, p2.x).abs().max_element();
-    let max_yt = Vec3::new(p0.y, p1.y, p2.y).abs().max_element();
-    let delta_z = gamma(3) * max_zt;
-    let delta_x = gamma(5) * (max_xt + max_zt);
-    let delta_y = gamma(5) * (max_yt + max_zt);
-    let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-    let max_e = Vec3::new(e0, e1, e2).abs().max_element();
-    let delta_t =
-        3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
-    if t <= delta_t || t < tmin || t > tmax {
+    // Distance along the ray from the triangle's plane rather than from the sheared edge
+    // functions: for a huge triangle seen from close by (a ground plane under a camera) the
+    // sheared form cancels catastrophically, while the plane equation stays exact for
+    // axis-aligned planes. Self-intersection is prevented by the spawn offset, not here.
+    let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+    let denom = dir.dot(normal);
+    if denom == 0.0 || !denom.is_finite() {
+        return None;
+    }
+    let t = (tri[0] - origin).dot(normal) / denom;
+    if !(t > 0.0) || t < tmin || t > tmax {
         return None;
     }
     Some((t, e1 * inv_det, e2 * inv_det))

@@ -97,6 +97,28 @@ pub fn triangle_point(tri: &[Vec3; 3], b1: f32, b2: f32) -> (Vec3, Vec3) {
     (point, abs_sum * gamma(7) + edges * gamma(8) + Vec3::splat(MIN_OFFSET))
 }
 
+/// Hit point on a triangle from the ray (`origin + t·dir`) projected onto the triangle's
+/// plane, with its error bound; `None` if the triangle is degenerate.
+///
+/// For a huge triangle seen from close by (a kilometre ground plane under a camera), the
+/// barycentric sum of `triangle_point` carries the vertices' rounding (millimetres), while
+/// the ray point is accurate in the plane and the projection removes its error across it.
+/// `surface.rs` keeps whichever of the two has the smaller bound across the surface.
+pub fn triangle_point_from_ray(tri: &[Vec3; 3], origin: Vec3, dir: Vec3, t: f32) -> Option<(Vec3, Vec3)> {
+    let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
+    if normal == Vec3::ZERO {
+        return None;
+    }
+    let on_ray = origin + dir * t;
+    let from_vertex = on_ray - tri[0];
+    let distance = from_vertex.dot(normal);
+    let point = on_ray - normal * distance;
+    // The plane distance's own rounding, then the projection's.
+    let across = gamma(4) * from_vertex.abs().dot(normal.abs()) + gamma(2) * distance.abs();
+    let error = Vec3::splat(across) + point.abs() * gamma(2) + Vec3::splat(MIN_OFFSET);
+    Some((point, error))
+}
+
 /// Floor of every error bound: far below any geometric feature, but large enough that
 /// t = -offset / |dir| cannot underflow to -0.0 (which compares equal to a zero `tmin`).
 const MIN_OFFSET: f32 = 1e-20;

@@ -4,7 +4,7 @@
 
 use crate::accel::{Hit, Ray};
 use crate::render_scene::{Geometry, RenderScene};
-use crate::spawn::{SurfacePoint, gamma, sphere_point, triangle_point};
+use crate::spawn::{SurfacePoint, gamma, sphere_point, triangle_point, triangle_point_from_ray};
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug)]
@@ -44,8 +44,14 @@ fn local_hit(geometry: &Geometry, hit: &Hit, origin: Vec3, dir: Vec3) -> LocalHi
     match geometry {
         Geometry::Triangles(mesh) => {
             let tri = mesh.triangle(hit.prim_id);
-            let (point, error) = triangle_point(&tri, hit.u, hit.v);
             let geometric = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
+            let (mut point, mut error) = triangle_point(&tri, hit.u, hit.v);
+            if let Some((p, e)) = triangle_point_from_ray(&tri, origin, dir, hit.t) {
+                let across = |e: Vec3| geometric.abs().dot(e);
+                if across(e) < across(error) && p.is_finite() {
+                    (point, error) = (p, e);
+                }
+            }
             let [i0, i1, i2] = mesh.indices[hit.prim_id as usize].map(|i| i as usize);
             let b0 = 1.0 - hit.u - hit.v;
             let shading = match &mesh.normals {
