@@ -44,6 +44,35 @@ pub enum BenchCommand {
     /// Render space × backend (× offset) on one scene: time, counters and image error against
     /// the cameraworld render at offset 0. Default scene: scenes/city_block.toml.
     Spaces(BenchArgs),
+    /// The accuracy/time report: every bundled precision scene (or the named ones) × render
+    /// space × backend × offset, written as Markdown, CSV, charts and an image strip.
+    Accuracy(AccuracyArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct AccuracyArgs {
+    /// Scene files; the bundled Cornell box and scenes/precision/*.toml if omitted.
+    pub scenes: Vec<PathBuf>,
+    /// Distances from the origin, comma separated (applied on all three axes).
+    #[arg(long, value_delimiter = ',', default_value = "0,1e3,1e5,1e6,1e7")]
+    pub offsets: Vec<f64>,
+    /// Timed runs per configuration (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    pub runs: usize,
+    #[arg(long, default_value_t = 4)]
+    pub spp: u32,
+    /// Longest image side; larger scenes are scaled down.
+    #[arg(long, default_value_t = 64)]
+    pub max_size: u32,
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Folder for report.md, report.csv, the charts and strip.png.
+    #[arg(long, default_value = "accuracy-report")]
+    pub out: PathBuf,
+    /// Spawn methods compared on the grazing-plane and thin-wall scenes.
+    #[arg(long, value_delimiter = ',', value_parser = embray::spawn::SpawnMode::parse,
+          default_value = "robust,epsilon=1e-4,epsilon=1e-2")]
+    pub spawn: Vec<embray::spawn::SpawnMode>,
 }
 
 #[derive(Args, Debug)]
@@ -117,6 +146,9 @@ pub struct RenderArgs {
     /// none: measures what the effects machinery would cost a static scene.
     #[arg(long)]
     pub force_all_effects: bool,
+    /// How rays leave surfaces: `robust` (error-bound offsets) or `epsilon=VALUE`.
+    #[arg(long, value_parser = embray::spawn::SpawnMode::parse, default_value = "robust")]
+    pub spawn: embray::spawn::SpawnMode,
     /// No progress bar or summary line.
     #[arg(short, long)]
     pub quiet: bool,
@@ -186,6 +218,7 @@ impl RenderArgs {
             }
             options.light_samples = n;
         }
+        options.spawn = self.spawn;
         if self.force_all_effects {
             options.effects_mode = embray::render_space::EffectsMode::ForceAll;
         }

@@ -1,6 +1,6 @@
 //! What each subcommand does.
 
-use crate::cli::{BenchArgs, BenchCommand, Cli, Command, RenderArgs, load_scene};
+use crate::cli::{AccuracyArgs, BenchArgs, BenchCommand, Cli, Command, RenderArgs, load_scene};
 use anyhow::{Context, Result};
 use embray::output::{write_exr, write_png};
 use embray::render::{RenderOutput, render};
@@ -11,6 +11,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(args) => render_command(&args),
         Command::Bench(BenchCommand::Spaces(args)) => bench_spaces(&args),
+        Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(&args),
         Command::Info { scene } => {
             let scene = load_scene(scene.as_deref())?;
             print!("{}", describe(&scene));
@@ -57,6 +58,59 @@ fn bundled_scene(name: &str) -> std::path::PathBuf {
     } else {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name)
     }
+}
+
+/// The checkout the bundled scenes live in (working directory first, then the source tree).
+fn bundled_root() -> std::path::PathBuf {
+    if std::path::Path::new("scenes/cornell.toml").exists() {
+        ".".into()
+    } else {
+        env!("CARGO_MANIFEST_DIR").into()
+    }
+}
+
+fn bench_accuracy(args: &AccuracyArgs) -> Result<()> {
+    use embray::bench::{accuracy, table};
+    anyhow::ensure!(args.spp > 0, "--spp must be at least 1");
+    anyhow::ensure!(args.max_size > 0, "--max-size must be at least 1");
+    anyhow::ensure!(!args.offsets.is_empty(), "--offsets needs at least one value");
+    anyhow::ensure!(args.offsets.iter().all(|o| o.is_finite()), "--offsets must be finite numbers");
+    let root = bundled_root();
+    let scenes =
+        if args.scenes.is_empty() { accuracy::default_scenes(&root) } else { args.scenes.clone() };
+    let grazing = root.join("scenes/precision/grazing_plane.toml");
+    let thin = root.join("scenes/precision/thin_walls.toml");
+    let options = accuracy::AccuracyOptions {
+        scenes,
+        offsets: args.offsets.clone(),
+        backends: embray::accel::BackendKind::compiled(),
+        runs: args.runs,
+        spp: args.spp,
+        max_size: args.max_size,
+        threads: args.threads,
+        out_dir: args.out.clone(),
+        spawn_scenes: (grazing.exists() && thin.exists()).then_some((grazing, thin)),
+        spawn_methods: args.spawn.clone(),
+    };
+    let total = options.scenes.len() * options.offsets.len() * 3 * options.backends.len();
+    let bar = indicatif::ProgressBar::new(total as u64 + 1);
+    let report = accuracy::run(&options, |message| {
+        bar.set_message(message.to_string());
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    print!("{}", table::markdown(&report.rows));
+    if !report.spawn_rows.is_empty() {
+        println!();
+        print!("{}", embray::bench::spawn_report::markdown(&report.spawn_rows));
+    }
+    for warning in &report.warnings {
+        eprintln!("warning: {warning}");
+    }
+    for file in &report.files {
+        eprintln!("wrote {}", file.display());
+    }
+    Ok(())
 }
 
 fn bench_spaces(args: &BenchArgs) -> Result<()> {

@@ -8,7 +8,7 @@ use crate::bsdf::Bsdf;
 use crate::material::Material;
 use crate::render_scene::RenderScene;
 use crate::sampling::SampleStream;
-use crate::spawn::SurfacePoint;
+use crate::spawn::{SpawnMode, SurfacePoint};
 use crate::stats::RenderStats;
 use crate::surface::{SurfaceInteraction, interaction};
 use glam::{Mat3, Quat, Vec3};
@@ -32,6 +32,7 @@ pub struct PathTracer<'a> {
     light_samples: u32,
     /// Rotation into the space where directions are sampled (see `sampling_from_world`).
     sampling_from_render: Mat3,
+    spawn: SpawnMode,
 }
 
 /// Orthonormal basis whose Z axis is `n` (Duff et al. 2017, branchless).
@@ -59,13 +60,32 @@ fn sampling_from_world() -> Mat3 {
 /// Power-heuristic weight of a strategy with density `a` against one with density `b`.
 fn power_heuristic(a: f32, b: f32) -> f32 {
     let (a2, b2) = (a * a, b * b);
-    if a2 + b2 > 0.0 && a2.is_finite() { a2 / (a2 + b2) } else if a2.is_infinite() { 1.0 } else { 0.0 }
+    if a2 + b2 > 0.0 && a2.is_finite() {
+        a2 / (a2 + b2)
+    } else if a2.is_infinite() {
+        1.0
+    } else {
+        0.0
+    }
 }
 
 impl<'a> PathTracer<'a> {
-    pub fn new(scene: &'a RenderScene, accel: &'a dyn Accel, max_depth: u32, light_samples: u32) -> Self {
+    pub fn new(
+        scene: &'a RenderScene,
+        accel: &'a dyn Accel,
+        max_depth: u32,
+        light_samples: u32,
+        spawn: SpawnMode,
+    ) -> Self {
         let sampling_from_render = sampling_from_world() * scene.camera.world_from_render;
-        PathTracer { scene, accel, max_depth, light_samples: light_samples.max(1), sampling_from_render }
+        PathTracer {
+            scene,
+            accel,
+            max_depth,
+            light_samples: light_samples.max(1),
+            sampling_from_render,
+            spawn,
+        }
     }
 
     pub fn scene(&self) -> &RenderScene {
@@ -127,7 +147,7 @@ impl<'a> PathTracer<'a> {
             if f_cos == Vec3::ZERO || !faces(wi) || !(dist2 > 0.0) {
                 continue;
             }
-            let shadow = si.surface.spawn_ray_to(&SurfacePoint::exact(light.position), time);
+            let shadow = self.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
             if !self.occluded(&shadow, stats) {
                 sum += f_cos * light.intensity / dist2;
             }
@@ -138,7 +158,7 @@ impl<'a> PathTracer<'a> {
             if f_cos == Vec3::ZERO || !faces(wi) {
                 continue;
             }
-            if !self.occluded(&si.surface.spawn_ray(wi, time), stats) {
+            if !self.occluded(&self.spawn.ray(&si.surface, wi, time), stats) {
                 sum += f_cos * light.irradiance;
             }
         }
@@ -162,9 +182,12 @@ impl<'a> PathTracer<'a> {
                 if f_cos == Vec3::ZERO {
                     continue;
                 }
-                let target =
-                    SurfacePoint { point: sample.point, error: sample.error, normal: sample.normal };
-                if self.occluded(&si.surface.spawn_ray_to(&target, time), stats) {
+                let target = SurfacePoint {
+                    point: sample.point,
+                    error: sample.error,
+                    normal: sample.normal,
+                };
+                if self.occluded(&self.spawn.ray_to(&si.surface, &target, time), stats) {
                     continue;
                 }
                 let pdf_light = sample.pdf_area * dist2 / cos_light;
@@ -193,7 +216,12 @@ impl<'a> PathTracer<'a> {
     }
 
     /// Traces one camera path.
-    pub fn trace(&self, camera_ray: Ray, stream: &mut SampleStream, stats: &mut RenderStats) -> PathSample {
+    pub fn trace(
+        &self,
+        camera_ray: Ray,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+    ) -> PathSample {
         let mut result = PathSample::default();
         let mut ray = camera_ray;
         let mut throughput = Vec3::ONE;
@@ -225,14 +253,19 @@ impl<'a> PathTracer<'a> {
                 result.normal = Some(self.scene.camera.world_from_render * si.shading_normal);
             }
             if material.is_emissive() {
-                let weight = if specular_bounce { 1.0 } else { self.emission_weight(&ray, &si, hit.t, pdf_bsdf) };
+                let weight = if specular_bounce {
+                    1.0
+                } else {
+                    self.emission_weight(&ray, &si, hit.t, pdf_bsdf)
+                };
                 result.radiance += throughput * material.emission * weight;
             }
             if self.max_depth == 0 {
                 break;
             }
             let albedo = self.albedo(material, &si, ray.time);
-            let bsdf = Bsdf::new(material, albedo, self.shading_frame(si.shading_normal), si.front_face);
+            let bsdf =
+                Bsdf::new(material, albedo, self.shading_frame(si.shading_normal), si.front_face);
             let wo = -ray.dir.normalize();
             let last = depth + 1 >= self.max_depth;
             if bsdf.has_smooth_lobe() {
@@ -255,7 +288,11 @@ impl<'a> PathTracer<'a> {
             pdf_bsdf = sample.pdf;
             if sample.transmitted {
                 absorption = match material.specular {
-                    crate::material::Specular::Dielectric { absorption: a, .. } if si.front_face => a,
+                    crate::material::Specular::Dielectric { absorption: a, .. }
+                        if si.front_face =>
+                    {
+                        a
+                    }
                     _ => Vec3::ZERO,
                 };
             }
@@ -266,7 +303,7 @@ impl<'a> PathTracer<'a> {
                 }
                 throughput /= survive;
             }
-            ray = si.surface.spawn_ray(sample.wi, ray.time);
+            ray = self.spawn.ray(&si.surface, sample.wi, ray.time);
         }
         result
     }

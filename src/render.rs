@@ -1,17 +1,18 @@
 //! One render from a scene description: convert to render space, build the backend, trace
 //! tiles in parallel, gather film and counters.
 
+use crate::accel::Ray;
 use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind};
 use crate::film::{Film, Tile, tiles};
-use crate::accel::Ray;
 use crate::integrator::{PathSample, PathTracer};
-use crate::scene::IntegratorKind;
-use crate::whitted::WhittedTracer;
 use crate::render_scene::RenderScene;
 use crate::render_space::{EffectsMode, RenderSpace, RenderSpaceError, to_render_scene};
 use crate::sampling::{SLOT_LENS, SLOT_TIME, SampleStream, pixel_sample};
+use crate::scene::IntegratorKind;
 use crate::scene::SceneDesc;
+use crate::spawn::SpawnMode;
 use crate::stats::RenderStats;
+use crate::whitted::WhittedTracer;
 use glam::{DVec3, Vec2, Vec3};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
@@ -39,6 +40,7 @@ pub struct RenderOptions {
     pub light_samples: u32,
     pub effects_mode: EffectsMode,
     pub integrator: IntegratorKind,
+    pub spawn: SpawnMode,
 }
 
 impl RenderOptions {
@@ -58,6 +60,7 @@ impl RenderOptions {
             light_samples: scene.settings.light_samples,
             effects_mode: EffectsMode::Auto,
             integrator: scene.settings.integrator,
+            spawn: SpawnMode::Robust,
         }
     }
 }
@@ -146,8 +149,11 @@ impl<'a> Tracer<'a> {
                 accel,
                 options.max_depth,
                 options.light_samples,
+                options.spawn,
             )),
-            IntegratorKind::Whitted => Tracer::Whitted(WhittedTracer::new(scene, accel, options.max_depth)),
+            IntegratorKind::Whitted => {
+                Tracer::Whitted(WhittedTracer::new(scene, accel, options.max_depth, options.spawn))
+            }
         }
     }
 

@@ -80,6 +80,69 @@ impl SurfacePoint {
     }
 }
 
+/// How rays leave surfaces: the robust error-bound offset, or the classic fixed epsilon
+/// (kept to show what it costs: acne on grazing light, leaks through thin walls).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum SpawnMode {
+    #[default]
+    Robust,
+    /// Push the origin this far (render-space units) along the normal.
+    Epsilon(f32),
+}
+
+impl SpawnMode {
+    /// Parses `robust` or `epsilon=VALUE`.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        if text == "robust" {
+            return Ok(SpawnMode::Robust);
+        }
+        let value = text
+            .strip_prefix("epsilon=")
+            .ok_or_else(|| format!("expected 'robust' or 'epsilon=VALUE', got '{text}'"))?;
+        match value.parse::<f32>() {
+            Ok(eps) if eps.is_finite() && eps >= 0.0 => Ok(SpawnMode::Epsilon(eps)),
+            _ => Err(format!("'{value}' is not a non-negative number")),
+        }
+    }
+
+    pub fn name(&self) -> String {
+        match self {
+            SpawnMode::Robust => "robust".into(),
+            SpawnMode::Epsilon(eps) => format!("epsilon={eps}"),
+        }
+    }
+
+    fn epsilon_origin(eps: f32, from: &SurfacePoint, towards: Vec3) -> Vec3 {
+        let side = if towards.dot(from.normal) < 0.0 { -from.normal } else { from.normal };
+        from.point + side * eps
+    }
+
+    /// A ray leaving `from` in direction `dir`.
+    pub fn ray(self, from: &SurfacePoint, dir: Vec3, time: f32) -> Ray {
+        match self {
+            SpawnMode::Robust => from.spawn_ray(dir, time),
+            SpawnMode::Epsilon(eps) => Ray {
+                origin: Self::epsilon_origin(eps, from, dir),
+                dir,
+                tmin: 0.0,
+                tmax: f32::INFINITY,
+                time,
+            },
+        }
+    }
+
+    /// A shadow ray from `from` to `target`.
+    pub fn ray_to(self, from: &SurfacePoint, target: &SurfacePoint, time: f32) -> Ray {
+        match self {
+            SpawnMode::Robust => from.spawn_ray_to(target, time),
+            SpawnMode::Epsilon(eps) => {
+                let origin = Self::epsilon_origin(eps, from, target.point - from.point);
+                Ray { origin, dir: target.point - origin, tmin: 0.0, tmax: 1.0 - 1e-4, time }
+            }
+        }
+    }
+}
+
 /// Hit point on a triangle from barycentrics, with its error bound.
 ///
 /// Two terms: pbrt-v4's bound on evaluating the barycentric sum (eq. 6.24), which grows with
@@ -104,7 +167,12 @@ pub fn triangle_point(tri: &[Vec3; 3], b1: f32, b2: f32) -> (Vec3, Vec3) {
 /// barycentric sum of `triangle_point` carries the vertices' rounding (millimetres), while
 /// the ray point is accurate in the plane and the projection removes its error across it.
 /// `surface.rs` keeps whichever of the two has the smaller bound across the surface.
-pub fn triangle_point_from_ray(tri: &[Vec3; 3], origin: Vec3, dir: Vec3, t: f32) -> Option<(Vec3, Vec3)> {
+pub fn triangle_point_from_ray(
+    tri: &[Vec3; 3],
+    origin: Vec3,
+    dir: Vec3,
+    t: f32,
+) -> Option<(Vec3, Vec3)> {
     let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
     if normal == Vec3::ZERO {
         return None;

@@ -9,7 +9,7 @@ use crate::integrator::PathSample;
 use crate::material::Specular;
 use crate::render_scene::RenderScene;
 use crate::sampling::SampleStream;
-use crate::spawn::SurfacePoint;
+use crate::spawn::{SpawnMode, SurfacePoint};
 use crate::stats::RenderStats;
 use crate::surface::{SurfaceInteraction, interaction};
 use glam::{Vec2, Vec3};
@@ -19,6 +19,7 @@ pub struct WhittedTracer<'a> {
     accel: &'a dyn Accel,
     /// Reflection/refraction bounces after the camera ray.
     max_depth: u32,
+    spawn: SpawnMode,
 }
 
 fn reflect(d: Vec3, n: Vec3) -> Vec3 {
@@ -35,8 +36,13 @@ fn perturb(r: Vec3, roughness: f32, u: Vec2) -> Vec3 {
 }
 
 impl<'a> WhittedTracer<'a> {
-    pub fn new(scene: &'a RenderScene, accel: &'a dyn Accel, max_depth: u32) -> Self {
-        WhittedTracer { scene, accel, max_depth }
+    pub fn new(
+        scene: &'a RenderScene,
+        accel: &'a dyn Accel,
+        max_depth: u32,
+        spawn: SpawnMode,
+    ) -> Self {
+        WhittedTracer { scene, accel, max_depth, spawn }
     }
 
     pub fn scene(&self) -> &RenderScene {
@@ -84,14 +90,14 @@ impl<'a> WhittedTracer<'a> {
             if !faces(wi) {
                 continue;
             }
-            let shadow = si.surface.spawn_ray_to(&SurfacePoint::exact(light.position), time);
+            let shadow = self.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
             if !self.occluded(&shadow, stats) {
                 color += shade(wi, light.intensity / dist2);
             }
         }
         for light in &lights.directional {
             let wi = -light.direction;
-            if faces(wi) && !self.occluded(&si.surface.spawn_ray(wi, time), stats) {
+            if faces(wi) && !self.occluded(&self.spawn.ray(&si.surface, wi, time), stats) {
                 color += shade(wi, light.irradiance);
             }
         }
@@ -101,11 +107,14 @@ impl<'a> WhittedTracer<'a> {
                 let dist2 = to_light.length_squared();
                 let wi = to_light / dist2.sqrt();
                 let cos_light = sample.normal.dot(wi).abs();
-                let target =
-                    SurfacePoint { point: sample.point, error: sample.error, normal: sample.normal };
+                let target = SurfacePoint {
+                    point: sample.point,
+                    error: sample.error,
+                    normal: sample.normal,
+                };
                 if faces(wi)
                     && sample.geom_id != si.geom_id
-                    && !self.occluded(&si.surface.spawn_ray_to(&target, time), stats)
+                    && !self.occluded(&self.spawn.ray_to(&si.surface, &target, time), stats)
                 {
                     color += shade(wi, sample.emission * cos_light / (dist2 * sample.pdf_area));
                 }
@@ -164,7 +173,7 @@ impl<'a> WhittedTracer<'a> {
             if dir.dot(si.surface.normal) <= 0.0 {
                 return Vec3::ZERO;
             }
-            let next = si.surface.spawn_ray(dir, ray.time);
+            let next = self.spawn.ray(&si.surface, dir, ray.time);
             tint * self.radiance(&next, depth_left - 1, false, stream, stats, first)
         };
         match material.specular {
@@ -184,8 +193,9 @@ impl<'a> WhittedTracer<'a> {
                     let sin2_t = (1.0 - cos_o * cos_o) / (eta * eta);
                     let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
                     let dir = (-wo / eta + (cos_o / eta - cos_t) * n).normalize();
-                    let next = si.surface.spawn_ray(dir, ray.time);
-                    let mut inside = self.radiance(&next, depth_left - 1, false, stream, stats, first);
+                    let next = self.spawn.ray(&si.surface, dir, ray.time);
+                    let mut inside =
+                        self.radiance(&next, depth_left - 1, false, stream, stats, first);
                     if si.front_face && absorption != Vec3::ZERO {
                         // Beer's law over the distance to where the refracted ray leaves.
                         let mut scratch = TraversalScratch::default();
@@ -200,9 +210,15 @@ impl<'a> WhittedTracer<'a> {
         color
     }
 
-    pub fn trace(&self, camera_ray: Ray, stream: &mut SampleStream, stats: &mut RenderStats) -> PathSample {
+    pub fn trace(
+        &self,
+        camera_ray: Ray,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+    ) -> PathSample {
         let mut result = PathSample::default();
-        result.radiance = self.radiance(&camera_ray, self.max_depth, true, stream, stats, &mut result);
+        result.radiance =
+            self.radiance(&camera_ray, self.max_depth, true, stream, stats, &mut result);
         result
     }
 }

@@ -22,6 +22,8 @@ pub struct Measurement {
     pub build_seconds: f64,
     pub mrays_per_second: f64,
     pub stats: RenderStats,
+    /// Which traversal counters the backend could observe.
+    pub observes: crate::accel::Observes,
     /// Against the reference render (first backend, `cameraworld`, offset 0).
     pub error: ImageError,
 }
@@ -84,6 +86,7 @@ pub fn measure(
                     build_seconds: median(builds),
                     mrays_per_second: counted.stats.total_rays() as f64 / render_seconds / 1e6,
                     stats: counted.stats,
+                    observes: counted.observes,
                     error: image_error(&counted.film, &reference),
                 };
                 on_progress(&row);

@@ -1,5 +1,10 @@
-//! Measurements behind `embray bench`: repeated renders of one scene over a grid of
-//! configurations, with times, counters and image error against a reference render.
+//! Measurements behind `embray bench`: repeated renders of scenes over a grid of
+//! configurations, with times, counters and image error against a reference render, plus
+//! the charts, image strip and spawn comparison of the accuracy report.
 
+pub mod accuracy;
 pub mod grid;
+pub mod plots;
+pub mod spawn_report;
+pub mod strip;
 pub mod table;
