@@ -47,6 +47,25 @@ pub enum BenchCommand {
     /// The accuracy/time report: every bundled precision scene (or the named ones) × render
     /// space × backend × offset, written as Markdown, CSV, charts and an image strip.
     Accuracy(AccuracyArgs),
+    /// Throughput of each backend on scenes from a dozen to a million triangles: build time,
+    /// primary and diffuse Mrays/s, samples/s on 1 and 2 threads, memory.
+    Speed(SpeedArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct SpeedArgs {
+    /// Triangles in the largest (procedural) scene.
+    #[arg(long, default_value_t = 1_000_000)]
+    pub large: usize,
+    /// Timed runs per measurement (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    pub runs: usize,
+    /// Samples per pixel of the whole-render measurement.
+    #[arg(long, default_value_t = 4)]
+    pub spp: u32,
+    /// Longest image side.
+    #[arg(long, default_value_t = 256)]
+    pub size: u32,
 }
 
 #[derive(Args, Debug)]

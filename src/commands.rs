@@ -1,6 +1,8 @@
 //! What each subcommand does.
 
-use crate::cli::{AccuracyArgs, BenchArgs, BenchCommand, Cli, Command, RenderArgs, load_scene};
+use crate::cli::{
+    AccuracyArgs, BenchArgs, BenchCommand, Cli, Command, RenderArgs, SpeedArgs, load_scene,
+};
 use anyhow::{Context, Result};
 use embray::output::{write_exr, write_png};
 use embray::render::{RenderOutput, render};
@@ -12,6 +14,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Render(args) => render_command(&args),
         Command::Bench(BenchCommand::Spaces(args)) => bench_spaces(&args),
         Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(&args),
+        Command::Bench(BenchCommand::Speed(args)) => bench_speed(&args),
         Command::Info { scene } => {
             let scene = load_scene(scene.as_deref())?;
             print!("{}", describe(&scene));
@@ -67,6 +70,40 @@ fn bundled_root() -> std::path::PathBuf {
     } else {
         env!("CARGO_MANIFEST_DIR").into()
     }
+}
+
+fn bench_speed(args: &SpeedArgs) -> Result<()> {
+    use embray::bench::{procedural, speed};
+    anyhow::ensure!(args.spp > 0 && args.size > 0 && args.large > 0, "sizes must be positive");
+    let root = bundled_root();
+    let mut scenes = Vec::new();
+    for name in ["cornell", "city_block", "instances"] {
+        let path = root.join("scenes").join(format!("{name}.toml"));
+        if path.exists() {
+            scenes.push((name.to_string(), embray::scene::load(&path)?));
+        }
+    }
+    let large = format!("sphere_{}k", args.large / 1000);
+    scenes.push((large, procedural::displaced_sphere_scene(args.large, 256, 256)));
+    let mut rows = Vec::new();
+    let total = scenes.len() * embray::accel::BackendKind::compiled().len();
+    let bar = indicatif::ProgressBar::new(total as u64);
+    for (name, mut scene) in scenes {
+        let longest = scene.camera.width.max(scene.camera.height);
+        if longest > args.size {
+            let scale = args.size as f64 / longest as f64;
+            scene.camera.width = ((scene.camera.width as f64 * scale) as u32).max(1);
+            scene.camera.height = ((scene.camera.height as f64 * scale) as u32).max(1);
+        }
+        for backend in embray::accel::BackendKind::compiled() {
+            bar.set_message(format!("{name} {}", backend.name()));
+            rows.push(speed::measure(&name, &scene, backend, args.spp, args.runs)?);
+            bar.inc(1);
+        }
+    }
+    bar.finish_and_clear();
+    print!("{}", speed::markdown(&rows));
+    Ok(())
 }
 
 fn bench_accuracy(args: &AccuracyArgs) -> Result<()> {

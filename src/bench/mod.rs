@@ -5,6 +5,8 @@
 pub mod accuracy;
 pub mod grid;
 pub mod plots;
+pub mod procedural;
 pub mod spawn_report;
+pub mod speed;
 pub mod strip;
 pub mod table;

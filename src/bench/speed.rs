@@ -1,0 +1,195 @@
+//! `embray bench speed`: throughput of each backend on scenes from a dozen to a million
+//! triangles — BVH build time, primary and diffuse-bounce rays per second, whole-render
+//! samples per second on 1 and 2 threads, and memory.
+
+use crate::accel::{Accel, AccelError, AccelOptions, BackendKind, Hit, Ray, build};
+use crate::render::{RenderError, RenderOptions, prepare_scene, render_film};
+use crate::render_scene::RenderScene;
+use crate::sampling::{cosine_hemisphere, hash4, to_unit_f32};
+use crate::scene::SceneDesc;
+use crate::stats::TraversalCounters;
+use crate::surface::interaction;
+use glam::{Mat3, Vec2, Vec3};
+use rayon::prelude::*;
+use std::time::Instant;
+
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct SpeedRow {
+    pub scene: String,
+    pub triangles: usize,
+    pub backend: &'static str,
+    pub build_ms: f64,
+    pub primary_mrays: f64,
+    pub diffuse_mrays: f64,
+    /// Whole-render samples (camera paths) per second with 1 and 2 threads.
+    pub samples_per_s_1t: f64,
+    pub samples_per_s_2t: f64,
+    /// Resident memory added by building the acceleration structure, MiB.
+    pub accel_mib: f64,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum SpeedError {
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    #[error(transparent)]
+    Accel(#[from] AccelError),
+}
+
+fn rss_kib() -> u64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            let line = s.lines().find(|l| l.starts_with("VmRSS:"))?.to_owned();
+            line.split_whitespace().nth(1)?.parse().ok()
+        })
+        .unwrap_or(0)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// One camera ray through every pixel centre.
+pub fn primary_rays(scene: &RenderScene) -> Vec<Ray> {
+    let camera = &scene.camera;
+    (0..camera.height)
+        .flat_map(|y| (0..camera.width).map(move |x| (x, y)))
+        .map(|(x, y)| camera.generate_ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), None))
+        .collect()
+}
+
+/// Cosine-distributed bounce rays leaving the primary hits.
+pub fn diffuse_rays(scene: &RenderScene, accel: &dyn Accel, primary: &[Ray]) -> Vec<Ray> {
+    let mut counters = TraversalCounters::default();
+    primary
+        .iter()
+        .enumerate()
+        .filter_map(|(i, ray)| {
+            let hit = accel.intersect(ray, &mut counters)?;
+            let si = interaction(scene, ray, &hit);
+            let u = Vec2::new(to_unit_f32(hash4(9, i as u64, 0, 0)), to_unit_f32(hash4(9, i as u64, 0, 1)));
+            let n = si.shading_normal;
+            let t = if n.x.abs() < 0.9 { Vec3::X } else { Vec3::Y };
+            let b1 = n.cross(t).normalize();
+            let frame = Mat3::from_cols(b1, n.cross(b1), n);
+            Some(si.surface.spawn_ray(frame * cosine_hemisphere(u), 0.0))
+        })
+        .collect()
+}
+
+/// Closest-hit rays per second over `rays`, on the current rayon pool (median of `runs`).
+pub fn throughput(accel: &dyn Accel, rays: &[Ray], runs: usize) -> f64 {
+    let times: Vec<f64> = (0..runs.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            let hits: usize = rays
+                .par_chunks(1024)
+                .map(|chunk| {
+                    let mut counters = TraversalCounters::default();
+                    chunk.iter().filter(|r| accel.intersect(r, &mut counters).is_some()).count()
+                })
+                .sum();
+            std::hint::black_box(hits);
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    rays.len() as f64 / median(times)
+}
+
+/// Hits of `rays` one by one (for comparing batched paths against).
+pub fn single_hits(accel: &dyn Accel, rays: &[Ray]) -> Vec<Option<Hit>> {
+    let mut counters = TraversalCounters::default();
+    rays.iter().map(|r| accel.intersect(r, &mut counters)).collect()
+}
+
+fn triangles(scene: &RenderScene) -> usize {
+    scene
+        .instances
+        .iter()
+        .map(|i| match &scene.prototypes[i.prototype as usize].geometry {
+            crate::render_scene::Geometry::Triangles(m) => m.indices.len(),
+            crate::render_scene::Geometry::Sphere(_) => 0,
+        })
+        .sum()
+}
+
+/// Measures one scene on one backend.
+pub fn measure(
+    name: &str,
+    desc: &SceneDesc,
+    backend: BackendKind,
+    spp: u32,
+    runs: usize,
+) -> Result<SpeedRow, SpeedError> {
+    let mut options = RenderOptions::for_scene(desc);
+    options.backend = backend;
+    options.spp = spp;
+    let scene = prepare_scene(desc, &options)?;
+    let mut builds = Vec::new();
+    let mut accel_mib = 0.0;
+    let mut accel = None;
+    for _ in 0..runs.max(1) {
+        drop(accel.take());
+        let before = rss_kib();
+        let start = Instant::now();
+        let built = build(backend, &scene, &AccelOptions::default())?;
+        builds.push(start.elapsed().as_secs_f64());
+        accel_mib = rss_kib().saturating_sub(before) as f64 / 1024.0;
+        accel = Some(built);
+    }
+    let accel = accel.expect("at least one build");
+    let primary = primary_rays(&scene);
+    let diffuse = diffuse_rays(&scene, accel.as_ref(), &primary);
+    let primary_mrays = throughput(accel.as_ref(), &primary, runs) / 1e6;
+    let diffuse_mrays = if diffuse.is_empty() { 0.0 } else { throughput(accel.as_ref(), &diffuse, runs) / 1e6 };
+    let samples = scene.camera.width as f64 * scene.camera.height as f64 * spp as f64;
+    let mut per_threads = [0.0; 2];
+    for (slot, threads) in [1usize, 2].into_iter().enumerate() {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
+        let times: Vec<f64> = (0..runs.max(1))
+            .map(|_| {
+                pool.install(|| {
+                    let start = Instant::now();
+                    std::hint::black_box(render_film(&scene, accel.as_ref(), &options));
+                    start.elapsed().as_secs_f64()
+                })
+            })
+            .collect();
+        per_threads[slot] = samples / median(times);
+    }
+    Ok(SpeedRow {
+        scene: name.to_string(),
+        triangles: triangles(&scene),
+        backend: backend.name(),
+        build_ms: median(builds) * 1e3,
+        primary_mrays,
+        diffuse_mrays,
+        samples_per_s_1t: per_threads[0],
+        samples_per_s_2t: per_threads[1],
+        accel_mib,
+    })
+}
+
+pub fn markdown(rows: &[SpeedRow]) -> String {
+    let mut out = String::from(
+        "| scene | triangles | backend | build ms | primary Mrays/s | diffuse Mrays/s | samples/s 1 thread | samples/s 2 threads | scaling | accel MiB |\n|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for r in rows {
+        out += &format!(
+            "| {} | {} | {} | {:.1} | {:.2} | {:.2} | {:.0} | {:.0} | {:.2}× | {:.1} |\n",
+            r.scene,
+            r.triangles,
+            r.backend,
+            r.build_ms,
+            r.primary_mrays,
+            r.diffuse_mrays,
+            r.samples_per_s_1t,
+            r.samples_per_s_2t,
+            r.samples_per_s_2t / r.samples_per_s_1t.max(1e-9),
+            r.accel_mib
+        );
+    }
+    out
+}
