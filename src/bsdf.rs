@@ -160,7 +160,7 @@ impl Bsdf {
         self.p_specular < 1.0 || !self.delta_specular
     }
 
-    fn to_local(&self, w: Vec3) -> Vec3 {
+    fn local_from_render(&self, w: Vec3) -> Vec3 {
         self.frame.transpose() * w
     }
 
@@ -176,7 +176,7 @@ impl Bsdf {
 
     /// f · |cos θi| and the density of sampling `wi`, for the non-delta lobes.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
-        let (wo, wi) = (self.to_local(wo), self.to_local(wi));
+        let (wo, wi) = (self.local_from_render(wo), self.local_from_render(wi));
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return (Vec3::ZERO, 0.0);
         }
@@ -195,7 +195,7 @@ impl Bsdf {
 
     /// Samples an incident direction for outgoing `wo` (both render space).
     pub fn sample(&self, wo_render: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        let wo = self.to_local(wo_render);
+        let wo = self.local_from_render(wo_render);
         if wo.z <= 0.0 {
             return None;
         }
@@ -281,7 +281,8 @@ mod tests {
     fn fresnel_limits() {
         assert!((fresnel_dielectric(1.0, 1.5) - 0.04).abs() < 1e-3);
         assert_eq!(fresnel_dielectric(0.1, 1.0 / 1.5), 1.0);
-        let gold = fresnel_conductor(1.0, Vec3::new(0.143, 0.374, 1.442), Vec3::new(3.98, 2.38, 1.60));
+        let gold =
+            fresnel_conductor(1.0, Vec3::new(0.143, 0.374, 1.442), Vec3::new(3.98, 2.38, 1.60));
         assert!(gold.x > gold.z && gold.x > 0.9);
     }
 
@@ -310,8 +311,15 @@ mod tests {
         let frame = Mat3::IDENTITY;
         let wo = Vec3::new(0.3, 0.2, 0.93).normalize();
         for material in [
-            Material { specular: Specular::Mirror { reflectance: Vec3::ONE }, albedo: Vec3::ZERO, ..Default::default() },
-            Material { specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO }, ..Default::default() },
+            Material {
+                specular: Specular::Mirror { reflectance: Vec3::ONE },
+                albedo: Vec3::ZERO,
+                ..Default::default()
+            },
+            Material {
+                specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+                ..Default::default()
+            },
         ] {
             let bsdf = Bsdf::new(&material, material.albedo, frame, true);
             let mut total = 0.0;

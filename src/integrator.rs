@@ -125,6 +125,7 @@ impl<'a> PathTracer<'a> {
     }
 
     /// Light arriving directly from the lights at `si` and scattered towards `wo`.
+    #[allow(clippy::too_many_arguments)]
     fn direct_light(
         &self,
         si: &SurfaceInteraction,

@@ -4,6 +4,8 @@
 //! Data flow: `scene::load` → `SceneDesc` (world space, f64) → `render_space` →
 //! `RenderScene` (render space, f32) → `accel` backend → `integrator` → `film` → `output`.
 #![deny(unsafe_code)]
+// `!(x > 0.0)` is used on purpose: unlike `x <= 0.0` it also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod accel;
 pub mod bench;

@@ -69,7 +69,12 @@ fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
-fn instance_emitters(geom_id: u32, prototype: &Prototype, instance: &Instance, emission: Vec3) -> Vec<Emitter> {
+fn instance_emitters(
+    geom_id: u32,
+    prototype: &Prototype,
+    instance: &Instance,
+    emission: Vec3,
+) -> Vec<Emitter> {
     // Emitters that really move are not sampled: their emission is counted where rays hit
     // them (an emitter "moving" from a pose to the same pose is static).
     let transform = match &instance.placement {

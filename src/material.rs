@@ -86,7 +86,9 @@ impl Material {
             SpecularDesc::Conductor { eta, k, reflectance } => {
                 Specular::Conductor { eta, k, reflectance }
             }
-            SpecularDesc::Dielectric { ior, absorption } => Specular::Dielectric { ior, absorption },
+            SpecularDesc::Dielectric { ior, absorption } => {
+                Specular::Dielectric { ior, absorption }
+            }
         };
         let texture = desc.texture.as_ref().map(|t| Texture {
             pattern: match t.pattern {
@@ -97,7 +99,9 @@ impl Material {
                     Pattern::Checker3d { scale: scale as f32, even, odd }
                 }
             },
-            texture_from_object: Affine3A::from_mat4(glam::DMat4::from(t.texture_from_object).as_mat4()),
+            texture_from_object: Affine3A::from_mat4(
+                glam::DMat4::from(t.texture_from_object).as_mat4(),
+            ),
         });
         Material {
             albedo: desc.albedo,

@@ -110,7 +110,10 @@ impl Placement {
         match self {
             Placement::Baked { .. } => None,
             Placement::Static { render_from_object, .. } => Some(*render_from_object),
-            Placement::Moving { start, end } => Some(start.lerp(end, time).to_affine()),
+            // Times outside the shutter are clamped, as Embree does.
+            Placement::Moving { start, end } => {
+                Some(start.lerp(end, time.clamp(0.0, 1.0)).to_affine())
+            }
         }
     }
 
@@ -203,4 +206,3 @@ impl RenderScene {
         &self.prototypes[self.instances[instance as usize].prototype as usize]
     }
 }
-

@@ -186,10 +186,12 @@ pub fn to_render_scene(
         let moving = object.is_moving() || force_motion;
         let transformed = || -> Result<Placement, RenderSpaceError> {
             if moving {
-                let end = render_from_world * object.world_from_object_end.unwrap_or(object.world_from_object);
+                let end = render_from_world
+                    * object.world_from_object_end.unwrap_or(object.world_from_object);
                 let start = decompose(&render_from_object)
                     .ok_or_else(|| RenderSpaceError::MotionShear(name.clone()))?;
-                let end = decompose(&end).ok_or_else(|| RenderSpaceError::MotionShear(name.clone()))?;
+                let end =
+                    decompose(&end).ok_or_else(|| RenderSpaceError::MotionShear(name.clone()))?;
                 Ok(Placement::Moving { start, end })
             } else {
                 Ok(Placement::Static {
@@ -198,12 +200,14 @@ pub fn to_render_scene(
                 })
             }
         };
-        let baked = Placement::Baked { object_from_render: to_affine_f32(&render_from_object.inverse()) };
+        let baked =
+            Placement::Baked { object_from_render: to_affine_f32(&render_from_object.inverse()) };
         let (prototype, placement) = match &object.shape {
             ShapeDesc::Mesh(mesh) => {
                 let key = Arc::as_ptr(mesh);
                 if mesh_users[&key] == 1 && !moving {
-                    let geometry = Geometry::Triangles(place_mesh(mesh, &render_from_object, name)?);
+                    let geometry =
+                        Geometry::Triangles(place_mesh(mesh, &render_from_object, name)?);
                     prototypes.push(Prototype { geometry, name: name.clone() });
                     ((prototypes.len() - 1) as u32, baked)
                 } else {
@@ -228,22 +232,36 @@ pub fn to_render_scene(
                             center: to_f32(render_from_object.transform_point3(*center)),
                             radius: (radius * scale) as f32,
                         };
-                        if !sphere.center.is_finite() || !(sphere.radius > 0.0) || !sphere.radius.is_finite() {
+                        if !sphere.center.is_finite()
+                            || !(sphere.radius > 0.0)
+                            || !sphere.radius.is_finite()
+                        {
                             return Err(RenderSpaceError::NotRepresentable(name.clone()));
                         }
-                        prototypes.push(Prototype { geometry: Geometry::Sphere(sphere), name: name.clone() });
+                        prototypes.push(Prototype {
+                            geometry: Geometry::Sphere(sphere),
+                            name: name.clone(),
+                        });
                         ((prototypes.len() - 1) as u32, baked)
                     }
                     None => {
                         // Ellipsoids and moving spheres: an object-space sphere, transformed.
                         let sphere = Sphere { center: to_f32(*center), radius: *radius as f32 };
-                        prototypes.push(Prototype { geometry: Geometry::Sphere(sphere), name: name.clone() });
+                        prototypes.push(Prototype {
+                            geometry: Geometry::Sphere(sphere),
+                            name: name.clone(),
+                        });
                         ((prototypes.len() - 1) as u32, transformed()?)
                     }
                 }
             }
         };
-        instances.push(Instance { prototype, material: object.material, placement, name: name.clone() });
+        instances.push(Instance {
+            prototype,
+            material: object.material,
+            placement,
+            name: name.clone(),
+        });
     }
     let materials: Vec<Material> = desc.materials.iter().map(Material::from_desc).collect();
     let mut points = Vec::new();
@@ -255,10 +273,12 @@ pub fn to_render_scene(
                 position: to_f32(render_from_world.transform_point3(*position)),
                 intensity: *intensity,
             }),
-            LightDesc::Directional { direction, irradiance } => directional.push(DirectionalLight {
-                direction: to_f32(render_from_world.transform_vector3(*direction).normalize()),
-                irradiance: *irradiance,
-            }),
+            LightDesc::Directional { direction, irradiance } => {
+                directional.push(DirectionalLight {
+                    direction: to_f32(render_from_world.transform_vector3(*direction).normalize()),
+                    irradiance: *irradiance,
+                })
+            }
             LightDesc::Ambient { radiance } => ambient += *radiance,
         }
     }
@@ -269,7 +289,15 @@ pub fn to_render_scene(
         EffectsMode::ForceAll => Effects::all(),
         EffectsMode::Auto => decide_effects(&camera, &prototypes, &instances, &materials, &lights),
     };
-    Ok(RenderScene { camera, prototypes, instances, materials, lights, background: desc.settings.background, effects })
+    Ok(RenderScene {
+        camera,
+        prototypes,
+        instances,
+        materials,
+        lights,
+        background: desc.settings.background,
+        effects,
+    })
 }
 
 fn decide_effects(
@@ -279,7 +307,9 @@ fn decide_effects(
     materials: &[Material],
     lights: &LightSet,
 ) -> Effects {
-    let used = |f: &dyn Fn(&Material) -> bool| instances.iter().any(|i| f(&materials[i.material as usize]));
+    let used = |f: &dyn Fn(&Material) -> bool| {
+        instances.iter().any(|i| f(&materials[i.material as usize]))
+    };
     Effects {
         depth_of_field: camera.has_lens(),
         motion_blur: instances.iter().any(|i| i.placement.is_moving()),
@@ -290,7 +320,9 @@ fn decide_effects(
         refraction: used(&|m| m.is_dielectric()),
         textures: used(&|m| m.texture.is_some()),
         instancing: instances.iter().any(|i| !matches!(i.placement, Placement::Baked { .. })),
-        smooth_shading: prototypes.iter().any(|p| matches!(&p.geometry, Geometry::Triangles(m) if m.normals.is_some())),
+        smooth_shading: prototypes
+            .iter()
+            .any(|p| matches!(&p.geometry, Geometry::Triangles(m) if m.normals.is_some())),
     }
 }
 

@@ -68,7 +68,12 @@ fn random_scene(rng: &mut Rng) -> RenderScene {
 fn brute_force(scene: &RenderScene, ray: &Ray) -> Option<Hit> {
     let mut best: Option<Hit> = None;
     let mut tmax = ray.tmax;
-    for (geom_id, shape) in scene.instances.iter().enumerate().map(|(i, inst)| (i, &scene.prototypes[inst.prototype as usize])) {
+    for (geom_id, shape) in scene
+        .instances
+        .iter()
+        .enumerate()
+        .map(|(i, inst)| (i, &scene.prototypes[inst.prototype as usize]))
+    {
         match &shape.geometry {
             Geometry::Triangles(mesh) => {
                 for prim in 0..mesh.indices.len() as u32 {

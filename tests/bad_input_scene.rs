@@ -471,13 +471,18 @@ fn singular_quad_light_transform_names_the_light() {
 }
 
 #[test]
-fn non_uniformly_scaled_sphere_is_rejected() {
-    let err = load_err(&scene_with(
-        "[[objects]]\ntype = \"sphere\"\nmaterial = \"white\"\ncenter = [0, 0, 0]\nradius = 1.0\ntransform = [{ scale = [1, 2, 1] }]\n",
-    ));
+fn non_uniformly_scaled_sphere_is_an_ellipsoid_but_singular_is_rejected() {
+    let sphere =
+        "[[objects]]\ntype = \"sphere\"\nmaterial = \"white\"\ncenter = [0, 0, 0]\nradius = 1.0\n";
+    let scene = load(&scene_with(&format!("{sphere}transform = [{{ scale = [1, 2, 1] }}]\n")));
+    let stretched = scene.objects[0].world_from_object.transform_vector3(DVec3::Y);
+    assert_eq!(stretched, DVec3::new(0.0, 2.0, 0.0));
+    let err = load_err(&scene_with(&format!(
+        "{sphere}transform = [{{ matrix = [[1, 0, 0, 0], [0, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]] }}]\n"
+    )));
     assert_contains(
         &err,
-        &["scene.toml: objects[0].transform: a sphere's transform must keep it round"],
+        &["scene.toml: objects[0].transform[0]: matrix is singular (determinant 0)", "(line 13)"],
     );
 }
 
@@ -520,6 +525,418 @@ fn box_with_min_not_below_max_is_rejected() {
         &[
             "scene.toml: objects[0] (box): min [0, 2, 0] must be less than max [1, 1, 1] on every axis, but not on y",
         ],
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// Camera lens and render settings
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn aperture_and_f_number_together_are_rejected() {
+    let err = load_err(&format!("{CAMERA}aperture = 0.1\nf_number = 2.0\nfocal_length = 0.05\n"));
+    assert_contains(
+        &err,
+        &["scene.toml: camera takes `aperture` or `f_number`, not both (line 7)"],
+    );
+    let err = load_err(&format!("{CAMERA}aperture = 0.1\nfocal_length = 0.05\n"));
+    assert_contains(&err, &["camera takes `aperture` or `focal_length`, not both (line 7)"]);
+}
+
+#[test]
+fn f_number_and_focal_length_need_each_other() {
+    let err = load_err(&format!("{CAMERA}f_number = 2.0\n"));
+    assert_contains(
+        &err,
+        &["scene.toml: camera (with f_number) is missing the field `focal_length` (line 6)"],
+    );
+    let err = load_err(&format!("{CAMERA}focal_length = 0.05\n"));
+    assert_contains(&err, &["camera (with focal_length) is missing the field `f_number` (line 6)"]);
+}
+
+#[test]
+fn f_number_and_focal_length_must_be_positive() {
+    let err = load_err(&format!("{CAMERA}f_number = 0.0\nfocal_length = 0.05\n"));
+    assert_contains(&err, &["scene.toml: camera.f_number is 0, but must be > 0 (line 6)"]);
+    let err = load_err(&format!("{CAMERA}f_number = 2.8\nfocal_length = -1\n"));
+    assert_contains(&err, &["camera.focal_length is -1, but must be > 0 (line 7)"]);
+}
+
+#[test]
+fn unknown_lens_shape_is_named() {
+    let err = load_err(&format!("{CAMERA}lens = \"hexagon\"\n"));
+    assert_contains(
+        &err,
+        &["scene.toml", "line 6", "unknown variant `hexagon`", "expected `disk` or `square`"],
+    );
+}
+
+#[test]
+fn zero_light_samples_and_unknown_integrator_are_rejected() {
+    let err = load_err(&format!("{CAMERA}[render]\nlight_samples = 0\n"));
+    assert_contains(&err, &["scene.toml: render.light_samples is 0, but must be >= 1 (line 7)"]);
+    let err = load_err(&format!("{CAMERA}[render]\nintegrator = \"bdpt\"\n"));
+    assert_contains(
+        &err,
+        &["scene.toml", "line 7", "unknown variant `bdpt`", "expected `path` or `whitted`"],
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// Material types
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn unknown_material_type_is_named() {
+    let err = load_err(&format!("{CAMERA}[materials.m]\ntype = \"plastic\"\n"));
+    assert_contains(&err, &["scene.toml", "line 7", "unknown variant `plastic`"]);
+}
+
+#[test]
+fn field_of_another_material_type_is_rejected() {
+    let err = load_err(&format!("{CAMERA}{WHITE}roughness = 0.1\n"));
+    assert_contains(
+        &err,
+        &["scene.toml: materials.white (diffuse) does not take the field `roughness` \
+             (it takes: type, albedo, emission, texture, phong) (line 8)"],
+    );
+    let err =
+        load_err(&format!("{CAMERA}[materials.glass]\ntype = \"dielectric\"\neta = [1, 1, 1]\n"));
+    assert_contains(
+        &err,
+        &[
+            "materials.glass (dielectric) does not take the field `eta`",
+            "ior, absorption",
+            "(line 8)",
+        ],
+    );
+    let err = load_err(&format!("{CAMERA}[materials.chrome]\ntype = \"mirror\"\nior = 1.5\n"));
+    assert_contains(&err, &["materials.chrome (mirror) does not take the field `ior`"]);
+    let err = load_err(&format!(
+        "{CAMERA}[materials.gold]\ntype = \"conductor\"\npreset = \"gold\"\nabsorption = [1, 1, 1]\n"
+    ));
+    assert_contains(&err, &["materials.gold (conductor) does not take the field `absorption`"]);
+}
+
+#[test]
+fn mirror_reflectance_and_roughness_are_checked() {
+    let mirror = format!("{CAMERA}[materials.chrome]\ntype = \"mirror\"\n");
+    let err = load_err(&format!("{mirror}reflectance = [1.0, 1.2, 1.0]\n"));
+    assert_contains(
+        &err,
+        &["scene.toml: materials.chrome.reflectance[1] is 1.2, but must be in [0, 1] (line 8)"],
+    );
+    let err = load_err(&format!("{mirror}roughness = -0.1\n"));
+    assert_contains(&err, &["materials.chrome.roughness is -0.1, but must be >= 0 (line 8)"]);
+}
+
+#[test]
+fn conductor_needs_eta_and_k_or_a_preset() {
+    let metal = format!("{CAMERA}[materials.metal]\ntype = \"conductor\"\n");
+    let err = load_err(&metal);
+    assert_contains(
+        &err,
+        &["scene.toml: materials.metal (conductor) is missing the field `eta` (line 6)"],
+    );
+    let err = load_err(&format!("{metal}eta = [0.2, 0.9, 1.1]\n"));
+    assert_contains(&err, &["materials.metal (conductor) is missing the field `k`"]);
+    let err = load_err(&format!("{metal}preset = \"copper\"\neta = [0.2, 0.9, 1.1]\n"));
+    assert_contains(
+        &err,
+        &["scene.toml: materials.metal (conductor) takes `preset` or `eta`, not both (line 9)"],
+    );
+    let err = load_err(&format!("{metal}preset = \"platinum\"\n"));
+    assert_contains(&err, &["scene.toml", "line 8", "unknown variant `platinum`", "`gold`"]);
+}
+
+#[test]
+fn conductor_eta_must_be_positive_and_k_non_negative() {
+    let metal = format!("{CAMERA}[materials.metal]\ntype = \"conductor\"\n");
+    let err = load_err(&format!("{metal}eta = [0.2, 0.0, 1.1]\nk = [3, 2, 2]\n"));
+    assert_contains(&err, &["materials.metal.eta[1] is 0, but must be > 0 (line 8)"]);
+    let err = load_err(&format!("{metal}eta = [0.2, 0.9, 1.1]\nk = [3, 2, -1]\n"));
+    assert_contains(&err, &["materials.metal.k[2] is -1, but must be >= 0 (line 9)"]);
+}
+
+#[test]
+fn dielectric_ior_and_absorption_are_checked() {
+    let glass = format!("{CAMERA}[materials.glass]\ntype = \"dielectric\"\n");
+    let err = load_err(&format!("{glass}ior = 0.0\n"));
+    assert_contains(&err, &["scene.toml: materials.glass.ior is 0, but must be > 0 (line 8)"]);
+    let err = load_err(&format!("{glass}absorption = [-1, 0, 0]\n"));
+    assert_contains(&err, &["materials.glass.absorption[0] is -1, but must be >= 0 (line 8)"]);
+}
+
+#[test]
+fn texture_fields_are_checked() {
+    let floor = format!("{CAMERA}[materials.floor]\n");
+    let err = load_err(&format!(
+        "{floor}texture = {{ type = \"checker2d\", scale = 0.0, even = [1, 1, 1], odd = [0, 0, 0] }}\n"
+    ));
+    assert_contains(
+        &err,
+        &["scene.toml: materials.floor.texture.scale is 0, but must be > 0 (line 7)"],
+    );
+    let err = load_err(&format!(
+        "{floor}texture = {{ type = \"checker3d\", scale = 2.0, even = [1.5, 1, 1], odd = [0, 0, 0] }}\n"
+    ));
+    assert_contains(&err, &["materials.floor.texture.even[0] is 1.5, but must be in [0, 1]"]);
+    let err = load_err(&format!(
+        "{floor}texture = {{ type = \"marble\", scale = 2.0, even = [1, 1, 1], odd = [0, 0, 0] }}\n"
+    ));
+    assert_contains(&err, &["scene.toml", "line 7", "unknown variant `marble`"]);
+    let err = load_err(&format!(
+        "{floor}texture = {{ type = \"checker2d\", scale = 2.0, even = [1, 1, 1] }}\n"
+    ));
+    assert_contains(&err, &["scene.toml", "line 7", "missing field `odd`"]);
+    let err = load_err(&format!(
+        "{floor}texture = {{ type = \"checker2d\", scale = 2.0, even = [1, 1, 1], odd = [0, 0, 0], rotation = 3 }}\n"
+    ));
+    assert_contains(&err, &["scene.toml", "line 7", "unknown field `rotation`"]);
+}
+
+#[test]
+fn phong_exponent_must_be_positive() {
+    let err = load_err(&format!(
+        "{CAMERA}[materials.m]\nphong = {{ specular = [1, 1, 1], exponent = 0 }}\n"
+    ));
+    assert_contains(
+        &err,
+        &["scene.toml: materials.m.phong.exponent is 0, but must be > 0 (line 7)"],
+    );
+    let err = load_err(&format!("{CAMERA}[materials.m]\nphong = {{ ambient = [-0.1, 0, 0] }}\n"));
+    assert_contains(&err, &["materials.m.phong.ambient[0] is -0.1, but must be >= 0"]);
+}
+
+// ---------------------------------------------------------------------------------------
+// Motion, repeat, smooth
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn singular_transform_end_is_named() {
+    let err = load_err(&scene_with(&format!("{BOX}transform_end = [{{ scale = [1, 0, 1] }}]\n")));
+    assert_contains(
+        &err,
+        &["scene.toml: objects[0].transform_end[0]: scale [1, 0, 1] is singular", "(line 13)"],
+    );
+    let err = load_err(&scene_with(&format!("{BOX}transform_end = [{{}}]\n")));
+    assert_contains(
+        &err,
+        &[
+            "objects[0].transform_end[0] must have exactly one of the keys",
+            "it has none",
+            "(line 13)",
+        ],
+    );
+    let err = load_err(&scene_with(&format!(
+        "{BOX}transform_end = [{{ scale = 1e-200 }}, {{ scale = 1e-200 }}]\n"
+    )));
+    assert_contains(&err, &["objects[0].transform_end: the composed transform is singular"]);
+}
+
+#[test]
+fn repeat_counts_are_checked() {
+    let err = load_err(&scene_with(&format!(
+        "{BOX}repeat = {{ count = [2, 0, 2], spacing = [1, 1, 1] }}\n"
+    )));
+    assert_contains(
+        &err,
+        &["scene.toml: objects[0].repeat.count[1] is 0, but must be >= 1 (line 13)"],
+    );
+    let err = load_err(&scene_with(&format!(
+        "{BOX}repeat = {{ count = [1000, 1000, 11], spacing = [1, 1, 1] }}\n"
+    )));
+    assert_contains(
+        &err,
+        &["objects[0].repeat.count is 1000 × 1000 × 11 = 11000000 copies, but must be at most \
+             10000000 copies (line 13)"],
+    );
+    let err = load_err(&scene_with(&format!(
+        "{BOX}repeat = {{ count = [-1, 1, 1], spacing = [1, 1, 1] }}\n"
+    )));
+    assert_contains(&err, &["scene.toml", "line 13", "integer `-1`"]);
+    let err = load_err(&scene_with(&format!("{BOX}repeat = {{ count = [2, 1, 1] }}\n")));
+    assert_contains(&err, &["scene.toml", "line 13", "missing field `spacing`"]);
+}
+
+#[test]
+fn repeat_spacing_that_overflows_is_rejected() {
+    let err = load_err(&scene_with(&format!(
+        "{BOX}repeat = {{ count = [3, 1, 1], spacing = [1e308, 0, 0] }}\n"
+    )));
+    assert_contains(
+        &err,
+        &[
+            "scene.toml: objects[0].repeat.spacing: the farthest copy's position overflows",
+            "(line 13)",
+        ],
+    );
+}
+
+#[test]
+fn smooth_is_for_meshes_only() {
+    let err = load_err(&scene_with(
+        "[[objects]]\ntype = \"sphere\"\nmaterial = \"white\"\ncenter = [0, 0, 0]\nradius = 1.0\nsmooth = true\n",
+    ));
+    assert_contains(
+        &err,
+        &["scene.toml: objects[0] (sphere) does not take the field `smooth`", "(line 13)"],
+    );
+}
+
+#[test]
+fn mesh_file_of_unknown_format_is_rejected() {
+    let err = load_err(&scene_with("[[objects]]\ntype = \"mesh\"\nfile = \"models/teapot.stl\"\n"));
+    assert_contains(
+        &err,
+        &[
+            "scene.toml: objects[0].file is '",
+            "models/teapot.stl', but must be an OBJ (.obj) or PLY (.ply) file (line 10)",
+        ],
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// New light types
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn directional_light_needs_a_direction() {
+    let light = format!("{CAMERA}[[lights]]\ntype = \"directional\"\n");
+    let err = load_err(&format!("{light}direction = [0, 0, 0]\nirradiance = [1, 1, 1]\n"));
+    assert_contains(
+        &err,
+        &["scene.toml: lights[0].direction is [0, 0, 0], but must be a non-zero vector (line 8)"],
+    );
+    let err = load_err(&format!("{light}direction = [0, -1, 0]\nirradiance = [1, 1, -1]\n"));
+    assert_contains(&err, &["lights[0].irradiance[2] is -1, but must be >= 0 (line 9)"]);
+    let err = load_err(&format!("{light}irradiance = [1, 1, 1]\n"));
+    assert_contains(&err, &["lights[0] (directional light) is missing the field `direction`"]);
+}
+
+#[test]
+fn light_fields_of_another_type_are_rejected() {
+    let err = load_err(&format!(
+        "{CAMERA}[[lights]]\ntype = \"ambient\"\nradiance = [0.1, 0.1, 0.1]\nemission = [1, 1, 1]\n"
+    ));
+    assert_contains(
+        &err,
+        &[
+            "scene.toml: lights[0] (ambient light) does not take the field `emission` (it takes: type, radiance) (line 9)",
+        ],
+    );
+    let err = load_err(&format!(
+        "{CAMERA}[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity = [1, 1, 1]\ntransform = []\n"
+    ));
+    assert_contains(&err, &["lights[0] (point light) does not take the field `transform`"]);
+}
+
+#[test]
+fn sphere_light_needs_a_positive_radius() {
+    let light = format!(
+        "{CAMERA}[[lights]]\ntype = \"sphere\"\ncenter = [0, 3, 0]\nemission = [5, 5, 5]\n"
+    );
+    let err = load_err(&light);
+    assert_contains(
+        &err,
+        &["scene.toml: lights[0] (sphere light) is missing the field `radius` (line 6)"],
+    );
+    let err = load_err(&format!("{light}radius = 0\n"));
+    assert_contains(&err, &["lights[0].radius is 0, but must be > 0 (line 10)"]);
+    let err = load_err(&format!("{light}radius = 0.5\ntransform = [{{ scale = 0 }}]\n"));
+    assert_contains(&err, &["lights[0].transform[0]: scale [0, 0, 0] is singular"]);
+}
+
+#[test]
+fn mesh_light_needs_a_file_and_emission() {
+    let err = load_err(&format!("{CAMERA}[[lights]]\ntype = \"mesh\"\nemission = [1, 1, 1]\n"));
+    assert_contains(&err, &["lights[0] (mesh light) is missing the field `file`"]);
+    let err = load_err(&format!("{CAMERA}[[lights]]\ntype = \"mesh\"\nfile = \"cube.ply\"\n"));
+    assert_contains(&err, &["lights[0] (mesh light) is missing the field `emission`"]);
+    let err = load_err(&format!(
+        "{CAMERA}[[lights]]\ntype = \"mesh\"\nfile = \"absent.ply\"\nemission = [1, 1, 1]\n"
+    ));
+    assert_contains(&err, &["PLY file '", "absent.ply'", "named by lights[0].file", "(line 8)"]);
+}
+
+// ---------------------------------------------------------------------------------------
+// PLY files
+// ---------------------------------------------------------------------------------------
+
+fn ply_object(file: &str) -> String {
+    scene_with(&format!("[[objects]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"{file}\"\n"))
+}
+
+#[test]
+fn missing_ply_file_names_the_ply_and_the_scene() {
+    let err = load_err(&ply_object("models/absent.ply"));
+    assert_contains(
+        &err,
+        &[
+            "PLY file '",
+            "models/absent.ply': No such file or directory",
+            "named by objects[0].file in '",
+            "scene.toml' (line 11)",
+        ],
+    );
+}
+
+#[test]
+fn ply_with_out_of_range_index_names_the_face_and_line() {
+    let err = load_err(&ply_object("bad_index.ply"));
+    assert_contains(
+        &err,
+        &[
+            "bad_index.ply' (line 14): face 1 refers to vertex 3, but the file has 3 vertices",
+            "named by objects[0].file",
+        ],
+    );
+}
+
+#[test]
+fn ply_with_non_finite_vertex_names_the_vertex() {
+    let err = load_err(&ply_object("nan_vertex.ply"));
+    assert_contains(&err, &["nan_vertex.ply' (line 11): vertex 1 has a non-finite coordinate"]);
+}
+
+#[test]
+fn ply_with_unsupported_property_type_names_it() {
+    let err = load_err(&ply_object("bad_type.ply"));
+    assert_contains(&err, &["bad_type.ply' (line 6): unsupported property type 'float16'"]);
+}
+
+#[test]
+fn ply_without_faces_is_rejected() {
+    let err = load_err(&ply_object("no_faces.ply"));
+    assert_contains(&err, &["no_faces.ply': the PLY file has no faces (no face element)"]);
+}
+
+#[test]
+fn truncated_binary_ply_is_reported() {
+    let mut bytes = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n\
+        property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+        end_header\n"
+        .to_vec();
+    for v in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+        for c in v {
+            bytes.extend(c.to_le_bytes());
+        }
+    }
+    bytes.push(3);
+    bytes.extend(0i32.to_le_bytes());
+    bytes.extend(1i32.to_le_bytes()); // the third index is missing
+    let dir = std::env::temp_dir().join(format!("embray-truncated-ply-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("cut.ply"), &bytes).unwrap();
+    let result = scene::load_str(
+        &scene_with("[[objects]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"cut.ply\"\n"),
+        &dir.join("scene.toml"),
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+    let err = result.unwrap_err().to_string();
+    assert_contains(
+        &err,
+        &["cut.ply': the data ends in face 0 of 1 (truncated file?)", "objects[0].file"],
     );
 }
 

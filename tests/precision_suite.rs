@@ -35,7 +35,9 @@ fn cameraworld_keeps_every_torture_scene_far_away_and_world_breaks_one() {
                 let error = image_error(&render_ok(scene, &o).film, &reference);
                 // Tolerance: relative MSE ≤ 1e-6 and no pixel off by more than 1 %.
                 assert!(
-                    error.relative_mse <= 1e-6 && error.fraction_off == 0.0 && error.non_finite == 0,
+                    error.relative_mse <= 1e-6
+                        && error.fraction_off == 0.0
+                        && error.non_finite == 0,
                     "{} {name} @ {offset:e} in cameraworld: {error:?}",
                     backend.name()
                 );
@@ -83,7 +85,11 @@ fn robust_spawning_never_self_intersects_and_epsilon_does() {
             acne.rays
         );
         assert!(acne.hits > acne.rays / 10, "{}: epsilon should show acne", backend.name());
-        assert!(blocked > 1000 && leaking < blocked / 10, "{}: epsilon should leak", backend.name());
+        assert!(
+            blocked > 1000 && leaking < blocked / 10,
+            "{}: epsilon should leak",
+            backend.name()
+        );
     }
 }
 
@@ -92,7 +98,10 @@ fn accuracy_report_runs_on_a_tiny_configuration() {
     let root = repo_path(".");
     let out = std::env::temp_dir().join(format!("embray-accuracy-{}", std::process::id()));
     let options = AccuracyOptions {
-        scenes: vec![root.join("scenes/precision/thin_walls.toml"), root.join("scenes/cornell.toml")],
+        scenes: vec![
+            root.join("scenes/precision/thin_walls.toml"),
+            root.join("scenes/cornell.toml"),
+        ],
         offsets: vec![0.0, 1e6],
         backends: backends(),
         runs: 1,

@@ -11,7 +11,9 @@
 
 use crate::accel::{Accel, AccelOptions, Hit, Observes, Ray};
 use crate::geometry::{intersect_sphere, intersect_triangle};
-use crate::render_scene::{Geometry, Placement, RenderScene, Sphere, TriangleMesh, Trs, transformed_bounds};
+use crate::render_scene::{
+    Geometry, Placement, RenderScene, Sphere, TriangleMesh, Trs, transformed_bounds,
+};
 use crate::stats::TraversalCounters;
 use glam::{Affine3A, UVec2, Vec3, Vec3A};
 use obvhs::aabb::Aabb;
@@ -196,7 +198,7 @@ impl ObvhsAccel {
             InstanceTransform::Identity => None,
             InstanceTransform::Static(m) => Some(*m),
             InstanceTransform::Moving { start, end } => {
-                Some(start.lerp(end, ray.time).to_affine().inverse())
+                Some(start.lerp(end, ray.time.clamp(0.0, 1.0)).to_affine().inverse())
             }
         };
         // An affine map keeps t: the object-space direction is not renormalised.
@@ -245,8 +247,8 @@ impl ObvhsAccel {
                 {
                     let geom_id = tlas.primitive_indices[state.primitive_id as usize];
                     let instance = &self.instances[geom_id as usize];
-                    if let Some((t, prim_id, u, v)) =
-                        self.intersect_instance::<COUNT>(instance, ray, &mut tmax, counters, any_hit)
+                    if let Some((t, prim_id, u, v)) = self
+                        .intersect_instance::<COUNT>(instance, ray, &mut tmax, counters, any_hit)
                     {
                         node_ray.tmax = t + NODE_RAY_BACKOFF;
                         best = Some(Hit { t, geom_id, prim_id, u, v });

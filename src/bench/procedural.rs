@@ -1,6 +1,9 @@
 //! Procedurally generated benchmark scenes, so the large ones need no files.
 
-use crate::scene::{CameraDesc, LensShape, LightDesc, MaterialDesc, MeshData, ObjectDesc, RenderSettings, SceneDesc, ShapeDesc};
+use crate::scene::{
+    CameraDesc, LensShape, LightDesc, MaterialDesc, MeshData, ObjectDesc, RenderSettings,
+    SceneDesc, ShapeDesc,
+};
 use glam::{DAffine3, DVec3, Vec3};
 use std::sync::Arc;
 
@@ -15,7 +18,9 @@ pub fn displaced_sphere(triangles: usize) -> MeshData {
         for j in 0..=segments {
             let phi = std::f64::consts::TAU * j as f64 / segments as f64;
             let dir = DVec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
-            let bump = 1.0 + 0.05 * (7.0 * theta).sin() * (9.0 * phi).cos() + 0.02 * (31.0 * theta).cos() * (29.0 * phi).sin();
+            let bump = 1.0
+                + 0.05 * (7.0 * theta).sin() * (9.0 * phi).cos()
+                + 0.02 * (31.0 * theta).cos() * (29.0 * phi).sin();
             positions.push(dir * bump);
         }
     }
@@ -59,7 +64,8 @@ pub fn displaced_sphere_scene(triangles: usize, width: u32, height: u32) -> Scen
         normals: None,
         uvs: None,
     };
-    let material = MaterialDesc { name: "grey".into(), albedo: Vec3::splat(0.7), ..Default::default() };
+    let material =
+        MaterialDesc { name: "grey".into(), albedo: Vec3::splat(0.7), ..Default::default() };
     let object = |name: &str, mesh: MeshData| ObjectDesc {
         name: name.into(),
         shape: ShapeDesc::Mesh(Arc::new(mesh)),
@@ -73,7 +79,10 @@ pub fn displaced_sphere_scene(triangles: usize, width: u32, height: u32) -> Scen
         settings: RenderSettings { spp: 4, max_depth: 3, ..Default::default() },
         materials: vec![material],
         objects: vec![object("sphere", displaced_sphere(triangles)), object("ground", ground)],
-        lights: vec![LightDesc::Point { position: DVec3::new(3.0, 5.0, 4.0), intensity: Vec3::splat(60.0) }],
+        lights: vec![LightDesc::Point {
+            position: DVec3::new(3.0, 5.0, 4.0),
+            intensity: Vec3::splat(60.0),
+        }],
     }
 }
 

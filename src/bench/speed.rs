@@ -69,7 +69,10 @@ pub fn diffuse_rays(scene: &RenderScene, accel: &dyn Accel, primary: &[Ray]) -> 
         .filter_map(|(i, ray)| {
             let hit = accel.intersect(ray, &mut counters)?;
             let si = interaction(scene, ray, &hit);
-            let u = Vec2::new(to_unit_f32(hash4(9, i as u64, 0, 0)), to_unit_f32(hash4(9, i as u64, 0, 1)));
+            let u = Vec2::new(
+                to_unit_f32(hash4(9, i as u64, 0, 0)),
+                to_unit_f32(hash4(9, i as u64, 0, 1)),
+            );
             let n = si.shading_normal;
             let t = if n.x.abs() < 0.9 { Vec3::X } else { Vec3::Y };
             let b1 = n.cross(t).normalize();
@@ -143,11 +146,13 @@ pub fn measure(
     let primary = primary_rays(&scene);
     let diffuse = diffuse_rays(&scene, accel.as_ref(), &primary);
     let primary_mrays = throughput(accel.as_ref(), &primary, runs) / 1e6;
-    let diffuse_mrays = if diffuse.is_empty() { 0.0 } else { throughput(accel.as_ref(), &diffuse, runs) / 1e6 };
+    let diffuse_mrays =
+        if diffuse.is_empty() { 0.0 } else { throughput(accel.as_ref(), &diffuse, runs) / 1e6 };
     let samples = scene.camera.width as f64 * scene.camera.height as f64 * spp as f64;
     let mut per_threads = [0.0; 2];
     for (slot, threads) in [1usize, 2].into_iter().enumerate() {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
+        let pool =
+            rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
         let times: Vec<f64> = (0..runs.max(1))
             .map(|_| {
                 pool.install(|| {

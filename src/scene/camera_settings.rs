@@ -1,9 +1,9 @@
 //! The `[camera]` and `[render]` tables → `CameraDesc` and `RenderSettings`, validated.
 
-use super::desc::{CameraDesc, RenderSettings};
+use super::desc::{CameraDesc, IntegratorKind, LensShape, RenderSettings};
 use super::error::SceneError;
 use super::source_map::FieldPath;
-use super::toml_format::{CameraToml, RenderToml};
+use super::toml_format::{CameraToml, IntegratorToml, LensToml, RenderToml};
 use super::transform_list::fmt_vec;
 use super::validate::Ctx;
 use glam::DVec3;
@@ -55,7 +55,7 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
             &requirement,
         )?;
     }
-    let aperture = ctx.non_negative(&path.key("aperture"), cam.aperture.unwrap_or(0.0))?;
+    let aperture = aperture(cam, ctx)?;
     let focus_distance =
         cam.focus_distance.map(|d| ctx.positive(&path.key("focus_distance"), d)).transpose()?;
     Ok(CameraDesc {
@@ -67,8 +67,40 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
         height: cam.resolution[1],
         aperture,
         focus_distance,
-        lens_shape: Default::default(),
+        lens_shape: match cam.lens {
+            None | Some(LensToml::Disk) => LensShape::Disk,
+            Some(LensToml::Square) => LensShape::Square,
+        },
     })
+}
+
+/// The lens diameter: `aperture`, or `focal_length / f_number`, or 0 (a pinhole).
+fn aperture(cam: &CameraToml, ctx: &Ctx) -> Result<f64, SceneError> {
+    let path = FieldPath::root("camera");
+    match (cam.aperture, cam.f_number, cam.focal_length) {
+        (Some(_), Some(_), _) => Err(ctx.conflict(&path, "camera", "aperture", "f_number")),
+        (Some(_), None, Some(_)) => Err(ctx.conflict(&path, "camera", "aperture", "focal_length")),
+        (Some(aperture), None, None) => ctx.non_negative(&path.key("aperture"), aperture),
+        (None, Some(f_number), focal_length) => {
+            let f_number = ctx.positive(&path.key("f_number"), f_number)?;
+            let item = "camera (with f_number)";
+            let focal_length =
+                ctx.required(&path.key("f_number"), item, "focal_length", focal_length)?;
+            let focal_length = ctx.positive(&path.key("focal_length"), focal_length)?;
+            let aperture = focal_length / f_number;
+            ctx.require(
+                aperture.is_finite(),
+                &path.key("f_number"),
+                f_number,
+                "large enough that focal_length / f_number is finite",
+            )?;
+            Ok(aperture)
+        }
+        (None, None, Some(_)) => {
+            Err(ctx.missing(&path.key("focal_length"), "camera (with focal_length)", "f_number"))
+        }
+        (None, None, None) => Ok(0.0),
+    }
 }
 
 pub(crate) fn settings(
@@ -89,6 +121,16 @@ pub(crate) fn settings(
     }
     if let Some(background) = render.background {
         settings.background = ctx.color(&path.key("background"), background, false)?;
+    }
+    if let Some(light_samples) = render.light_samples {
+        ctx.require(light_samples >= 1, &path.key("light_samples"), light_samples, ">= 1")?;
+        settings.light_samples = light_samples;
+    }
+    if let Some(integrator) = render.integrator {
+        settings.integrator = match integrator {
+            IntegratorToml::Path => IntegratorKind::Path,
+            IntegratorToml::Whitted => IntegratorKind::Whitted,
+        };
     }
     Ok(settings)
 }

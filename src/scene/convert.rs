@@ -1,22 +1,33 @@
-//! The deserialised file (`toml_format`) → a validated `SceneDesc`: materials, objects and
-//! lights, each checked with its field path and line (camera and settings: `camera_settings`).
+//! The deserialised file (`toml_format`) → a validated `SceneDesc`: objects (with motion and
+//! repeat grids) and lights, each checked with its field path and line (camera and settings:
+//! `camera_settings`; materials: `materials`).
 
 use super::camera_settings::{camera, settings};
 use super::desc::{LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use super::error::SceneError;
-use super::obj::{self, ObjRef};
+use super::materials;
+use super::mesh_file::MeshCache;
+use super::obj::ObjRef;
 use super::shapes::{box_mesh, quad_mesh};
 use super::source_map::FieldPath;
 use super::toml_format::{
-    LightKind, LightToml, MaterialToml, ObjectKind, ObjectToml, SceneFile, TransformEntry, Vec3,
+    LightKind, LightToml, ObjectKind, ObjectToml, RepeatToml, SceneFile, TransformEntry, Vec3,
 };
-use super::transform_list;
+use super::transform_list::{self, fmt_vec};
 use super::validate::Ctx;
 use glam::{DAffine3, DVec3};
-use std::collections::BTreeMap;
-use std::path::Path;
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
-/// Builds the scene; `base_dir` resolves relative OBJ paths, `warnings` collects non-fatal
+/// The most copies one `repeat` may make.
+pub const MAX_REPEAT_COPIES: u64 = 10_000_000;
+
+/// Copies of a `repeat` grid up to this many are named `... copy (i,j,k)`; those of larger
+/// grids are all named `... copy`.
+const NAMED_COPIES: usize = 1_000_000;
+
+/// Builds the scene; `base_dir` resolves relative mesh paths, `warnings` collects non-fatal
 /// problems (a missing MTL file).
 pub(crate) fn scene_desc(
     file: SceneFile,
@@ -33,11 +44,15 @@ pub(crate) fn scene_desc(
         materials: Vec::new(),
         named: BTreeMap::new(),
         default_material: None,
+        mtl_materials: HashMap::new(),
+        meshes: MeshCache::default(),
         objects: Vec::new(),
         lights: Vec::new(),
     };
     for (name, material) in &file.materials {
-        builder.named_material(name, material)?;
+        let material = materials::material(name, material, ctx)?;
+        let index = builder.add_material(material);
+        builder.named.insert(name.clone(), index);
     }
     for (i, object) in file.objects.iter().enumerate() {
         builder.object(i, object)?;
@@ -59,6 +74,62 @@ fn dvec(v: Vec3) -> DVec3 {
     DVec3::from_array(v)
 }
 
+/// The mesh file `file` (relative to `base_dir`) named by the item at `path`.
+fn mesh_ref<'c>(ctx: &Ctx<'c>, base_dir: &Path, path: &FieldPath, file: &str) -> ObjRef<'c> {
+    ObjRef {
+        obj: base_dir.join(file),
+        scene: ctx.file,
+        item: path.to_string(),
+        line: ctx.line(&path.key("file")),
+    }
+}
+
+/// Where an object goes: at shutter open, and at shutter close if it moves.
+#[derive(Clone, Copy)]
+struct Placement {
+    start: DAffine3,
+    end: Option<DAffine3>,
+}
+
+impl Placement {
+    fn fixed(start: DAffine3) -> Self {
+        Placement { start, end: None }
+    }
+
+    /// Both placements moved by `offset` in world space (exactly: only the translations
+    /// change).
+    fn shifted(&self, offset: DVec3) -> Placement {
+        let shift =
+            |t: DAffine3| DAffine3 { matrix3: t.matrix3, translation: t.translation + offset };
+        Placement { start: shift(self.start), end: self.end.map(shift) }
+    }
+}
+
+/// A validated `repeat`: `count` copies along each axis, `spacing` apart.
+#[derive(Clone, Copy)]
+struct Grid {
+    count: [u32; 3],
+    spacing: DVec3,
+}
+
+impl Grid {
+    fn offsets(&self) -> impl Iterator<Item = ([u32; 3], DVec3)> + use<> {
+        let Grid { count: [nx, ny, nz], spacing } = *self;
+        (0..nx).flat_map(move |i| {
+            (0..ny).flat_map(move |j| {
+                (0..nz).map(move |k| {
+                    let offset = DVec3::new(i as f64, j as f64, k as f64) * spacing;
+                    ([i, j, k], offset)
+                })
+            })
+        })
+    }
+
+    fn total(&self) -> usize {
+        self.count.iter().map(|&n| n as usize).product()
+    }
+}
+
 struct Builder<'a> {
     ctx: &'a Ctx<'a>,
     base_dir: &'a Path,
@@ -66,8 +137,12 @@ struct Builder<'a> {
     materials: Vec<MaterialDesc>,
     /// The `[materials]` table: name → index.
     named: BTreeMap<String, u32>,
-    /// Shared by OBJ models without an MTL material; created on first use.
+    /// Shared by mesh models without an MTL material; created on first use.
     default_material: Option<u32>,
+    /// The scene material made for each MTL material, keyed by mesh file and its index
+    /// there, so that objects naming one file share them.
+    mtl_materials: HashMap<(PathBuf, usize), u32>,
+    meshes: MeshCache,
     objects: Vec<ObjectDesc>,
     lights: Vec<LightDesc>,
 }
@@ -76,16 +151,6 @@ impl Builder<'_> {
     fn add_material(&mut self, material: MaterialDesc) -> u32 {
         self.materials.push(material);
         (self.materials.len() - 1) as u32
-    }
-
-    fn named_material(&mut self, name: &str, m: &MaterialToml) -> Result<(), SceneError> {
-        let path = FieldPath::root("materials").key(name);
-        let albedo = self.ctx.color(&path.key("albedo"), m.albedo.unwrap_or([0.8; 3]), true)?;
-        let emission =
-            self.ctx.color(&path.key("emission"), m.emission.unwrap_or([0.0; 3]), false)?;
-        let index = self.add_material(MaterialDesc { name: name.to_owned(), albedo, emission, ..Default::default() });
-        self.named.insert(name.to_owned(), index);
-        Ok(())
     }
 
     fn lookup_material(&self, path: &FieldPath, name: &str) -> Result<u32, SceneError> {
@@ -105,58 +170,30 @@ impl Builder<'_> {
         if let Some(index) = self.default_material {
             return index;
         }
-        let index = self.add_material(MaterialDesc {
-            name: "default".to_owned(),
-            albedo: glam::Vec3::splat(0.8),
-            emission: glam::Vec3::ZERO,
-            ..Default::default()
-        });
+        let index =
+            self.add_material(MaterialDesc { name: "default".to_owned(), ..Default::default() });
         self.default_material = Some(index);
         index
     }
 
-    /// Rejects fields the type does not take; `present` lists every optional field.
-    fn check_fields(
-        &self,
-        path: &FieldPath,
-        item: &str,
-        present: &[(&str, bool)],
-        allowed: &[&str],
-    ) -> Result<(), SceneError> {
-        let Some((field, _)) = present.iter().find(|(name, set)| *set && !allowed.contains(name))
-        else {
-            return Ok(());
-        };
-        Err(SceneError::FieldNotAllowed {
-            file: self.ctx.file.to_path_buf(),
-            item: item.to_owned(),
-            field: (*field).to_owned(),
-            allowed: allowed.join(", "),
-            line: self.ctx.line(&path.key(field)),
+    /// An emissive, otherwise black material for a light named `item`.
+    fn light_material(&mut self, item: &str, emission: glam::Vec3) -> u32 {
+        self.add_material(MaterialDesc {
+            name: item.to_owned(),
+            albedo: glam::Vec3::ZERO,
+            emission,
+            ..Default::default()
         })
     }
 
-    fn required<T: Copy>(
-        &self,
-        path: &FieldPath,
-        item: &str,
-        field: &str,
-        value: Option<T>,
-    ) -> Result<T, SceneError> {
-        value.ok_or_else(|| SceneError::MissingField {
-            file: self.ctx.file.to_path_buf(),
-            item: item.to_owned(),
-            field: field.to_owned(),
-            line: self.ctx.line(path),
-        })
-    }
-
+    /// The transform list at `path.key`, composed (identity when absent).
     fn transform(
         &self,
         path: &FieldPath,
+        key: &str,
         entries: Option<&Vec<TransformEntry>>,
     ) -> Result<DAffine3, SceneError> {
-        let list = path.key("transform");
+        let list = path.key(key);
         let mut ops = Vec::new();
         for (i, entry) in entries.map_or(&[][..], Vec::as_slice).iter().enumerate() {
             let op = entry.op().map_err(|keys| {
@@ -181,6 +218,95 @@ impl Builder<'_> {
         })
     }
 
+    /// `transform` and `transform_end`.
+    fn placement(&self, path: &FieldPath, o: &ObjectToml) -> Result<Placement, SceneError> {
+        let start = self.transform(path, "transform", o.transform.as_ref())?;
+        let end = match &o.transform_end {
+            Some(entries) => Some(self.transform(path, "transform_end", Some(entries))?),
+            None => None,
+        };
+        Ok(Placement { start, end })
+    }
+
+    /// Validates `repeat`: counts >= 1, at most `MAX_REPEAT_COPIES` in all, and the farthest
+    /// copy still at a finite position.
+    fn grid(
+        &self,
+        path: &FieldPath,
+        repeat: Option<&RepeatToml>,
+        placement: &Placement,
+    ) -> Result<Option<Grid>, SceneError> {
+        let Some(repeat) = repeat else { return Ok(None) };
+        let count_path = path.key("repeat").key("count");
+        for (i, &n) in repeat.count.iter().enumerate() {
+            self.ctx.require(n >= 1, &count_path.index(i), n, ">= 1")?;
+        }
+        let total: u64 = repeat.count.iter().map(|&n| u64::from(n)).product();
+        let [nx, ny, nz] = repeat.count;
+        self.ctx.require(
+            total <= MAX_REPEAT_COPIES,
+            &count_path,
+            format!("{nx} × {ny} × {nz} = {total} copies"),
+            &format!("at most {MAX_REPEAT_COPIES} copies"),
+        )?;
+        let grid = Grid { count: repeat.count, spacing: dvec(repeat.spacing) };
+        let farthest = (DVec3::new(nx as f64, ny as f64, nz as f64) - 1.0) * grid.spacing;
+        let far = placement.shifted(farthest);
+        if !farthest.is_finite()
+            || !far.start.translation.is_finite()
+            || far.end.is_some_and(|end| !end.translation.is_finite())
+        {
+            let field = path.key("repeat").key("spacing");
+            return Err(SceneError::Transform {
+                file: self.ctx.file.to_path_buf(),
+                field: field.to_string(),
+                problem: format!(
+                    "the farthest copy's position overflows (spacing {} × count {})",
+                    fmt_vec(&repeat.spacing),
+                    fmt_vec(&repeat.count.map(f64::from))
+                ),
+                line: self.ctx.line(&field),
+            });
+        }
+        Ok(Some(grid))
+    }
+
+    /// Adds the object, or one per copy of `grid`, all sharing `shape`.
+    fn push(
+        &mut self,
+        name: String,
+        shape: ShapeDesc,
+        material: u32,
+        placement: Placement,
+        grid: Option<Grid>,
+    ) {
+        let object = |name: String, shape: ShapeDesc, placement: Placement| ObjectDesc {
+            name,
+            shape,
+            material,
+            world_from_object: placement.start,
+            world_from_object_end: placement.end,
+        };
+        match grid {
+            None => self.objects.push(object(name, shape, placement)),
+            Some(grid) => {
+                self.objects.reserve(grid.total());
+                // Formatting a name per copy costs more than the rest of the copy; beyond
+                // `NAMED_COPIES` the copies share one name.
+                let named = grid.total() <= NAMED_COPIES;
+                let shared_name = format!("{name} copy");
+                for ([i, j, k], offset) in grid.offsets() {
+                    let name = if named {
+                        format!("{name} copy ({i},{j},{k})")
+                    } else {
+                        shared_name.clone()
+                    };
+                    self.objects.push(object(name, shape.clone(), placement.shifted(offset)));
+                }
+            }
+        }
+    }
+
     fn degenerate(&self, path: &FieldPath, item: &str, problem: String) -> SceneError {
         SceneError::DegenerateShape {
             file: self.ctx.file.to_path_buf(),
@@ -192,14 +318,14 @@ impl Builder<'_> {
 
     fn object(&mut self, i: usize, o: &ObjectToml) -> Result<(), SceneError> {
         let path = FieldPath::root("objects").index(i);
-        let (kind, allowed): (&str, &[&str]) = match o.kind {
-            ObjectKind::Quad => ("quad", &["type", "material", "corner", "u", "v", "transform"]),
-            ObjectKind::Sphere => {
-                ("sphere", &["type", "material", "center", "radius", "transform"])
-            }
-            ObjectKind::Box => ("box", &["type", "material", "min", "max", "transform"]),
-            ObjectKind::Mesh => ("mesh", &["type", "material", "file", "transform"]),
+        const PLACED: [&str; 4] = ["type", "transform", "transform_end", "repeat"];
+        let (kind, own): (&str, &[&str]) = match o.kind {
+            ObjectKind::Quad => ("quad", &["material", "corner", "u", "v"]),
+            ObjectKind::Sphere => ("sphere", &["material", "center", "radius"]),
+            ObjectKind::Box => ("box", &["material", "min", "max"]),
+            ObjectKind::Mesh => ("mesh", &["material", "file", "smooth"]),
         };
+        let allowed: Vec<&str> = PLACED.iter().chain(own).copied().collect();
         let item = format!("{path} ({kind})");
         let present = [
             ("corner", o.corner.is_some()),
@@ -210,9 +336,12 @@ impl Builder<'_> {
             ("min", o.min.is_some()),
             ("max", o.max.is_some()),
             ("file", o.file.is_some()),
+            ("smooth", o.smooth.is_some()),
         ];
-        self.check_fields(&path, &item, &present, allowed)?;
-        let world_from_object = self.transform(&path, o.transform.as_ref())?;
+        let ctx = self.ctx;
+        ctx.check_fields(&path, &item, &present, &allowed)?;
+        let placement = self.placement(&path, o)?;
+        let grid = self.grid(&path, o.repeat.as_ref(), &placement)?;
         let material = o
             .material
             .as_deref()
@@ -220,89 +349,74 @@ impl Builder<'_> {
             .transpose()?;
         let shape = match o.kind {
             ObjectKind::Mesh => {
-                let file = self.required(&path, &item, "file", o.file.as_deref())?;
-                return self.mesh_objects(&path, file, material, world_from_object);
+                let file = ctx.required(&path, &item, "file", o.file.as_deref())?;
+                return self.mesh_objects(&path, file, o.smooth, material, placement, grid);
             }
             ObjectKind::Quad => {
-                let corner = self.required(&path, &item, "corner", o.corner)?;
-                let u = self.required(&path, &item, "u", o.u)?;
-                let v = self.required(&path, &item, "v", o.v)?;
+                let corner = ctx.required(&path, &item, "corner", o.corner)?;
+                let u = ctx.required(&path, &item, "u", o.u)?;
+                let v = ctx.required(&path, &item, "v", o.v)?;
                 let mesh = quad_mesh(dvec(corner), dvec(u), dvec(v))
                     .map_err(|p| self.degenerate(&path, &item, p))?;
-                ShapeDesc::Mesh(std::sync::Arc::new(mesh))
+                ShapeDesc::Mesh(Arc::new(mesh))
             }
             ObjectKind::Sphere => {
-                let center = self.required(&path, &item, "center", o.center)?;
-                let radius = self.required(&path, &item, "radius", o.radius)?;
-                let radius = self.ctx.positive(&path.key("radius"), radius)?;
-                if crate::transform::uniform_scale(&world_from_object).is_none() {
-                    let field = path.key("transform");
-                    return Err(SceneError::Transform {
-                        file: self.ctx.file.to_path_buf(),
-                        field: field.to_string(),
-                        problem: "a sphere's transform must keep it round: no non-uniform \
-                                  scale or shear"
-                            .to_owned(),
-                        line: self.ctx.line(&field),
-                    });
-                }
+                // Any non-singular transform is allowed: the renderer instances a unit sphere
+                // for ellipsoids.
+                let center = ctx.required(&path, &item, "center", o.center)?;
+                let radius = ctx.required(&path, &item, "radius", o.radius)?;
+                let radius = ctx.positive(&path.key("radius"), radius)?;
                 ShapeDesc::Sphere { center: dvec(center), radius }
             }
             ObjectKind::Box => {
-                let min = self.required(&path, &item, "min", o.min)?;
-                let max = self.required(&path, &item, "max", o.max)?;
+                let min = ctx.required(&path, &item, "min", o.min)?;
+                let max = ctx.required(&path, &item, "max", o.max)?;
                 let mesh =
                     box_mesh(dvec(min), dvec(max)).map_err(|p| self.degenerate(&path, &item, p))?;
-                ShapeDesc::Mesh(std::sync::Arc::new(mesh))
+                ShapeDesc::Mesh(Arc::new(mesh))
             }
         };
-        let material = self.required(&path, &item, "material", material)?;
-        self.objects.push(ObjectDesc { name: item, shape, material, world_from_object, world_from_object_end: None });
+        let material = ctx.required(&path, &item, "material", material)?;
+        self.push(item, shape, material, placement, grid);
         Ok(())
     }
 
-    /// One object per OBJ model (tobj splits models at each material change).
+    /// One object per model of the mesh file (an OBJ file has one per material), times the
+    /// copies of `grid`. `material` overrides the MTL materials.
     fn mesh_objects(
         &mut self,
         path: &FieldPath,
         file: &str,
+        smooth: Option<bool>,
         material: Option<u32>,
-        world_from_object: DAffine3,
+        placement: Placement,
+        grid: Option<Grid>,
     ) -> Result<(), SceneError> {
-        let obj_ref = ObjRef {
-            obj: self.base_dir.join(file),
-            scene: self.ctx.file,
-            item: path.to_string(),
-            line: self.ctx.line(&path.key("file")),
-        };
-        let loaded = obj::load(&obj_ref, self.warnings)?;
-        let mut mtl_indices: Vec<Option<u32>> = vec![None; loaded.materials.len()];
-        for model in loaded.models {
+        let mesh_ref = mesh_ref(self.ctx, self.base_dir, path, file);
+        let (key, models) = self.meshes.models(&mesh_ref, smooth, self.warnings)?;
+        for model in models {
             let index = match (material, model.material) {
                 (Some(index), _) => index,
-                (None, Some(m)) => match mtl_indices[m] {
-                    Some(index) => index,
+                (None, Some((m, mtl))) => match self.mtl_materials.get(&(key.clone(), m)) {
+                    Some(&index) => index,
                     None => {
-                        let mtl = &loaded.materials[m];
                         let index = self.add_material(MaterialDesc {
                             name: format!("{file}: {}", mtl.name),
                             albedo: mtl.albedo,
                             emission: mtl.emission,
                             ..Default::default()
                         });
-                        mtl_indices[m] = Some(index);
+                        self.mtl_materials.insert((key.clone(), m), index);
                         index
                     }
                 },
                 (None, None) => self.default_material(),
             };
-            self.objects.push(ObjectDesc {
-                name: format!("{path} ({file}: {})", model.name),
-                shape: ShapeDesc::Mesh(std::sync::Arc::new(model.mesh)),
-                material: index,
-                world_from_object,
-                world_from_object_end: None,
-            });
+            let name = match &model.name {
+                Some(model_name) => format!("{path} ({file}: {model_name})"),
+                None => format!("{path} ({file})"),
+            };
+            self.push(name, ShapeDesc::Mesh(model.mesh), index, placement, grid);
         }
         Ok(())
     }
@@ -314,6 +428,12 @@ impl Builder<'_> {
             LightKind::Quad => {
                 ("quad light", &["type", "corner", "u", "v", "emission", "transform"])
             }
+            LightKind::Directional => ("directional light", &["type", "direction", "irradiance"]),
+            LightKind::Ambient => ("ambient light", &["type", "radiance"]),
+            LightKind::Sphere => {
+                ("sphere light", &["type", "center", "radius", "emission", "transform"])
+            }
+            LightKind::Mesh => ("mesh light", &["type", "file", "emission", "transform"]),
         };
         let item = format!("{path} ({kind})");
         let present = [
@@ -323,38 +443,79 @@ impl Builder<'_> {
             ("u", l.u.is_some()),
             ("v", l.v.is_some()),
             ("emission", l.emission.is_some()),
+            ("direction", l.direction.is_some()),
+            ("irradiance", l.irradiance.is_some()),
+            ("radiance", l.radiance.is_some()),
+            ("center", l.center.is_some()),
+            ("radius", l.radius.is_some()),
+            ("file", l.file.is_some()),
             ("transform", l.transform.is_some()),
         ];
-        self.check_fields(&path, &item, &present, allowed)?;
+        let ctx = self.ctx;
+        ctx.check_fields(&path, &item, &present, allowed)?;
+        let emission = |ctx: &Ctx| -> Result<glam::Vec3, SceneError> {
+            let emission = ctx.required(&path, &item, "emission", l.emission)?;
+            ctx.color(&path.key("emission"), emission, false)
+        };
         match l.kind {
             LightKind::Point => {
-                let position = self.required(&path, &item, "position", l.position)?;
-                let intensity = self.required(&path, &item, "intensity", l.intensity)?;
-                let intensity = self.ctx.color(&path.key("intensity"), intensity, false)?;
+                let position = ctx.required(&path, &item, "position", l.position)?;
+                let intensity = ctx.required(&path, &item, "intensity", l.intensity)?;
+                let intensity = ctx.color(&path.key("intensity"), intensity, false)?;
                 self.lights.push(LightDesc::Point { position: dvec(position), intensity });
             }
+            LightKind::Directional => {
+                let direction = ctx.required(&path, &item, "direction", l.direction)?;
+                let field = path.key("direction");
+                let unit = dvec(direction).try_normalize().ok_or_else(|| {
+                    ctx.out_of_range(&field, fmt_vec(&direction), "a non-zero vector")
+                })?;
+                let irradiance = ctx.required(&path, &item, "irradiance", l.irradiance)?;
+                let irradiance = ctx.color(&path.key("irradiance"), irradiance, false)?;
+                self.lights.push(LightDesc::Directional { direction: unit, irradiance });
+            }
+            LightKind::Ambient => {
+                let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
+                let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
+                self.lights.push(LightDesc::Ambient { radiance });
+            }
             LightKind::Quad => {
-                let corner = self.required(&path, &item, "corner", l.corner)?;
-                let u = self.required(&path, &item, "u", l.u)?;
-                let v = self.required(&path, &item, "v", l.v)?;
-                let emission = self.required(&path, &item, "emission", l.emission)?;
-                let emission = self.ctx.color(&path.key("emission"), emission, false)?;
-                let world_from_object = self.transform(&path, l.transform.as_ref())?;
+                let corner = ctx.required(&path, &item, "corner", l.corner)?;
+                let u = ctx.required(&path, &item, "u", l.u)?;
+                let v = ctx.required(&path, &item, "v", l.v)?;
+                let emission = emission(ctx)?;
+                let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
                 let mesh = quad_mesh(dvec(corner), dvec(u), dvec(v))
                     .map_err(|p| self.degenerate(&path, &item, p))?;
-                let material = self.add_material(MaterialDesc {
-                    name: item.clone(),
-                    albedo: glam::Vec3::ZERO,
-                    emission,
-                    ..Default::default()
-                });
-                self.objects.push(ObjectDesc {
-                    name: item,
-                    shape: ShapeDesc::Mesh(std::sync::Arc::new(mesh)),
-                    material,
-                    world_from_object,
-                    world_from_object_end: None,
-                });
+                let material = self.light_material(&item, emission);
+                let shape = ShapeDesc::Mesh(Arc::new(mesh));
+                self.push(item, shape, material, Placement::fixed(world_from_object), None);
+            }
+            LightKind::Sphere => {
+                let center = ctx.required(&path, &item, "center", l.center)?;
+                let radius = ctx.required(&path, &item, "radius", l.radius)?;
+                let radius = ctx.positive(&path.key("radius"), radius)?;
+                let emission = emission(ctx)?;
+                let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
+                let material = self.light_material(&item, emission);
+                let shape = ShapeDesc::Sphere { center: dvec(center), radius };
+                self.push(item, shape, material, Placement::fixed(world_from_object), None);
+            }
+            LightKind::Mesh => {
+                let file = ctx.required(&path, &item, "file", l.file.as_deref())?;
+                let emission = emission(ctx)?;
+                let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
+                let material = self.light_material(&item, emission);
+                let mesh_ref = mesh_ref(ctx, self.base_dir, &path, file);
+                let (_, models) = self.meshes.models(&mesh_ref, None, self.warnings)?;
+                for model in models {
+                    let name = match &model.name {
+                        Some(model_name) => format!("{item} ({file}: {model_name})"),
+                        None => format!("{item} ({file})"),
+                    };
+                    let shape = ShapeDesc::Mesh(model.mesh);
+                    self.push(name, shape, material, Placement::fixed(world_from_object), None);
+                }
             }
         }
         Ok(())

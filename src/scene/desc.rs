@@ -65,13 +65,22 @@ impl Default for MaterialDesc {
 pub enum SpecularDesc {
     None,
     /// Perfect (or, with roughness, glossy) reflection scaled by `reflectance`.
-    Mirror { reflectance: Vec3 },
+    Mirror {
+        reflectance: Vec3,
+    },
     /// Metal: Fresnel reflectance from the complex index `eta + i·k` (per channel), scaled
     /// by `reflectance`.
-    Conductor { eta: Vec3, k: Vec3, reflectance: Vec3 },
+    Conductor {
+        eta: Vec3,
+        k: Vec3,
+        reflectance: Vec3,
+    },
     /// Glass: Fresnel reflection and refraction with index `ior`; light travelling inside is
     /// attenuated by exp(−absorption · distance) (Beer's law).
-    Dielectric { ior: f32, absorption: Vec3 },
+    Dielectric {
+        ior: f32,
+        absorption: Vec3,
+    },
 }
 
 /// The course's shading terms (CENG795): ambient reflectance and a Blinn-Phong highlight.
@@ -114,7 +123,10 @@ pub enum ShapeDesc {
     /// Shared (`Arc`) so that every placement of one mesh uses the same data: objects whose
     /// meshes are the same `Arc` become instances of one prototype, O(1) memory each.
     Mesh(std::sync::Arc<MeshData>),
-    Sphere { center: DVec3, radius: f64 },
+    Sphere {
+        center: DVec3,
+        radius: f64,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]

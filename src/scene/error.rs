@@ -37,11 +37,12 @@ pub enum SceneError {
     #[error("{}: {field} is {value}, but must be {requirement}{line}", .file.display())]
     OutOfRange { file: PathBuf, field: String, value: String, requirement: String, line: Line },
 
-    /// A field that the object or light type needs is absent.
+    /// A field that the object, light or material type needs is absent.
     #[error("{}: {item} is missing the field `{field}`{line}", .file.display())]
     MissingField { file: PathBuf, item: String, field: String, line: Line },
 
-    /// A field that exists in the format but means nothing for this object or light type.
+    /// A field that exists in the format but means nothing for this object, light or
+    /// material type.
     #[error("{}: {item} does not take the field `{field}` (it takes: {allowed}){line}", .file.display())]
     FieldNotAllowed { file: PathBuf, item: String, field: String, allowed: String, line: Line },
 
@@ -73,6 +74,27 @@ pub enum SceneError {
     /// the MTL file for a bad material; `line` is in that file.
     #[error("{}: {problem}{line}; named by {item} in '{}'", .file.display(), .scene.display())]
     ObjData { file: PathBuf, scene: PathBuf, item: String, problem: String, line: Line },
+
+    /// The PLY file named by a mesh object or light is missing or unreadable.
+    #[error(
+        "PLY file '{}': {error}; named by {item}.file in '{}'{line}",
+        .ply.display(), .scene.display()
+    )]
+    PlyRead { ply: PathBuf, scene: PathBuf, item: String, error: std::io::Error, line: Line },
+
+    /// The PLY data is invalid: bad header, unsupported property type, truncated binary
+    /// data, out-of-range index, non-finite number, no faces. `ply_line` is the line in an
+    /// ASCII PLY file (or its header).
+    #[error(
+        "PLY file '{}'{ply_line}: {problem}; named by {item}.file in '{}'",
+        .ply.display(), .scene.display()
+    )]
+    PlyData { ply: PathBuf, ply_line: Line, scene: PathBuf, item: String, problem: String },
+
+    /// Two fields that exclude each other (`aperture` and `f_number`; a conductor's
+    /// `preset` and `eta`/`k`).
+    #[error("{}: {item} takes `{first}` or `{second}`, not both{line}", .file.display())]
+    Conflict { file: PathBuf, item: String, first: String, second: String, line: Line },
 
     /// A transform list entry without exactly one of scale, rotate, translate, matrix.
     #[error("{}: {field} must have exactly one of the keys scale, rotate, translate, matrix; it has {found}{line}", .file.display())]

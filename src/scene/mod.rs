@@ -10,8 +10,11 @@ pub use desc::*;
 mod camera_settings;
 mod convert;
 mod error;
+mod materials;
+mod mesh_file;
 mod obj;
 mod obj_scan;
+mod ply;
 mod shapes;
 mod source_map;
 mod toml_format;
@@ -19,7 +22,10 @@ mod transform_list;
 mod validate;
 
 pub use camera_settings::MAX_RESOLUTION;
+pub use convert::MAX_REPEAT_COPIES;
 pub use error::{Line, SceneError};
+pub use materials::with_texture_space;
+pub use mesh_file::area_weighted_normals;
 
 use std::path::Path;
 

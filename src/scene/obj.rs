@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 
-/// The mesh object that names the OBJ file, for messages.
+/// The mesh file (OBJ or PLY) and the scene item that names it, for messages.
 pub(crate) struct ObjRef<'a> {
     /// The OBJ path resolved against the scene directory.
     pub obj: PathBuf,

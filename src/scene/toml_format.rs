@@ -31,8 +31,27 @@ pub(crate) struct CameraToml {
     pub up: Option<Vec3>,
     pub vfov: f64,
     pub resolution: [u32; 2],
+    /// Lens diameter (side for a square lens); excludes `f_number`/`focal_length`.
     pub aperture: Option<f64>,
+    /// With `focal_length`: aperture = focal_length / f_number.
+    pub f_number: Option<f64>,
+    pub focal_length: Option<f64>,
+    pub lens: Option<LensToml>,
     pub focus_distance: Option<f64>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum LensToml {
+    Disk,
+    Square,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum IntegratorToml {
+    Path,
+    Whitted,
 }
 
 #[derive(Debug, Deserialize)]
@@ -41,13 +60,73 @@ pub(crate) struct RenderToml {
     pub spp: Option<u32>,
     pub max_depth: Option<u32>,
     pub background: Option<Vec3>,
+    pub light_samples: Option<u32>,
+    pub integrator: Option<IntegratorToml>,
+}
+
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum MaterialKind {
+    #[default]
+    Diffuse,
+    Mirror,
+    Conductor,
+    Dielectric,
+}
+
+/// Named metals for `preset` (conductor materials).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum MetalPreset {
+    Gold,
+    Silver,
+    Copper,
+    #[serde(alias = "aluminum")]
+    Aluminium,
+}
+
+/// A material; like objects, one flat struct whose fields `materials` checks per type.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct MaterialToml {
+    #[serde(rename = "type")]
+    pub kind: Option<MaterialKind>,
+    pub albedo: Option<Vec3>,
+    pub emission: Option<Vec3>,
+    pub reflectance: Option<Vec3>,
+    pub roughness: Option<f64>,
+    pub eta: Option<Vec3>,
+    pub k: Option<Vec3>,
+    pub preset: Option<MetalPreset>,
+    pub ior: Option<f64>,
+    pub absorption: Option<Vec3>,
+    pub texture: Option<TextureToml>,
+    pub phong: Option<PhongToml>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum TextureKind {
+    Checker2d,
+    Checker3d,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct MaterialToml {
-    pub albedo: Option<Vec3>,
-    pub emission: Option<Vec3>,
+pub(crate) struct TextureToml {
+    #[serde(rename = "type")]
+    pub kind: TextureKind,
+    pub scale: f64,
+    pub even: Vec3,
+    pub odd: Vec3,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PhongToml {
+    pub ambient: Option<Vec3>,
+    pub specular: Option<Vec3>,
+    pub exponent: Option<f64>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -73,7 +152,18 @@ pub(crate) struct ObjectToml {
     pub min: Option<Vec3>,
     pub max: Option<Vec3>,
     pub file: Option<String>,
+    pub smooth: Option<bool>,
     pub transform: Option<Vec<TransformEntry>>,
+    pub transform_end: Option<Vec<TransformEntry>>,
+    pub repeat: Option<RepeatToml>,
+}
+
+/// `repeat = { count = [nx, ny, nz], spacing = [dx, dy, dz] }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RepeatToml {
+    pub count: [u32; 3],
+    pub spacing: Vec3,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -81,6 +171,10 @@ pub(crate) struct ObjectToml {
 pub(crate) enum LightKind {
     Point,
     Quad,
+    Directional,
+    Ambient,
+    Sphere,
+    Mesh,
 }
 
 #[derive(Debug, Deserialize)]
@@ -94,6 +188,12 @@ pub(crate) struct LightToml {
     pub u: Option<Vec3>,
     pub v: Option<Vec3>,
     pub emission: Option<Vec3>,
+    pub direction: Option<Vec3>,
+    pub irradiance: Option<Vec3>,
+    pub radiance: Option<Vec3>,
+    pub center: Option<Vec3>,
+    pub radius: Option<f64>,
+    pub file: Option<String>,
     pub transform: Option<Vec<TransformEntry>>,
 }
 

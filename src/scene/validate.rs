@@ -72,4 +72,69 @@ impl Ctx<'_> {
         }
         Ok(DVec3::from_array(value).as_vec3())
     }
+
+    /// A scalar that the renderer keeps in f32: checked to fit.
+    pub(crate) fn f32(&self, path: &FieldPath, value: f64) -> Result<f32, SceneError> {
+        self.require((value as f32).is_finite(), path, value, "small enough for f32")?;
+        Ok(value as f32)
+    }
+
+    /// Rejects fields the type does not take; `present` lists every optional field with
+    /// whether it is set, `allowed` the fields this type takes.
+    pub(crate) fn check_fields(
+        &self,
+        path: &FieldPath,
+        item: &str,
+        present: &[(&str, bool)],
+        allowed: &[&str],
+    ) -> Result<(), SceneError> {
+        let Some((field, _)) = present.iter().find(|(name, set)| *set && !allowed.contains(name))
+        else {
+            return Ok(());
+        };
+        Err(SceneError::FieldNotAllowed {
+            file: self.file.to_path_buf(),
+            item: item.to_owned(),
+            field: (*field).to_owned(),
+            allowed: allowed.join(", "),
+            line: self.line(&path.key(field)),
+        })
+    }
+
+    /// `value`, or a missing-field error for `item` (at the line of `path`, the item).
+    pub(crate) fn required<T>(
+        &self,
+        path: &FieldPath,
+        item: &str,
+        field: &str,
+        value: Option<T>,
+    ) -> Result<T, SceneError> {
+        value.ok_or_else(|| self.missing(path, item, field))
+    }
+
+    pub(crate) fn missing(&self, path: &FieldPath, item: &str, field: &str) -> SceneError {
+        SceneError::MissingField {
+            file: self.file.to_path_buf(),
+            item: item.to_owned(),
+            field: field.to_owned(),
+            line: self.line(path),
+        }
+    }
+
+    /// `first` and `second` were both given; the line is that of `second`.
+    pub(crate) fn conflict(
+        &self,
+        path: &FieldPath,
+        item: &str,
+        first: &str,
+        second: &str,
+    ) -> SceneError {
+        SceneError::Conflict {
+            file: self.file.to_path_buf(),
+            item: item.to_owned(),
+            first: first.to_owned(),
+            second: second.to_owned(),
+            line: self.line(&path.key(second)),
+        }
+    }
 }

@@ -55,7 +55,13 @@ pub mod build {
     use glam::{DAffine3, DVec3, Vec2, Vec3};
     use std::sync::Arc;
 
-    pub fn camera(lookfrom: [f64; 3], lookat: [f64; 3], vfov: f64, width: u32, height: u32) -> CameraDesc {
+    pub fn camera(
+        lookfrom: [f64; 3],
+        lookat: [f64; 3],
+        vfov: f64,
+        width: u32,
+        height: u32,
+    ) -> CameraDesc {
         CameraDesc {
             lookfrom: DVec3::from_array(lookfrom),
             lookat: DVec3::from_array(lookat),
@@ -98,8 +104,19 @@ pub mod build {
         }
     }
 
-    pub fn object(name: &str, shape: ShapeDesc, material: u32, world_from_object: DAffine3) -> ObjectDesc {
-        ObjectDesc { name: name.into(), shape, material, world_from_object, world_from_object_end: None }
+    pub fn object(
+        name: &str,
+        shape: ShapeDesc,
+        material: u32,
+        world_from_object: DAffine3,
+    ) -> ObjectDesc {
+        ObjectDesc {
+            name: name.into(),
+            shape,
+            material,
+            world_from_object,
+            world_from_object_end: None,
+        }
     }
 
     pub fn sphere(radius: f64) -> ShapeDesc {
@@ -122,7 +139,8 @@ pub mod build {
         let positions = (0..8)
             .map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
             .collect();
-        let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+        let quads =
+            [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
         let indices = quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
         Arc::new(MeshData { positions, indices, normals: None, uvs: None })
     }

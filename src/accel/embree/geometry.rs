@@ -3,18 +3,24 @@
 use super::callback_data::CallbackData;
 use super::device::Device;
 use super::ffi;
+use super::scene::CommittedScene;
 use crate::accel::AccelError;
-use glam::Vec3;
+use crate::render_scene::Trs;
+use glam::{Affine3A, Vec3};
 use std::any::Any;
 use std::sync::Arc;
 
 /// A committed Embree geometry. Released on drop; attaching it to a scene hands the scene
-/// its own reference and any callback data (see `Scene::attach`).
+/// its own reference and whatever must outlive it (see `Scene::attach`).
 pub struct Geometry {
     handle: ffi::RTCGeometry,
     device: Arc<Device>,
-    /// What the callbacks of a user geometry read through their user pointer.
-    callback_data: Option<Box<dyn Any + Send + Sync>>,
+    /// What Embree reaches through this geometry and we own: a user geometry's callback
+    /// data (read through its user pointer), or an instance's child scene (whose own
+    /// geometries' callback data its traversal reads).
+    keep_alive: Option<Box<dyn Any + Send + Sync>>,
+    /// Transform or vertex time steps: 1 for static geometry, 2 for a moving instance.
+    time_steps: u32,
 }
 
 /// The callbacks of a user geometry.
@@ -46,7 +52,8 @@ impl Geometry {
             return Err(AccelError::Embree(format!("cannot create a {kind:?} geometry")));
         }
         // Wrapped before checking, so an error still releases the handle.
-        let geometry = Geometry { handle, device: Arc::clone(device), callback_data: None };
+        let geometry =
+            Geometry { handle, device: Arc::clone(device), keep_alive: None, time_steps: 1 };
         device.check()?;
         Ok(geometry)
     }
@@ -93,7 +100,7 @@ impl Geometry {
             ffi::rtcSetGeometryIntersectFunction(h, callbacks.intersect);
             ffi::rtcSetGeometryOccludedFunction(h, callbacks.occluded);
         }
-        geometry.callback_data = Some(Box::new(data));
+        geometry.keep_alive = Some(Box::new(data));
         device.check()?;
         geometry.commit()?;
         Ok(geometry)
@@ -107,9 +114,90 @@ impl Geometry {
         &self.device
     }
 
-    /// Callback data the geometry's owner must keep alive while Embree may call back.
-    pub fn take_callback_data(&mut self) -> Option<Box<dyn Any + Send + Sync>> {
-        self.callback_data.take()
+    /// What the geometry's owner must keep alive while Embree may use the geometry.
+    pub fn take_keep_alive(&mut self) -> Option<Box<dyn Any + Send + Sync>> {
+        self.keep_alive.take()
+    }
+
+    /// How many time steps the geometry was committed with (more than 1: motion blur).
+    pub fn time_steps(&self) -> u32 {
+        self.time_steps
+    }
+
+    /// An instance of `child` fixed at `render_from_object` (one time step).
+    pub fn static_instance(
+        device: &Arc<Device>,
+        child: &Arc<CommittedScene>,
+        render_from_object: &Affine3A,
+    ) -> Result<Geometry, AccelError> {
+        validate_affine(render_from_object).map_err(AccelError::Embree)?;
+        let geometry = Geometry::instance(device, child)?;
+        let m = render_from_object;
+        // Column major 3x4: the three linear columns, then the translation.
+        let columns: [[f32; 3]; 4] = [
+            m.matrix3.x_axis.to_array(),
+            m.matrix3.y_axis.to_array(),
+            m.matrix3.z_axis.to_array(),
+            m.translation.to_array(),
+        ];
+        // SAFETY: a live instance geometry with one time step (the default); Embree copies
+        // the 12 floats `columns` holds in the FLOAT3X4_COLUMN_MAJOR layout during the call.
+        unsafe {
+            ffi::rtcSetGeometryTransform(
+                geometry.handle,
+                0,
+                ffi::RTCFormat::FLOAT3X4_COLUMN_MAJOR,
+                columns.as_ptr().cast(),
+            );
+        }
+        geometry.device.check()?;
+        geometry.commit()?;
+        Ok(geometry)
+    }
+
+    /// An instance of `child` moving from `start` (time 0) to `end` (time 1): two time steps
+    /// given as quaternion decompositions, which Embree interpolates as [`Trs::lerp`] does
+    /// (see [`quaternion_decomposition`]).
+    pub fn moving_instance(
+        device: &Arc<Device>,
+        child: &Arc<CommittedScene>,
+        start: &Trs,
+        end: &Trs,
+    ) -> Result<Geometry, AccelError> {
+        validate_motion(start, end).map_err(AccelError::Embree)?;
+        let mut geometry = Geometry::instance(device, child)?;
+        // SAFETY: a live instance geometry; the time step count is set before any
+        // per-step transform, as Embree requires.
+        unsafe { ffi::rtcSetGeometryTimeStepCount(geometry.handle, 2) };
+        geometry.time_steps = 2;
+        for (step, trs) in [(0, start), (1, end)] {
+            let decomposition = quaternion_decomposition(trs);
+            // SAFETY: a live instance geometry with 2 time steps and `step < 2`; Embree
+            // copies the decomposition during the call.
+            unsafe {
+                ffi::rtcSetGeometryTransformQuaternion(geometry.handle, step, &decomposition);
+            }
+        }
+        geometry.device.check()?;
+        geometry.commit()?;
+        Ok(geometry)
+    }
+
+    /// An instance geometry of `child`, transform not yet set. The geometry keeps `child`
+    /// alive: Embree keeps its own reference to the Embree scene, but the callback data of
+    /// the child's user geometries is ours.
+    fn instance(device: &Arc<Device>, child: &Arc<CommittedScene>) -> Result<Geometry, AccelError> {
+        if !Arc::ptr_eq(child.device(), device) {
+            return Err(AccelError::Embree(
+                "instance and instanced scene belong to different devices".into(),
+            ));
+        }
+        let mut geometry = Geometry::new(device, ffi::RTCGeometryType::INSTANCE)?;
+        // SAFETY: a live instance geometry and a live, committed scene of the same device.
+        unsafe { ffi::rtcSetGeometryInstancedScene(geometry.handle, child.handle()) };
+        geometry.keep_alive = Some(Box::new(Arc::clone(child)));
+        device.check()?;
+        Ok(geometry)
     }
 
     /// Fills a new Embree-allocated buffer (Embree pads it, so its SIMD loads past the last
@@ -157,7 +245,7 @@ impl Drop for Geometry {
 }
 
 /// Problems Embree would not report (it would read out of bounds or build nothing).
-fn validate_mesh(positions: &[Vec3], indices: &[[u32; 3]]) -> Result<(), String> {
+pub(super) fn validate_mesh(positions: &[Vec3], indices: &[[u32; 3]]) -> Result<(), String> {
     if indices.is_empty() {
         return Err("the mesh has no triangles".into());
     }
@@ -174,6 +262,64 @@ fn validate_mesh(positions: &[Vec3], indices: &[[u32; 3]]) -> Result<(), String>
                 "triangle {t} refers to vertex {bad}, but the mesh has {n} vertices"
             ));
         }
+    }
+    Ok(())
+}
+
+/// `trs` as Embree's quaternion decomposition. Embree's transform is `T · R · S` with `S`
+/// upper triangular (scale on the diagonal, skew above it, a "shift" column), `R` the
+/// rotation of the normalised quaternion `r + i·i + j·j + k·k` (`r` the real part), and `T`
+/// the translation: with no skew and no shift that is `Trs::to_affine`. Between time steps
+/// Embree lerps the scale, skew, shift and translation and slerps the quaternion along the
+/// shorter arc (flipping one end when their dot product is negative), as `Trs::lerp` does
+/// with glam's `Quat::slerp`; only its `acos`/`sincos` are fast approximations.
+pub(super) fn quaternion_decomposition(trs: &Trs) -> ffi::RTCQuaternionDecomposition {
+    let (s, q, t) = (trs.scale, trs.rotation, trs.translation);
+    ffi::RTCQuaternionDecomposition {
+        scale_x: s.x,
+        scale_y: s.y,
+        scale_z: s.z,
+        skew_xy: 0.0,
+        skew_xz: 0.0,
+        skew_yz: 0.0,
+        shift_x: 0.0,
+        shift_y: 0.0,
+        shift_z: 0.0,
+        quaternion_r: q.w,
+        quaternion_i: q.x,
+        quaternion_j: q.y,
+        quaternion_k: q.z,
+        translation_x: t.x,
+        translation_y: t.y,
+        translation_z: t.z,
+    }
+}
+
+/// Embree inverts instance transforms without checking: a singular or non-finite one would
+/// send NaN rays into the child scene.
+fn validate_affine(m: &Affine3A) -> Result<(), String> {
+    let inverse = m.inverse();
+    if !m.is_finite() || m.matrix3.determinant() == 0.0 || !inverse.is_finite() {
+        return Err(format!("the instance transform is singular or not finite: {m:?}"));
+    }
+    Ok(())
+}
+
+/// Also refuses a scale component that is zero or changes sign over the shutter interval:
+/// the interpolated transform would be singular at some time.
+fn validate_motion(start: &Trs, end: &Trs) -> Result<(), String> {
+    for (when, trs) in [("start", start), ("end", end)] {
+        let finite = trs.translation.is_finite() && trs.scale.is_finite();
+        if !finite || !trs.rotation.is_finite() || trs.rotation.length_squared() == 0.0 {
+            return Err(format!("the motion's {when} transform is not finite: {trs:?}"));
+        }
+    }
+    if (start.scale * end.scale).cmple(Vec3::ZERO).any() {
+        return Err(format!(
+            "the motion's scale is zero or changes sign (from {} to {}): the transform \
+             would be singular",
+            start.scale, end.scale
+        ));
     }
     Ok(())
 }

@@ -1,6 +1,8 @@
 //! Embree backend. Layers, bottom up: `ffi` (bindings), `compat` (Embree 3 vs 4),
 //! `callback_data`/`device`/`geometry`/`scene` (safe RAII wrappers), `ray`/`rayn` (ray
-//! struct conversions), `sphere` (user geometry), `backend` (the `Accel` impl).
+//! struct conversions), `sphere` and `user_triangles` (user geometry; the latter only in
+//! counting mode), `backend` (the `Accel` impl: baked geometry in the top scene, one shared
+//! child scene per instanced prototype, static and moving instances of it).
 //!
 //! This is the only module of the crate allowed `unsafe`; every block says why it is sound.
 #![allow(unsafe_code)]
@@ -9,14 +11,19 @@
 mod backend;
 mod callback_data;
 mod compat;
+#[cfg(test)]
+mod counting_tests;
 mod device;
 mod ffi;
 mod geometry;
+#[cfg(test)]
+mod instance_tests;
 mod ray;
 mod rayn;
 mod scene;
 mod sphere;
 #[cfg(test)]
 mod tests;
+mod user_triangles;
 
 pub use backend::EmbreeAccel;

@@ -4,6 +4,7 @@ use super::device::Device;
 use super::geometry::Geometry;
 use super::{compat, ffi, ray};
 use crate::accel::{AccelError, Hit, Ray};
+use crate::stats::TraversalCounters;
 use std::any::Any;
 use std::sync::Arc;
 
@@ -11,9 +12,12 @@ use std::sync::Arc;
 pub struct Scene {
     handle: ffi::RTCScene,
     device: Arc<Device>,
-    /// Data the attached geometries' callbacks read. Freed after the Embree scene is
-    /// released (fields drop after `Drop::drop`), so no callback can outlive it.
-    callback_data: Vec<Box<dyn Any + Send + Sync>>,
+    /// What the attached geometries need alive (their callback data, instanced child
+    /// scenes; see `Geometry::take_keep_alive`). Freed after the Embree scene is released
+    /// (fields drop after `Drop::drop`), so no callback or traversal can outlive it.
+    keep_alive: Vec<Box<dyn Any + Send + Sync>>,
+    /// Attached geometries with more than one time step.
+    motion_geometries: usize,
 }
 
 impl Scene {
@@ -29,7 +33,12 @@ impl Scene {
             return Err(AccelError::Embree("cannot create a scene".into()));
         }
         // Wrapped before anything can fail, so an error still releases the handle.
-        let scene = Scene { handle, device: Arc::clone(device), callback_data: Vec::new() };
+        let scene = Scene {
+            handle,
+            device: Arc::clone(device),
+            keep_alive: Vec::new(),
+            motion_geometries: 0,
+        };
         // SAFETY: `handle` is a live scene.
         unsafe {
             ffi::rtcSetSceneBuildQuality(handle, quality);
@@ -50,15 +59,18 @@ impl Scene {
         // own reference to the geometry; ours is released when `geometry` drops below.
         unsafe { ffi::rtcAttachGeometryByID(self.handle, geometry.handle(), id) };
         // Kept even if attaching failed: harmless, and never too short-lived.
-        self.callback_data.extend(geometry.take_callback_data());
+        self.keep_alive.extend(geometry.take_keep_alive());
+        if geometry.time_steps() > 1 {
+            self.motion_geometries += 1;
+        }
         drop(geometry);
         self.device.check()
     }
 
     /// Builds the acceleration structure. The result can no longer be modified.
     pub fn commit(self) -> Result<CommittedScene, AccelError> {
-        // SAFETY: `self.handle` is a live scene; every attached geometry is committed and
-        // its callback data is owned by `self`.
+        // SAFETY: `self.handle` is a live scene; every attached geometry is committed (an
+        // instance's child scene too) and what it needs alive is owned by `self`.
         unsafe { ffi::rtcCommitScene(self.handle) };
         self.device.check()?;
         Ok(CommittedScene { scene: self })
@@ -80,32 +92,51 @@ pub struct CommittedScene {
 
 // SAFETY: after `rtcCommitScene`, Embree scenes are safe to query concurrently from any
 // thread (rtcIntersect/rtcOccluded are documented thread-safe on a committed scene), and
-// `CommittedScene` offers no way to modify the scene. The callback data is `Send + Sync`.
+// `CommittedScene` offers no way to modify the scene (its handle is only given to
+// `rtcSetGeometryInstancedScene`, which reads it). What it keeps alive is `Send + Sync`.
 unsafe impl Send for CommittedScene {}
 // SAFETY: as above.
 unsafe impl Sync for CommittedScene {}
 
 impl CommittedScene {
+    pub fn handle(&self) -> ffi::RTCScene {
+        self.scene.handle
+    }
+
+    pub fn device(&self) -> &Arc<Device> {
+        &self.scene.device
+    }
+
+    /// Geometries attached to this scene with more than one time step (child scenes of
+    /// instances not included).
+    pub fn motion_geometries(&self) -> usize {
+        self.scene.motion_geometries
+    }
+
     /// Closest hit with `tmin <= t <= tmax`. Rays Embree would reject are a miss.
-    pub fn intersect(&self, r: &Ray) -> Option<Hit> {
+    ///
+    /// With `counters`, user-geometry callbacks of counting geometries add their primitive
+    /// tests to it (see `compat::count_prim_tests`); `None` costs nothing.
+    pub fn intersect(&self, r: &Ray, counters: Option<&mut TraversalCounters>) -> Option<Hit> {
         if !embree_accepts(r) {
             return None;
         }
         let mut rayhit = ray::to_rtc_ray_hit(r);
         // SAFETY: the scene is live and committed; the ray passed `embree_accepts`, so
         // Debian's assertion-enabled Embree will not abort on it.
-        unsafe { compat::intersect1(self.scene.handle, &mut rayhit) };
+        unsafe { compat::intersect1(self.scene.handle, &mut rayhit, counters) };
         ray::from_rtc_ray_hit(&rayhit)
     }
 
     /// Whether anything lies on the ray within `[tmin, tmax]`. Invalid rays are unoccluded.
-    pub fn occluded(&self, r: &Ray) -> bool {
+    /// `counters` as for [`CommittedScene::intersect`].
+    pub fn occluded(&self, r: &Ray, counters: Option<&mut TraversalCounters>) -> bool {
         if !embree_accepts(r) {
             return false;
         }
         let mut rtc_ray = ray::to_rtc_ray(r);
         // SAFETY: as in `intersect`.
-        unsafe { compat::occluded1(self.scene.handle, &mut rtc_ray) };
+        unsafe { compat::occluded1(self.scene.handle, &mut rtc_ray, counters) };
         rtc_ray.tfar == f32::NEG_INFINITY
     }
 }

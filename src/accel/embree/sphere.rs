@@ -3,6 +3,9 @@
 //!
 //! The callbacks are `extern "C"`: unwinding out of them would abort, so nothing in them
 //! can panic (plain float arithmetic and raw-pointer reads, no indexing or unwraps).
+//!
+//! Each call tests every valid lane once and counts those tests in the query's counters
+//! when the query counts (`compat::count_prim_tests`; a no-op in normal mode).
 
 use super::callback_data::CallbackData;
 use super::compat;
@@ -56,11 +59,13 @@ unsafe extern "C" fn intersect(args: *const ffi::RTCIntersectFunctionNArguments)
     // SAFETY: `context` is the pointer Embree passed to this callback.
     let inst_id = unsafe { compat::instance_id(args.context) };
     let n = args.N as usize;
+    let mut tests = 0;
     for i in 0..n {
         // SAFETY: `valid` has `N` entries and `i < N`.
         if unsafe { *args.valid.add(i) } == 0 {
             continue;
         }
+        tests += 1;
         // SAFETY: `rayhit` is an `RTCRayHitN` of width `N`, ours for the call, and `i < N`.
         let lane = unsafe { RayHitLane::new(args.rayhit.cast(), n, i) };
         let ray = lane.ray();
@@ -82,17 +87,21 @@ unsafe extern "C" fn intersect(args: *const ffi::RTCIntersectFunctionNArguments)
             });
         }
     }
+    // SAFETY: `context` is the pointer Embree passed to this callback.
+    unsafe { compat::count_prim_tests(args.context, tests) };
 }
 
 unsafe extern "C" fn occluded(args: *const ffi::RTCOccludedFunctionNArguments) {
     // SAFETY: as in `intersect`.
     let (args, sphere) = unsafe { (&*args, &*(*args).geometryUserPtr.cast::<Sphere>()) };
     let n = args.N as usize;
+    let mut tests = 0;
     for i in 0..n {
         // SAFETY: `valid` has `N` entries and `i < N`.
         if unsafe { *args.valid.add(i) } == 0 {
             continue;
         }
+        tests += 1;
         // SAFETY: `ray` is an `RTCRayN` of width `N`, ours for the call, and `i < N`.
         let ray = unsafe { RayLane::new(args.ray.cast(), n, i) };
         let (origin, dir) = (ray.origin(), ray.dir());
@@ -103,4 +112,6 @@ unsafe extern "C" fn occluded(args: *const ffi::RTCOccludedFunctionNArguments) {
             ray.set_tfar(f32::NEG_INFINITY);
         }
     }
+    // SAFETY: `context` is the pointer Embree passed to this callback.
+    unsafe { compat::count_prim_tests(args.context, tests) };
 }

@@ -6,14 +6,16 @@ use super::ffi;
 use super::geometry::Geometry;
 use super::scene::Scene;
 use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind, Hit, Ray};
+use crate::camera::Camera;
 use crate::geometry::{intersect_sphere, intersect_triangle};
-use crate::render_scene::{self, RenderScene, Shape, Sphere, TriangleMesh};
+use crate::material::Material;
+use crate::render_scene::{self, RenderScene, Sphere, TriangleMesh};
 use crate::stats::TraversalCounters;
 use glam::Vec3;
 use std::sync::Arc;
 
 /// Counter-based generator (splitmix64 over a counter): deterministic, no dependency.
-struct Rng(u64);
+pub(super) struct Rng(pub(super) u64);
 
 impl Rng {
     fn next_u64(&mut self) -> u64 {
@@ -25,40 +27,51 @@ impl Rng {
     }
 
     /// Uniform in [lo, hi).
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+    pub(super) fn range(&mut self, lo: f32, hi: f32) -> f32 {
         let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
         lo + (hi - lo) * unit
     }
 
-    fn vec3(&mut self, lo: f32, hi: f32) -> Vec3 {
+    pub(super) fn vec3(&mut self, lo: f32, hi: f32) -> Vec3 {
         Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
     }
 }
 
-fn render_scene(shapes: Vec<Shape>) -> RenderScene {
-    RenderScene {
-        camera: Default::default(),
-        shapes,
-        materials: Vec::new(),
-        lights: Default::default(),
-        background: Vec3::ZERO,
+/// A named shape of a test scene: a baked instance of its own prototype.
+#[derive(Clone)]
+pub(super) struct Shape {
+    name: String,
+    geometry: render_scene::Geometry,
+}
+
+/// A scene of baked shapes (`RenderScene::from_baked_shapes`), named as given; every
+/// instance uses material 0.
+pub(super) fn render_scene(shapes: Vec<Shape>) -> RenderScene {
+    let names: Vec<String> = shapes.iter().map(|s| s.name.clone()).collect();
+    let baked = shapes.into_iter().map(|s| (s.geometry, 0)).collect();
+    let mut scene =
+        RenderScene::from_baked_shapes(Camera::default(), baked, vec![Material::default()]);
+    for (i, name) in names.into_iter().enumerate() {
+        scene.prototypes[i].name.clone_from(&name);
+        scene.instances[i].name = name;
     }
+    scene
 }
 
-fn shape(name: &str, geometry: render_scene::Geometry) -> Shape {
-    Shape { geometry, material: 0, name: name.to_string() }
+pub(super) fn shape(name: &str, geometry: render_scene::Geometry) -> Shape {
+    Shape { geometry, name: name.to_string() }
 }
 
-fn mesh(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> render_scene::Geometry {
+pub(super) fn mesh(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> render_scene::Geometry {
     render_scene::Geometry::Triangles(TriangleMesh { positions, indices, normals: None, uvs: None })
 }
 
-fn sphere(center: Vec3, radius: f32) -> render_scene::Geometry {
+pub(super) fn sphere(center: Vec3, radius: f32) -> render_scene::Geometry {
     render_scene::Geometry::Sphere(Sphere { center, radius })
 }
 
 /// Independent small triangles scattered in [-1, 1]^3.
-fn triangle_soup(rng: &mut Rng, count: usize) -> render_scene::Geometry {
+pub(super) fn triangle_soup(rng: &mut Rng, count: usize) -> render_scene::Geometry {
     let mut positions = Vec::new();
     for _ in 0..count {
         let c = rng.vec3(-1.0, 1.0);
@@ -69,7 +82,7 @@ fn triangle_soup(rng: &mut Rng, count: usize) -> render_scene::Geometry {
 }
 
 /// A bumpy height field: triangles share edges, so some rays hit exactly between two.
-fn grid(n: u32) -> render_scene::Geometry {
+pub(super) fn grid(n: u32) -> render_scene::Geometry {
     let mut positions = Vec::new();
     for j in 0..=n {
         for i in 0..=n {
@@ -89,7 +102,7 @@ fn grid(n: u32) -> render_scene::Geometry {
 }
 
 /// Meshes and spheres interleaved, so geometry ids of both kinds are exercised.
-fn random_scene() -> RenderScene {
+pub(super) fn random_scene() -> RenderScene {
     let mut rng = Rng(7);
     render_scene(vec![
         shape("soup", triangle_soup(&mut rng, 300)),
@@ -100,7 +113,7 @@ fn random_scene() -> RenderScene {
     ])
 }
 
-fn random_rays(count: usize) -> Vec<Ray> {
+pub(super) fn random_rays(count: usize) -> Vec<Ray> {
     let mut rng = Rng(99);
     (0..count)
         .map(|k| {
@@ -118,12 +131,14 @@ fn random_rays(count: usize) -> Vec<Ray> {
         .collect()
 }
 
-/// The reference: every primitive tested, closest hit kept (first one on exact ties).
-fn brute_force(scene: &RenderScene, ray: &Ray) -> Option<Hit> {
+/// The reference: every primitive tested, closest hit kept (first one on exact ties). For
+/// scenes of baked shapes only.
+pub(super) fn brute_force(scene: &RenderScene, ray: &Ray) -> Option<Hit> {
     let mut best: Option<Hit> = None;
-    for (g, s) in scene.shapes.iter().enumerate() {
+    for (g, instance) in scene.instances.iter().enumerate() {
+        assert!(matches!(instance.placement, render_scene::Placement::Baked { .. }));
         let (o, d, tmin) = (ray.origin, ray.dir, ray.tmin);
-        match &s.geometry {
+        match &scene.prototype_of(g as u32).geometry {
             render_scene::Geometry::Triangles(m) => {
                 for p in 0..m.indices.len() as u32 {
                     let tmax = best.map_or(ray.tmax, |h| h.t);
@@ -145,28 +160,38 @@ fn brute_force(scene: &RenderScene, ray: &Ray) -> Option<Hit> {
     best
 }
 
-fn is_sphere(scene: &RenderScene, hit: &Hit) -> bool {
-    matches!(scene.shapes[hit.geom_id as usize].geometry, render_scene::Geometry::Sphere(_))
+pub(super) fn is_sphere(scene: &RenderScene, hit: &Hit) -> bool {
+    matches!(scene.prototype_of(hit.geom_id).geometry, render_scene::Geometry::Sphere(_))
 }
 
-fn close(a: f32, b: f32) -> bool {
+pub(super) fn close(a: f32, b: f32) -> bool {
     (a - b).abs() <= 1e-4 * b.abs().max(1e-2)
 }
 
 /// A disagreement the two methods may legitimately have: a triangle hit within rounding of
 /// an edge (the neighbour may claim it), two hits at the same distance, or a hit within
 /// rounding of the ray's ends.
-fn is_graze(scene: &RenderScene, ray: &Ray, a: Option<Hit>, b: Option<Hit>) -> bool {
+pub(super) fn is_graze(scene: &RenderScene, ray: &Ray, a: Option<Hit>, b: Option<Hit>) -> bool {
     let near_edge = |h: &Hit| !is_sphere(scene, h) && h.u.min(h.v).min(1.0 - h.u - h.v) < 1e-3;
     let near_end = |h: &Hit| close(h.t, ray.tmin) || close(h.t, ray.tmax);
     let same_t = matches!((a, b), (Some(a), Some(b)) if close(a.t, b.t));
     same_t || [a, b].iter().flatten().any(|h| near_edge(h) || near_end(h))
 }
 
+/// Both modes: normal (Embree's triangles) and counting (user-geometry triangles).
+const MODES: [AccelOptions; 2] =
+    [AccelOptions { count_traversal: false }, AccelOptions { count_traversal: true }];
+
 #[test]
 fn closest_hits_match_brute_force() {
+    for options in &MODES {
+        closest_hits_match_brute_force_in(options);
+    }
+}
+
+fn closest_hits_match_brute_force_in(options: &AccelOptions) {
     let scene = random_scene();
-    let accel = EmbreeAccel::build(&scene, &AccelOptions::default()).unwrap();
+    let accel = EmbreeAccel::build(&scene, options).unwrap();
     let rays = random_rays(4000);
     let mut counters = TraversalCounters::default();
     let (mut hits, mut grazes, mut sphere_hits) = (0, 0, 0);
@@ -180,6 +205,9 @@ fn closest_hits_match_brute_force() {
                     // Both call `intersect_sphere` with the same ray: identical bits.
                     assert_eq!(e.t.to_bits(), b.t.to_bits(), "ray {k}: sphere t {e:?} vs {b:?}");
                     sphere_hits += 1;
+                } else if options.count_traversal {
+                    // Counting mode runs `intersect_triangle` too: identical bits.
+                    assert_eq!(e, b, "ray {k}");
                 } else {
                     assert!(close(e.t, b.t), "ray {k}: t {e:?} vs {b:?}");
                     assert!((e.u - b.u).abs() < 1e-3 && (e.v - b.v).abs() < 1e-3, "ray {k}");
@@ -196,8 +224,14 @@ fn closest_hits_match_brute_force() {
 
 #[test]
 fn occlusion_matches_brute_force() {
+    for options in &MODES {
+        occlusion_matches_brute_force_in(options);
+    }
+}
+
+fn occlusion_matches_brute_force_in(options: &AccelOptions) {
     let scene = random_scene();
-    let accel = EmbreeAccel::build(&scene, &AccelOptions::default()).unwrap();
+    let accel = EmbreeAccel::build(&scene, options).unwrap();
     let rays = random_rays(4000);
     let mut counters = TraversalCounters::default();
     let (mut occluded, mut grazes) = (0, 0);
@@ -288,7 +322,7 @@ fn bad_meshes_are_errors_naming_the_shape() {
     let tri = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
     let ok = shape("fine", mesh(tri.clone(), vec![[0, 1, 2]]));
     let msg = build_error(vec![ok.clone(), shape("broken", mesh(tri.clone(), vec![[0, 1, 3]]))]);
-    assert!(msg.contains("shape 1 ('broken')") && msg.contains("vertex 3"), "{msg}");
+    assert!(msg.contains("instance 1 ('broken')") && msg.contains("vertex 3"), "{msg}");
     let msg = build_error(vec![shape("hollow", mesh(tri.clone(), Vec::new()))]);
     assert!(msg.contains("'hollow'") && msg.contains("no triangles"), "{msg}");
     let nan_vertex = vec![Vec3::ZERO, Vec3::X, Vec3::new(0.0, f32::NAN, 0.0)];

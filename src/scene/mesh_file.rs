@@ -1,0 +1,206 @@
+//! Mesh files (OBJ or PLY, chosen by extension) for mesh objects and mesh lights. Each file
+//! is loaded once per scene load, keyed by its resolved path, so that every object naming it
+//! gets the same `Arc<MeshData>` and becomes an instance of one prototype. The `smooth`
+//! variant of a model (normals computed, or dropped) is also made once.
+
+use super::desc::MeshData;
+use super::error::SceneError;
+use super::obj::{self, ObjMaterial, ObjRef};
+use super::ply;
+use glam::DVec3;
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// One model of a mesh file, with the data an object needs.
+pub(crate) struct Model {
+    /// The OBJ model name; `None` for a PLY file (one model).
+    pub name: Option<String>,
+    pub mesh: Arc<MeshData>,
+    /// The MTL material: its index in the file (to share the scene material made from it)
+    /// and its colours.
+    pub material: Option<(usize, ObjMaterial)>,
+}
+
+struct CachedModel {
+    name: Option<String>,
+    material: Option<usize>,
+    /// As in the file.
+    mesh: Arc<MeshData>,
+    /// With the shading normals toggled: computed when the file has none, dropped when it
+    /// has some. Made on first use.
+    toggled: Option<Arc<MeshData>>,
+}
+
+impl CachedModel {
+    /// `smooth`: `None` keeps what the file has, `Some(true)` gives normals (the file's, or
+    /// area-weighted ones), `Some(false)` none (flat shading).
+    fn mesh(&mut self, smooth: Option<bool>) -> Arc<MeshData> {
+        let has_normals = self.mesh.normals.is_some();
+        if smooth.is_none_or(|smooth| smooth == has_normals) {
+            return Arc::clone(&self.mesh);
+        }
+        let toggled = self.toggled.get_or_insert_with(|| {
+            let mut mesh = MeshData::clone(&self.mesh);
+            mesh.normals = if has_normals {
+                None
+            } else {
+                Some(area_weighted_normals(&mesh.positions, &mesh.indices))
+            };
+            Arc::new(mesh)
+        });
+        Arc::clone(toggled)
+    }
+}
+
+struct CachedFile {
+    models: Vec<CachedModel>,
+    materials: Vec<ObjMaterial>,
+}
+
+/// The mesh files loaded so far in one scene load.
+#[derive(Default)]
+pub(crate) struct MeshCache {
+    files: HashMap<PathBuf, CachedFile>,
+}
+
+impl MeshCache {
+    /// The models of the file `mesh_ref` names, loading it on first use. Also returns the
+    /// cache key (the canonical path), which identifies the file's MTL materials.
+    pub(crate) fn models(
+        &mut self,
+        mesh_ref: &ObjRef,
+        smooth: Option<bool>,
+        warnings: &mut Vec<String>,
+    ) -> Result<(PathBuf, Vec<Model>), SceneError> {
+        let key = std::fs::canonicalize(&mesh_ref.obj).unwrap_or_else(|_| mesh_ref.obj.clone());
+        let file = match self.files.entry(key.clone()) {
+            std::collections::hash_map::Entry::Occupied(entry) => entry.into_mut(),
+            std::collections::hash_map::Entry::Vacant(entry) => {
+                entry.insert(load_file(mesh_ref, warnings)?)
+            }
+        };
+        let models = file
+            .models
+            .iter_mut()
+            .map(|model| Model {
+                name: model.name.clone(),
+                mesh: model.mesh(smooth),
+                material: model.material.map(|m| (m, file.materials[m].clone())),
+            })
+            .collect();
+        Ok((key, models))
+    }
+}
+
+fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile, SceneError> {
+    let path = &mesh_ref.obj;
+    let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("obj") => {
+            let loaded = obj::load(mesh_ref, warnings)?;
+            let models = loaded
+                .models
+                .into_iter()
+                .map(|model| CachedModel {
+                    name: Some(model.name),
+                    material: model.material,
+                    mesh: Arc::new(model.mesh),
+                    toggled: None,
+                })
+                .collect();
+            Ok(CachedFile { models, materials: loaded.materials })
+        }
+        Some("ply") => {
+            let bytes = std::fs::read(path).map_err(|error| SceneError::PlyRead {
+                ply: path.clone(),
+                scene: mesh_ref.scene.to_path_buf(),
+                item: mesh_ref.item.clone(),
+                error,
+                line: mesh_ref.line,
+            })?;
+            let mesh = ply::parse(&bytes).map_err(|problem| SceneError::PlyData {
+                ply: path.clone(),
+                ply_line: super::error::Line(problem.line),
+                scene: mesh_ref.scene.to_path_buf(),
+                item: mesh_ref.item.clone(),
+                problem: problem.message,
+            })?;
+            let model =
+                CachedModel { name: None, material: None, mesh: Arc::new(mesh), toggled: None };
+            Ok(CachedFile { models: vec![model], materials: Vec::new() })
+        }
+        _ => Err(SceneError::OutOfRange {
+            file: mesh_ref.scene.to_path_buf(),
+            field: format!("{}.file", mesh_ref.item),
+            value: format!("'{}'", path.display()),
+            requirement: "an OBJ (.obj) or PLY (.ply) file".to_owned(),
+            line: mesh_ref.line,
+        }),
+    }
+}
+
+/// Area-weighted vertex normals in one pass: each triangle adds its unnormalised normal
+/// (b − a) × (c − a), whose length is twice its area, to its three vertices; the sums are
+/// then normalised. A vertex whose sum is zero (only degenerate triangles, or none) gets the
+/// zero vector, for which the renderer uses the geometric normal.
+pub fn area_weighted_normals(positions: &[DVec3], indices: &[[u32; 3]]) -> Vec<DVec3> {
+    let mut sums = vec![DVec3::ZERO; positions.len()];
+    for &[a, b, c] in indices {
+        let [pa, pb, pc] = [a, b, c].map(|i| positions[i as usize]);
+        let normal = (pb - pa).cross(pc - pa);
+        if normal.is_finite() {
+            for i in [a, b, c] {
+                sums[i as usize] += normal;
+            }
+        }
+    }
+    sums.into_iter().map(DVec3::normalize_or_zero).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::shapes::box_mesh;
+
+    fn close(a: DVec3, b: DVec3) -> bool {
+        (a - b).length() < 1e-12
+    }
+
+    #[test]
+    fn box_corner_normals_are_area_weighted() {
+        let mesh = box_mesh(DVec3::ZERO, DVec3::ONE).unwrap();
+        let normals = area_weighted_normals(&mesh.positions, &mesh.indices);
+        // Vertices 0 and 7 are in both triangles of each of their three faces.
+        assert!(close(normals[0], -DVec3::ONE / 3f64.sqrt()), "{}", normals[0]);
+        assert!(close(normals[7], DVec3::ONE / 3f64.sqrt()), "{}", normals[7]);
+        // Vertex 1 (max x): both +x triangles, one of the −y face, one of the −z face.
+        assert!(close(normals[1], DVec3::new(2.0, -1.0, -1.0) / 6f64.sqrt()), "{}", normals[1]);
+    }
+
+    #[test]
+    fn degenerate_and_unused_vertices_get_zero() {
+        let positions = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::X * 2.0, DVec3::Z];
+        // A proper triangle, and a degenerate one (0, 1, 3 are collinear).
+        let normals = area_weighted_normals(&positions, &[[0, 1, 2], [0, 1, 3]]);
+        assert_eq!(normals[0], DVec3::Z);
+        assert_eq!(normals[3], DVec3::ZERO);
+        assert_eq!(normals[4], DVec3::ZERO);
+    }
+
+    #[test]
+    fn smooth_variants_are_made_once() {
+        let mut model = CachedModel {
+            name: None,
+            material: None,
+            mesh: Arc::new(box_mesh(DVec3::ZERO, DVec3::ONE).unwrap()),
+            toggled: None,
+        };
+        let file = model.mesh(None);
+        assert!(Arc::ptr_eq(&file, &model.mesh(Some(false))));
+        let smooth = model.mesh(Some(true));
+        assert!(smooth.normals.is_some());
+        assert!(Arc::ptr_eq(&smooth, &model.mesh(Some(true))));
+        assert!(!Arc::ptr_eq(&smooth, &file));
+    }
+}
