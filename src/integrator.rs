@@ -175,7 +175,8 @@ impl<'a> PathTracer<'a> {
                 let to_light = sample.point - p;
                 let dist2 = to_light.length_squared();
                 let wi = to_light / dist2.sqrt();
-                let cos_light = sample.normal.dot(wi).abs();
+                // Emitters are one-sided: they shine on the side their normal points to.
+                let cos_light = -sample.normal.dot(wi);
                 if !faces(wi) || !(cos_light > 0.0) || !(dist2 > 0.0) {
                     continue;
                 }
@@ -253,7 +254,7 @@ impl<'a> PathTracer<'a> {
                 result.depth = Some(hit.t);
                 result.normal = Some(self.scene.camera.world_from_render * si.shading_normal);
             }
-            if material.is_emissive() {
+            if material.is_emissive() && si.front_face {
                 let weight = if specular_bounce {
                     1.0
                 } else {

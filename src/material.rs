@@ -51,7 +51,8 @@ impl Texture {
 pub struct Material {
     /// Lambertian reflectance (replaced by `texture` where there is one).
     pub albedo: Vec3,
-    /// Emitted radiance (two-sided).
+    /// Emitted radiance, on the side the surface normal points to (a quad's u × v, a
+    /// mesh's counter-clockwise winding, a sphere's outside).
     pub emission: Vec3,
     pub specular: Specular,
     /// GGX α of the specular lobe.

@@ -106,7 +106,7 @@ impl<'a> WhittedTracer<'a> {
                 let to_light = sample.point - si.surface.point;
                 let dist2 = to_light.length_squared();
                 let wi = to_light / dist2.sqrt();
-                let cos_light = sample.normal.dot(wi).abs();
+                let cos_light = (-sample.normal.dot(wi)).max(0.0);
                 let target = SurfacePoint {
                     point: sample.point,
                     error: sample.error,
@@ -150,7 +150,7 @@ impl<'a> WhittedTracer<'a> {
         }
         let material = &self.scene.materials[si.material as usize];
         let wo = -ray.dir.normalize();
-        let mut color = material.emission;
+        let mut color = if si.front_face { material.emission } else { Vec3::ZERO };
         if !material.is_dielectric() {
             color += self.local_shading(&si, wo, ray.time, stream, stats);
         }

@@ -36,7 +36,7 @@ pub struct MaterialDesc {
     pub name: String,
     /// Diffuse reflectance in [0, 1].
     pub albedo: Vec3,
-    /// Emitted radiance (two-sided).
+    /// Emitted radiance, on the side the surface normal points to.
     pub emission: Vec3,
     pub specular: SpecularDesc,
     /// GGX roughness α of the specular part (0 = perfectly smooth).
