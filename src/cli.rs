@@ -50,6 +50,18 @@ pub enum BenchCommand {
     /// Throughput of each backend on scenes from a dozen to a million triangles: build time,
     /// primary and diffuse Mrays/s, samples/s on 1 and 2 threads, memory.
     Speed(SpeedArgs),
+    /// What motion-blur and lens support cost a static scene: normal vs all effects forced.
+    Effects(EffectsArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct EffectsArgs {
+    /// Scene file; the built-in Cornell box if omitted.
+    pub scene: Option<PathBuf>,
+    #[arg(long, default_value_t = 5)]
+    pub runs: usize,
+    #[arg(long, default_value_t = 16)]
+    pub spp: u32,
 }
 
 #[derive(Args, Debug)]

@@ -1,7 +1,8 @@
 //! What each subcommand does.
 
 use crate::cli::{
-    AccuracyArgs, BenchArgs, BenchCommand, Cli, Command, RenderArgs, SpeedArgs, load_scene,
+    AccuracyArgs, BenchArgs, BenchCommand, Cli, Command, EffectsArgs, RenderArgs, SpeedArgs,
+    load_scene,
 };
 use anyhow::{Context, Result};
 use embray::output::{write_exr, write_png};
@@ -15,6 +16,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Bench(BenchCommand::Spaces(args)) => bench_spaces(&args),
         Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench_speed(&args),
+        Command::Bench(BenchCommand::Effects(args)) => bench_effects(&args),
         Command::Info { scene } => {
             let scene = load_scene(scene.as_deref())?;
             print!("{}", describe(&scene));
@@ -70,6 +72,17 @@ fn bundled_root() -> std::path::PathBuf {
     } else {
         env!("CARGO_MANIFEST_DIR").into()
     }
+}
+
+fn bench_effects(args: &EffectsArgs) -> Result<()> {
+    use embray::bench::effects_cost;
+    anyhow::ensure!(args.spp > 0, "--spp must be at least 1");
+    let scene = load_scene(args.scene.as_deref())?;
+    let mut base = embray::render::RenderOptions::for_scene(&scene);
+    base.spp = args.spp;
+    let rows = effects_cost::measure(&scene, &base, &embray::accel::BackendKind::compiled(), args.runs)?;
+    print!("{}", effects_cost::markdown(&rows));
+    Ok(())
 }
 
 fn bench_speed(args: &SpeedArgs) -> Result<()> {
