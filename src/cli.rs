@@ -32,11 +32,77 @@ pub enum Command {
     /// Measure renders over backends, render spaces and offsets.
     #[command(subcommand)]
     Bench(BenchCommand),
-    /// Print what a scene contains.
+    /// Print what a scene contains (for a CENG795 .xml file: each camera's scene).
     Info {
-        /// Scene file (.toml); the built-in Cornell box if omitted.
+        /// Scene file (.toml, or .xml for the CENG795 format); the built-in Cornell box if
+        /// omitted.
         scene: Option<PathBuf>,
     },
+    /// Convert a CENG795 .xml scene to the native TOML format. Meshes are written as OBJ
+    /// files into OUT_meshes/ beside it. A file with several cameras gives one TOML per
+    /// camera, OUT_<image name>.toml, sharing the meshes.
+    Convert(ConvertArgs),
+    /// Compare two images: mean absolute error (in 1/255 units), the fraction of pixels with
+    /// some channel off by more than the tolerance, and optionally a heat map of the
+    /// per-pixel largest channel difference.
+    Compare(CompareArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct ConvertArgs {
+    /// The CENG795 scene (.xml).
+    pub input: PathBuf,
+    /// The TOML file to write.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// First image (e.g. the render).
+    pub a: PathBuf,
+    /// Second image (e.g. the reference).
+    pub b: PathBuf,
+    /// Write a heat map of the per-pixel largest channel difference (PNG): black where
+    /// equal, blue up to the tolerance, red to yellow beyond it.
+    #[arg(long)]
+    pub heatmap: Option<PathBuf>,
+    /// Per-channel tolerance in 1/255 steps.
+    #[arg(long, default_value_t = embray::compare::DEFAULT_TOLERANCE)]
+    pub tolerance: u8,
+}
+
+/// `--tonemap`: a curve, or `auto` (the scene's integrator decides).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum TonemapArg {
+    /// clamp255 for Whitted (CENG795) scenes, aces otherwise.
+    #[default]
+    Auto,
+    /// Clamp to [0, 1], sRGB encoded.
+    None,
+    /// x / (1 + x) per channel, sRGB encoded.
+    Reinhard,
+    /// Narkowicz's ACES fit, sRGB encoded.
+    Aces,
+    /// Values in 0–255 units clamped and rounded, no curve, no sRGB (the CENG795 output).
+    #[value(name = "clamp255")]
+    Clamp255,
+}
+
+impl TonemapArg {
+    /// The curve for a scene rendered with `integrator`.
+    pub fn resolve(self, integrator: embray::scene::IntegratorKind) -> ToneMap {
+        match self {
+            TonemapArg::Auto => match integrator {
+                embray::scene::IntegratorKind::Whitted => ToneMap::Clamp255,
+                embray::scene::IntegratorKind::Path => ToneMap::Aces,
+            },
+            TonemapArg::None => ToneMap::None,
+            TonemapArg::Reinhard => ToneMap::Reinhard,
+            TonemapArg::Aces => ToneMap::Aces,
+            TonemapArg::Clamp255 => ToneMap::Clamp255,
+        }
+    }
 }
 
 #[derive(Subcommand, Debug)]
@@ -127,14 +193,20 @@ pub struct BenchArgs {
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene file (.toml); the built-in Cornell box if omitted.
+    /// Scene file: .toml (native) or .xml (CENG795, every camera rendered to its ImageName
+    /// in --out-dir); the built-in Cornell box if omitted.
     pub scene: Option<PathBuf>,
-    /// EXR output (linear RGB, Z, N.X/N.Y/N.Z).
-    #[arg(short, long, default_value = "render.exr")]
-    pub output: PathBuf,
+    /// EXR output (linear RGB, Z, N.X/N.Y/N.Z) [default: render.exr; for a one-camera .xml
+    /// scene: the ImageName with .exr in --out-dir].
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
     /// PNG output (tone-mapped sRGB); defaults to the EXR path with a .png extension.
     #[arg(long)]
     pub png: Option<PathBuf>,
+    /// Folder for the images of a CENG795 .xml scene: each camera's ImageName (PNG) and an
+    /// EXR with the same stem. Not used with -o.
+    #[arg(long, default_value = ".")]
+    pub out_dir: PathBuf,
     /// Samples per pixel (default: the scene's, else 16).
     #[arg(long)]
     pub spp: Option<u32>,
@@ -158,8 +230,9 @@ pub struct RenderArgs {
     /// Intersection backend.
     #[arg(long, value_enum)]
     pub backend: Option<BackendKind>,
-    #[arg(long, value_enum, default_value_t = ToneMap::Aces)]
-    pub tonemap: ToneMap,
+    /// PNG tone curve.
+    #[arg(long, value_enum, default_value_t = TonemapArg::Auto)]
+    pub tonemap: TonemapArg,
     /// Exposure adjustment in stops, applied before tone mapping (PNG only).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
@@ -201,9 +274,13 @@ fn parse_offset(text: &str) -> Result<DVec3, String> {
     Ok(DVec3::from_array(v))
 }
 
-/// Loads the named scene, or the built-in default.
+/// Loads the named scene, or the built-in default. For a CENG795 .xml file with several
+/// cameras, the first camera's scene.
 pub fn load_scene(path: Option<&Path>) -> Result<SceneDesc> {
     Ok(match path {
+        Some(path) if embray::scene::ceng795::is_ceng795_path(path) => {
+            embray::scene::ceng795::load(path)?.swap_remove(0).scene
+        }
         Some(path) => embray::scene::load(path)?,
         None => embray::scene::load_str(DEFAULT_SCENE, Path::new(DEFAULT_SCENE_NAME))
             .context("the built-in default scene failed to load")?,
@@ -211,8 +288,13 @@ pub fn load_scene(path: Option<&Path>) -> Result<SceneDesc> {
 }
 
 impl RenderArgs {
+    /// The EXR path (`-o`, default render.exr).
+    pub fn output_path(&self) -> PathBuf {
+        self.output.clone().unwrap_or_else(|| PathBuf::from("render.exr"))
+    }
+
     pub fn png_path(&self) -> PathBuf {
-        self.png.clone().unwrap_or_else(|| self.output.with_extension("png"))
+        self.png.clone().unwrap_or_else(|| self.output_path().with_extension("png"))
     }
 
     pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {
@@ -236,7 +318,10 @@ impl RenderArgs {
             bail!("--exposure must be a finite number");
         }
         options.seed = self.seed;
-        options.jitter = !self.no_jitter;
+        // The course samples pixel centres at one sample per pixel: so does a Whitted scene.
+        let centred =
+            scene.settings.integrator == embray::scene::IntegratorKind::Whitted && options.spp == 1;
+        options.jitter = !self.no_jitter && !centred;
         options.render_space = self.render_space;
         options.offset = self.offset.unwrap_or(DVec3::ZERO);
         if let Some(backend) = self.backend {

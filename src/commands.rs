@@ -1,14 +1,16 @@
 //! What each subcommand does.
 
 use crate::cli::{
-    AccuracyArgs, BenchArgs, BenchCommand, Cli, Command, EffectsArgs, RenderArgs, SpeedArgs,
-    load_scene,
+    AccuracyArgs, BenchArgs, BenchCommand, Cli, Command, CompareArgs, ConvertArgs, EffectsArgs,
+    RenderArgs, SpeedArgs, load_scene,
 };
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use embray::output::{write_exr, write_png};
 use embray::render::{RenderOutput, render};
+use embray::scene::ceng795;
 use embray::scene::{LightDesc, SceneDesc, ShapeDesc};
 use embray::stats::RenderStats;
+use std::path::{Path, PathBuf};
 
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
@@ -17,23 +19,80 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench_speed(&args),
         Command::Bench(BenchCommand::Effects(args)) => bench_effects(&args),
+        Command::Info { scene: Some(path) } if ceng795::is_ceng795_path(&path) => {
+            for camera in ceng795::load(&path)? {
+                println!("camera: {}", camera.image_name);
+                print!("{}", describe(&camera.scene));
+            }
+            Ok(())
+        }
         Command::Info { scene } => {
             let scene = load_scene(scene.as_deref())?;
             print!("{}", describe(&scene));
             Ok(())
         }
+        Command::Convert(args) => convert_command(&args),
+        Command::Compare(args) => compare_command(&args),
     }
 }
 
 fn render_command(args: &RenderArgs) -> Result<()> {
+    if let Some(path) = args.scene.as_deref().filter(|p| ceng795::is_ceng795_path(p)) {
+        return render_ceng795(args, path);
+    }
     let scene = load_scene(args.scene.as_deref())?;
-    let options = args.to_options(&scene)?;
-    let output = render(&scene, &options)?;
-    write_exr(&output.film, &args.output)?;
-    let png = args.png_path();
-    write_png(&output.film, &png, args.tonemap, args.exposure)?;
+    render_one(args, &scene, &args.output_path(), &args.png_path())
+}
+
+/// Renders every camera of a CENG795 file: each to its ImageName (PNG) in --out-dir and an
+/// EXR of the same stem, or, for a one-camera file, to -o/--png when given.
+fn render_ceng795(args: &RenderArgs, path: &Path) -> Result<()> {
+    let cameras = ceng795::load(path)?;
+    if cameras.len() > 1 {
+        for (flag, given) in [
+            ("-o", args.output.is_some()),
+            ("--png", args.png.is_some()),
+            ("--stats-json", args.stats_json.is_some()),
+        ] {
+            if given {
+                bail!(
+                    "{flag} names one file, but '{}' has {} cameras: their images are written \
+                     to --out-dir under their ImageName",
+                    path.display(),
+                    cameras.len()
+                );
+            }
+        }
+    }
+    for camera in &cameras {
+        args.to_options(&camera.scene)?;
+    }
+    if args.output.is_none() {
+        std::fs::create_dir_all(&args.out_dir)
+            .with_context(|| format!("cannot create '{}'", args.out_dir.display()))?;
+    }
+    for camera in &cameras {
+        let named = args.out_dir.join(&camera.image_name).with_extension("png");
+        let exr = args.output.clone().unwrap_or_else(|| named.with_extension("exr"));
+        let png = match (&args.png, &args.output) {
+            (Some(png), _) => png.clone(),
+            (None, Some(_)) => args.png_path(),
+            (None, None) => named,
+        };
+        render_one(args, &camera.scene, &exr, &png)?;
+    }
+    Ok(())
+}
+
+/// Renders `scene`; writes the EXR and the PNG, prints the summary and the statistics.
+fn render_one(args: &RenderArgs, scene: &SceneDesc, exr: &Path, png: &Path) -> Result<()> {
+    let options = args.to_options(scene)?;
+    let output = render(scene, &options)?;
+    write_exr(&output.film, exr)?;
+    let curve = args.tonemap.resolve(scene.settings.integrator);
+    write_png(&output.film, png, curve, args.exposure)?;
     if !args.quiet {
-        eprintln!("{}", summary(&output, &options, args, &png));
+        eprintln!("{}", summary(&output, &options, exr, png));
     }
     if args.stats {
         print!("{}", stats_table(&output.stats, output.observes));
@@ -80,7 +139,8 @@ fn bench_effects(args: &EffectsArgs) -> Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
     let mut base = embray::render::RenderOptions::for_scene(&scene);
     base.spp = args.spp;
-    let rows = effects_cost::measure(&scene, &base, &embray::accel::BackendKind::compiled(), args.runs)?;
+    let rows =
+        effects_cost::measure(&scene, &base, &embray::accel::BackendKind::compiled(), args.runs)?;
     print!("{}", effects_cost::markdown(&rows));
     Ok(())
 }
@@ -194,10 +254,66 @@ fn bench_spaces(args: &BenchArgs) -> Result<()> {
     Ok(())
 }
 
+fn convert_command(args: &ConvertArgs) -> Result<()> {
+    if !ceng795::is_ceng795_path(&args.input) {
+        bail!("convert reads CENG795 scenes (.xml); '{}' is not one", args.input.display());
+    }
+    let cameras = ceng795::load(&args.input)?;
+    let stem = args.output.file_stem().map(|s| s.to_string_lossy().into_owned());
+    let Some(stem) = stem.filter(|s| !s.is_empty()) else {
+        bail!("-o '{}' is not a file name", args.output.display());
+    };
+    let dir = args.output.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mesh_dir = dir.join(format!("{stem}_meshes"));
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(mesh_dir);
+    for camera in &cameras {
+        let path: PathBuf = if cameras.len() == 1 {
+            args.output.clone()
+        } else {
+            let image = Path::new(&camera.image_name).file_stem().unwrap_or_default();
+            dir.join(format!("{stem}_{}.toml", image.to_string_lossy()))
+        };
+        let note = format!(
+            "Converted by embray from '{}' (camera '{}').",
+            args.input.display(),
+            camera.image_name
+        );
+        writer.write(&camera.scene, &path, &note)?;
+        eprintln!("wrote {}", path.display());
+    }
+    let meshes = writer.mesh_files();
+    if let Some(first) = meshes.first() {
+        let folder = first.parent().unwrap_or(Path::new("."));
+        eprintln!("wrote {} mesh file(s) in {}", meshes.len(), folder.display());
+    }
+    Ok(())
+}
+
+fn compare_command(args: &CompareArgs) -> Result<()> {
+    use embray::compare::{compare_images, read_rgb, write_heatmap};
+    let c = compare_images(&read_rgb(&args.a)?, &read_rgb(&args.b)?, args.tolerance)?;
+    println!(
+        "{}x{}: mean abs error {:.4}/255, max {}/255; {:.4} % of pixels off by more than {}/255 \
+         ({:.4} % within)",
+        c.width,
+        c.height,
+        c.mean_abs_error,
+        c.max_abs_error,
+        100.0 * c.fraction_over,
+        c.tolerance,
+        100.0 * c.fraction_within()
+    );
+    if let Some(path) = &args.heatmap {
+        write_heatmap(&c, path)?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
 fn summary(
     output: &RenderOutput,
     options: &embray::render::RenderOptions,
-    args: &RenderArgs,
+    exr: &std::path::Path,
     png: &std::path::Path,
 ) -> String {
     let seconds = output.render_time.as_secs_f64();
@@ -213,7 +329,7 @@ fn summary(
         seconds,
         rays,
         rays as f64 / seconds.max(1e-9) / 1e6,
-        args.output.display(),
+        exr.display(),
         png.display(),
     )
 }
@@ -273,6 +389,10 @@ fn describe(scene: &SceneDesc) -> String {
         "materials: {}\nlights: {points} point, {directional} directional, {emissive} emissive objects\n",
         scene.materials.len()
     );
+    let area = scene.lights.iter().filter(|l| matches!(l, LightDesc::Area { .. })).count();
+    if area > 0 {
+        out += &format!("area lights (invisible squares): {area}\n");
+    }
     let moving = scene.objects.iter().filter(|o| o.is_moving()).count();
     out += &format!("moving objects: {moving}\n");
     match embray::render_space::to_render_scene(

@@ -3,7 +3,7 @@
 //! `light_samples` to points sampled on emitters; then the BSDF picks the next direction.
 //! Only the random dimensions the scene's effects call for are drawn.
 
-use crate::accel::{Accel, Ray};
+use crate::accel::{Accel, Hit, Ray};
 use crate::bsdf::Bsdf;
 use crate::material::Material;
 use crate::render_scene::RenderScene;
@@ -195,8 +195,13 @@ impl<'a> PathTracer<'a> {
                 let pdf_light = sample.pdf_area * dist2 / cos_light;
                 // Without a following BSDF sample (last bounce) light sampling is the only
                 // strategy and gets full weight.
-                let weight =
-                    if bsdf_continues { power_heuristic(n * pdf_light, pdf_bsdf) } else { 1.0 };
+                // An invisible emitter (the course's area light) can never be found by the
+                // BSDF sample either.
+                let weight = if bsdf_continues && sample.visible {
+                    power_heuristic(n * pdf_light, pdf_bsdf)
+                } else {
+                    1.0
+                };
                 sum += f_cos * sample.emission * (weight / (n * pdf_light));
             }
         }
@@ -217,10 +222,39 @@ impl<'a> PathTracer<'a> {
         power_heuristic(pdf_bsdf, self.light_samples as f32 * pdf_light)
     }
 
+    /// The acceleration structure paths are traced with.
+    pub fn accel(&self) -> &'a dyn Accel {
+        self.accel
+    }
+
     /// Traces one camera path.
     pub fn trace(
         &self,
         camera_ray: Ray,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+    ) -> PathSample {
+        self.trace_path(camera_ray, None, stream, stats)
+    }
+
+    /// Exactly [`PathTracer::trace`], with the camera ray's closest hit already found:
+    /// `first_hit` must be what `self.accel().intersect(&camera_ray, ..)` returns (e.g. from
+    /// `Accel::intersect_batch`); it is not looked up again. Counts as `trace` does.
+    pub fn trace_from_hit(
+        &self,
+        camera_ray: Ray,
+        first_hit: Option<Hit>,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+    ) -> PathSample {
+        self.trace_path(camera_ray, Some(first_hit), stream, stats)
+    }
+
+    /// `trace`, with the first intersection given by `first_hit` when it is `Some`.
+    fn trace_path(
+        &self,
+        camera_ray: Ray,
+        mut first_hit: Option<Option<Hit>>,
         stream: &mut SampleStream,
         stats: &mut RenderStats,
     ) -> PathSample {
@@ -238,7 +272,11 @@ impl<'a> PathTracer<'a> {
             }
             let counts = if depth == 0 { &mut stats.camera } else { &mut stats.indirect };
             counts.rays += 1;
-            let Some(hit) = self.accel.intersect(&ray, &mut stats.traversal) else {
+            let found = match first_hit.take() {
+                Some(first) => first,
+                None => self.accel.intersect(&ray, &mut stats.traversal),
+            };
+            let Some(hit) = found else {
                 result.radiance += throughput * self.scene.background;
                 break;
             };

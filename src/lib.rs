@@ -11,6 +11,7 @@ pub mod accel;
 pub mod bench;
 pub mod bsdf;
 pub mod camera;
+pub mod compare;
 pub mod effects;
 pub mod film;
 pub mod geometry;

@@ -1,5 +1,6 @@
 //! Lights in render space: point and directional lights (one shadow ray each) and emissive
-//! primitives, which are sampled by area in proportion to their emitted power.
+//! primitives, which are sampled by area in proportion to their emitted power. Emitters
+//! without geometry (the course's area lights) are sampled the same way but never hit.
 
 use crate::material::Material;
 use crate::render_scene::{Geometry, Instance, Placement, Prototype};
@@ -26,8 +27,22 @@ pub struct DirectionalLight {
 #[derive(Clone, Debug, PartialEq)]
 pub enum EmitterShape {
     Triangle([Vec3; 3]),
-    Sphere { center: Vec3, radius: f32 },
+    Sphere {
+        center: Vec3,
+        radius: f32,
+    },
+    /// A geometry-less square (the course's area light): `center ± edge_u ± edge_v`, with
+    /// `edge_u`, `edge_v` half an edge long and perpendicular to `normal` (unit length).
+    Square {
+        center: Vec3,
+        edge_u: Vec3,
+        edge_v: Vec3,
+        normal: Vec3,
+    },
 }
+
+/// `Emitter::geom_id` of an emitter that is no scene geometry (rays never hit it).
+pub const NO_GEOMETRY: u32 = u32::MAX;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Emitter {
@@ -50,6 +65,9 @@ pub struct EmitterSample {
     /// emitter).
     pub pdf_area: f32,
     pub geom_id: u32,
+    /// Whether rays can hit the emitter. An invisible one (`NO_GEOMETRY`) is only ever
+    /// found by light sampling, which then gets full weight.
+    pub visible: bool,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -133,8 +151,38 @@ impl LightSet {
                 emitters.extend(mine);
             }
         }
+        let mut set = LightSet {
+            points,
+            directional,
+            ambient: Vec3::ZERO,
+            emitters,
+            emitter_cdf: Vec::new(),
+            first_emitter,
+        };
+        set.build_cdf();
+        set
+    }
+
+    /// Adds geometry-less square emitters (`geom_id` `NO_GEOMETRY`), sampled like the others
+    /// in proportion to their power.
+    pub fn add_squares(&mut self, squares: impl IntoIterator<Item = (EmitterShape, Vec3)>) {
+        for (shape, emission) in squares {
+            let area = match shape {
+                EmitterShape::Square { edge_u, edge_v, .. } => {
+                    4.0 * edge_u.length() * edge_v.length()
+                }
+                _ => continue,
+            };
+            self.emitters.push(Emitter { geom_id: NO_GEOMETRY, shape, emission, area });
+        }
+        self.build_cdf();
+    }
+
+    /// The cumulative power of the emitters; drops them all if none emits.
+    fn build_cdf(&mut self) {
         let mut total = 0.0f64;
-        let mut emitter_cdf: Vec<f32> = emitters
+        self.emitter_cdf = self
+            .emitters
             .iter()
             .map(|e| {
                 let power = e.area * luminance(e.emission);
@@ -145,18 +193,17 @@ impl LightSet {
             })
             .collect();
         if total > 0.0 {
-            for c in &mut emitter_cdf {
+            for c in &mut self.emitter_cdf {
                 *c = (*c as f64 / total) as f32;
             }
-            if let Some(last) = emitter_cdf.last_mut() {
+            if let Some(last) = self.emitter_cdf.last_mut() {
                 *last = 1.0;
             }
         } else {
-            emitters.clear();
-            emitter_cdf.clear();
-            first_emitter.iter_mut().for_each(|f| *f = None);
+            self.emitters.clear();
+            self.emitter_cdf.clear();
+            self.first_emitter.iter_mut().for_each(|f| *f = None);
         }
-        LightSet { points, directional, ambient: Vec3::ZERO, emitters, emitter_cdf, first_emitter }
     }
 
     pub fn has_emitters(&self) -> bool {
@@ -212,6 +259,13 @@ impl LightSet {
                     + Vec3::splat(radius * gamma(8));
                 (center + local, error, n)
             }
+            EmitterShape::Square { center, edge_u, edge_v, normal } => {
+                let (a, b) = (2.0 * on_surface.x - 1.0, 2.0 * on_surface.y - 1.0);
+                let (du, dv) = (edge_u * a, edge_v * b);
+                let point = center + du + dv;
+                let error = (center.abs() + du.abs() + dv.abs()) * gamma(3);
+                (point, error, normal)
+            }
         };
         Some(EmitterSample {
             point,
@@ -220,6 +274,7 @@ impl LightSet {
             emission: emitter.emission,
             pdf_area: probability / emitter.area,
             geom_id: emitter.geom_id,
+            visible: emitter.geom_id != NO_GEOMETRY,
         })
     }
 }

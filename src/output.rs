@@ -15,6 +15,12 @@ pub enum ToneMap {
     /// Narkowicz's fit of the ACES filmic curve.
     #[default]
     Aces,
+    /// The CENG795 course's output: radiance is already in 0–255 display units and is
+    /// clamped to [0, 255] and truncated to an integer (as the course's reference images
+    /// are; rounding makes a quarter of their pixels one step brighter), with no tone curve
+    /// and no sRGB encoding.
+    #[value(name = "clamp255")]
+    Clamp255,
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -73,7 +79,7 @@ pub fn write_exr(film: &Film, path: &Path) -> Result<(), OutputError> {
 
 fn tone_map(c: Vec3, curve: ToneMap) -> Vec3 {
     match curve {
-        ToneMap::None => c,
+        ToneMap::None | ToneMap::Clamp255 => c,
         ToneMap::Reinhard => c / (Vec3::ONE + c),
         ToneMap::Aces => {
             let (a, b, cc, d, e) = (2.51, 0.03, 2.43, 0.59, 0.14);
@@ -87,8 +93,22 @@ fn srgb_encode(linear: f32) -> f32 {
 }
 
 /// 8-bit sRGB pixels of `film` after exposure (in stops) and tone mapping. NaN becomes 0.
+/// With `ToneMap::Clamp255` the pixels are the values themselves, clamped to [0, 255] and
+/// truncated (no sRGB encoding).
 pub fn to_srgb8(film: &Film, curve: ToneMap, exposure: f32) -> Vec<u8> {
     let scale = 2.0f32.powf(exposure);
+    if curve == ToneMap::Clamp255 {
+        return film
+            .color
+            .iter()
+            .flat_map(|&c| {
+                (c * scale).to_array().map(|v| {
+                    // NaN becomes 0 (`as` saturates).
+                    v.clamp(0.0, 255.0) as u8
+                })
+            })
+            .collect();
+    }
     film.color
         .iter()
         .flat_map(|&c| {
@@ -124,6 +144,13 @@ mod tests {
         assert_eq!(srgb_encode(0.0), 0.0);
         assert!((srgb_encode(1.0) - 1.0).abs() < 1e-6);
         assert!((srgb_encode(0.18) - 0.4614).abs() < 1e-3);
+    }
+
+    #[test]
+    fn clamp255_writes_values_clamped_and_truncated() {
+        let mut film = Film::new(3, 1);
+        film.color = vec![Vec3::new(0.0, 12.4, 12.99), Vec3::new(254.9, 300.0, -5.0), Vec3::NAN];
+        assert_eq!(to_srgb8(&film, ToneMap::Clamp255, 0.0), [0, 12, 12, 254, 255, 0, 0, 0, 0]);
     }
 
     #[test]

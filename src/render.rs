@@ -1,8 +1,8 @@
 //! One render from a scene description: convert to render space, build the backend, trace
 //! tiles in parallel, gather film and counters.
 
-use crate::accel::Ray;
 use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind};
+use crate::accel::{Hit, Ray};
 use crate::film::{Film, Tile, tiles};
 use crate::integrator::{PathSample, PathTracer};
 use crate::render_scene::RenderScene;
@@ -35,6 +35,8 @@ pub struct RenderOptions {
     /// Moves the whole scene and camera (world space, f64) before rendering.
     pub offset: DVec3,
     pub count_traversal: bool,
+    /// How the backend is built (its `count_traversal` is replaced by the one above).
+    pub accel: AccelOptions,
     pub progress: bool,
     /// Shadow rays to emitters per shading point.
     pub light_samples: u32,
@@ -56,6 +58,7 @@ impl RenderOptions {
             render_space: RenderSpace::default(),
             offset: DVec3::ZERO,
             count_traversal: false,
+            accel: AccelOptions::DEFAULT,
             progress: false,
             light_samples: scene.settings.light_samples,
             effects_mode: EffectsMode::Auto,
@@ -103,7 +106,8 @@ pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput,
     let run = || -> Result<RenderOutput, RenderError> {
         let scene = prepare_scene(desc, options)?;
         let build_start = Instant::now();
-        let accel_options = AccelOptions { count_traversal: options.count_traversal };
+        let accel_options =
+            AccelOptions { count_traversal: options.count_traversal, ..options.accel };
         let accel = accel::build(options.backend, &scene, &accel_options)?;
         let build_time = build_start.elapsed();
         let render_start = Instant::now();
@@ -172,8 +176,88 @@ impl<'a> Tracer<'a> {
     }
 }
 
-fn render_tile(tracer: &Tracer, tile: Tile, options: &RenderOptions) -> TileResult {
-    let camera = &tracer.scene().camera;
+/// How many camera rays are generated and intersected as one batch: a chunk of a tile's
+/// pixels, all samples of each.
+const CAMERA_BATCH: usize = 1024;
+
+/// Buffers one worker reuses from tile to tile, so tracing a tile allocates only its result.
+#[derive(Default)]
+struct TileScratch {
+    rays: Vec<Ray>,
+    streams: Vec<SampleStream>,
+    hits: Vec<Option<Hit>>,
+}
+
+/// The camera ray of sample `s` of pixel (`x`, `y`) and the random stream its path goes on
+/// with.
+fn camera_sample(
+    scene: &RenderScene,
+    options: &RenderOptions,
+    (x, y): (u32, u32),
+    s: u32,
+    spp: u32,
+) -> (Ray, SampleStream) {
+    let camera = &scene.camera;
+    let pixel = y as u64 * camera.width as u64 + x as u64;
+    let mut stream = SampleStream::new(options.seed, pixel, s as u64);
+    let jitter = options.jitter.then(|| stream.next_2d());
+    let in_pixel = pixel_sample(s, spp, jitter, options.seed, pixel);
+    let raster = Vec2::new(x as f32, y as f32) + in_pixel;
+    let effects = &scene.effects;
+    let lens = effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS));
+    let mut ray = camera.generate_ray(raster, lens);
+    if effects.motion_blur {
+        ray.time = stream.reserved_1d(SLOT_TIME);
+    }
+    (ray, stream)
+}
+
+/// The samples of one pixel, summed in sample order.
+#[derive(Default)]
+struct PixelSum {
+    color: DVec3,
+    depth_sum: f64,
+    depth_count: u32,
+    normal: DVec3,
+}
+
+impl PixelSum {
+    fn add(&mut self, sample: &PathSample) {
+        self.color += sample.radiance.as_dvec3();
+        if let Some(d) = sample.depth {
+            self.depth_sum += d as f64;
+            self.depth_count += 1;
+        }
+        if let Some(nrm) = sample.normal {
+            self.normal += nrm.as_dvec3();
+        }
+    }
+}
+
+impl TileResult {
+    /// Appends the pixel's colour, depth and normal.
+    fn push(&mut self, sum: PixelSum, spp: u32) {
+        self.color.push((sum.color / spp as f64).as_vec3());
+        self.depth.push(if sum.depth_count > 0 {
+            (sum.depth_sum / sum.depth_count as f64) as f32
+        } else {
+            f32::INFINITY
+        });
+        self.normal.push(sum.normal.normalize_or_zero().as_vec3());
+    }
+}
+
+/// Renders one tile. With the path tracer, the camera rays of a chunk of pixels are
+/// generated first (same order, same random numbers as one at a time), intersected as one
+/// batch (`Accel::intersect_batch`, whose hits equal single-ray ones), and each path then
+/// continues from its first hit: the image is the same as tracing sample by sample.
+fn render_tile(
+    tracer: &Tracer,
+    tile: Tile,
+    options: &RenderOptions,
+    scratch: &mut TileScratch,
+) -> TileResult {
+    let scene = tracer.scene();
     let n = ((tile.x1 - tile.x0) * (tile.y1 - tile.y0)) as usize;
     let mut result = TileResult {
         tile,
@@ -183,41 +267,46 @@ fn render_tile(tracer: &Tracer, tile: Tile, options: &RenderOptions) -> TileResu
         stats: RenderStats::default(),
     };
     let spp = options.spp.max(1);
-    for y in tile.y0..tile.y1 {
-        for x in tile.x0..tile.x1 {
-            let pixel = y as u64 * camera.width as u64 + x as u64;
-            let mut color = DVec3::ZERO;
-            let (mut depth_sum, mut depth_count) = (0.0f64, 0u32);
-            let mut normal = DVec3::ZERO;
-            for s in 0..spp {
-                let mut stream = SampleStream::new(options.seed, pixel, s as u64);
-                let jitter = options.jitter.then(|| stream.next_2d());
-                let in_pixel = pixel_sample(s, spp, jitter, options.seed, pixel);
-                let raster = Vec2::new(x as f32, y as f32) + in_pixel;
-                let effects = &tracer.scene().effects;
-                let lens = effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS));
-                let mut ray = camera.generate_ray(raster, lens);
-                if effects.motion_blur {
-                    ray.time = stream.reserved_1d(SLOT_TIME);
+    let Tracer::Path(path) = tracer else {
+        for y in tile.y0..tile.y1 {
+            for x in tile.x0..tile.x1 {
+                let mut sum = PixelSum::default();
+                for s in 0..spp {
+                    let (ray, mut stream) = camera_sample(scene, options, (x, y), s, spp);
+                    sum.add(&tracer.trace(ray, &mut stream, &mut result.stats));
                 }
-                let sample = tracer.trace(ray, &mut stream, &mut result.stats);
-                color += sample.radiance.as_dvec3();
-                if let Some(d) = sample.depth {
-                    depth_sum += d as f64;
-                    depth_count += 1;
-                }
-                if let Some(nrm) = sample.normal {
-                    normal += nrm.as_dvec3();
-                }
+                result.push(sum, spp);
             }
-            result.color.push((color / spp as f64).as_vec3());
-            result.depth.push(if depth_count > 0 {
-                (depth_sum / depth_count as f64) as f32
-            } else {
-                f32::INFINITY
-            });
-            result.normal.push(normal.normalize_or_zero().as_vec3());
         }
+        return result;
+    };
+    let width = (tile.x1 - tile.x0) as usize;
+    let pixels_per_batch = (CAMERA_BATCH / spp as usize).max(1);
+    let mut first = 0;
+    while first < n {
+        let last = (first + pixels_per_batch).min(n);
+        let pixel = |i: usize| (tile.x0 + (i % width) as u32, tile.y0 + (i / width) as u32);
+        scratch.rays.clear();
+        scratch.streams.clear();
+        for i in first..last {
+            for s in 0..spp {
+                let (ray, stream) = camera_sample(scene, options, pixel(i), s, spp);
+                scratch.rays.push(ray);
+                scratch.streams.push(stream);
+            }
+        }
+        scratch.hits.clear();
+        scratch.hits.resize(scratch.rays.len(), None);
+        path.accel().intersect_batch(&scratch.rays, &mut scratch.hits, &mut result.stats.traversal);
+        let samples = scratch.rays.iter().zip(&scratch.hits).zip(&mut scratch.streams);
+        let mut sum = PixelSum::default();
+        for (k, ((ray, hit), stream)) in samples.enumerate() {
+            sum.add(&path.trace_from_hit(*ray, *hit, stream, &mut result.stats));
+            if (k + 1) % spp as usize == 0 {
+                result.push(std::mem::take(&mut sum), spp);
+            }
+        }
+        first = last;
     }
     result
 }
@@ -248,8 +337,8 @@ pub fn render_film(
     };
     let results: Vec<TileResult> = all_tiles
         .par_iter()
-        .map(|&tile| {
-            let r = render_tile(&tracer, tile, options);
+        .map_init(TileScratch::default, |scratch, &tile| {
+            let r = render_tile(&tracer, tile, options, scratch);
             progress.inc(1);
             r
         })

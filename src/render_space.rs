@@ -6,7 +6,7 @@
 
 use crate::camera::{Camera, camera_basis};
 use crate::effects::Effects;
-use crate::light::{DirectionalLight, LightSet, PointLight};
+use crate::light::{DirectionalLight, EmitterShape, LightSet, PointLight};
 use crate::material::{Material, Specular};
 use crate::render_scene::{
     Geometry, Instance, Placement, Prototype, RenderScene, Sphere, TriangleMesh, Trs,
@@ -267,6 +267,7 @@ pub fn to_render_scene(
     let mut points = Vec::new();
     let mut directional = Vec::new();
     let mut ambient = Vec3::ZERO;
+    let mut squares = Vec::new();
     for light in &desc.lights {
         match light {
             LightDesc::Point { position, intensity } => points.push(PointLight {
@@ -280,9 +281,24 @@ pub fn to_render_scene(
                 })
             }
             LightDesc::Ambient { radiance } => ambient += *radiance,
+            LightDesc::Area { center, normal, size, radiance } => {
+                let (u, v) = square_edges(*normal);
+                let half = 0.5 * size;
+                let edge = |e: DVec3| to_f32(render_from_world.transform_vector3(e * half));
+                squares.push((
+                    EmitterShape::Square {
+                        center: to_f32(render_from_world.transform_point3(*center)),
+                        edge_u: edge(u),
+                        edge_v: edge(v),
+                        normal: to_f32(render_from_world.transform_vector3(*normal).normalize()),
+                    },
+                    *radiance,
+                ));
+            }
         }
     }
     let mut lights = LightSet::new(points, directional, &prototypes, &instances, &materials);
+    lights.add_squares(squares);
     lights.ambient = ambient;
     let camera = place_camera(&desc.camera, &camera_transform);
     let effects = match mode {
@@ -298,6 +314,23 @@ pub fn to_render_scene(
         background: desc.settings.background,
         effects,
     })
+}
+
+/// Unit edge directions of the course's square area light facing `normal`: the normal with
+/// its smallest component set to 1 gives a second direction, u = normalize(n × n′), v = n × u.
+fn square_edges(normal: DVec3) -> (DVec3, DVec3) {
+    let n = normal.normalize();
+    let a = n.abs();
+    let mut other = n;
+    if a.x <= a.y && a.x <= a.z {
+        other.x = 1.0;
+    } else if a.y <= a.z {
+        other.y = 1.0;
+    } else {
+        other.z = 1.0;
+    }
+    let u = n.cross(other).normalize();
+    (u, n.cross(u))
 }
 
 fn decide_effects(

@@ -22,6 +22,9 @@ pub struct Ray {
 }
 
 impl Ray {
+    /// Largest coordinate magnitude [`Ray::is_valid`] accepts (exclusive).
+    pub const COORDINATE_LIMIT: f32 = 1.0e18;
+
     pub fn new(origin: Vec3, dir: Vec3, tmax: f32) -> Self {
         Ray { origin, dir, tmin: 0.0, tmax, time: 0.0 }
     }
@@ -31,8 +34,9 @@ impl Ray {
     ///
     /// Embree also aborts on finite coordinates above about 1.8e18, so those are refused too
     /// (by both backends, so they agree).
+    #[inline]
     pub fn is_valid(&self) -> bool {
-        const LIMIT: f32 = 1.0e18;
+        const LIMIT: f32 = Ray::COORDINATE_LIMIT;
         self.origin.is_finite()
             && self.dir.is_finite()
             && self.origin.abs().max_element() < LIMIT
@@ -76,6 +80,25 @@ pub trait Accel: Send + Sync {
     fn intersect(&self, ray: &Ray, counters: &mut TraversalCounters) -> Option<Hit>;
     /// True if anything lies on the ray with `tmin <= t <= tmax`.
     fn occluded(&self, ray: &Ray, counters: &mut TraversalCounters) -> bool;
+    /// Closest hits of a batch of rays: `hits[i]` becomes what `intersect(&rays[i], counters)`
+    /// returns (bit for bit, counters included; except on ties between coincident surfaces
+    /// with Embree packets, see [`BatchMode`]), so a caller may batch coherent rays (a tile's
+    /// camera rays) without changing its results. Unlike [`Accel::intersect`], rays need not
+    /// be valid: an invalid ray is a miss.
+    ///
+    /// # Panics
+    /// If `rays` and `hits` differ in length.
+    fn intersect_batch(
+        &self,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+        counters: &mut TraversalCounters,
+    ) {
+        assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
+        for (ray, hit) in rays.iter().zip(hits) {
+            *hit = if ray.is_valid() { self.intersect(ray, counters) } else { None };
+        }
+    }
     /// Which counters this backend fills in (with `AccelOptions::count_traversal`).
     fn observes(&self) -> Observes {
         Observes::default()
@@ -123,11 +146,67 @@ pub enum AccelError {
     Embree(String),
 }
 
+/// How long a backend may spend building its BVH to make traversal faster.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+pub enum BuildQuality {
+    /// Embree `RTC_BUILD_QUALITY_LOW` (Morton build); obvhs `fastest_build`.
+    Low,
+    /// Embree `RTC_BUILD_QUALITY_MEDIUM` (binned SAH); obvhs `medium_build`.
+    #[default]
+    Medium,
+    /// Embree `RTC_BUILD_QUALITY_HIGH` (SAH with spatial splits); obvhs `slow_build`.
+    High,
+}
+
+/// How the Embree backend traces [`Accel::intersect_batch`] (the renderer's batches of
+/// camera rays); the obvhs backend always traces one ray at a time.
+///
+/// Embree's packet kernels are faster on coherent rays (camera rays: 1.2-2.5× the rays per
+/// second of single rays, 4-10 % off a whole render, `benches/throughput.rs`) but not always
+/// bit-identical to its single-ray kernel: on an exact or near-exact tie between coincident
+/// surfaces (two faces in the same plane, e.g. a box standing on the floor seen from below,
+/// or duplicated faces) they may report the other surface. Ties on an edge shared by two
+/// triangles are handled (see `EmbreeAccel::intersect_batch`), and scenes with motion blur
+/// always trace single rays. Every bundled scene renders bit-identically with packets, but
+/// since that is not guaranteed in general, single rays are the default.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+pub enum BatchMode {
+    /// One `rtcIntersect1` per ray: exactly the hits of `Accel::intersect`.
+    #[default]
+    Single,
+    /// Packets of 8 rays (`rtcIntersect8`), the faster width on large meshes here.
+    Packets8,
+    /// Packets of 16 rays (`rtcIntersect16`).
+    Packets16,
+}
+
 /// Options that change how a backend is built.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AccelOptions {
     /// Count node visits / primitive tests (may cost time; off by default).
     pub count_traversal: bool,
+    /// BVH build quality, both backends.
+    pub build_quality: BuildQuality,
+    /// Embree: `RTC_SCENE_FLAG_COMPACT` (a smaller BVH, somewhat slower traversal).
+    pub compact: bool,
+    /// Embree: how batches of rays (`Accel::intersect_batch`) are traced.
+    pub batch: BatchMode,
+}
+
+impl AccelOptions {
+    /// The defaults (chosen by measurement, see `benches/throughput.rs`).
+    pub const DEFAULT: AccelOptions = AccelOptions {
+        count_traversal: false,
+        build_quality: BuildQuality::Medium,
+        compact: false,
+        batch: BatchMode::Single,
+    };
+}
+
+impl Default for AccelOptions {
+    fn default() -> Self {
+        AccelOptions::DEFAULT
+    }
 }
 
 /// Builds the requested backend over `scene`.

@@ -2,6 +2,7 @@
 //! rendered normally and with every effect forced on (time and lens samples drawn, every
 //! object given a motion BVH), alternating runs so machine noise hits both alike.
 
+use super::median;
 use crate::accel::BackendKind;
 use crate::render::{RenderError, RenderOptions, render};
 use crate::render_space::EffectsMode;
@@ -17,11 +18,6 @@ pub struct EffectsCostRow {
     pub forced_build_ms: f64,
     pub normal_stats: RenderStats,
     pub forced_stats: RenderStats,
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 pub fn measure(

@@ -1,5 +1,6 @@
 //! Renders one scene for every (backend, render space, offset) and measures each.
 
+use super::median;
 use crate::accel::BackendKind;
 use crate::image_error::{ImageError, image_error};
 use crate::render::{RenderError, RenderOptions, render};
@@ -36,11 +37,6 @@ pub struct Grid {
     pub offsets: Vec<f64>,
     /// Timed repetitions per configuration (the median is reported).
     pub runs: usize,
-}
-
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
 }
 
 /// Runs the grid; `on_progress` is called after each configuration.

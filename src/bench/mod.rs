@@ -11,3 +11,12 @@ pub mod spawn_report;
 pub mod speed;
 pub mod strip;
 pub mod table;
+
+/// The median of `values` (the upper one for an even count); `NaN` for none.
+pub fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}

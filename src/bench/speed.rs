@@ -2,6 +2,7 @@
 //! triangles — BVH build time, primary and diffuse-bounce rays per second, whole-render
 //! samples per second on 1 and 2 threads, and memory.
 
+use super::median;
 use crate::accel::{Accel, AccelError, AccelOptions, BackendKind, Hit, Ray, build};
 use crate::render::{RenderError, RenderOptions, prepare_scene, render_film};
 use crate::render_scene::RenderScene;
@@ -44,11 +45,6 @@ fn rss_kib() -> u64 {
             line.split_whitespace().nth(1)?.parse().ok()
         })
         .unwrap_or(0)
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 /// One camera ray through every pixel centre.

@@ -434,6 +434,7 @@ impl Builder<'_> {
                 ("sphere light", &["type", "center", "radius", "emission", "transform"])
             }
             LightKind::Mesh => ("mesh light", &["type", "file", "emission", "transform"]),
+            LightKind::Area => ("area light", &["type", "center", "normal", "size", "radiance"]),
         };
         let item = format!("{path} ({kind})");
         let present = [
@@ -450,6 +451,8 @@ impl Builder<'_> {
             ("radius", l.radius.is_some()),
             ("file", l.file.is_some()),
             ("transform", l.transform.is_some()),
+            ("normal", l.normal.is_some()),
+            ("size", l.size.is_some()),
         ];
         let ctx = self.ctx;
         ctx.check_fields(&path, &item, &present, allowed)?;
@@ -478,6 +481,19 @@ impl Builder<'_> {
                 let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
                 let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
                 self.lights.push(LightDesc::Ambient { radiance });
+            }
+            LightKind::Area => {
+                let center = ctx.required(&path, &item, "center", l.center)?;
+                let normal = ctx.required(&path, &item, "normal", l.normal)?;
+                let field = path.key("normal");
+                let normal = dvec(normal).try_normalize().ok_or_else(|| {
+                    ctx.out_of_range(&field, fmt_vec(&normal), "a non-zero vector")
+                })?;
+                let size = ctx.required(&path, &item, "size", l.size)?;
+                let size = ctx.positive(&path.key("size"), size)?;
+                let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
+                let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
+                self.lights.push(LightDesc::Area { center: dvec(center), normal, size, radiance });
             }
             LightKind::Quad => {
                 let corner = ctx.required(&path, &item, "corner", l.corner)?;

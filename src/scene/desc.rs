@@ -159,6 +159,10 @@ pub enum LightDesc {
     /// Constant light added to every surface's ambient reflectance (the course's
     /// AmbientLight; only the Whitted integrator uses it).
     Ambient { radiance: Vec3 },
+    /// The course's AreaLight: a square of side `size` centred at `center`, facing `normal`
+    /// (unit length), emitting `radiance` (two-sided). It lights the scene (sampled by area)
+    /// but has no geometry: rays never hit it, so the camera does not see it.
+    Area { center: DVec3, normal: DVec3, size: f64, radiance: Vec3 },
 }
 
 /// Defaults for the renderer that a scene may carry; command-line options override them.
@@ -220,8 +224,10 @@ impl SceneDesc {
             }
         }
         for light in &mut self.lights {
-            if let LightDesc::Point { position, .. } = light {
-                *position += offset;
+            match light {
+                LightDesc::Point { position, .. } => *position += offset,
+                LightDesc::Area { center, .. } => *center += offset,
+                _ => {}
             }
         }
     }

@@ -96,6 +96,12 @@ pub enum SceneError {
     #[error("{}: {item} takes `{first}` or `{second}`, not both{line}", .file.display())]
     Conflict { file: PathBuf, item: String, first: String, second: String, line: Line },
 
+    /// A CENG795 XML scene: malformed XML, an unsupported element, a value that cannot be
+    /// read or a reference to something undefined. `element` is the element's path below
+    /// `<Scene>` (`<Objects > Mesh id="3" > Faces>`).
+    #[error("{}: {element}: {problem}{line}", .file.display())]
+    Xml { file: PathBuf, element: String, problem: String, line: Line },
+
     /// A transform list entry without exactly one of scale, rotate, translate, matrix.
     #[error("{}: {field} must have exactly one of the keys scale, rotate, translate, matrix; it has {found}{line}", .file.display())]
     TransformEntry { file: PathBuf, field: String, found: String, line: Line },

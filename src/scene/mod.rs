@@ -4,6 +4,10 @@
 //! messages and to resolve relative OBJ paths). The stages: TOML syntax (`source_map`), a
 //! scan rejecting every NaN/inf, serde into `toml_format` (unknown keys are errors), then
 //! `convert` validates and builds the world-space `SceneDesc`.
+//!
+//! `ceng795` reads the METU CENG795 course's XML format (one `SceneDesc` per camera), and
+//! `toml_writer` writes a `SceneDesc` back as TOML with OBJ meshes.
+pub mod ceng795;
 pub mod desc;
 pub use desc::*;
 
@@ -18,6 +22,7 @@ mod ply;
 mod shapes;
 mod source_map;
 mod toml_format;
+pub mod toml_writer;
 mod transform_list;
 mod validate;
 

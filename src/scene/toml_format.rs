@@ -175,6 +175,9 @@ pub(crate) enum LightKind {
     Ambient,
     Sphere,
     Mesh,
+    /// The CENG795 area light: an invisible emitting square (`center`, `normal`, `size`,
+    /// `radiance`).
+    Area,
 }
 
 #[derive(Debug, Deserialize)]
@@ -195,6 +198,8 @@ pub(crate) struct LightToml {
     pub radius: Option<f64>,
     pub file: Option<String>,
     pub transform: Option<Vec<TransformEntry>>,
+    pub normal: Option<Vec3>,
+    pub size: Option<f64>,
 }
 
 /// One entry of a transform list as written: an inline table that should have exactly one

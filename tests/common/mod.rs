@@ -39,14 +39,7 @@ pub fn render_ok(scene: &SceneDesc, options: &RenderOptions) -> RenderOutput {
 
 /// Backends compiled into this build.
 pub fn backends() -> Vec<BackendKind> {
-    let mut all = Vec::new();
-    if cfg!(feature = "embree") {
-        all.push(BackendKind::Embree);
-    }
-    if cfg!(feature = "obvhs") {
-        all.push(BackendKind::Obvhs);
-    }
-    all
+    BackendKind::compiled()
 }
 
 /// Programmatic scenes for effect tests (independent of the file format).

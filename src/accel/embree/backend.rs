@@ -1,15 +1,21 @@
 //! `EmbreeAccel`: the `Accel` implementation over a committed Embree scene.
 
+use super::batch::BatchKind;
 use super::device::Device;
 use super::ffi;
 use super::geometry::Geometry;
 use super::scene::{CommittedScene, Scene};
 use super::sphere::sphere_geometry;
 use super::user_triangles::user_triangle_geometry;
-use crate::accel::{Accel, AccelError, AccelOptions, Hit, Observes, Ray};
+use crate::accel::{Accel, AccelError, AccelOptions, BatchMode, BuildQuality, Hit, Observes, Ray};
 use crate::render_scene::{self, Placement, RenderScene};
 use crate::stats::TraversalCounters;
 use std::sync::Arc;
+
+/// Barycentric distance from a triangle's edge within which a packet hit may be a tie
+/// Embree's single-ray kernel would break differently (see `EmbreeAccel::intersect_batch`).
+/// Embree's robust test accepts hits a few ulps outside the edge, so this has a wide margin.
+const TIE_EDGE: f32 = 1e-4;
 
 /// Embree's defaults: all cores, ISA chosen at run time.
 const DEVICE_CONFIG: &str = "";
@@ -58,6 +64,10 @@ pub struct EmbreeAccel {
     scene: CommittedScene,
     counting: bool,
     motion_geometries: usize,
+    /// Per geometry id: a triangle mesh (whose packet hits near an edge are re-traced, see
+    /// [`EmbreeAccel::intersect_batch`]).
+    triangle_meshes: Vec<bool>,
+    batch: BatchKind,
 }
 
 /// Wraps Embree errors with what they concern.
@@ -91,7 +101,8 @@ impl EmbreeAccel {
     pub fn build(scene: &RenderScene, options: &AccelOptions) -> Result<EmbreeAccel, AccelError> {
         let counting = options.count_traversal;
         let device = Arc::new(Device::new(DEVICE_CONFIG)?);
-        let mut top = new_scene(&device)?;
+        let new_scene = || new_scene(&device, options);
+        let mut top = new_scene()?;
         let mut children: Vec<Option<Arc<CommittedScene>>> = vec![None; scene.prototypes.len()];
         let mut motion_geometries = 0;
         for (index, instance) in scene.instances.iter().enumerate() {
@@ -111,7 +122,7 @@ impl EmbreeAccel {
                 if let Some(child) = &children[p] {
                     return Ok(Arc::clone(child));
                 }
-                let child = child_scene(&device, &prototype.geometry, counting)
+                let child = child_scene(new_scene()?, &device, &prototype.geometry, counting)
                     .map_err(named(|| format!("prototype {p} ('{}')", prototype.name)))?;
                 motion_geometries += child.motion_geometries();
                 children[p] = Some(Arc::clone(&child));
@@ -133,13 +144,47 @@ impl EmbreeAccel {
         }
         let top = top.commit()?;
         motion_geometries += top.motion_geometries();
-        Ok(EmbreeAccel { scene: top, counting, motion_geometries })
+        let triangle_meshes = scene
+            .instances
+            .iter()
+            .map(|i| {
+                let prototype = &scene.prototypes[i.prototype as usize];
+                matches!(prototype.geometry, render_scene::Geometry::Triangles(_))
+            })
+            .collect();
+        // Embree's packet kernels interpolate motion differently from its single-ray ones
+        // (hits on moving instances differ in the last bits), so scenes with motion trace
+        // batches one ray at a time; so does counting mode, to count exactly as before.
+        let batch = match options.batch {
+            _ if counting || motion_geometries > 0 => BatchKind::Single,
+            BatchMode::Single => BatchKind::Single,
+            BatchMode::Packets8 => BatchKind::Packet8,
+            BatchMode::Packets16 => BatchKind::Packet16,
+        };
+        Ok(EmbreeAccel { scene: top, counting, motion_geometries, triangle_meshes, batch })
     }
 
     /// How many Embree geometries were committed with more than one time step: one per
     /// moving instance, 0 for a static scene (which therefore pays nothing for motion blur).
     pub fn motion_geometries(&self) -> usize {
         self.motion_geometries
+    }
+
+    /// A bare `rtcIntersect1` loop over `rays` (one query context for all, no wrapper, no
+    /// `Hit` conversion), returning how many rays hit: the baseline [`Accel::intersect`] is
+    /// measured against (`benches/throughput.rs`).
+    ///
+    /// # Panics
+    /// If any ray is one Embree would reject (Debian's Embree would abort the process):
+    /// all rays are checked before the loop.
+    pub fn raw_intersect_loop(&self, rays: &[Ray]) -> usize {
+        self.scene.raw_intersect_loop(rays)
+    }
+
+    /// Closest hits of `rays` through the Embree entry point `kind` (normal mode; counting
+    /// mode always traces one ray at a time).
+    pub fn intersect_batch_with(&self, kind: BatchKind, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        self.scene.intersect_batch(kind, rays, hits);
     }
 
     fn counters<'a>(
@@ -150,12 +195,22 @@ impl EmbreeAccel {
     }
 }
 
-/// A scene as all of ours are built. ROBUST: watertight-enough traversal for rays grazing
-/// triangle edges and box faces, in child scenes too (that is where an instanced mesh's
-/// BVH is). Embree 3.13.5 ignores it for instance and user-geometry BVHs (it has no robust
-/// variant of those traversals): a ray within rounding of such a box's face may miss it.
-fn new_scene(device: &Arc<Device>) -> Result<Scene, AccelError> {
-    Scene::new(device, ffi::RTCBuildQuality::MEDIUM, ffi::RTCSceneFlags::ROBUST)
+/// A scene as all of ours are built, with the build quality and COMPACT flag of `options`.
+/// ROBUST always: watertight-enough traversal for rays grazing triangle edges and box faces,
+/// in child scenes too (that is where an instanced mesh's BVH is). Embree 3.13.5 ignores it
+/// for instance and user-geometry BVHs (it has no robust variant of those traversals): a ray
+/// within rounding of such a box's face may miss it.
+fn new_scene(device: &Arc<Device>, options: &AccelOptions) -> Result<Scene, AccelError> {
+    let quality = match options.build_quality {
+        BuildQuality::Low => ffi::RTCBuildQuality::LOW,
+        BuildQuality::Medium => ffi::RTCBuildQuality::MEDIUM,
+        BuildQuality::High => ffi::RTCBuildQuality::HIGH,
+    };
+    let mut flags = ffi::RTCSceneFlags::ROBUST;
+    if options.compact {
+        flags |= ffi::RTCSceneFlags::COMPACT;
+    }
+    Scene::new(device, quality, flags)
 }
 
 /// The Embree geometry of a prototype, in the prototype's own space.
@@ -175,13 +230,14 @@ fn prototype_geometry(
     }
 }
 
-/// The child scene instances of a prototype share: its geometry alone, with id 0.
+/// The child scene instances of a prototype share: its geometry alone, with id 0, in the
+/// new `scene`.
 fn child_scene(
+    mut scene: Scene,
     device: &Arc<Device>,
     geometry: &render_scene::Geometry,
     counting: bool,
 ) -> Result<Arc<CommittedScene>, AccelError> {
-    let mut scene = new_scene(device)?;
     scene.attach(prototype_geometry(device, geometry, counting)?, 0)?;
     Ok(Arc::new(scene.commit()?))
 }
@@ -197,6 +253,48 @@ impl Accel for EmbreeAccel {
 
     fn occluded(&self, ray: &Ray, counters: &mut TraversalCounters) -> bool {
         self.scene.occluded(ray, self.counters(counters))
+    }
+
+    /// As `AccelOptions::batch` says: one `rtcIntersect1` per ray, or packets
+    /// (`rtcIntersect8/16`) with invalid rays masked out (never handed to Embree). Counting
+    /// mode and scenes with motion blur always trace one ray at a time.
+    ///
+    /// # Packets and single rays
+    ///
+    /// Embree's packet kernels compute `t`, `u`, `v` with the same arithmetic as its
+    /// single-ray kernel almost always (bit for bit on millions of camera and bounce rays,
+    /// `batch_tests`), but break ties between primitives at the same `t` differently: within
+    /// a BVH leaf the single-ray kernel keeps the first primitive, the packet kernel the
+    /// last. The common tie, a ray through an edge two triangles share, is caught: every
+    /// packet hit within `TIE_EDGE` (barycentric) of its triangle's edge is traced again with
+    /// `rtcIntersect1` (about 1e-3 of the hits on a million-triangle mesh). Not caught:
+    /// exact or 1-ulp ties between coincident surfaces (faces in one plane that share no
+    /// edge, duplicated faces), where the packet may report the other surface
+    /// (`tests/batch_queries.rs` proves each such difference is a tie). With motion blur the
+    /// packet kernels interpolate instance transforms differently (hits differ in the last
+    /// bits), so moving scenes never use packets.
+    fn intersect_batch(
+        &self,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+        counters: &mut TraversalCounters,
+    ) {
+        assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
+        if self.counting || self.batch == BatchKind::Single {
+            for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
+                *hit = self.scene.intersect(ray, self.counters(counters));
+            }
+            return;
+        }
+        self.scene.intersect_batch(self.batch, rays, hits);
+        for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
+            if let Some(h) = hit
+                && self.triangle_meshes.get(h.geom_id as usize).copied().unwrap_or(true)
+                && h.u.min(h.v).min(1.0 - h.u - h.v) < TIE_EDGE
+            {
+                *hit = self.scene.intersect(ray, None);
+            }
+        }
     }
 
     /// Primitive tests in counting mode; node visits never (see [`EmbreeAccel`]).

@@ -35,6 +35,7 @@ struct CountingContext {
 }
 
 impl CountingContext {
+    #[inline]
     fn new(counters: Option<&mut TraversalCounters>) -> Self {
         CountingContext {
             base: query_context(),
@@ -78,6 +79,7 @@ pub unsafe fn count_prim_tests(context: *const QueryContext, tests: u64) {
 /// # Safety
 /// `scene` must be a live, committed scene.
 #[cfg(not(embree4))]
+#[inline]
 pub unsafe fn intersect1(
     scene: ffi::RTCScene,
     rayhit: &mut ffi::RTCRayHit,
@@ -94,6 +96,7 @@ pub unsafe fn intersect1(
 /// # Safety
 /// `scene` must be a live, committed scene.
 #[cfg(not(embree4))]
+#[inline]
 pub unsafe fn occluded1(
     scene: ffi::RTCScene,
     ray: &mut ffi::RTCRay,
@@ -104,8 +107,159 @@ pub unsafe fn occluded1(
     unsafe { ffi::rtcOccluded1(scene, context.as_query_context(), ray) }
 }
 
+/// The `valid` argument of a packet query: -1 for a lane to trace, 0 for one Embree must
+/// ignore. Aligned to 64 bytes, the strictest requirement (`rtcIntersect16`); packets of 4
+/// and 8 read only their first 4 or 8 entries.
+#[repr(C, align(64))]
+#[derive(Clone, Copy)]
+pub struct ValidMask(pub [i32; 16]);
+
+/// Packet queries (`rtcIntersect4/8/16`) of the same width in both versions; they never
+/// count (counting mode traces one ray at a time). Generates, per width, a function
+/// `$name(scene, valid, rayhit)`.
+///
+/// # Safety (of the generated functions)
+/// `scene` must be a live, committed scene, and every lane `valid` marks -1 must hold a ray
+/// `Ray::is_valid` and Embree accept (Debian's Embree aborts the process otherwise).
+macro_rules! packet_intersect {
+    ($($name:ident: $packet:ident, $ffi:ident;)*) => {$(
+        /// Closest hits for the lanes of `rayhit` that `valid` marks -1, in place.
+        ///
+        /// # Safety
+        /// See `packet_intersect!`.
+        #[cfg(not(embree4))]
+        pub unsafe fn $name(scene: ffi::RTCScene, valid: &ValidMask, rayhit: &mut ffi::$packet) {
+            let mut context = CountingContext::new(None);
+            context.base.flags = ffi::RTCIntersectContextFlags::RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            // SAFETY: per the caller; `valid` is 64-byte aligned and at least as wide as
+            // the packet, `rayhit` is aligned by its type, and both and the context are
+            // valid for the call.
+            unsafe { ffi::$ffi(valid.0.as_ptr(), scene, context.as_query_context(), rayhit) }
+        }
+
+        /// Closest hits for the lanes of `rayhit` that `valid` marks -1, in place.
+        ///
+        /// # Safety
+        /// See `packet_intersect!`.
+        #[cfg(embree4)]
+        pub unsafe fn $name(scene: ffi::RTCScene, valid: &ValidMask, rayhit: &mut ffi::$packet) {
+            let mut context = CountingContext::new(None);
+            let mut args = intersect_arguments(&mut context, ffi::RTCRayQueryFlags::COHERENT);
+            // SAFETY: as in the Embree 3 version; `args` points to `context`, both live.
+            unsafe { ffi::$ffi(valid.0.as_ptr(), scene, rayhit, &mut args) }
+        }
+    )*};
+}
+
+packet_intersect! {
+    intersect4: RTCRayHit4, rtcIntersect4;
+    intersect8: RTCRayHit8, rtcIntersect8;
+    intersect16: RTCRayHit16, rtcIntersect16;
+}
+
+/// Closest hits for a stream of rays (`rtcIntersect1M`, Embree 3 only), in place; never
+/// counts. `coherent` selects Embree's stream traversal for coherent rays (else it traces
+/// packets of the native SIMD width).
+///
+/// # Safety
+/// `scene` must be a live, committed scene and every ray one `Ray::is_valid` and Embree
+/// accept.
+#[cfg(not(embree4))]
+pub unsafe fn intersect_stream(
+    scene: ffi::RTCScene,
+    rayhits: &mut [ffi::RTCRayHit],
+    coherent: bool,
+) {
+    let mut context = CountingContext::new(None);
+    if coherent {
+        context.base.flags = ffi::RTCIntersectContextFlags::RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    }
+    let Ok(count) = u32::try_from(rayhits.len()) else {
+        for chunk in rayhits.chunks_mut(u32::MAX as usize) {
+            // SAFETY: per the caller (a sub-slice of the caller's rays).
+            unsafe { intersect_stream(scene, chunk, coherent) };
+        }
+        return;
+    };
+    // SAFETY: per the caller; `rayhits` holds `count` records `size_of::<RTCRayHit>()`
+    // bytes apart (Embree's AOS layout), and they and the context are valid for the call.
+    unsafe {
+        ffi::rtcIntersect1M(
+            scene,
+            context.as_query_context(),
+            rayhits.as_mut_ptr(),
+            count,
+            std::mem::size_of::<ffi::RTCRayHit>(),
+        )
+    }
+}
+
+/// A query context made once for a loop of single-ray queries (what a bare `rtcIntersect1`
+/// loop in C does): never counts.
+pub struct SingleRayLoop {
+    context: CountingContext,
+    #[cfg(embree4)]
+    args: ffi::RTCIntersectArguments,
+}
+
+impl SingleRayLoop {
+    pub fn new() -> Box<Self> {
+        // Boxed: under Embree 4, `args` points into `context`, so the two must not move.
+        #[cfg(not(embree4))]
+        let this = Box::new(SingleRayLoop { context: CountingContext::new(None) });
+        #[cfg(embree4)]
+        let this = {
+            let mut this = Box::new(SingleRayLoop {
+                context: CountingContext::new(None),
+                // SAFETY: as in `intersect_arguments`.
+                args: unsafe { std::mem::zeroed() },
+            });
+            let this_ref = &mut *this;
+            this_ref.args =
+                intersect_arguments(&mut this_ref.context, ffi::RTCRayQueryFlags::INCOHERENT);
+            this
+        };
+        this
+    }
+
+    /// `rtcIntersect1` with the loop's context.
+    ///
+    /// # Safety
+    /// As for [`intersect1`].
+    #[inline]
+    pub unsafe fn intersect1(&mut self, scene: ffi::RTCScene, rayhit: &mut ffi::RTCRayHit) {
+        // SAFETY: per the caller; the context (and Embree 4's arguments pointing to it) live
+        // in `self`, which does not move during the call.
+        #[cfg(not(embree4))]
+        unsafe {
+            ffi::rtcIntersect1(scene, self.context.as_query_context(), rayhit)
+        }
+        // SAFETY: as above.
+        #[cfg(embree4)]
+        unsafe {
+            ffi::rtcIntersect1(scene, rayhit, &mut self.args)
+        }
+    }
+}
+
+/// `rtcInitIntersectArguments` with `context` and `flags`.
+#[cfg(embree4)]
+fn intersect_arguments(
+    context: &mut CountingContext,
+    flags: ffi::RTCRayQueryFlags,
+) -> ffi::RTCIntersectArguments {
+    // SAFETY: flags, pointers and `Option<fn>`s, for which all-zero bytes are valid (null,
+    // `None`); zero also covers the optional `minWidthDistanceFactor`.
+    let mut args: ffi::RTCIntersectArguments = unsafe { std::mem::zeroed() };
+    args.flags = flags;
+    args.feature_mask = ffi::RTCFeatureFlags::RTC_FEATURE_FLAG_ALL;
+    args.context = context.as_query_context();
+    args
+}
+
 /// `rtcInitIntersectContext` from `rtcore_common.h`: an inline function, so not exported.
 #[cfg(not(embree4))]
+#[inline]
 fn query_context() -> ffi::RTCIntersectContext {
     // SAFETY: the struct holds only integers, integer arrays and an `Option<fn>`, for which
     // all-zero bytes are valid (`None`). Zeroing first also covers the fields that exist

@@ -10,8 +10,8 @@ use crate::render_scene::{self, RenderScene};
 use crate::stats::TraversalCounters;
 use glam::Vec3;
 
-const NORMAL: AccelOptions = AccelOptions { count_traversal: false };
-const COUNTING: AccelOptions = AccelOptions { count_traversal: true };
+const NORMAL: AccelOptions = AccelOptions { count_traversal: false, ..AccelOptions::DEFAULT };
+const COUNTING: AccelOptions = AccelOptions { count_traversal: true, ..AccelOptions::DEFAULT };
 
 /// Primitive tests of each ray: (closest-hit query, occlusion query).
 fn per_ray_counts(accel: &dyn Accel, rays: &[Ray]) -> Vec<(u64, u64)> {

@@ -15,8 +15,8 @@ use crate::stats::TraversalCounters;
 use glam::{Affine3A, Quat, Vec3};
 use std::sync::Arc;
 
-const NORMAL: AccelOptions = AccelOptions { count_traversal: false };
-const COUNTING: AccelOptions = AccelOptions { count_traversal: true };
+const NORMAL: AccelOptions = AccelOptions { count_traversal: false, ..AccelOptions::DEFAULT };
+const COUNTING: AccelOptions = AccelOptions { count_traversal: true, ..AccelOptions::DEFAULT };
 
 /// Adds a prototype; returns its index.
 fn add_prototype(scene: &mut RenderScene, name: &str, geometry: render_scene::Geometry) -> u32 {

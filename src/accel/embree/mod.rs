@@ -9,6 +9,9 @@
 #![warn(clippy::undocumented_unsafe_blocks)]
 
 mod backend;
+mod batch;
+#[cfg(test)]
+mod batch_tests;
 mod callback_data;
 mod compat;
 #[cfg(test)]
@@ -27,3 +30,4 @@ mod tests;
 mod user_triangles;
 
 pub use backend::EmbreeAccel;
+pub use batch::BatchKind;

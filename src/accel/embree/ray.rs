@@ -5,6 +5,7 @@ use crate::accel::{Hit, Ray};
 
 /// Embree's ray for `ray`, its time clamped to the shutter interval [0, 1]. Only call with a
 /// ray that satisfies `Ray::is_valid`: Debian's Embree aborts the process on NaN/Inf rays.
+#[inline]
 pub fn to_rtc_ray(ray: &Ray) -> ffi::RTCRay {
     // SAFETY: `RTCRay` holds only f32/u32 fields, for which all-zero bytes are valid.
     let mut r: ffi::RTCRay = unsafe { std::mem::zeroed() };
@@ -21,6 +22,7 @@ pub fn to_rtc_ray(ray: &Ray) -> ffi::RTCRay {
 }
 
 /// Embree's ray-and-hit record for `ray`, with no hit yet.
+#[inline]
 pub fn to_rtc_ray_hit(ray: &Ray) -> ffi::RTCRayHit {
     // SAFETY: `RTCRayHit` holds only f32/u32 fields and arrays of them, for which all-zero
     // bytes are valid. Zeroing (rather than a struct literal) also covers hit fields that
@@ -41,6 +43,7 @@ pub fn to_rtc_ray_hit(ray: &Ray) -> ffi::RTCRayHit {
 /// `v` and `primID` need no mapping: `t` is along the render-space ray (Embree transforms
 /// the ray into the instance without renormalising its direction) and the barycentrics
 /// are the object-space triangle's, as `surface.rs` expects.
+#[inline]
 pub fn from_rtc_ray_hit(rh: &ffi::RTCRayHit) -> Option<Hit> {
     let instance = rh.hit.instID[0];
     let geom_id = if instance == ffi::RTC_INVALID_GEOMETRY_ID { rh.hit.geomID } else { instance };
@@ -51,4 +54,83 @@ pub fn from_rtc_ray_hit(rh: &ffi::RTCRayHit) -> Option<Hit> {
         u: rh.hit.u,
         v: rh.hit.v,
     })
+}
+
+/// An Embree ray-hit packet (`RTCRayHit4/8/16`, SOA: every field an array of `WIDTH` lanes).
+pub trait RayHitPacket {
+    const WIDTH: usize;
+    /// A packet whose lanes hold a harmless ray (never traced: its lane is masked out) and
+    /// no hit.
+    fn empty() -> Self;
+    /// Lane `lane` becomes `ray` (see [`to_rtc_ray`]) with no hit.
+    fn set_lane(&mut self, lane: usize, ray: &Ray);
+    /// The hit Embree recorded in lane `lane`, if any (see [`from_rtc_ray_hit`]).
+    fn hit(&self, lane: usize) -> Option<Hit>;
+    /// Traces the lanes `valid` marks -1.
+    ///
+    /// # Safety
+    /// `scene` must be a live, committed scene, and every lane marked -1 must have been set
+    /// from a ray Embree accepts (`scene::embree_accepts`).
+    unsafe fn intersect(&mut self, scene: ffi::RTCScene, valid: &compat::ValidMask);
+}
+
+macro_rules! ray_hit_packet {
+    ($($packet:ident: $width:literal, $intersect:ident;)*) => {$(
+        impl RayHitPacket for ffi::$packet {
+            const WIDTH: usize = $width;
+
+            fn empty() -> Self {
+                // SAFETY: f32/u32 arrays only, for which all-zero bytes are valid.
+                let mut p: ffi::$packet = unsafe { std::mem::zeroed() };
+                p.ray.dir_z = [1.0; $width];
+                p.ray.tfar = [f32::INFINITY; $width];
+                p.ray.mask = [compat::RAY_MASK; $width];
+                p.hit.geomID = [ffi::RTC_INVALID_GEOMETRY_ID; $width];
+                p.hit.instID = [[ffi::RTC_INVALID_GEOMETRY_ID; $width];
+                    ffi::RTC_MAX_INSTANCE_LEVEL_COUNT as usize];
+                p
+            }
+
+            #[inline]
+            fn set_lane(&mut self, i: usize, ray: &Ray) {
+                let r = to_rtc_ray(ray);
+                let p = &mut self.ray;
+                (p.org_x[i], p.org_y[i], p.org_z[i]) = (r.org_x, r.org_y, r.org_z);
+                (p.dir_x[i], p.dir_y[i], p.dir_z[i]) = (r.dir_x, r.dir_y, r.dir_z);
+                (p.tnear[i], p.tfar[i], p.time[i], p.mask[i]) = (r.tnear, r.tfar, r.time, r.mask);
+                (p.id[i], p.flags[i]) = (r.id, r.flags);
+                self.hit.geomID[i] = ffi::RTC_INVALID_GEOMETRY_ID;
+                for level in &mut self.hit.instID {
+                    level[i] = ffi::RTC_INVALID_GEOMETRY_ID;
+                }
+            }
+
+            #[inline]
+            fn hit(&self, i: usize) -> Option<Hit> {
+                let h = &self.hit;
+                let instance = h.instID[0][i];
+                let geom_id =
+                    if instance == ffi::RTC_INVALID_GEOMETRY_ID { h.geomID[i] } else { instance };
+                (h.geomID[i] != ffi::RTC_INVALID_GEOMETRY_ID).then_some(Hit {
+                    t: self.ray.tfar[i],
+                    geom_id,
+                    prim_id: h.primID[i],
+                    u: h.u[i],
+                    v: h.v[i],
+                })
+            }
+
+            #[inline]
+            unsafe fn intersect(&mut self, scene: ffi::RTCScene, valid: &compat::ValidMask) {
+                // SAFETY: per the caller.
+                unsafe { compat::$intersect(scene, valid, self) }
+            }
+        }
+    )*};
+}
+
+ray_hit_packet! {
+    RTCRayHit4: 4, intersect4;
+    RTCRayHit8: 8, intersect8;
+    RTCRayHit16: 16, intersect16;
 }

@@ -117,6 +117,7 @@ impl CommittedScene {
     ///
     /// With `counters`, user-geometry callbacks of counting geometries add their primitive
     /// tests to it (see `compat::count_prim_tests`); `None` costs nothing.
+    #[inline]
     pub fn intersect(&self, r: &Ray, counters: Option<&mut TraversalCounters>) -> Option<Hit> {
         if !embree_accepts(r) {
             return None;
@@ -130,6 +131,7 @@ impl CommittedScene {
 
     /// Whether anything lies on the ray within `[tmin, tmax]`. Invalid rays are unoccluded.
     /// `counters` as for [`CommittedScene::intersect`].
+    #[inline]
     pub fn occluded(&self, r: &Ray, counters: Option<&mut TraversalCounters>) -> bool {
         if !embree_accepts(r) {
             return false;
@@ -142,11 +144,11 @@ impl CommittedScene {
 }
 
 /// Embree's own validity test (`RayK::valid`, asserted in Debian's build) also rejects
-/// finite coordinates above `FLT_LARGE`: measured, an origin at 1e30 or a direction of 1e20
-/// aborts the process, though `Ray::is_valid` accepts both.
-fn embree_accepts(r: &Ray) -> bool {
+/// finite coordinates above `FLT_LARGE` (measured: an origin at 1e30 or a direction of 1e20
+/// aborts the process). `Ray::is_valid` refuses those already (checked at compile time).
+#[inline]
+pub(super) fn embree_accepts(r: &Ray) -> bool {
     const FLT_LARGE: f32 = 1.844e18;
+    const _: () = assert!(Ray::COORDINATE_LIMIT <= FLT_LARGE);
     r.is_valid()
-        && r.origin.abs().max_element() <= FLT_LARGE
-        && r.dir.abs().max_element() <= FLT_LARGE
 }

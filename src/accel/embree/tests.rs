@@ -179,8 +179,10 @@ pub(super) fn is_graze(scene: &RenderScene, ray: &Ray, a: Option<Hit>, b: Option
 }
 
 /// Both modes: normal (Embree's triangles) and counting (user-geometry triangles).
-const MODES: [AccelOptions; 2] =
-    [AccelOptions { count_traversal: false }, AccelOptions { count_traversal: true }];
+const MODES: [AccelOptions; 2] = [
+    AccelOptions { count_traversal: false, ..AccelOptions::DEFAULT },
+    AccelOptions { count_traversal: true, ..AccelOptions::DEFAULT },
+];
 
 #[test]
 fn closest_hits_match_brute_force() {

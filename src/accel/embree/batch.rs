@@ -1,0 +1,107 @@
+//! Batched closest-hit queries: Embree packets (`rtcIntersect4/8/16`) and streams
+//! (`rtcIntersect1M`), and the bare `rtcIntersect1` loop the wrapper is measured against.
+
+use super::compat;
+use super::ffi;
+use super::ray::{self, RayHitPacket};
+use super::scene::{CommittedScene, embree_accepts};
+use crate::accel::{Hit, Ray};
+
+/// How a batch of rays is handed to Embree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BatchKind {
+    /// One `rtcIntersect1` per ray.
+    Single,
+    Packet4,
+    Packet8,
+    Packet16,
+    /// `rtcIntersect1M` with the coherent flag (Embree 3).
+    StreamCoherent,
+    /// `rtcIntersect1M` without it (Embree 3).
+    StreamIncoherent,
+}
+
+impl CommittedScene {
+    /// Closest hits of `rays` into `hits` (same length), as [`CommittedScene::intersect`]
+    /// would give them one by one, through Embree's batched entry points. Rays Embree would
+    /// reject are never handed to it (masked out of packets, left out of streams): a miss.
+    pub fn intersect_batch(&self, kind: BatchKind, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
+        match kind {
+            BatchKind::Single => {
+                for (ray, hit) in rays.iter().zip(hits) {
+                    *hit = self.intersect(ray, None);
+                }
+            }
+            BatchKind::Packet4 => self.intersect_packets::<ffi::RTCRayHit4>(rays, hits),
+            BatchKind::Packet8 => self.intersect_packets::<ffi::RTCRayHit8>(rays, hits),
+            BatchKind::Packet16 => self.intersect_packets::<ffi::RTCRayHit16>(rays, hits),
+            BatchKind::StreamCoherent => self.intersect_stream(rays, hits, true),
+            BatchKind::StreamIncoherent => self.intersect_stream(rays, hits, false),
+        }
+    }
+
+    fn intersect_packets<P: RayHitPacket>(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        let mut packet = P::empty();
+        for (rays, hits) in rays.chunks(P::WIDTH).zip(hits.chunks_mut(P::WIDTH)) {
+            let mut valid = compat::ValidMask([0; 16]);
+            for (lane, ray) in rays.iter().enumerate() {
+                if embree_accepts(ray) {
+                    packet.set_lane(lane, ray);
+                    valid.0[lane] = -1;
+                }
+            }
+            if valid.0.iter().any(|&v| v != 0) {
+                // SAFETY: the scene is live and committed; exactly the lanes just set from
+                // rays that passed `embree_accepts` are marked valid.
+                unsafe { packet.intersect(self.handle(), &valid) };
+            }
+            for (lane, hit) in hits.iter_mut().enumerate() {
+                *hit = if valid.0[lane] != 0 { packet.hit(lane) } else { None };
+            }
+        }
+    }
+
+    #[cfg(not(embree4))]
+    fn intersect_stream(&self, rays: &[Ray], hits: &mut [Option<Hit>], coherent: bool) {
+        let mut stream = Vec::with_capacity(rays.len());
+        let mut slots = Vec::with_capacity(rays.len());
+        for (slot, ray) in rays.iter().enumerate() {
+            hits[slot] = None;
+            if embree_accepts(ray) {
+                stream.push(ray::to_rtc_ray_hit(ray));
+                slots.push(slot);
+            }
+        }
+        // SAFETY: the scene is live and committed; every ray passed `embree_accepts`.
+        unsafe { compat::intersect_stream(self.handle(), &mut stream, coherent) };
+        for (rayhit, slot) in stream.iter().zip(slots) {
+            hits[slot] = ray::from_rtc_ray_hit(rayhit);
+        }
+    }
+
+    #[cfg(embree4)]
+    fn intersect_stream(&self, rays: &[Ray], hits: &mut [Option<Hit>], _coherent: bool) {
+        self.intersect_packets::<ffi::RTCRayHit8>(rays, hits);
+    }
+
+    /// A bare `rtcIntersect1` loop over `rays` (one query context for all, no `Hit`
+    /// conversion): how many hit something. The baseline the wrapper is measured against.
+    ///
+    /// # Panics
+    /// If a ray is one Embree would reject (it would abort the process): checked for all
+    /// rays before the loop.
+    pub fn raw_intersect_loop(&self, rays: &[Ray]) -> usize {
+        assert!(rays.iter().all(embree_accepts), "raw_intersect_loop: a ray Embree rejects");
+        let mut query = compat::SingleRayLoop::new();
+        let scene = self.handle();
+        let mut hits = 0;
+        for r in rays {
+            let mut rayhit = ray::to_rtc_ray_hit(r);
+            // SAFETY: the scene is live and committed; every ray passed `embree_accepts`.
+            unsafe { query.intersect1(scene, &mut rayhit) };
+            hits += usize::from(rayhit.hit.geomID != ffi::RTC_INVALID_GEOMETRY_ID);
+        }
+        hits
+    }
+}

@@ -1,0 +1,229 @@
+//! `<Camera>` → `CameraDesc`, the image name and the sample count.
+//!
+//! The course's camera: w = −normalize(Gaze), u = normalize(Up × w), v = w × u (the same
+//! frame `camera::camera_basis` builds from lookfrom/lookat/up), an image window
+//! `NearPlane` = l r b t at `NearDistance` along −w, pixel centres at (i + ½, j + ½).
+//! embray's camera is symmetric with square pixels, so a window with l = −r and b = −t whose
+//! aspect matches the resolution is reproduced exactly (vfov = 2·atan(t / d)). Other windows
+//! are approximated, with a note: an off-centre window is replaced by a symmetric one of the
+//! same vertical angle (atan(t/d) − atan(b/d)) aimed at the middle of the window's angles;
+//! the horizontal angle always follows the resolution's aspect.
+
+use super::xml::Xml;
+use crate::camera::camera_basis;
+use crate::scene::MAX_RESOLUTION;
+use crate::scene::desc::{CameraDesc, LensShape};
+use crate::scene::error::SceneError;
+use glam::DVec3;
+use roxmltree::Node;
+
+/// One camera of the file: what it renders and where the image goes.
+pub(super) struct CameraSpec {
+    pub image_name: String,
+    pub camera: CameraDesc,
+    pub spp: u32,
+    /// Approximations made (off-centre or non-square window).
+    pub notes: Vec<String>,
+}
+
+const COMMON: [&str; 7] = [
+    "Position",
+    "Up",
+    "NearDistance",
+    "ImageResolution",
+    "ImageName",
+    "NumSamples",
+    "ApertureSize",
+];
+
+pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
+    let look_at = match node.attribute("type").map(str::trim) {
+        None | Some("") | Some("simple") => false,
+        Some(kind) if kind.eq_ignore_ascii_case("lookAt") => true,
+        Some(kind) => {
+            return Err(x.error(
+                node,
+                format!("unsupported camera type \"{kind}\" (supported: lookAt, or none)"),
+            ));
+        }
+    };
+    let own: &[&str] = if look_at {
+        &["GazePoint", "FovY", "FocusDistance"]
+    } else {
+        &["Gaze", "NearPlane", "FocusDistance"]
+    };
+    let allowed: Vec<&str> = COMMON.iter().chain(own).copied().collect();
+    x.check_children(node, &allowed)?;
+
+    let position = x.vec3(x.required(node, "Position")?)?;
+    let up_node = x.required(node, "Up")?;
+    let up = x.vec3(up_node)?;
+    if up.try_normalize().is_none() {
+        return Err(x.out_of_range(up_node, "0 0 0", "a non-zero vector"));
+    }
+    let resolution_node = x.required(node, "ImageResolution")?;
+    let [w, h] = x.numbers::<2>(resolution_node, false)?;
+    for value in [w, h] {
+        if value.fract() != 0.0 || !(1.0..=MAX_RESOLUTION as f64).contains(&value) {
+            return Err(x.out_of_range(
+                resolution_node,
+                value,
+                &format!("a whole number between 1 and {MAX_RESOLUTION}"),
+            ));
+        }
+    }
+    let (width, height) = (w as u32, h as u32);
+    let name_node = x.required(node, "ImageName")?;
+    let image_name = x.text(name_node).to_owned();
+    if image_name.is_empty() {
+        return Err(x.error(name_node, "the image name is empty"));
+    }
+    let spp = match x.child(node, "NumSamples")? {
+        Some(n) => {
+            let spp = x.count(n)?;
+            if !(1..=u32::MAX as u64).contains(&spp) {
+                return Err(x.out_of_range(n, spp, ">= 1"));
+            }
+            spp as u32
+        }
+        None => 1,
+    };
+    let near_distance = match x.child(node, "NearDistance")? {
+        Some(n) => {
+            let d = x.scalar(n)?;
+            if !(d > 0.0) {
+                return Err(x.out_of_range(n, d, "> 0"));
+            }
+            Some(d)
+        }
+        None => None,
+    };
+
+    let mut notes = Vec::new();
+    let (gaze, vfov_deg) = if look_at {
+        let gaze_point = x.vec3(x.required(node, "GazePoint")?)?;
+        let fov_node = x.required(node, "FovY")?;
+        let fov = x.scalar(fov_node)?;
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(x.out_of_range(fov_node, fov, "between 0 and 180 degrees (exclusive)"));
+        }
+        let gaze = gaze_point - position;
+        if gaze.try_normalize().is_none() {
+            return Err(x.error(node, "<GazePoint> is the same point as <Position>"));
+        }
+        (gaze, fov)
+    } else {
+        let gaze_node = x.required(node, "Gaze")?;
+        let gaze = x.vec3(gaze_node)?;
+        if gaze.try_normalize().is_none() {
+            return Err(x.out_of_range(gaze_node, "0 0 0", "a non-zero vector"));
+        }
+        let plane_node = x.required(node, "NearPlane")?;
+        let [l, r, b, t] = x.numbers::<4>(plane_node, true)?;
+        if !(r > l && t > b) {
+            return Err(x.out_of_range(
+                plane_node,
+                format!("{l} {r} {b} {t}"),
+                "left < right and bottom < top",
+            ));
+        }
+        let Some(d) = near_distance else {
+            return Err(x.missing(node, "NearDistance"));
+        };
+        let window = Window { l, r, b, t, d };
+        let (aimed, vfov) = window.symmetric(gaze, up, (width, height), &mut notes);
+        (aimed, vfov)
+    };
+
+    let aperture = match x.child(node, "ApertureSize")? {
+        Some(n) => {
+            let a = x.scalar(n)?;
+            if !(a >= 0.0) {
+                return Err(x.out_of_range(n, a, ">= 0"));
+            }
+            a
+        }
+        None => 0.0,
+    };
+    let focus_distance = match x.child(node, "FocusDistance")? {
+        Some(n) => {
+            let f = x.scalar(n)?;
+            if !(f > 0.0) {
+                return Err(x.out_of_range(n, f, "> 0"));
+            }
+            Some(f)
+        }
+        None if aperture > 0.0 => return Err(x.missing(node, "FocusDistance")),
+        None => None,
+    };
+    for note in &mut notes {
+        *note = format!("camera '{image_name}': {note}");
+    }
+    Ok(CameraSpec {
+        image_name,
+        camera: CameraDesc {
+            lookfrom: position,
+            lookat: position + gaze,
+            up,
+            vfov_deg,
+            width,
+            height,
+            aperture,
+            focus_distance,
+            lens_shape: if aperture > 0.0 { LensShape::Square } else { LensShape::Disk },
+        },
+        spp,
+        notes,
+    })
+}
+
+/// The image window at distance `d`.
+struct Window {
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    d: f64,
+}
+
+impl Window {
+    /// The view direction and vertical field of view (degrees) of the symmetric camera that
+    /// matches (or best approximates) this window; notes what is approximated.
+    fn symmetric(
+        &self,
+        gaze: DVec3,
+        up: DVec3,
+        (width, height): (u32, u32),
+        notes: &mut Vec<String>,
+    ) -> (DVec3, f64) {
+        let Window { l, r, b, t, d } = *self;
+        let (top, bottom) = ((t / d).atan(), (b / d).atan());
+        let (right, left) = ((r / d).atan(), (l / d).atan());
+        let vfov = (top - bottom).to_degrees();
+        let tolerance = 1e-9 * (r - l).max(t - b);
+        let off_centre = (l + r).abs() > tolerance || (b + t).abs() > tolerance;
+        let plane_aspect = (r - l) / (t - b);
+        let image_aspect = width as f64 / height as f64;
+        if (plane_aspect - image_aspect).abs() > 1e-6 * image_aspect {
+            notes.push(format!(
+                "the near plane's aspect ({plane_aspect:.4}) differs from the resolution's \
+                 ({image_aspect:.4}); pixels are kept square, so the horizontal field of view \
+                 follows the resolution"
+            ));
+        }
+        if !off_centre {
+            return (gaze, vfov);
+        }
+        notes.push(format!(
+            "the near plane {l} {r} {b} {t} is off-centre; embray's camera is symmetric, so \
+             the view is turned to the middle of the window's angles with the same vertical \
+             angle ({vfov:.3}°): an approximation, exact only along the image's centre lines"
+        ));
+        // The camera frame of the course (w = −gaze, u = up × w, v = w × u).
+        let basis = camera_basis(gaze, up);
+        let (u, v, w) = (basis.x_axis, basis.y_axis, basis.z_axis);
+        let yaw = 0.5 * (right + left);
+        let pitch = 0.5 * (top + bottom);
+        (-w + yaw.tan() * u + pitch.tan() * v, vfov)
+    }
+}

@@ -1,0 +1,150 @@
+//! `<Materials>` → `MaterialDesc`s and the map from material id to index.
+//!
+//! Every material has the course's Phong terms (AmbientReflectance, SpecularReflectance,
+//! PhongExponent) and a diffuse reflectance (our `albedo`; it may exceed 1). The `type`
+//! attribute adds one specular part: `mirror` (MirrorReflectance, no Fresnel), `conductor`
+//! (Fresnel from RefractionIndex + i·AbsorptionIndex, times MirrorReflectance) or
+//! `dielectric` (RefractionIndex, Beer absorption AbsorptionCoefficient). MirrorReflectance
+//! of a material without a type is ignored, as in the course. `Roughness` is the side of the
+//! square in which the course perturbs reflected directions.
+
+use super::xml::Xml;
+use crate::scene::desc::{MaterialDesc, PhongDesc, SpecularDesc};
+use crate::scene::error::SceneError;
+use glam::Vec3;
+use roxmltree::Node;
+use std::collections::HashMap;
+
+const ALLOWED: [&str; 9] = [
+    "AmbientReflectance",
+    "DiffuseReflectance",
+    "SpecularReflectance",
+    "PhongExponent",
+    "MirrorReflectance",
+    "RefractionIndex",
+    "AbsorptionIndex",
+    "AbsorptionCoefficient",
+    "Roughness",
+];
+
+/// The materials of every `<Materials>` element, and their ids.
+pub(super) struct Materials {
+    pub list: Vec<MaterialDesc>,
+    pub ids: HashMap<String, u32>,
+}
+
+impl Materials {
+    /// The material named by a `<Material>` reference element.
+    pub fn lookup(&self, x: &Xml, node: Node) -> Result<u32, SceneError> {
+        let id = x.text(node);
+        self.ids.get(id).copied().ok_or_else(|| {
+            let mut defined: Vec<&str> = self.ids.keys().map(String::as_str).collect();
+            defined.sort_by_key(|id| (id.parse::<u64>().unwrap_or(u64::MAX), *id));
+            SceneError::UnknownMaterial {
+                file: x.file.to_path_buf(),
+                field: super::xml::describe(node),
+                name: id.to_owned(),
+                defined: if defined.is_empty() { "(none)".to_owned() } else { defined.join(", ") },
+                line: x.line(node),
+            }
+        })
+    }
+}
+
+pub(super) fn materials<'a, 'i: 'a>(
+    x: &Xml,
+    lists: impl Iterator<Item = Node<'a, 'i>>,
+) -> Result<Materials, SceneError> {
+    let mut out = Materials { list: Vec::new(), ids: HashMap::new() };
+    for list in lists {
+        x.check_children(list, &["Material"])?;
+        for node in list.children().filter(|n| n.has_tag_name("Material")) {
+            let id = node.attribute("id").map(str::trim).unwrap_or("");
+            if id.is_empty() {
+                return Err(x.error(node, "the material has no id attribute"));
+            }
+            if out.ids.contains_key(id) {
+                return Err(x.error(node, format!("material id \"{id}\" is defined twice")));
+            }
+            let material = material(x, node, id)?;
+            out.ids.insert(id.to_owned(), out.list.len() as u32);
+            out.list.push(material);
+        }
+    }
+    Ok(out)
+}
+
+fn material(x: &Xml, node: Node, id: &str) -> Result<MaterialDesc, SceneError> {
+    x.check_children(node, &ALLOWED)?;
+    let color = |name: &str| -> Result<Vec3, SceneError> {
+        x.child(node, name)?.map_or(Ok(Vec3::ZERO), |n| x.color(n))
+    };
+    let scalar = |name: &str, default: Option<f64>| -> Result<f64, SceneError> {
+        match x.child(node, name)? {
+            Some(n) => {
+                let v = x.scalar(n)?;
+                if !(v >= 0.0) || !(v as f32).is_finite() {
+                    return Err(x.out_of_range(n, v, ">= 0 (and small enough for f32)"));
+                }
+                Ok(v)
+            }
+            None => default.ok_or_else(|| x.missing(node, name)),
+        }
+    };
+    let phong = PhongDesc {
+        ambient: color("AmbientReflectance")?,
+        specular: color("SpecularReflectance")?,
+        exponent: scalar("PhongExponent", Some(1.0))? as f32,
+    };
+    let kind = node.attribute("type").map(str::trim).unwrap_or("");
+    let specular = match kind {
+        "" => SpecularDesc::None,
+        "mirror" => SpecularDesc::Mirror { reflectance: color("MirrorReflectance")? },
+        "conductor" => {
+            let eta = scalar("RefractionIndex", None)?;
+            if !(eta > 0.0) {
+                let n = x.required(node, "RefractionIndex")?;
+                return Err(x.out_of_range(n, eta, "> 0"));
+            }
+            SpecularDesc::Conductor {
+                eta: Vec3::splat(eta as f32),
+                k: Vec3::splat(scalar("AbsorptionIndex", Some(0.0))? as f32),
+                reflectance: color("MirrorReflectance")?,
+            }
+        }
+        "dielectric" => {
+            let ior = scalar("RefractionIndex", None)?;
+            if !(ior > 0.0) {
+                let n = x.required(node, "RefractionIndex")?;
+                return Err(x.out_of_range(n, ior, "> 0"));
+            }
+            SpecularDesc::Dielectric {
+                ior: ior as f32,
+                absorption: color("AbsorptionCoefficient")?,
+            }
+        }
+        other => {
+            return Err(x.error(
+                node,
+                format!(
+                    "unsupported material type \"{other}\" (supported: mirror, conductor, \
+                     dielectric, or none)"
+                ),
+            ));
+        }
+    };
+    // Roughness only means something for a reflecting material.
+    let roughness = match specular {
+        SpecularDesc::None => 0.0,
+        _ => scalar("Roughness", Some(0.0))? as f32,
+    };
+    Ok(MaterialDesc {
+        name: format!("material_{id}"),
+        albedo: color("DiffuseReflectance")?,
+        emission: Vec3::ZERO,
+        specular,
+        roughness,
+        texture: None,
+        phong: Some(phong),
+    })
+}

@@ -1,0 +1,159 @@
+//! The METU CENG795 course's XML scene format → one `SceneDesc` per camera.
+//!
+//! A file holds cameras, lights, materials, a shared vertex list, named transformations and
+//! objects (see each file of this module). Every camera renders its own `ImageName`, so
+//! `load` returns one scene per camera, in file order, each rendered with the Whitted
+//! integrator (`MaxRecursionDepth` bounces, `NumSamples` samples, `BackgroundColor`), in the
+//! course's units: radiance in 0–255, written to PNG clamped and truncated
+//! (`ToneMap::Clamp255`).
+//!
+//! `ShadowRayEpsilon` and `IntersectionTestEpsilon` are read and ignored: embray spawns
+//! secondary rays with error bounds instead of a fixed offset.
+
+mod camera;
+mod lights;
+mod materials;
+mod objects;
+mod transforms;
+mod xml;
+
+use super::desc::{IntegratorKind, RenderSettings, SceneDesc};
+use super::error::{Line, SceneError};
+use glam::Vec3;
+use roxmltree::{Document, Node};
+use std::path::Path;
+use xml::Xml;
+
+/// One camera of a file: the image it renders and the scene as seen by it.
+#[derive(Clone, Debug)]
+pub struct CameraScene {
+    /// The camera's `ImageName` (a PNG file name).
+    pub image_name: String,
+    pub scene: SceneDesc,
+}
+
+/// The recursion depth when a file gives no `MaxRecursionDepth` (the course parser's
+/// default: no reflection or refraction).
+pub const DEFAULT_MAX_RECURSION_DEPTH: u32 = 0;
+
+const SCENE_CHILDREN: [&str; 11] = [
+    "BackgroundColor",
+    "ShadowRayEpsilon",
+    "IntersectionTestEpsilon",
+    "MaxRecursionDepth",
+    "Cameras",
+    "Lights",
+    "Materials",
+    "Transformations",
+    "VertexData",
+    "TexCoordData",
+    "Objects",
+];
+
+/// True if `path` names a course XML scene (by extension).
+pub fn is_ceng795_path(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+}
+
+/// Loads the XML scene at `path`, one scene per camera. Notes about approximations (an
+/// off-centre image window) and warnings go to stderr.
+pub fn load(path: &Path) -> Result<Vec<CameraScene>, SceneError> {
+    let (scenes, warnings) = load_with_warnings(path)?;
+    for warning in &warnings {
+        eprintln!("warning: {warning}");
+    }
+    Ok(scenes)
+}
+
+/// As `load`, returning the warnings instead of printing them.
+pub fn load_with_warnings(path: &Path) -> Result<(Vec<CameraScene>, Vec<String>), SceneError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|error| SceneError::Read { path: path.to_path_buf(), error })?;
+    load_str_with_warnings(&text, path)
+}
+
+/// Parses XML text read from `source` (used in messages and to resolve PLY paths).
+pub fn load_str_with_warnings(
+    text: &str,
+    source: &Path,
+) -> Result<(Vec<CameraScene>, Vec<String>), SceneError> {
+    let doc = Document::parse(text).map_err(|e| SceneError::Xml {
+        file: source.to_path_buf(),
+        element: "the XML document".to_owned(),
+        problem: format!("malformed XML: {e}"),
+        line: Line(Some(e.pos().row as usize)),
+    })?;
+    let x = Xml { file: source, doc: &doc };
+    let root = doc.root_element();
+    if !root.has_tag_name("Scene") {
+        return Err(x.error(root, "the root element must be <Scene>"));
+    }
+    x.check_children(root, &SCENE_CHILDREN)?;
+    let all = |name: &'static str| root.children().filter(move |n| n.has_tag_name(name));
+    let mut warnings = Vec::new();
+
+    let mut settings = RenderSettings {
+        spp: 1,
+        max_depth: DEFAULT_MAX_RECURSION_DEPTH,
+        background: Vec3::ZERO,
+        light_samples: 1,
+        integrator: IntegratorKind::Whitted,
+    };
+    if let Some(node) = x.child(root, "BackgroundColor")? {
+        settings.background = x.color(node)?;
+    }
+    if let Some(node) = x.child(root, "MaxRecursionDepth")? {
+        let depth = x.count(node)?;
+        settings.max_depth =
+            u32::try_from(depth).map_err(|_| x.out_of_range(node, depth, "at most 4294967295"))?;
+    }
+    for name in ["ShadowRayEpsilon", "IntersectionTestEpsilon"] {
+        if let Some(node) = x.child(root, name)? {
+            x.scalar(node)?; // read (so that a bad value is reported) and ignored
+        }
+    }
+
+    let materials = materials::materials(&x, all("Materials"))?;
+    let transforms = transforms::transforms(&x, all("Transformations"))?;
+    let vertices = objects::vertex_data(&x, all("VertexData"))?;
+    let texcoords = objects::texcoord_data(&x, all("TexCoordData"))?;
+    let lights = lights::lights(&x, all("Lights"))?;
+    let base_dir = source.parent().unwrap_or(Path::new(""));
+    let refs = objects::Refs {
+        base_dir,
+        materials: &materials,
+        transforms: &transforms,
+        vertices: &vertices,
+        texcoords: &texcoords,
+    };
+    let objects = objects::objects(&x, &refs, all("Objects"), &mut warnings)?;
+
+    let mut cameras = Vec::new();
+    for list in all("Cameras") {
+        x.check_children(list, &["Camera"])?;
+        for node in list.children().filter(Node::is_element) {
+            cameras.push(camera::camera(&x, node)?);
+        }
+    }
+    if cameras.is_empty() {
+        return Err(x.missing(root, "Cameras > Camera"));
+    }
+    let scenes = cameras
+        .into_iter()
+        .map(|spec| {
+            warnings.extend(spec.notes);
+            CameraScene {
+                image_name: spec.image_name,
+                scene: SceneDesc {
+                    source: source.to_path_buf(),
+                    camera: spec.camera,
+                    settings: RenderSettings { spp: spec.spp, ..settings.clone() },
+                    materials: materials.list.clone(),
+                    objects: objects.clone(),
+                    lights: lights.clone(),
+                },
+            }
+        })
+        .collect();
+    Ok((scenes, warnings))
+}

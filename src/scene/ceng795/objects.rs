@@ -1,0 +1,350 @@
+//! `<VertexData>`, `<TexCoordData>` and `<Objects>` → `ObjectDesc`s.
+//!
+//! Indices are 1-based into the scene's vertex list (plus a `Faces` element's
+//! `vertexOffset`). Each inline mesh keeps only the vertices it uses; `shadingMode="smooth"`
+//! gives it area-weighted vertex normals over its own faces. A `plyFile` (relative to the
+//! XML) is read by the crate's PLY loader. A `MeshInstance` shares its base mesh's
+//! `Arc<MeshData>`, so the renderer instances it; with `resetTransform="true"` only its own
+//! transformations apply, otherwise they apply on top of the base mesh's. `MotionBlur` is a
+//! translation over the shutter: `world_from_object_end = translate(v) · world_from_object`.
+
+use super::materials::Materials;
+use super::transforms::Transforms;
+use super::xml::{Xml, describe, tokens};
+use crate::scene::desc::{MeshData, ObjectDesc, ShapeDesc};
+use crate::scene::error::SceneError;
+use crate::scene::mesh_file::{MeshCache, area_weighted_normals};
+use crate::scene::obj::ObjRef;
+use glam::{DAffine3, DVec3, Vec2};
+use roxmltree::Node;
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Everything objects refer to.
+pub(super) struct Refs<'a> {
+    pub base_dir: &'a Path,
+    pub materials: &'a Materials,
+    pub transforms: &'a Transforms,
+    pub vertices: &'a [DVec3],
+    pub texcoords: &'a [Vec2],
+}
+
+/// The scene's vertex list (all `<VertexData>` elements, in order).
+pub(super) fn vertex_data<'a, 'i: 'a>(
+    x: &Xml,
+    lists: impl Iterator<Item = Node<'a, 'i>>,
+) -> Result<Vec<DVec3>, SceneError> {
+    let mut out = Vec::new();
+    for node in lists {
+        if node.attribute("binaryFile").is_some() {
+            return Err(x.error(node, "binary vertex data (binaryFile) is not supported"));
+        }
+        let values = x.floats(node)?;
+        if values.len() % 3 != 0 {
+            return Err(x.error(
+                node,
+                format!("{} numbers is not a whole number of x y z vertices", values.len()),
+            ));
+        }
+        out.extend(values.chunks_exact(3).map(|v| DVec3::new(v[0], v[1], v[2])));
+    }
+    Ok(out)
+}
+
+/// The scene's texture coordinates (u v per vertex).
+pub(super) fn texcoord_data<'a, 'i: 'a>(
+    x: &Xml,
+    lists: impl Iterator<Item = Node<'a, 'i>>,
+) -> Result<Vec<Vec2>, SceneError> {
+    let mut out = Vec::new();
+    for node in lists {
+        if node.attribute("binaryFile").is_some() {
+            return Err(x.error(node, "binary texture coordinates (binaryFile) are not supported"));
+        }
+        let values = x.floats(node)?;
+        if values.len() % 2 != 0 {
+            return Err(x.error(
+                node,
+                format!("{} numbers is not a whole number of u v pairs", values.len()),
+            ));
+        }
+        out.extend(values.chunks_exact(2).map(|v| Vec2::new(v[0] as f32, v[1] as f32)));
+    }
+    Ok(out)
+}
+
+/// A mesh as a `MeshInstance` finds it.
+struct BaseMesh {
+    mesh: Arc<MeshData>,
+    world_from_object: DAffine3,
+    material: u32,
+}
+
+struct Builder<'a, 'x, 'i> {
+    x: &'a Xml<'x, 'i>,
+    refs: &'a Refs<'a>,
+    cache: MeshCache,
+    warnings: &'a mut Vec<String>,
+    meshes: HashMap<String, BaseMesh>,
+    objects: Vec<ObjectDesc>,
+}
+
+pub(super) fn objects<'a, 'i: 'a>(
+    x: &Xml,
+    refs: &Refs,
+    lists: impl Iterator<Item = Node<'a, 'i>> + Clone,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<ObjectDesc>, SceneError> {
+    let mut b = Builder {
+        x,
+        refs,
+        cache: MeshCache::default(),
+        warnings,
+        meshes: HashMap::new(),
+        objects: Vec::new(),
+    };
+    const KINDS: [&str; 4] = ["Mesh", "Triangle", "Sphere", "MeshInstance"];
+    for list in lists.clone() {
+        x.check_children(list, &KINDS)?;
+        for node in list.children().filter(Node::is_element) {
+            match node.tag_name().name() {
+                "Mesh" => b.mesh(node)?,
+                "Triangle" => b.triangle(node)?,
+                "Sphere" => b.sphere(node)?,
+                _ => {}
+            }
+        }
+    }
+    // Instances after every mesh, so that they may name a mesh defined later in the file.
+    for list in lists {
+        for node in list.children().filter(|n| n.has_tag_name("MeshInstance")) {
+            b.instance(node)?;
+        }
+    }
+    Ok(b.objects)
+}
+
+impl Builder<'_, '_, '_> {
+    fn material(&self, node: Node) -> Result<u32, SceneError> {
+        self.refs.materials.lookup(self.x, self.x.required(node, "Material")?)
+    }
+
+    /// `<Transformations>` and `<MotionBlur>` of `node`, on top of `base`.
+    fn placement(
+        &self,
+        node: Node,
+        base: DAffine3,
+    ) -> Result<(DAffine3, Option<DAffine3>), SceneError> {
+        let own = self.refs.transforms.compose(self.x, self.x.child(node, "Transformations")?)?;
+        let start = own * base;
+        let det = start.matrix3.determinant();
+        if !start.is_finite() || !det.is_finite() || det == 0.0 {
+            return Err(self.x.error(node, "the composed transformation is singular or overflows"));
+        }
+        let end = match self.x.child(node, "MotionBlur")? {
+            Some(m) => Some(DAffine3::from_translation(self.x.vec3(m)?) * start),
+            None => None,
+        };
+        Ok((start, end))
+    }
+
+    fn push(
+        &mut self,
+        node: Node,
+        shape: ShapeDesc,
+        material: u32,
+        place: (DAffine3, Option<DAffine3>),
+    ) {
+        self.objects.push(ObjectDesc {
+            name: describe(node),
+            shape,
+            material,
+            world_from_object: place.0,
+            world_from_object_end: place.1,
+        });
+    }
+
+    /// The 0-based scene vertex of the 1-based `token` (plus `offset`) at `pos` in `node`.
+    fn vertex_index(
+        &self,
+        node: Node,
+        token: &str,
+        pos: usize,
+        offset: i64,
+    ) -> Result<usize, SceneError> {
+        let count = self.refs.vertices.len();
+        let bad = |problem: String| self.x.token_error(node, pos, problem);
+        let id: i64 = token
+            .parse()
+            .map_err(|_| bad(format!("vertex index '{token}' is not a whole number")))?;
+        let index = id.saturating_add(offset);
+        if index < 1 || index as u64 > count as u64 {
+            let shown = if offset == 0 {
+                format!("vertex index {id}")
+            } else {
+                format!("vertex index {id} + vertexOffset {offset} = {index}")
+            };
+            return Err(bad(format!(
+                "{shown} is out of range: the scene has {count} vertices (indices 1 to {count})"
+            )));
+        }
+        Ok(index as usize - 1)
+    }
+
+    /// A mesh of the listed scene vertices (triples of indices in `node`'s text), keeping
+    /// only the vertices it uses.
+    fn inline_mesh(&self, node: Node, offset: i64, smooth: bool) -> Result<MeshData, SceneError> {
+        let mut local: HashMap<usize, u32> = HashMap::new();
+        let mut positions = Vec::new();
+        let mut used = Vec::new();
+        let mut corners = Vec::new();
+        for (token, pos) in tokens(node) {
+            let global = self.vertex_index(node, token, pos, offset)?;
+            let index = *local.entry(global).or_insert_with(|| {
+                positions.push(self.refs.vertices[global]);
+                used.push(global);
+                (positions.len() - 1) as u32
+            });
+            corners.push(index);
+        }
+        if corners.is_empty() {
+            return Err(self.x.error(node, "the mesh has no faces"));
+        }
+        if corners.len() % 3 != 0 {
+            return Err(self.x.error(
+                node,
+                format!("{} vertex indices is not a whole number of triangles", corners.len()),
+            ));
+        }
+        let indices: Vec<[u32; 3]> = corners.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let uvs = (self.refs.texcoords.len() >= self.refs.vertices.len())
+            .then(|| used.iter().map(|&g| self.refs.texcoords[g]).collect());
+        let normals = smooth.then(|| area_weighted_normals(&positions, &indices));
+        Ok(MeshData { positions, indices, normals, uvs })
+    }
+
+    fn mesh(&mut self, node: Node) -> Result<(), SceneError> {
+        let x = self.x;
+        x.check_children(node, &["Material", "Faces", "Transformations", "MotionBlur"])?;
+        let id = node.attribute("id").map(str::trim).unwrap_or("").to_owned();
+        let smooth = match node.attribute("shadingMode").map(str::trim) {
+            None | Some("flat") => false,
+            Some("smooth") => true,
+            Some(other) => {
+                return Err(x.error(
+                    node,
+                    format!("unsupported shadingMode \"{other}\" (supported: smooth, flat)"),
+                ));
+            }
+        };
+        let material = self.material(node)?;
+        let faces = x.required(node, "Faces")?;
+        let mesh = match faces.attribute("plyFile") {
+            Some(file) => {
+                let mesh_ref = ObjRef {
+                    obj: self.refs.base_dir.join(file.trim()),
+                    scene: x.file,
+                    item: describe(node),
+                    line: x.line(faces),
+                };
+                let (_, models) = self.cache.models(&mesh_ref, Some(smooth), self.warnings)?;
+                let mut models = models.into_iter();
+                match (models.next(), models.next()) {
+                    (Some(model), None) => model.mesh,
+                    _ => return Err(x.error(faces, "the mesh file must hold exactly one mesh")),
+                }
+            }
+            None => {
+                let offset = match faces.attribute("vertexOffset") {
+                    Some(text) => text.trim().parse::<i64>().map_err(|_| {
+                        x.error(faces, format!("vertexOffset \"{text}\" is not a whole number"))
+                    })?,
+                    None => 0,
+                };
+                Arc::new(self.inline_mesh(faces, offset, smooth)?)
+            }
+        };
+        let place = self.placement(node, DAffine3::IDENTITY)?;
+        if !id.is_empty() {
+            let base = BaseMesh { mesh: Arc::clone(&mesh), world_from_object: place.0, material };
+            if self.meshes.insert(id.clone(), base).is_some() {
+                return Err(x.error(node, format!("mesh id \"{id}\" is defined twice")));
+            }
+        }
+        self.push(node, ShapeDesc::Mesh(mesh), material, place);
+        Ok(())
+    }
+
+    fn triangle(&mut self, node: Node) -> Result<(), SceneError> {
+        let x = self.x;
+        x.check_children(node, &["Material", "Indices", "Transformations", "MotionBlur"])?;
+        let material = self.material(node)?;
+        let indices = x.required(node, "Indices")?;
+        if tokens(indices).count() != 3 {
+            return Err(x.error(indices, "a triangle takes exactly 3 vertex indices"));
+        }
+        let mesh = self.inline_mesh(indices, 0, false)?;
+        let place = self.placement(node, DAffine3::IDENTITY)?;
+        self.push(node, ShapeDesc::Mesh(Arc::new(mesh)), material, place);
+        Ok(())
+    }
+
+    fn sphere(&mut self, node: Node) -> Result<(), SceneError> {
+        let x = self.x;
+        x.check_children(node, &["Material", "Center", "Radius", "Transformations", "MotionBlur"])?;
+        let material = self.material(node)?;
+        let center_node = x.required(node, "Center")?;
+        let mut all = tokens(center_node);
+        let (Some((token, pos)), None) = (all.next(), all.next()) else {
+            return Err(x.error(center_node, "expected one vertex index"));
+        };
+        let center = self.refs.vertices[self.vertex_index(center_node, token, pos, 0)?];
+        let radius_node = x.required(node, "Radius")?;
+        let radius = x.scalar(radius_node)?;
+        if !(radius > 0.0) {
+            return Err(x.out_of_range(radius_node, radius, "> 0"));
+        }
+        let place = self.placement(node, DAffine3::IDENTITY)?;
+        self.push(node, ShapeDesc::Sphere { center, radius }, material, place);
+        Ok(())
+    }
+
+    fn instance(&mut self, node: Node) -> Result<(), SceneError> {
+        let x = self.x;
+        x.check_children(node, &["Material", "Transformations", "MotionBlur"])?;
+        let base_id = node
+            .attribute("baseMeshId")
+            .map(str::trim)
+            .ok_or_else(|| x.error(node, "the instance has no baseMeshId attribute"))?;
+        let Some(base) = self.meshes.get(base_id) else {
+            let mut defined: Vec<&str> = self.meshes.keys().map(String::as_str).collect();
+            defined.sort_by_key(|id| (id.parse::<u64>().unwrap_or(u64::MAX), *id));
+            let defined = if defined.is_empty() { "(none)".to_owned() } else { defined.join(", ") };
+            return Err(x.error(
+                node,
+                format!("baseMeshId \"{base_id}\" is not a mesh id; meshes: {defined}"),
+            ));
+        };
+        let reset = match node.attribute("resetTransform").map(str::trim) {
+            None | Some("false") => false,
+            Some("true") => true,
+            Some(other) => {
+                return Err(x.error(
+                    node,
+                    format!("resetTransform \"{other}\" must be \"true\" or \"false\""),
+                ));
+            }
+        };
+        let (mesh, base_transform, base_material) =
+            (Arc::clone(&base.mesh), base.world_from_object, base.material);
+        let material = match x.child(node, "Material")? {
+            Some(m) => self.refs.materials.lookup(x, m)?,
+            None => base_material,
+        };
+        let base = if reset { DAffine3::IDENTITY } else { base_transform };
+        let place = self.placement(node, base)?;
+        self.push(node, ShapeDesc::Mesh(mesh), material, place);
+        Ok(())
+    }
+}

@@ -1,0 +1,358 @@
+//! `SceneDesc` → the native TOML format, with meshes as OBJ files in a folder beside it: the
+//! inverse of `scene::load` for what the format can express (used by `embray convert`).
+//!
+//! Placements are written as `matrix` transforms (exact in f64; shutter-close placements as
+//! `transform_end`), objects sharing one `Arc<MeshData>` name one OBJ file (so they stay
+//! instances), and every camera, render, material and light field has its TOML key. OBJ
+//! coordinates are read back through tobj in f32, so mesh vertices round to f32 on the way
+//! back (the rest is exact). What the format cannot express is an error naming the item:
+//! an albedo or mirror reflectance above 1, a Phong exponent of 0 with a non-zero specular
+//! colour, a texture mapped through a non-identity transform.
+
+use super::desc::IntegratorKind;
+use super::desc::{
+    LensShape, LightDesc, MaterialDesc, MeshData, PatternDesc, SceneDesc, ShapeDesc, SpecularDesc,
+};
+use glam::{DAffine3, DVec3, Vec3};
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+#[derive(Debug, thiserror::Error)]
+pub enum TomlWriteError {
+    #[error("cannot write '{}': {error}", .path.display())]
+    Io { path: PathBuf, error: std::io::Error },
+    #[error("{item}: {problem}, which the TOML format cannot express")]
+    Unsupported { item: String, problem: String },
+}
+
+/// Writes scenes as TOML, sharing one mesh folder between them.
+pub struct TomlWriter {
+    mesh_dir: PathBuf,
+    /// OBJ file written for each mesh, by `Arc` identity (the `Arc` is kept so that the
+    /// address cannot be reused by another mesh).
+    meshes: HashMap<*const MeshData, (Arc<MeshData>, PathBuf)>,
+    mesh_files: Vec<PathBuf>,
+}
+
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> TomlWriteError + '_ {
+    move |error| TomlWriteError::Io { path: path.to_path_buf(), error }
+}
+
+/// A TOML float: `Debug` always writes a decimal point or an exponent, and round-trips.
+fn f(v: f64) -> String {
+    format!("{v:?}")
+}
+
+fn v3(v: DVec3) -> String {
+    format!("[{}, {}, {}]", f(v.x), f(v.y), f(v.z))
+}
+
+fn c3(v: Vec3) -> String {
+    format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
+}
+
+/// A TOML basic string.
+fn quoted(text: &str) -> String {
+    let mut out = String::from("\"");
+    for ch in text.chars() {
+        match ch {
+            '"' => out += "\\\"",
+            '\\' => out += "\\\\",
+            c if (c as u32) < 0x20 || c == '\u{7f}' => out += &format!("\\u{:04x}", c as u32),
+            c => out.push(c),
+        }
+    }
+    out + "\""
+}
+
+fn matrix(m: &DAffine3) -> String {
+    let rows: Vec<String> = (0..3)
+        .map(|r| {
+            let row = m.matrix3.row(r);
+            format!("[{}, {}, {}, {}]", f(row.x), f(row.y), f(row.z), f(m.translation[r]))
+        })
+        .collect();
+    format!("[{{ matrix = [{}, [0.0, 0.0, 0.0, 1.0]] }}]", rows.join(", "))
+}
+
+impl TomlWriter {
+    /// Meshes go to `mesh_dir` (created on first use).
+    pub fn new(mesh_dir: PathBuf) -> Self {
+        TomlWriter { mesh_dir, meshes: HashMap::new(), mesh_files: Vec::new() }
+    }
+
+    /// The OBJ files written so far.
+    pub fn mesh_files(&self) -> &[PathBuf] {
+        &self.mesh_files
+    }
+
+    /// Writes `scene` to `path` (with `note` as a comment at the top), and any mesh not yet
+    /// written.
+    pub fn write(
+        &mut self,
+        scene: &SceneDesc,
+        path: &Path,
+        note: &str,
+    ) -> Result<(), TomlWriteError> {
+        let text = self.toml(scene, path, note)?;
+        std::fs::write(path, text).map_err(io_error(path))
+    }
+
+    /// The TOML text for `scene`, to be written at `path` (mesh paths are relative to it).
+    pub fn toml(
+        &mut self,
+        scene: &SceneDesc,
+        path: &Path,
+        note: &str,
+    ) -> Result<String, TomlWriteError> {
+        let mut out = String::new();
+        for line in note.lines() {
+            let _ = writeln!(out, "# {line}");
+        }
+        camera_and_render(scene, &mut out);
+        let names = material_names(&scene.materials);
+        for (material, name) in scene.materials.iter().zip(&names) {
+            write_material(material, name, &mut out)?;
+        }
+        let toml_dir = path.parent().unwrap_or(Path::new(""));
+        for object in &scene.objects {
+            out += "\n[[objects]]\n";
+            match &object.shape {
+                ShapeDesc::Mesh(mesh) => {
+                    let file = self.mesh_file(mesh)?;
+                    let relative = file.strip_prefix(toml_dir).unwrap_or(&file);
+                    let relative = relative.to_string_lossy().replace('\\', "/");
+                    let _ = writeln!(out, "type = \"mesh\"\nfile = {}", quoted(&relative));
+                }
+                ShapeDesc::Sphere { center, radius } => {
+                    let _ = writeln!(
+                        out,
+                        "type = \"sphere\"\ncenter = {}\nradius = {}",
+                        v3(*center),
+                        f(*radius)
+                    );
+                }
+            }
+            let _ = writeln!(out, "material = {}", quoted(&names[object.material as usize]));
+            if object.world_from_object != DAffine3::IDENTITY {
+                let _ = writeln!(out, "transform = {}", matrix(&object.world_from_object));
+            }
+            if let Some(end) = &object.world_from_object_end {
+                let _ = writeln!(out, "transform_end = {}", matrix(end));
+            }
+        }
+        for light in &scene.lights {
+            out += "\n[[lights]]\n";
+            let _ = match light {
+                LightDesc::Point { position, intensity } => writeln!(
+                    out,
+                    "type = \"point\"\nposition = {}\nintensity = {}",
+                    v3(*position),
+                    c3(*intensity)
+                ),
+                LightDesc::Directional { direction, irradiance } => writeln!(
+                    out,
+                    "type = \"directional\"\ndirection = {}\nirradiance = {}",
+                    v3(*direction),
+                    c3(*irradiance)
+                ),
+                LightDesc::Ambient { radiance } => {
+                    writeln!(out, "type = \"ambient\"\nradiance = {}", c3(*radiance))
+                }
+                LightDesc::Area { center, normal, size, radiance } => writeln!(
+                    out,
+                    "type = \"area\"\ncenter = {}\nnormal = {}\nsize = {}\nradiance = {}",
+                    v3(*center),
+                    v3(*normal),
+                    f(*size),
+                    c3(*radiance)
+                ),
+            };
+        }
+        Ok(out)
+    }
+
+    /// The OBJ file of `mesh`, written on first use.
+    fn mesh_file(&mut self, mesh: &Arc<MeshData>) -> Result<PathBuf, TomlWriteError> {
+        if let Some((_, file)) = self.meshes.get(&Arc::as_ptr(mesh)) {
+            return Ok(file.clone());
+        }
+        std::fs::create_dir_all(&self.mesh_dir).map_err(io_error(&self.mesh_dir))?;
+        let file = self.mesh_dir.join(format!("mesh_{}.obj", self.mesh_files.len()));
+        std::fs::write(&file, obj_text(mesh)).map_err(io_error(&file))?;
+        self.meshes.insert(Arc::as_ptr(mesh), (Arc::clone(mesh), file.clone()));
+        self.mesh_files.push(file.clone());
+        Ok(file)
+    }
+}
+
+fn camera_and_render(scene: &SceneDesc, out: &mut String) {
+    let c = &scene.camera;
+    let _ = writeln!(
+        out,
+        "\n[camera]\nlookfrom = {}\nlookat = {}\nup = {}\nvfov = {}\nresolution = [{}, {}]",
+        v3(c.lookfrom),
+        v3(c.lookat),
+        v3(c.up),
+        f(c.vfov_deg),
+        c.width,
+        c.height
+    );
+    if c.aperture > 0.0 {
+        let _ = writeln!(out, "aperture = {}", f(c.aperture));
+    }
+    if c.lens_shape == LensShape::Square {
+        out.push_str("lens = \"square\"\n");
+    }
+    if let Some(d) = c.focus_distance {
+        let _ = writeln!(out, "focus_distance = {}", f(d));
+    }
+    let s = &scene.settings;
+    let integrator = match s.integrator {
+        IntegratorKind::Path => "path",
+        IntegratorKind::Whitted => "whitted",
+    };
+    let _ = writeln!(
+        out,
+        "\n[render]\nspp = {}\nmax_depth = {}\nbackground = {}\nlight_samples = {}\nintegrator = \"{integrator}\"",
+        s.spp,
+        s.max_depth,
+        c3(s.background),
+        s.light_samples
+    );
+}
+
+/// A unique TOML key per material: its name, or with its index appended if taken.
+fn material_names(materials: &[MaterialDesc]) -> Vec<String> {
+    let mut used = std::collections::HashSet::new();
+    materials
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let base = if m.name.is_empty() { format!("material_{i}") } else { m.name.clone() };
+            let name = if used.contains(&base) { format!("{base} ({i})") } else { base };
+            used.insert(name.clone());
+            name
+        })
+        .collect()
+}
+
+fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), TomlWriteError> {
+    let unsupported = |problem: String| TomlWriteError::Unsupported {
+        item: format!("material '{name}'"),
+        problem,
+    };
+    let at_most_one = |what: &str, c: Vec3| {
+        if c.max_element() > 1.0 {
+            Err(unsupported(format!("{what} {} is above 1", c3(c))))
+        } else {
+            Ok(())
+        }
+    };
+    at_most_one("the albedo", m.albedo)?;
+    let _ = writeln!(out, "\n[materials.{}]", quoted(name));
+    let kind = match m.specular {
+        SpecularDesc::None => "diffuse",
+        SpecularDesc::Mirror { .. } => "mirror",
+        SpecularDesc::Conductor { .. } => "conductor",
+        SpecularDesc::Dielectric { .. } => "dielectric",
+    };
+    let _ = writeln!(out, "type = \"{kind}\"\nalbedo = {}", c3(m.albedo));
+    if m.emission != Vec3::ZERO {
+        let _ = writeln!(out, "emission = {}", c3(m.emission));
+    }
+    match m.specular {
+        SpecularDesc::None => {}
+        SpecularDesc::Mirror { reflectance } => {
+            at_most_one("the reflectance", reflectance)?;
+            let _ = writeln!(out, "reflectance = {}", c3(reflectance));
+        }
+        SpecularDesc::Conductor { eta, k, reflectance } => {
+            at_most_one("the reflectance", reflectance)?;
+            let _ = writeln!(
+                out,
+                "eta = {}\nk = {}\nreflectance = {}",
+                c3(eta),
+                c3(k),
+                c3(reflectance)
+            );
+        }
+        SpecularDesc::Dielectric { ior, absorption } => {
+            let _ = writeln!(out, "ior = {:?}\nabsorption = {}", ior, c3(absorption));
+        }
+    }
+    // A diffuse material's roughness means nothing to either integrator.
+    if m.roughness != 0.0 && m.specular != SpecularDesc::None {
+        let _ = writeln!(out, "roughness = {:?}", m.roughness);
+    }
+    if let Some(t) = &m.texture {
+        if t.texture_from_object != DAffine3::IDENTITY {
+            return Err(unsupported("its texture is mapped through a transform".to_owned()));
+        }
+        let (kind, scale, even, odd) = match t.pattern {
+            PatternDesc::Checker2d { scale, even, odd } => ("checker2d", scale, even, odd),
+            PatternDesc::Checker3d { scale, even, odd } => ("checker3d", scale, even, odd),
+        };
+        at_most_one("a texture colour", even.max(odd))?;
+        let _ = writeln!(
+            out,
+            "texture = {{ type = \"{kind}\", scale = {}, even = {}, odd = {} }}",
+            f(scale),
+            c3(even),
+            c3(odd)
+        );
+    }
+    if let Some(p) = &m.phong {
+        let exponent = if p.exponent > 0.0 {
+            format!(", exponent = {:?}", p.exponent)
+        } else if p.specular == Vec3::ZERO {
+            // Without a highlight the exponent does not matter; the format wants it > 0.
+            String::new()
+        } else {
+            return Err(unsupported(format!("its Phong exponent is {}", p.exponent)));
+        };
+        let _ = writeln!(
+            out,
+            "phong = {{ ambient = {}, specular = {}{exponent} }}",
+            c3(p.ambient),
+            c3(p.specular)
+        );
+    }
+    Ok(())
+}
+
+/// The mesh as OBJ text: positions (and normals, texture coordinates) per vertex, one face
+/// per triangle with the same index for every attribute.
+fn obj_text(mesh: &MeshData) -> String {
+    let mut out = String::with_capacity(mesh.positions.len() * 40 + mesh.indices.len() * 24);
+    for p in &mesh.positions {
+        let _ = writeln!(out, "v {} {} {}", f(p.x), f(p.y), f(p.z));
+    }
+    if let Some(normals) = &mesh.normals {
+        for n in normals {
+            let _ = writeln!(out, "vn {} {} {}", f(n.x), f(n.y), f(n.z));
+        }
+    }
+    if let Some(uvs) = &mesh.uvs {
+        for t in uvs {
+            let _ = writeln!(out, "vt {:?} {:?}", t.x, t.y);
+        }
+    }
+    let (n, t) = (mesh.normals.is_some(), mesh.uvs.is_some());
+    for tri in &mesh.indices {
+        out.push('f');
+        for &i in tri {
+            let i = i + 1;
+            let _ = match (t, n) {
+                (false, false) => write!(out, " {i}"),
+                (true, false) => write!(out, " {i}/{i}"),
+                (false, true) => write!(out, " {i}//{i}"),
+                (true, true) => write!(out, " {i}/{i}/{i}"),
+            };
+        }
+        out.push('\n');
+    }
+    out
+}
