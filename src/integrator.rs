@@ -57,6 +57,18 @@ fn sampling_from_world() -> Mat3 {
     Mat3::from_quat(Quat::from_rotation_arc(generic, Vec3::Z))
 }
 
+/// Traces a shadow ray and counts it; an invalid ray (which must never reach Embree) counts
+/// as blocked.
+pub(crate) fn trace_shadow_ray(accel: &dyn Accel, ray: &Ray, stats: &mut RenderStats) -> bool {
+    if !ray.is_valid() {
+        return true;
+    }
+    stats.shadow.rays += 1;
+    let blocked = accel.occluded(ray, &mut stats.traversal);
+    stats.shadow.hits += blocked as u64;
+    blocked
+}
+
 /// Power-heuristic weight of a strategy with density `a` against one with density `b`.
 fn power_heuristic(a: f32, b: f32) -> f32 {
     let (a2, b2) = (a * a, b * b);
@@ -93,13 +105,7 @@ impl<'a> PathTracer<'a> {
     }
 
     fn occluded(&self, ray: &Ray, stats: &mut RenderStats) -> bool {
-        if !ray.is_valid() {
-            return true;
-        }
-        stats.shadow.rays += 1;
-        let blocked = self.accel.occluded(ray, &mut stats.traversal);
-        stats.shadow.hits += blocked as u64;
-        blocked
+        trace_shadow_ray(self.accel, ray, stats)
     }
 
     /// Local shading frame (normal = +Z) → render space, built in the world-fixed sampling

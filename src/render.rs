@@ -1,8 +1,7 @@
 //! One render from a scene description: convert to render space, build the backend, trace
 //! tiles in parallel, gather film and counters.
 
-use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind};
-use crate::accel::{Hit, Ray};
+use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind, Hit, Ray};
 use crate::film::{Film, Tile, tiles};
 use crate::integrator::{PathSample, PathTracer};
 use crate::render_scene::RenderScene;
@@ -18,6 +17,10 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
+/// Side of the square tiles rayon schedules, one task each (`par_iter` over the tiles,
+/// buffers reused per worker). Measured on the Cornell box and the 1M-triangle sphere:
+/// 8, 16, 32 and 64 cost the same CPU time within 1 %; 16 gives 256 tasks for a 256×256
+/// image, plenty to balance two threads, so it stays.
 const TILE_SIZE: u32 = 16;
 
 /// Validated options of one render (command line, or tests).
@@ -247,10 +250,12 @@ impl TileResult {
     }
 }
 
-/// Renders one tile. With the path tracer, the camera rays of a chunk of pixels are
+/// Renders one tile. With the path tracer on a backend that traces batches faster
+/// (`Accel::prefers_batches`: Embree packets), the camera rays of a chunk of pixels are
 /// generated first (same order, same random numbers as one at a time), intersected as one
-/// batch (`Accel::intersect_batch`, whose hits equal single-ray ones), and each path then
-/// continues from its first hit: the image is the same as tracing sample by sample.
+/// batch (`Accel::intersect_batch`, whose hits equal single-ray ones but for ties between
+/// coincident surfaces, see `BatchMode`), and each path then continues from its first hit:
+/// the image is the same as tracing sample by sample.
 fn render_tile(
     tracer: &Tracer,
     tile: Tile,
@@ -267,7 +272,11 @@ fn render_tile(
         stats: RenderStats::default(),
     };
     let spp = options.spp.max(1);
-    let Tracer::Path(path) = tracer else {
+    let batched = match tracer {
+        Tracer::Path(path) if path.accel().prefers_batches() => Some(path),
+        _ => None,
+    };
+    let Some(path) = batched else {
         for y in tile.y0..tile.y1 {
             for x in tile.x0..tile.x1 {
                 let mut sum = PixelSum::default();

@@ -71,13 +71,7 @@ impl<'a> WhittedTracer<'a> {
     }
 
     fn occluded(&self, ray: &Ray, stats: &mut RenderStats) -> bool {
-        if !ray.is_valid() {
-            return true;
-        }
-        stats.shadow.rays += 1;
-        let blocked = self.accel.occluded(ray, &mut stats.traversal);
-        stats.shadow.hits += blocked as u64;
-        blocked
+        crate::integrator::trace_shadow_ray(self.accel, ray, stats)
     }
 
     /// Ambient + diffuse + Blinn-Phong specular from every light at `si`.

@@ -143,8 +143,8 @@ fn t_on_primitive(scene: &RenderScene, ray: &Ray, hit: &Hit) -> Option<f32> {
 /// whose closest hit is an exact or near-exact tie between two surfaces that share no edge
 /// (coincident faces, e.g. a box's bottom on the floor seen from below) may report the
 /// other surface. Such a difference must be a proven tie: `t` within a few ulps, and the ray
-/// really meets both primitives there (by our own intersection tests). The default mode,
-/// single rays, has no exception.
+/// really meets both primitives there (by our own intersection tests). `BatchMode::Single`
+/// has no exception.
 fn assert_batches_match(scene: &RenderScene, rays: &[Ray], what: &str) {
     for backend in backends() {
         let modes: &[BatchMode] = match backend {

@@ -81,9 +81,9 @@ pub trait Accel: Send + Sync {
     /// True if anything lies on the ray with `tmin <= t <= tmax`.
     fn occluded(&self, ray: &Ray, counters: &mut TraversalCounters) -> bool;
     /// Closest hits of a batch of rays: `hits[i]` becomes what `intersect(&rays[i], counters)`
-    /// returns (bit for bit, counters included; except on ties between coincident surfaces
-    /// with Embree packets, see [`BatchMode`]), so a caller may batch coherent rays (a tile's
-    /// camera rays) without changing its results. Unlike [`Accel::intersect`], rays need not
+    /// returns (bit for bit, counters included; Embree packets may break a tie between
+    /// coincident surfaces differently, see [`BatchMode`]), so a caller may batch coherent
+    /// rays (a tile's camera rays) without changing its results. Unlike [`Accel::intersect`], rays need not
     /// be valid: an invalid ray is a miss.
     ///
     /// # Panics
@@ -102,6 +102,12 @@ pub trait Accel: Send + Sync {
     /// Which counters this backend fills in (with `AccelOptions::count_traversal`).
     fn observes(&self) -> Observes {
         Observes::default()
+    }
+    /// Whether [`Accel::intersect_batch`] traces coherent rays faster than one
+    /// [`Accel::intersect`] each (the renderer batches camera rays only then: collecting
+    /// them costs about 2 % of a render for nothing otherwise).
+    fn prefers_batches(&self) -> bool {
+        false
     }
 }
 
@@ -147,34 +153,42 @@ pub enum AccelError {
 }
 
 /// How long a backend may spend building its BVH to make traversal faster.
+///
+/// Measured here (`benches/throughput.rs`, one thread, 256×256 camera rays): with Embree
+/// 3.13.5 `Low` builds the 1M-triangle sphere about 10 % faster but traces 5-20 % fewer
+/// rays per second; `High` is the same as `Medium`, because Embree has no spatial-split
+/// builder for the robust triangle layout every scene of ours uses (`RTC_SCENE_FLAG_ROBUST`;
+/// also none for user geometry and instances). obvhs: `Low` builds about 20 % faster and
+/// `High` 2× slower, with whole renders within 2 % of `Medium`. Hence `Medium`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
 pub enum BuildQuality {
-    /// Embree `RTC_BUILD_QUALITY_LOW` (Morton build); obvhs `fastest_build`.
+    /// Embree `RTC_BUILD_QUALITY_LOW` (its two-level Morton builder); obvhs `fastest_build`.
     Low,
     /// Embree `RTC_BUILD_QUALITY_MEDIUM` (binned SAH); obvhs `medium_build`.
     #[default]
     Medium,
-    /// Embree `RTC_BUILD_QUALITY_HIGH` (SAH with spatial splits); obvhs `slow_build`.
+    /// Embree `RTC_BUILD_QUALITY_HIGH` (SAH with spatial splits, where Embree has it: not for
+    /// our robust scenes in 3.13.5); obvhs `slow_build`.
     High,
 }
 
 /// How the Embree backend traces [`Accel::intersect_batch`] (the renderer's batches of
 /// camera rays); the obvhs backend always traces one ray at a time.
 ///
-/// Embree's packet kernels are faster on coherent rays (camera rays: 1.2-2.5× the rays per
-/// second of single rays, 4-10 % off a whole render, `benches/throughput.rs`) but not always
-/// bit-identical to its single-ray kernel: on an exact or near-exact tie between coincident
-/// surfaces (two faces in the same plane, e.g. a box standing on the floor seen from below,
-/// or duplicated faces) they may report the other surface. Ties on an edge shared by two
-/// triangles are handled (see `EmbreeAccel::intersect_batch`), and scenes with motion blur
-/// always trace single rays. Every bundled scene renders bit-identically with packets, but
-/// since that is not guaranteed in general, single rays are the default.
+/// Measured here: packets of 8 trace camera rays at 1.2× (1M-triangle sphere) to 2.5×
+/// (Cornell box) the rate of single rays and take 6-11 % off whole Embree renders (CPU time,
+/// bundled scenes and the 1M sphere). They return the single-ray hits bit for bit, with one
+/// exception: on an exact or 1-ulp tie between coincident surfaces (two faces in the same
+/// plane that share no edge, e.g. a box standing on the floor seen from below, or duplicated
+/// faces) Embree's packet kernel may report the other surface (see
+/// `EmbreeAccel::intersect_batch`). Every bundled scene renders bit-identically either way.
+/// `Single` is exact in every case, at the single-ray speed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
 pub enum BatchMode {
     /// One `rtcIntersect1` per ray: exactly the hits of `Accel::intersect`.
-    #[default]
     Single,
     /// Packets of 8 rays (`rtcIntersect8`), the faster width on large meshes here.
+    #[default]
     Packets8,
     /// Packets of 16 rays (`rtcIntersect16`).
     Packets16,
@@ -187,7 +201,8 @@ pub struct AccelOptions {
     pub count_traversal: bool,
     /// BVH build quality, both backends.
     pub build_quality: BuildQuality,
-    /// Embree: `RTC_SCENE_FLAG_COMPACT` (a smaller BVH, somewhat slower traversal).
+    /// Embree: `RTC_SCENE_FLAG_COMPACT`: a smaller BVH (triangles stored as indices), but
+    /// 15-25 % fewer rays per second and renders 4-16 % slower here, so off by default.
     pub compact: bool,
     /// Embree: how batches of rays (`Accel::intersect_batch`) are traced.
     pub batch: BatchMode,
@@ -199,7 +214,7 @@ impl AccelOptions {
         count_traversal: false,
         build_quality: BuildQuality::Medium,
         compact: false,
-        batch: BatchMode::Single,
+        batch: BatchMode::Packets8,
     };
 }
 

@@ -199,7 +199,9 @@ impl EmbreeAccel {
 /// ROBUST always: watertight-enough traversal for rays grazing triangle edges and box faces,
 /// in child scenes too (that is where an instanced mesh's BVH is). Embree 3.13.5 ignores it
 /// for instance and user-geometry BVHs (it has no robust variant of those traversals): a ray
-/// within rounding of such a box's face may miss it.
+/// within rounding of such a box's face may miss it. With ROBUST it also builds triangles
+/// with the MEDIUM builder when asked for HIGH (it has spatial splits only for the fast
+/// triangle layout), so `BuildQuality::High` changes nothing here.
 fn new_scene(device: &Arc<Device>, options: &AccelOptions) -> Result<Scene, AccelError> {
     let quality = match options.build_quality {
         BuildQuality::Low => ffi::RTCBuildQuality::LOW,
@@ -295,6 +297,11 @@ impl Accel for EmbreeAccel {
                 *hit = self.scene.intersect(ray, None);
             }
         }
+    }
+
+    /// With packets: not in counting mode, nor with motion blur (see `intersect_batch`).
+    fn prefers_batches(&self) -> bool {
+        self.batch != BatchKind::Single
     }
 
     /// Primitive tests in counting mode; node visits never (see [`EmbreeAccel`]).
