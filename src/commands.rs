@@ -102,6 +102,9 @@ fn render_one(args: &RenderArgs, scene: &SceneDesc, exr: &Path, png: &Path) -> R
             "backend": output.backend,
             "render_space": options.render_space.name(),
             "spp": options.spp,
+            "build_quality": options.accel.build_quality,
+            "compact": options.accel.compact,
+            "batch": options.accel.batch,
             "render_seconds": output.render_time.as_secs_f64(),
             "build_seconds": output.build_time.as_secs_f64(),
             "observes": output.observes,
@@ -148,16 +151,23 @@ fn bench_effects(args: &EffectsArgs) -> Result<()> {
 fn bench_speed(args: &SpeedArgs) -> Result<()> {
     use embray::bench::{procedural, speed};
     anyhow::ensure!(args.spp > 0 && args.size > 0 && args.large > 0, "sizes must be positive");
+    const NAMES: [&str; 4] = ["cornell", "city_block", "instances", "large"];
+    if let Some(unknown) = args.only.iter().find(|n| !NAMES.contains(&n.as_str())) {
+        bail!("--only: unknown scene '{unknown}' (expected some of {})", NAMES.join(", "));
+    }
+    let wanted = |name: &str| args.only.is_empty() || args.only.iter().any(|n| n == name);
     let root = bundled_root();
     let mut scenes = Vec::new();
-    for name in ["cornell", "city_block", "instances"] {
+    for name in NAMES[..3].iter().filter(|n| wanted(n)) {
         let path = root.join("scenes").join(format!("{name}.toml"));
         if path.exists() {
             scenes.push((name.to_string(), embray::scene::load(&path)?));
         }
     }
-    let large = format!("sphere_{}k", args.large / 1000);
-    scenes.push((large, procedural::displaced_sphere_scene(args.large, 256, 256)));
+    if wanted("large") {
+        let large = format!("sphere_{}k", args.large / 1000);
+        scenes.push((large, procedural::displaced_sphere_scene(args.large, 256, 256)));
+    }
     let mut rows = Vec::new();
     let total = scenes.len() * embray::accel::BackendKind::compiled().len();
     let bar = indicatif::ProgressBar::new(total as u64);
@@ -170,7 +180,14 @@ fn bench_speed(args: &SpeedArgs) -> Result<()> {
         }
         for backend in embray::accel::BackendKind::compiled() {
             bar.set_message(format!("{name} {}", backend.name()));
-            rows.push(speed::measure(&name, &scene, backend, args.spp, args.runs)?);
+            rows.push(speed::measure(
+                &name,
+                &scene,
+                backend,
+                args.spp,
+                args.runs,
+                args.build_quality,
+            )?);
             bar.inc(1);
         }
     }

@@ -181,7 +181,7 @@ impl<'a> Tracer<'a> {
 
 /// How many camera rays are generated and intersected as one batch: a chunk of a tile's
 /// pixels, all samples of each.
-const CAMERA_BATCH: usize = 1024;
+pub const CAMERA_BATCH: usize = 1024;
 
 /// Buffers one worker reuses from tile to tile, so tracing a tile allocates only its result.
 #[derive(Default)]

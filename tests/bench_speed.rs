@@ -1,25 +1,33 @@
 //! `embray bench speed` on a tiny configuration: every number of a row is sane.
 
-use embray::accel::BackendKind;
+use embray::accel::{BackendKind, BuildQuality};
 use embray::bench::{procedural, speed};
 
 #[test]
 fn speed_rows_of_a_tiny_scene_are_finite_and_positive() {
     let scene = procedural::displaced_sphere_scene(2000, 16, 16);
     for backend in BackendKind::compiled() {
-        let row = speed::measure("tiny", &scene, backend, 1, 1).expect("measures");
+        let row =
+            speed::measure("tiny", &scene, backend, 1, 1, BuildQuality::Medium).expect("measures");
         println!("{row:?}");
         assert_eq!(row.backend, backend.name());
         assert!(row.triangles > 1000, "{row:?}");
         for (what, value) in [
-            ("build_ms", row.build_ms),
+            ("build_ms low", row.build_ms[0]),
+            ("build_ms medium", row.build_ms[1]),
+            ("build_ms high", row.build_ms[2]),
             ("primary_mrays", row.primary_mrays),
+            ("primary_batch_mrays", row.primary_batch_mrays),
             ("diffuse_mrays", row.diffuse_mrays),
             ("samples_per_s_1t", row.samples_per_s_1t),
             ("samples_per_s_2t", row.samples_per_s_2t),
         ] {
             assert!(value.is_finite() && value > 0.0, "{}: {what} = {value}", backend.name());
         }
+        // The raw loop exists for Embree only.
+        let raw = row.raw_embree_mrays;
+        assert_eq!(raw.is_some(), backend == BackendKind::Embree, "{row:?}");
+        assert!(raw.is_none_or(|r| r.is_finite() && r > 0.0), "{row:?}");
         // Resident memory can stay flat for a scene this small.
         assert!(row.accel_mib.is_finite() && row.accel_mib >= 0.0, "{row:?}");
     }

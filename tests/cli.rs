@@ -93,6 +93,43 @@ fn render_writes_exr_and_png() {
 }
 
 #[test]
+fn build_options_are_reported_and_keep_the_image() {
+    let dir = temp_dir("build-options");
+    std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
+    let base = ["render", "scene.toml", "--spp", "2", "--quiet"];
+    let render = |extra: &[&str], name: &str| {
+        let exr = format!("{name}.exr");
+        let json = format!("{name}.json");
+        let mut args = base.to_vec();
+        args.extend_from_slice(&["-o", &exr, "--stats-json", &json]);
+        args.extend_from_slice(extra);
+        let out = embray(&args, &dir);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let stats: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join(&json)).unwrap()).unwrap();
+        (image::open(dir.join(format!("{name}.png"))).unwrap().to_rgb8(), stats)
+    };
+    let (default_png, default_stats) = render(&[], "default");
+    assert_eq!(default_stats["build_quality"], "medium");
+    assert_eq!(default_stats["batch"], "packets8");
+    assert_eq!(default_stats["compact"], false);
+    let options = [
+        ["--build-quality", "low", "--batch", "single", "--compact"].as_slice(),
+        ["--build-quality", "high", "--batch", "packets16"].as_slice(),
+    ];
+    for (i, extra) in options.iter().enumerate() {
+        let (png, stats) = render(extra, &format!("options{i}"));
+        assert_eq!(stats["build_quality"], extra[1], "{stats}");
+        assert_eq!(stats["batch"], extra[3], "{stats}");
+        assert!(png == default_png, "{extra:?} changed the image");
+    }
+    let out = embray(&["render", "scene.toml", "--build-quality", "best"], &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("low, medium, high"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn render_without_a_scene_draws_the_default_cornell_box() {
     let dir = temp_dir("default");
     let out = embray(&["render", "--spp", "1", "--quiet", "-o", "cornell.exr"], &dir);

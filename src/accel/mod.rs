@@ -161,6 +161,7 @@ pub enum AccelError {
 /// also none for user geometry and instances). obvhs: `Low` builds about 20 % faster and
 /// `High` 2× slower, with whole renders within 2 % of `Medium`. Hence `Medium`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum BuildQuality {
     /// Embree `RTC_BUILD_QUALITY_LOW` (its two-level Morton builder); obvhs `fastest_build`.
     Low,
@@ -184,6 +185,7 @@ pub enum BuildQuality {
 /// `EmbreeAccel::intersect_batch`). Every bundled scene renders bit-identically either way.
 /// `Single` is exact in every case, at the single-ray speed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum BatchMode {
     /// One `rtcIntersect1` per ray: exactly the hits of `Accel::intersect`.
     Single,

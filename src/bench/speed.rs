@@ -1,17 +1,18 @@
 //! `embray bench speed`: throughput of each backend on scenes from a dozen to a million
-//! triangles — BVH build time, primary and diffuse-bounce rays per second, whole-render
-//! samples per second on 1 and 2 threads, and memory.
+//! triangles — BVH build time per build quality, primary and diffuse-bounce rays per second
+//! (Embree also against a bare `rtcIntersect1` loop), whole-render samples per second on 1
+//! and 2 threads, and memory. Ray throughput is measured on one thread, so the ratios to
+//! the raw loop are per core.
 
 use super::median;
-use crate::accel::{Accel, AccelError, AccelOptions, BackendKind, Hit, Ray, build};
-use crate::render::{RenderError, RenderOptions, prepare_scene, render_film};
+use crate::accel::{Accel, AccelError, AccelOptions, BackendKind, BuildQuality, Hit, Ray, build};
+use crate::render::{CAMERA_BATCH, RenderError, RenderOptions, prepare_scene, render_film};
 use crate::render_scene::RenderScene;
 use crate::sampling::{cosine_hemisphere, hash4, to_unit_f32};
 use crate::scene::SceneDesc;
 use crate::stats::TraversalCounters;
 use crate::surface::interaction;
 use glam::{Mat3, Vec2, Vec3};
-use rayon::prelude::*;
 use std::time::Instant;
 
 #[derive(Clone, Debug, serde::Serialize)]
@@ -19,8 +20,15 @@ pub struct SpeedRow {
     pub scene: String,
     pub triangles: usize,
     pub backend: &'static str,
-    pub build_ms: f64,
+    /// Build time with `BuildQuality` low, medium and high.
+    pub build_ms: [f64; 3],
+    /// Camera rays one at a time (`Accel::intersect`), 1 thread.
     pub primary_mrays: f64,
+    /// Camera rays in the renderer's batches (`Accel::intersect_batch`), 1 thread.
+    pub primary_batch_mrays: f64,
+    /// The same camera rays through a bare `rtcIntersect1` loop (Embree rows only).
+    pub raw_embree_mrays: Option<f64>,
+    /// Cosine-distributed bounce rays from the camera rays' hits, 1 thread.
     pub diffuse_mrays: f64,
     /// Whole-render samples (camera paths) per second with 1 and 2 threads.
     pub samples_per_s_1t: f64,
@@ -78,23 +86,53 @@ pub fn diffuse_rays(scene: &RenderScene, accel: &dyn Accel, primary: &[Ray]) -> 
         .collect()
 }
 
-/// Closest-hit rays per second over `rays`, on the current rayon pool (median of `runs`).
-pub fn throughput(accel: &dyn Accel, rays: &[Ray], runs: usize) -> f64 {
+/// Rays per second of `trace` over `rays` (median of `runs`), on the calling thread.
+fn rays_per_second(rays: &[Ray], runs: usize, mut trace: impl FnMut(&[Ray]) -> usize) -> f64 {
     let times: Vec<f64> = (0..runs.max(1))
         .map(|_| {
             let start = Instant::now();
-            let hits: usize = rays
-                .par_chunks(1024)
-                .map(|chunk| {
-                    let mut counters = TraversalCounters::default();
-                    chunk.iter().filter(|r| accel.intersect(r, &mut counters).is_some()).count()
-                })
-                .sum();
-            std::hint::black_box(hits);
+            std::hint::black_box(trace(rays));
             start.elapsed().as_secs_f64()
         })
         .collect();
     rays.len() as f64 / median(times)
+}
+
+/// Closest-hit rays per second over `rays`, one at a time on the calling thread.
+pub fn throughput(accel: &dyn Accel, rays: &[Ray], runs: usize) -> f64 {
+    rays_per_second(rays, runs, |rays| {
+        let mut counters = TraversalCounters::default();
+        rays.iter().filter(|r| accel.intersect(r, &mut counters).is_some()).count()
+    })
+}
+
+/// As [`throughput`], in batches of the renderer's size through `Accel::intersect_batch`.
+pub fn batch_throughput(accel: &dyn Accel, rays: &[Ray], runs: usize) -> f64 {
+    let mut hits = vec![None; CAMERA_BATCH];
+    rays_per_second(rays, runs, |rays| {
+        let mut counters = TraversalCounters::default();
+        rays.chunks(CAMERA_BATCH)
+            .map(|chunk| {
+                let hits = &mut hits[..chunk.len()];
+                accel.intersect_batch(chunk, hits, &mut counters);
+                hits.iter().filter(|h| h.is_some()).count()
+            })
+            .sum()
+    })
+}
+
+/// The bare `rtcIntersect1` loop over `rays`, in rays per second; `None` without Embree.
+fn raw_embree_throughput(scene: &RenderScene, rays: &[Ray], runs: usize) -> Option<f64> {
+    #[cfg(feature = "embree")]
+    {
+        let raw = crate::accel::embree::EmbreeAccel::build(scene, &AccelOptions::default()).ok()?;
+        Some(rays_per_second(rays, runs, |rays| raw.raw_intersect_loop(rays)))
+    }
+    #[cfg(not(feature = "embree"))]
+    {
+        let _ = (scene, rays, runs);
+        None
+    }
 }
 
 /// Hits of `rays` one by one (for comparing batched paths against).
@@ -121,29 +159,52 @@ pub fn measure(
     backend: BackendKind,
     spp: u32,
     runs: usize,
+    render_quality: BuildQuality,
 ) -> Result<SpeedRow, SpeedError> {
     let mut options = RenderOptions::for_scene(desc);
     options.backend = backend;
     options.spp = spp;
     let scene = prepare_scene(desc, &options)?;
-    let mut builds = Vec::new();
+    let mut build_ms = [0.0; 3];
     let mut accel_mib = 0.0;
     let mut accel = None;
-    for _ in 0..runs.max(1) {
-        drop(accel.take());
-        let before = rss_kib();
-        let start = Instant::now();
-        let built = build(backend, &scene, &AccelOptions::default())?;
-        builds.push(start.elapsed().as_secs_f64());
-        accel_mib = rss_kib().saturating_sub(before) as f64 / 1024.0;
-        accel = Some(built);
+    let qualities = [BuildQuality::Low, BuildQuality::Medium, BuildQuality::High];
+    for (slot, build_quality) in qualities.into_iter().enumerate() {
+        let accel_options = AccelOptions { build_quality, ..AccelOptions::default() };
+        let mut builds = Vec::new();
+        for _ in 0..runs.max(1) {
+            drop(accel.take());
+            let before = rss_kib();
+            let start = Instant::now();
+            let built = build(backend, &scene, &accel_options)?;
+            builds.push(start.elapsed().as_secs_f64());
+            accel_mib = rss_kib().saturating_sub(before) as f64 / 1024.0;
+            accel = Some(built);
+        }
+        build_ms[slot] = median(builds) * 1e3;
     }
-    let accel = accel.expect("at least one build");
+    let render_options = AccelOptions { build_quality: render_quality, ..AccelOptions::default() };
+    let accel = build(backend, &scene, &render_options)?;
+    let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
     let primary = primary_rays(&scene);
     let diffuse = diffuse_rays(&scene, accel.as_ref(), &primary);
-    let primary_mrays = throughput(accel.as_ref(), &primary, runs) / 1e6;
-    let diffuse_mrays =
-        if diffuse.is_empty() { 0.0 } else { throughput(accel.as_ref(), &diffuse, runs) / 1e6 };
+    let (primary_mrays, primary_batch_mrays, raw_embree_mrays, diffuse_mrays) =
+        one_thread.install(|| {
+            let raw = match backend {
+                BackendKind::Embree => raw_embree_throughput(&scene, &primary, runs),
+                BackendKind::Obvhs => None,
+            };
+            (
+                throughput(accel.as_ref(), &primary, runs) / 1e6,
+                batch_throughput(accel.as_ref(), &primary, runs) / 1e6,
+                raw.map(|r| r / 1e6),
+                if diffuse.is_empty() {
+                    0.0
+                } else {
+                    throughput(accel.as_ref(), &diffuse, runs) / 1e6
+                },
+            )
+        });
     let samples = scene.camera.width as f64 * scene.camera.height as f64 * spp as f64;
     let mut per_threads = [0.0; 2];
     for (slot, threads) in [1usize, 2].into_iter().enumerate() {
@@ -164,8 +225,10 @@ pub fn measure(
         scene: name.to_string(),
         triangles: triangles(&scene),
         backend: backend.name(),
-        build_ms: median(builds) * 1e3,
+        build_ms,
         primary_mrays,
+        primary_batch_mrays,
+        raw_embree_mrays,
         diffuse_mrays,
         samples_per_s_1t: per_threads[0],
         samples_per_s_2t: per_threads[1],
@@ -173,24 +236,54 @@ pub fn measure(
     })
 }
 
+/// The rows as a Markdown table, then the ratios between the backends per scene.
 pub fn markdown(rows: &[SpeedRow]) -> String {
     let mut out = String::from(
-        "| scene | triangles | backend | build ms | primary Mrays/s | diffuse Mrays/s | samples/s 1 thread | samples/s 2 threads | scaling | accel MiB |\n|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| scene | triangles | backend | build ms low / medium / high | primary Mrays/s | batched | raw rtcIntersect1 | diffuse Mrays/s | samples/s 1 thread | samples/s 2 threads | scaling | accel MiB |\n\
+         |---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for r in rows {
+        let raw = match r.raw_embree_mrays {
+            Some(raw) => format!("{raw:.2} (ours {:.2}×)", r.primary_mrays / raw.max(1e-9)),
+            None => "–".to_string(),
+        };
         out += &format!(
-            "| {} | {} | {} | {:.1} | {:.2} | {:.2} | {:.0} | {:.0} | {:.2}× | {:.1} |\n",
+            "| {} | {} | {} | {:.1} / {:.1} / {:.1} | {:.2} | {:.2} | {} | {:.2} | {:.0} | {:.0} | {:.2}× | {:.1} |\n",
             r.scene,
             r.triangles,
             r.backend,
-            r.build_ms,
+            r.build_ms[0],
+            r.build_ms[1],
+            r.build_ms[2],
             r.primary_mrays,
+            r.primary_batch_mrays,
+            raw,
             r.diffuse_mrays,
             r.samples_per_s_1t,
             r.samples_per_s_2t,
             r.samples_per_s_2t / r.samples_per_s_1t.max(1e-9),
             r.accel_mib
         );
+    }
+    let pairs: Vec<(&SpeedRow, &SpeedRow)> = rows
+        .iter()
+        .filter(|r| r.backend == "embree")
+        .filter_map(|e| {
+            rows.iter().find(|o| o.backend == "obvhs" && o.scene == e.scene).map(|o| (e, o))
+        })
+        .collect();
+    if !pairs.is_empty() {
+        out += "\nobvhs render time ÷ Embree render time (1 thread / 2 threads):";
+        for (embree, obvhs) in pairs {
+            out += &format!(
+                " {} {:.2}× / {:.2}×;",
+                embree.scene,
+                embree.samples_per_s_1t / obvhs.samples_per_s_1t.max(1e-9),
+                embree.samples_per_s_2t / obvhs.samples_per_s_2t.max(1e-9),
+            );
+        }
+        out.pop();
+        out += "\n";
     }
     out
 }

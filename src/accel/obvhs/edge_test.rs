@@ -1,0 +1,167 @@
+//! A conservative pre-test for `crate::geometry::intersect_triangle`: rejects most of the
+//! triangles a ray passes outside of without the exact test's FMA-based edge functions.
+
+use glam::Vec3;
+
+/// The per-ray part of `geometry::intersect_triangle` (Woop et al.'s permutation, with the
+/// axis the direction is largest along, `KZ`, last, and shear), and a conservative version
+/// of its edge test.
+///
+/// `intersect_triangle` returns `None` whenever its three edge functions (computed with FMA,
+/// falling back to f64 for zeros) have mixed signs. Each of those is a·b − c·d of the same
+/// sheared vertex coordinates computed here (same operations, so the same bits), and its
+/// sign is always the sign of the exact a·b − c·d (Kahan's FMA form is exact for a zero and
+/// within 2 ulps otherwise; the f64 fallback rounds once). Here a·b − c·d is computed in
+/// plain f32 with an error bound: where the estimate exceeds its bound its sign is the exact
+/// sign, so two such estimates of opposite signs prove the exact test returns `None`.
+/// Only then does [`EdgeTest::may_hit`] say no; `intersect_triangle` decides the rest.
+pub(super) struct EdgeTest<const KZ: usize> {
+    origin: Vec3,
+    shear: (f32, f32),
+}
+
+/// `intersect_triangle`'s `permute` for `dir.abs().max_position() == KZ`.
+#[inline(always)]
+fn permute<const KZ: usize>(v: Vec3) -> Vec3 {
+    match KZ {
+        0 => Vec3::new(v.y, v.z, v.x),
+        1 => Vec3::new(v.z, v.x, v.y),
+        _ => Vec3::new(v.x, v.y, v.z),
+    }
+}
+
+impl<const KZ: usize> EdgeTest<KZ> {
+    /// As `intersect_triangle` sets up for `dir`, whose largest component is `KZ`.
+    #[inline(always)]
+    pub(super) fn new(origin: Vec3, dir: Vec3) -> Self {
+        let d = permute::<KZ>(dir);
+        EdgeTest { origin, shear: (-d.x / d.z, -d.y / d.z) }
+    }
+
+    /// False only if `intersect_triangle(origin, dir, .., tri)` certainly returns `None`.
+    #[inline(always)]
+    pub(super) fn may_hit(&self, tri: &[Vec3; 3]) -> bool {
+        let (sx, sy) = self.shear;
+        // `permute(v - origin)`, then `p.x += sx * p.z; p.y += sy * p.z`, as there.
+        let sheared = |v: Vec3| {
+            let p = permute::<KZ>(v - self.origin);
+            (p.x + sx * p.z, p.y + sy * p.z)
+        };
+        let (p0, p1, p2) = (sheared(tri[0]), sheared(tri[1]), sheared(tri[2]));
+        // Sign of a·b − c·d: 1 or -1 where certain, 0 where not.
+        let sign = |a: f32, b: f32, c: f32, d: f32| {
+            let (ab, cd) = (a * b, c * d);
+            let estimate = ab - cd;
+            // Two products and a difference, each within half an ulp: 4 ε is twice the
+            // bound; the absolute term covers subnormal products.
+            let bound = (ab.abs() + cd.abs()) * (4.0 * f32::EPSILON) + 1e-36;
+            // NaN and infinities compare false both ways: left to the exact test.
+            (estimate > bound, estimate < -bound)
+        };
+        let e0 = sign(p1.0, p2.1, p1.1, p2.0);
+        let e1 = sign(p2.0, p0.1, p2.1, p0.0);
+        let e2 = sign(p0.0, p1.1, p0.1, p1.0);
+        let positive = e0.0 | e1.0 | e2.0;
+        let negative = e0.1 | e1.1 | e2.1;
+        !(negative & positive)
+    }
+
+    /// False only if `intersect_triangle(origin, dir, tmin, tmax, tri)` certainly returns
+    /// `None` because its `t` lies outside `[tmin, tmax]` (or it has no `t`): computes `t`
+    /// exactly as it does (same operations, same bits) and applies its own test.
+    #[inline(always)]
+    pub(super) fn in_range(&self, dir: Vec3, tmin: f32, tmax: f32, tri: &[Vec3; 3]) -> bool {
+        let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+        let denom = dir.dot(normal);
+        let t = (tri[0] - self.origin).dot(normal) / denom;
+        // `intersect_triangle` refuses a zero or non-finite `denom` too; the `t` this gives
+        // then is NaN or infinite, or is refused by the exact test anyway.
+        t > 0.0 && t >= tmin && t <= tmax
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::intersect_triangle;
+
+    /// splitmix64 over a counter.
+    struct Rng(u64);
+
+    impl Rng {
+        fn unit(&mut self) -> f32 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+        }
+
+        fn vec3(&mut self, scale: f32) -> Vec3 {
+            Vec3::new(self.unit() - 0.5, self.unit() - 0.5, self.unit() - 0.5) * scale
+        }
+    }
+
+    fn edge_test(origin: Vec3, dir: Vec3) -> impl Fn(&[Vec3; 3], f32, f32) -> bool {
+        let kz = dir.abs().max_position();
+        let (e0, e1, e2) = (
+            EdgeTest::<0>::new(origin, dir),
+            EdgeTest::<1>::new(origin, dir),
+            EdgeTest::<2>::new(origin, dir),
+        );
+        move |tri: &[Vec3; 3], tmin: f32, tmax: f32| match kz {
+            0 => e0.may_hit(tri) && e0.in_range(dir, tmin, tmax, tri),
+            1 => e1.may_hit(tri) && e1.in_range(dir, tmin, tmax, tri),
+            _ => e2.may_hit(tri) && e2.in_range(dir, tmin, tmax, tri),
+        }
+    }
+
+    /// The pre-tests never reject a triangle `intersect_triangle` hits: on random rays, on
+    /// rays through vertices, edge points and shared edges, axis-aligned rays, and at scales
+    /// from 1e-6 to 1e6; and they reject most misses.
+    #[test]
+    fn pre_tests_only_reject_what_the_exact_test_misses() {
+        let mut rng = Rng(5);
+        let (mut hits, mut misses, mut rejected) = (0, 0, 0);
+        for k in 0..200_000 {
+            let scale = [1e-6, 1e-3, 1.0, 1e3, 1e6][k % 5];
+            let tri = [rng.vec3(scale), rng.vec3(scale), rng.vec3(scale)];
+            let origin = rng.vec3(4.0 * scale) + Vec3::splat(scale * [0.0, 1e3][k / 5 % 2]);
+            // Aim at a vertex, an edge point, the centre, or anywhere.
+            let (a, b) = (rng.unit(), rng.unit());
+            let target = match k / 10 % 4 {
+                0 => tri[k % 3],
+                1 => tri[k % 3] + (tri[(k + 1) % 3] - tri[k % 3]) * a,
+                2 => (tri[0] + tri[1] + tri[2]) / 3.0,
+                _ => tri[0] + (tri[1] - tri[0]) * a + (tri[2] - tri[0]) * b,
+            };
+            let mut dir = target - origin;
+            if k % 7 == 0 {
+                // Axis-aligned: ties in the permutation, zero shear.
+                let axis = dir.abs().max_position();
+                dir = Vec3::ZERO;
+                dir[axis] = 1.0;
+            }
+            if dir == Vec3::ZERO || !dir.is_finite() {
+                continue;
+            }
+            let tmax = if k % 3 == 0 { f32::INFINITY } else { rng.unit() * 2.0 };
+            let tmin = if k % 4 == 0 { rng.unit() * 0.5 } else { 0.0 };
+            let exact = intersect_triangle(origin, dir, tmin, tmax, &tri);
+            let may_hit = edge_test(origin, dir);
+            let candidate = may_hit(&tri, tmin, tmax);
+            match exact {
+                Some(_) => {
+                    hits += 1;
+                    assert!(candidate, "ray {k}: {origin} {dir} [{tmin}, {tmax}] {tri:?}");
+                }
+                None => {
+                    misses += 1;
+                    rejected += usize::from(!candidate);
+                }
+            }
+        }
+        println!("{hits} hits, {misses} misses, {rejected} rejected by the pre-tests");
+        assert!(hits > 20_000 && rejected * 10 > misses * 8, "{hits} {misses} {rejected}");
+    }
+}
