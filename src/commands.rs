@@ -169,8 +169,7 @@ fn bench_speed(args: &SpeedArgs) -> Result<()> {
         scenes.push((large, procedural::displaced_sphere_scene(args.large, 256, 256)));
     }
     let mut rows = Vec::new();
-    let total = scenes.len() * embray::accel::BackendKind::compiled().len();
-    let bar = indicatif::ProgressBar::new(total as u64);
+    let bar = indicatif::ProgressBar::new(scenes.len() as u64);
     for (name, mut scene) in scenes {
         let longest = scene.camera.width.max(scene.camera.height);
         if longest > args.size {
@@ -178,18 +177,17 @@ fn bench_speed(args: &SpeedArgs) -> Result<()> {
             scene.camera.width = ((scene.camera.width as f64 * scale) as u32).max(1);
             scene.camera.height = ((scene.camera.height as f64 * scale) as u32).max(1);
         }
-        for backend in embray::accel::BackendKind::compiled() {
-            bar.set_message(format!("{name} {}", backend.name()));
-            rows.push(speed::measure(
-                &name,
-                &scene,
-                backend,
-                args.spp,
-                args.runs,
-                args.build_quality,
-            )?);
-            bar.inc(1);
-        }
+        bar.set_message(name.clone());
+        let backends = embray::accel::BackendKind::compiled();
+        rows.extend(speed::measure_scene(
+            &name,
+            &scene,
+            &backends,
+            args.spp,
+            args.runs,
+            args.build_quality,
+        )?);
+        bar.inc(1);
     }
     bar.finish_and_clear();
     print!("{}", speed::markdown(&rows));

@@ -152,7 +152,7 @@ fn triangles(scene: &RenderScene) -> usize {
         .sum()
 }
 
-/// Measures one scene on one backend.
+/// Measures one scene on one backend (see [`measure_scene`]).
 pub fn measure(
     name: &str,
     desc: &SceneDesc,
@@ -161,10 +161,66 @@ pub fn measure(
     runs: usize,
     render_quality: BuildQuality,
 ) -> Result<SpeedRow, SpeedError> {
+    let mut rows = measure_scene(name, desc, &[backend], spp, runs, render_quality)?;
+    Ok(rows.remove(0))
+}
+
+/// Measures one scene on each of `backends`: builds at every quality, ray throughput on one
+/// thread, then whole renders on 1 and 2 threads with the backends' runs alternated, so a
+/// change in the machine's speed during the measurement shifts all backends alike and
+/// their ratio stays meaningful.
+pub fn measure_scene(
+    name: &str,
+    desc: &SceneDesc,
+    backends: &[BackendKind],
+    spp: u32,
+    runs: usize,
+    render_quality: BuildQuality,
+) -> Result<Vec<SpeedRow>, SpeedError> {
     let mut options = RenderOptions::for_scene(desc);
-    options.backend = backend;
     options.spp = spp;
     let scene = prepare_scene(desc, &options)?;
+    let mut rows = Vec::new();
+    let mut accels = Vec::new();
+    for &backend in backends {
+        let (row, accel) = measure_rays(name, &scene, backend, runs, render_quality)?;
+        rows.push(row);
+        accels.push(accel);
+    }
+    let samples = scene.camera.width as f64 * scene.camera.height as f64 * spp as f64;
+    for (slot, threads) in [1usize, 2].into_iter().enumerate() {
+        let pool =
+            rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
+        let mut times = vec![Vec::new(); accels.len()];
+        for _ in 0..runs.max(1) {
+            for (accel, times) in accels.iter().zip(&mut times) {
+                pool.install(|| {
+                    let start = Instant::now();
+                    std::hint::black_box(render_film(&scene, accel.as_ref(), &options));
+                    times.push(start.elapsed().as_secs_f64());
+                });
+            }
+        }
+        for (row, times) in rows.iter_mut().zip(times) {
+            let rate = samples / median(times);
+            match slot {
+                0 => row.samples_per_s_1t = rate,
+                _ => row.samples_per_s_2t = rate,
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// Build times, memory and ray throughput of one backend (its row without the render
+/// rates), and the backend built with `render_quality` to render with.
+fn measure_rays(
+    name: &str,
+    scene: &RenderScene,
+    backend: BackendKind,
+    runs: usize,
+    render_quality: BuildQuality,
+) -> Result<(SpeedRow, Box<dyn Accel>), SpeedError> {
     let mut build_ms = [0.0; 3];
     let mut accel_mib = 0.0;
     let mut accel = None;
@@ -176,22 +232,23 @@ pub fn measure(
             drop(accel.take());
             let before = rss_kib();
             let start = Instant::now();
-            let built = build(backend, &scene, &accel_options)?;
+            let built = build(backend, scene, &accel_options)?;
             builds.push(start.elapsed().as_secs_f64());
             accel_mib = rss_kib().saturating_sub(before) as f64 / 1024.0;
             accel = Some(built);
         }
         build_ms[slot] = median(builds) * 1e3;
     }
+    drop(accel);
     let render_options = AccelOptions { build_quality: render_quality, ..AccelOptions::default() };
-    let accel = build(backend, &scene, &render_options)?;
+    let accel = build(backend, scene, &render_options)?;
     let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
-    let primary = primary_rays(&scene);
-    let diffuse = diffuse_rays(&scene, accel.as_ref(), &primary);
+    let primary = primary_rays(scene);
+    let diffuse = diffuse_rays(scene, accel.as_ref(), &primary);
     let (primary_mrays, primary_batch_mrays, raw_embree_mrays, diffuse_mrays) =
         one_thread.install(|| {
             let raw = match backend {
-                BackendKind::Embree => raw_embree_throughput(&scene, &primary, runs),
+                BackendKind::Embree => raw_embree_throughput(scene, &primary, runs),
                 BackendKind::Obvhs => None,
             };
             (
@@ -205,35 +262,20 @@ pub fn measure(
                 },
             )
         });
-    let samples = scene.camera.width as f64 * scene.camera.height as f64 * spp as f64;
-    let mut per_threads = [0.0; 2];
-    for (slot, threads) in [1usize, 2].into_iter().enumerate() {
-        let pool =
-            rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
-        let times: Vec<f64> = (0..runs.max(1))
-            .map(|_| {
-                pool.install(|| {
-                    let start = Instant::now();
-                    std::hint::black_box(render_film(&scene, accel.as_ref(), &options));
-                    start.elapsed().as_secs_f64()
-                })
-            })
-            .collect();
-        per_threads[slot] = samples / median(times);
-    }
-    Ok(SpeedRow {
+    let row = SpeedRow {
         scene: name.to_string(),
-        triangles: triangles(&scene),
+        triangles: triangles(scene),
         backend: backend.name(),
         build_ms,
         primary_mrays,
         primary_batch_mrays,
         raw_embree_mrays,
         diffuse_mrays,
-        samples_per_s_1t: per_threads[0],
-        samples_per_s_2t: per_threads[1],
+        samples_per_s_1t: 0.0,
+        samples_per_s_2t: 0.0,
         accel_mib,
-    })
+    };
+    Ok((row, accel))
 }
 
 /// The rows as a Markdown table, then the ratios between the backends per scene.
