@@ -80,6 +80,35 @@ impl<const KZ: usize> EdgeTest<KZ> {
     }
 }
 
+/// [`EdgeTest`] for any ray, its axis chosen at run time (for packets, whose rays may differ
+/// in it).
+pub(super) enum RayEdgeTest {
+    X(EdgeTest<0>),
+    Y(EdgeTest<1>),
+    Z(EdgeTest<2>),
+}
+
+impl RayEdgeTest {
+    pub(super) fn new(origin: Vec3, dir: Vec3) -> Self {
+        match dir.abs().max_position() {
+            0 => RayEdgeTest::X(EdgeTest::new(origin, dir)),
+            1 => RayEdgeTest::Y(EdgeTest::new(origin, dir)),
+            _ => RayEdgeTest::Z(EdgeTest::new(origin, dir)),
+        }
+    }
+
+    /// False only if `intersect_triangle(origin, dir, tmin, tmax, tri)` certainly returns
+    /// `None` ([`EdgeTest::may_hit`] and [`EdgeTest::in_range`]).
+    #[inline(always)]
+    pub(super) fn may_hit(&self, dir: Vec3, tmin: f32, tmax: f32, tri: &[Vec3; 3]) -> bool {
+        match self {
+            RayEdgeTest::X(e) => e.may_hit(tri) && e.in_range(dir, tmin, tmax, tri),
+            RayEdgeTest::Y(e) => e.may_hit(tri) && e.in_range(dir, tmin, tmax, tri),
+            RayEdgeTest::Z(e) => e.may_hit(tri) && e.in_range(dir, tmin, tmax, tri),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -99,20 +128,6 @@ mod tests {
 
         fn vec3(&mut self, scale: f32) -> Vec3 {
             Vec3::new(self.unit() - 0.5, self.unit() - 0.5, self.unit() - 0.5) * scale
-        }
-    }
-
-    fn edge_test(origin: Vec3, dir: Vec3) -> impl Fn(&[Vec3; 3], f32, f32) -> bool {
-        let kz = dir.abs().max_position();
-        let (e0, e1, e2) = (
-            EdgeTest::<0>::new(origin, dir),
-            EdgeTest::<1>::new(origin, dir),
-            EdgeTest::<2>::new(origin, dir),
-        );
-        move |tri: &[Vec3; 3], tmin: f32, tmax: f32| match kz {
-            0 => e0.may_hit(tri) && e0.in_range(dir, tmin, tmax, tri),
-            1 => e1.may_hit(tri) && e1.in_range(dir, tmin, tmax, tri),
-            _ => e2.may_hit(tri) && e2.in_range(dir, tmin, tmax, tri),
         }
     }
 
@@ -148,8 +163,7 @@ mod tests {
             let tmax = if k % 3 == 0 { f32::INFINITY } else { rng.unit() * 2.0 };
             let tmin = if k % 4 == 0 { rng.unit() * 0.5 } else { 0.0 };
             let exact = intersect_triangle(origin, dir, tmin, tmax, &tri);
-            let may_hit = edge_test(origin, dir);
-            let candidate = may_hit(&tri, tmin, tmax);
+            let candidate = RayEdgeTest::new(origin, dir).may_hit(dir, tmin, tmax, &tri);
             match exact {
                 Some(_) => {
                     hits += 1;

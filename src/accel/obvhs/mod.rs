@@ -17,6 +17,7 @@
 
 mod edge_test;
 mod node_test;
+mod packet;
 
 use crate::accel::{Accel, AccelOptions, BuildQuality, Hit, Observes, Ray};
 use crate::geometry::{intersect_sphere, intersect_triangle};
@@ -320,6 +321,19 @@ impl ObvhsAccel {
                 }
             }
         }
+        self.trace_tlas::<COUNT>(ray, tmax, best, counters, any_hit)
+    }
+
+    /// The top-level part of [`ObvhsAccel::trace`]: `ray` against the non-baked instances,
+    /// given the closest hit `best` (within `tmax`) found so far.
+    fn trace_tlas<const COUNT: bool>(
+        &self,
+        ray: &Ray,
+        mut tmax: f32,
+        mut best: Option<Hit>,
+        counters: &mut TraversalCounters,
+        any_hit: bool,
+    ) -> Option<Hit> {
         let Some(tlas) = &self.tlas else { return best };
         let mut node_ray = Self::node_ray(ray.origin, ray.dir, tmax);
         let mut state = tlas.new_traversal(Vec3A::from(ray.dir));
@@ -380,6 +394,26 @@ impl Accel for ObvhsAccel {
         } else {
             self.trace::<false>(ray, counters, true).is_some()
         }
+    }
+
+    fn intersect_batch(
+        &self,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+        counters: &mut TraversalCounters,
+    ) {
+        assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
+        for (rays, hits) in rays.chunks(packet::WIDTH).zip(hits.chunks_mut(packet::WIDTH)) {
+            if self.count_traversal || !self.trace_packet(rays, hits) {
+                for (ray, hit) in rays.iter().zip(hits) {
+                    *hit = if ray.is_valid() { self.intersect(ray, counters) } else { None };
+                }
+            }
+        }
+    }
+
+    fn prefers_batches(&self) -> bool {
+        !self.count_traversal && self.baked.is_some()
     }
 
     fn observes(&self) -> Observes {
