@@ -28,5 +28,7 @@ pub mod scene;
 pub mod spawn;
 pub mod stats;
 pub mod surface;
+#[cfg(test)]
+mod test_rng;
 pub mod transform;
 pub mod whitted;

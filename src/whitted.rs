@@ -1,5 +1,5 @@
 //! The CENG795 course's shading model, checked against the instructor's reference images
-//! (`tests/ceng795.rs`): ambient·Ia + Σ lights (kd·cos θ + ks·(n·h)^p)·I/d² with shadow rays,
+//! (`tests/ceng795/`): ambient·Ia + Σ lights (kd·cos θ + ks·(n·h)^p)·I/d² with shadow rays,
 //! plus recursive mirror (times MirrorReflectance), conductor (Fresnel of n + ik, times
 //! MirrorReflectance) and dielectric (Fresnel reflection and refraction) rays, `max_depth`
 //! bounces after the camera ray (the file's MaxRecursionDepth: 6 matches the references, 5

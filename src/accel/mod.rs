@@ -94,10 +94,7 @@ pub trait Accel: Send + Sync {
         hits: &mut [Option<Hit>],
         counters: &mut TraversalCounters,
     ) {
-        assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
-        for (ray, hit) in rays.iter().zip(hits) {
-            *hit = if ray.is_valid() { self.intersect(ray, counters) } else { None };
-        }
+        intersect_one_by_one(self, rays, hits, counters);
     }
     /// Which counters this backend fills in (with `AccelOptions::count_traversal`).
     fn observes(&self) -> Observes {
@@ -108,6 +105,23 @@ pub trait Accel: Send + Sync {
     /// them costs about 2 % of a render for nothing otherwise).
     fn prefers_batches(&self) -> bool {
         false
+    }
+}
+
+/// [`Accel::intersect_batch`] done one [`Accel::intersect`] at a time (invalid rays miss):
+/// what every batched path must equal.
+///
+/// # Panics
+/// If `rays` and `hits` differ in length.
+pub fn intersect_one_by_one<A: Accel + ?Sized>(
+    accel: &A,
+    rays: &[Ray],
+    hits: &mut [Option<Hit>],
+    counters: &mut TraversalCounters,
+) {
+    assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
+    for (ray, hit) in rays.iter().zip(hits) {
+        *hit = if ray.is_valid() { accel.intersect(ray, counters) } else { None };
     }
 }
 

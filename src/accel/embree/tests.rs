@@ -14,28 +14,7 @@ use crate::stats::TraversalCounters;
 use glam::Vec3;
 use std::sync::Arc;
 
-/// Counter-based generator (splitmix64 over a counter): deterministic, no dependency.
-pub(super) struct Rng(pub(super) u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [lo, hi).
-    pub(super) fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
-        lo + (hi - lo) * unit
-    }
-
-    pub(super) fn vec3(&mut self, lo: f32, hi: f32) -> Vec3 {
-        Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
-    }
-}
+pub(super) use crate::test_rng::Rng;
 
 /// A named shape of a test scene: a baked instance of its own prototype.
 #[derive(Clone)]

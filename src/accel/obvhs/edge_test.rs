@@ -113,23 +113,7 @@ impl RayEdgeTest {
 mod tests {
     use super::*;
     use crate::geometry::intersect_triangle;
-
-    /// splitmix64 over a counter.
-    struct Rng(u64);
-
-    impl Rng {
-        fn unit(&mut self) -> f32 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-        }
-
-        fn vec3(&mut self, scale: f32) -> Vec3 {
-            Vec3::new(self.unit() - 0.5, self.unit() - 0.5, self.unit() - 0.5) * scale
-        }
-    }
+    use crate::test_rng::Rng;
 
     /// The pre-tests never reject a triangle `intersect_triangle` hits: on random rays, on
     /// rays through vertices, edge points and shared edges, axis-aligned rays, and at scales
@@ -140,8 +124,8 @@ mod tests {
         let (mut hits, mut misses, mut rejected) = (0, 0, 0);
         for k in 0..200_000 {
             let scale = [1e-6, 1e-3, 1.0, 1e3, 1e6][k % 5];
-            let tri = [rng.vec3(scale), rng.vec3(scale), rng.vec3(scale)];
-            let origin = rng.vec3(4.0 * scale) + Vec3::splat(scale * [0.0, 1e3][k / 5 % 2]);
+            let tri = [rng.centred(scale), rng.centred(scale), rng.centred(scale)];
+            let origin = rng.centred(4.0 * scale) + Vec3::splat(scale * [0.0, 1e3][k / 5 % 2]);
             // Aim at a vertex, an edge point, the centre, or anywhere.
             let (a, b) = (rng.unit(), rng.unit());
             let target = match k / 10 % 4 {

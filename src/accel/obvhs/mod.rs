@@ -405,9 +405,7 @@ impl Accel for ObvhsAccel {
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
         for (rays, hits) in rays.chunks(packet::WIDTH).zip(hits.chunks_mut(packet::WIDTH)) {
             if self.count_traversal || !self.trace_packet(rays, hits) {
-                for (ray, hit) in rays.iter().zip(hits) {
-                    *hit = if ray.is_valid() { self.intersect(ray, counters) } else { None };
-                }
+                crate::accel::intersect_one_by_one(self, rays, hits, counters);
             }
         }
     }

@@ -80,27 +80,11 @@ pub(super) fn child_hits(node: &CwBvhNode, ray: &NodeRay, oct_inv4: u32) -> u32 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_rng::Rng;
     use glam::{DVec3, Vec3A};
     use obvhs::BvhBuildParams;
     use obvhs::aabb::Aabb;
     use obvhs::cwbvh::builder::build_cwbvh;
-
-    /// splitmix64 over a counter, as unit floats.
-    struct Rng(u64);
-
-    impl Rng {
-        fn unit(&mut self) -> f32 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-        }
-
-        fn vec3(&mut self, scale: f32) -> Vec3 {
-            Vec3::new(self.unit() - 0.5, self.unit() - 0.5, self.unit() - 0.5) * scale
-        }
-    }
 
     /// Child `child`'s box exactly as its planes define it (p + q · 2^e, in f64), grown by
     /// `margin` of the node's size.
@@ -154,15 +138,15 @@ mod tests {
         for scale in [1e-3, 1.0, 1e3, 1e6] {
             let boxes: Vec<Aabb> = (0..400)
                 .map(|_| {
-                    let c = rng.vec3(scale);
-                    let h = rng.vec3(0.1 * scale).abs();
+                    let c = rng.centred(scale);
+                    let h = rng.centred(0.1 * scale).abs();
                     Aabb::new(Vec3A::from(c - h), Vec3A::from(c + h))
                 })
                 .collect();
             let bvh = build_cwbvh(&boxes, BvhBuildParams::medium_build(), &mut Default::default());
             for k in 0..2000 {
-                let origin = rng.vec3(1.5 * scale);
-                let mut dir = (rng.vec3(1.0)).normalize_or(Vec3::X);
+                let origin = rng.centred(1.5 * scale);
+                let mut dir = (rng.centred(1.0)).normalize_or(Vec3::X);
                 if k % 5 == 0 {
                     let axis = dir.abs().max_position();
                     dir = Vec3::ZERO;

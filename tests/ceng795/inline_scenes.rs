@@ -1,0 +1,251 @@
+//! Small inline scenes: cameras, transforms, instances, motion, materials and lights map to
+//! the scene description as the course defines them.
+
+use super::*;
+
+fn one(text: &str) -> SceneDesc {
+    let mut scenes = load_text(text).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scenes.len(), 1);
+    scenes.remove(0).scene
+}
+
+#[test]
+fn cameras_follow_the_course_conventions() {
+    // Gaze not perpendicular to Up: orthonormalised (w = −gaze, u = up × w, v = w × u).
+    let text = scene_xml(TRIANGLE)
+        .replace("<Gaze>0 0 -1</Gaze>", "<Gaze>0 -0.2 -1</Gaze>")
+        .replace("<NearPlane>-1 1 -1 1</NearPlane>", "<NearPlane>-1 1 -0.5 0.5 10</NearPlane>")
+        .replace("<NearDistance>1</NearDistance>", "<NearDistance>2</NearDistance>")
+        .replace(
+            "<ImageResolution>8 8</ImageResolution>",
+            "<ImageResolution>16 8</ImageResolution>",
+        );
+    let s = one(&text);
+    let c = &s.camera;
+    assert_eq!((c.width, c.height), (16, 8));
+    assert!((c.vfov_deg - 2.0 * 0.25f64.atan().to_degrees()).abs() < 1e-9);
+    let view = (c.lookat - c.lookfrom).normalize();
+    assert!((view - DVec3::new(0.0, -0.2, -1.0).normalize()).length() < 1e-12);
+    assert_eq!((s.settings.spp, s.settings.max_depth), (1, 0));
+    assert_eq!(s.settings.integrator, embray::scene::IntegratorKind::Whitted);
+    // lookAt: GazePoint and FovY.
+    let look_at = scene_xml(TRIANGLE).replace(
+        r#"<Camera id="1">
+            <Position>0 0 0</Position>
+            <Gaze>0 0 -1</Gaze>"#,
+        r#"<Camera id="1" type="lookAt">
+            <Position>1 2 3</Position>
+            <GazePoint>1 2 -7</GazePoint>
+            <FovY>40</FovY>"#,
+    );
+    let look_at = look_at.replace("<NearPlane>-1 1 -1 1</NearPlane>", "");
+    let s = one(&look_at);
+    assert_eq!(s.camera.vfov_deg, 40.0);
+    assert_eq!(s.camera.lookfrom, DVec3::new(1.0, 2.0, 3.0));
+    assert_eq!(s.camera.lookat, DVec3::new(1.0, 2.0, -7.0));
+    // Depth of field: a square lens whose side is the aperture.
+    let dof = scene_xml(TRIANGLE).replace(
+        "<ImageName>",
+        "<ApertureSize>1.5</ApertureSize><FocusDistance>21</FocusDistance><NumSamples>9</NumSamples><ImageName>",
+    );
+    let s = one(&dof);
+    assert_eq!(s.camera.aperture, 1.5);
+    assert_eq!(s.camera.focus_distance, Some(21.0));
+    assert_eq!(s.camera.lens_shape, embray::scene::LensShape::Square);
+    assert_eq!(s.settings.spp, 9);
+}
+
+#[test]
+fn off_centre_windows_are_approximated_with_a_note() {
+    let text = scene_xml(TRIANGLE)
+        .replace("<NearPlane>-1 1 -1 1</NearPlane>", "<NearPlane>-1 1 -1 0.6</NearPlane>")
+        .replace(
+            "<ImageResolution>8 8</ImageResolution>",
+            "<ImageResolution>10 8</ImageResolution>",
+        );
+    let (scenes, warnings) = ceng795::load_str_with_warnings(&text, Path::new("x.xml")).unwrap();
+    assert!(warnings.iter().any(|w| w.contains("off-centre")), "{warnings:?}");
+    let c = &scenes[0].scene.camera;
+    // Same vertical angle, turned down to the middle of the window's angles.
+    let (top, bottom) = (0.6f64.atan(), (-1.0f64).atan());
+    assert!((c.vfov_deg - (top - bottom).to_degrees()).abs() < 1e-9);
+    let view = (c.lookat - c.lookfrom).normalize();
+    assert!((view.y.atan2(-view.z) - 0.5 * (top + bottom)).abs() < 1e-9);
+}
+
+#[test]
+fn transformations_instances_and_motion() {
+    let body = r#"
+    <Transformations>
+        <Scaling id="1">2 2 2</Scaling>
+        <Rotation id="1">90 0 0 1</Rotation>
+        <Translation id="1">10 0 0</Translation>
+        <Translation id="2">0 0 -5</Translation>
+    </Transformations>
+    <VertexData>
+        1 0 0
+        0 1 0
+        0 0 1
+    </VertexData>
+    <Objects>
+        <Mesh id="1" shadingMode="smooth">
+            <Material>1</Material>
+            <Transformations>s1 r1 t1</Transformations>
+            <Faces>1 2 3</Faces>
+        </Mesh>
+        <MeshInstance id="1" baseMeshId="1" resetTransform="true">
+            <Transformations>t2</Transformations>
+            <MotionBlur>0 3 0</MotionBlur>
+        </MeshInstance>
+        <MeshInstance id="2" baseMeshId="1">
+            <Transformations>t2</Transformations>
+        </MeshInstance>
+        <Sphere id="1">
+            <Material>1</Material>
+            <Center>1</Center>
+            <Radius>0.5</Radius>
+        </Sphere>
+    </Objects>"#;
+    let s = one(&scene_xml(body));
+    assert_eq!(s.objects.len(), 4);
+    let (mesh, reset, stacked) = (&s.objects[0], &s.objects[2], &s.objects[3]);
+    // s1 r1 t1: scale, then rotate 90° about z, then translate: (1,0,0) → (2,0,0) → (0,2,0)
+    // → (10,2,0).
+    let p = mesh.world_from_object.transform_point3(DVec3::X);
+    assert!((p - DVec3::new(10.0, 2.0, 0.0)).length() < 1e-12, "{p}");
+    assert_eq!(reset.world_from_object, DAffine3::from_translation(DVec3::new(0.0, 0.0, -5.0)));
+    assert_eq!(
+        reset.world_from_object_end,
+        Some(DAffine3::from_translation(DVec3::new(0.0, 3.0, -5.0)))
+    );
+    let p = stacked.world_from_object.transform_point3(DVec3::X);
+    assert!((p - DVec3::new(10.0, 2.0, -5.0)).length() < 1e-12, "{p}");
+    assert!(stacked.world_from_object_end.is_none());
+    match (&mesh.shape, &reset.shape, &stacked.shape) {
+        (ShapeDesc::Mesh(a), ShapeDesc::Mesh(b), ShapeDesc::Mesh(c)) => {
+            assert!(std::sync::Arc::ptr_eq(a, b) && std::sync::Arc::ptr_eq(a, c));
+            let normals = a.normals.as_ref().expect("smooth shading gives normals");
+            assert!((normals[0] - DVec3::ONE.normalize()).length() < 1e-12);
+        }
+        _ => panic!("instances must be meshes"),
+    }
+    assert_eq!(s.objects[1].shape, ShapeDesc::Sphere { center: DVec3::X, radius: 0.5 });
+}
+
+#[test]
+fn materials_and_lights_map_to_the_scene_description() {
+    use embray::scene::SpecularDesc;
+    let materials = r#"
+    <Materials>
+        <Material id="1">
+            <AmbientReflectance>1 1 1</AmbientReflectance>
+            <DiffuseReflectance>1 1 1</DiffuseReflectance>
+            <SpecularReflectance>1 1 1</SpecularReflectance>
+            <PhongExponent>1</PhongExponent>
+        </Material>
+        <Material id="2" type="conductor">
+            <MirrorReflectance>1 0.86 0.57</MirrorReflectance>
+            <RefractionIndex>0.37</RefractionIndex>
+            <AbsorptionIndex>2.82</AbsorptionIndex>
+            <Roughness>0.1</Roughness>
+        </Material>
+        <Material id="3" type="dielectric">
+            <AbsorptionCoefficient>0.01 0.02 0.03</AbsorptionCoefficient>
+            <RefractionIndex>1.5</RefractionIndex>
+        </Material>
+        <Material id="4" type="mirror">
+            <DiffuseReflectance>0.5 0.5 1.5</DiffuseReflectance>
+            <MirrorReflectance>0.5 0.5 0.5</MirrorReflectance>
+        </Material>
+    </Materials>"#;
+    let lights = r#"<Lights>
+        <AmbientLight>25 25 25</AmbientLight>
+        <PointLight id="1"><Position>1 2 3</Position><Intensity>1000 1000 1000</Intensity></PointLight>
+        <AreaLight id="1">
+            <Position>0 9.8 2</Position>
+            <Normal>0 -2 0</Normal>
+            <Size>3</Size>
+            <Radiance>150000 150000 150000</Radiance>
+        </AreaLight>
+    </Lights>"#;
+    let text = scene_xml(TRIANGLE)
+        .replace(MATERIALS, materials)
+        .replace("<Lights><AmbientLight>25 25 25</AmbientLight></Lights>", lights);
+    let s = one(&text);
+    let m = &s.materials;
+    assert_eq!(m.len(), 4);
+    assert_eq!(m[0].phong.as_ref().unwrap().exponent, 1.0);
+    assert_eq!(
+        m[1].specular,
+        SpecularDesc::Conductor {
+            eta: glam::Vec3::splat(0.37),
+            k: glam::Vec3::splat(2.82),
+            reflectance: glam::Vec3::new(1.0, 0.86, 0.57)
+        }
+    );
+    assert_eq!(m[1].roughness, 0.1);
+    assert_eq!(
+        m[2].specular,
+        SpecularDesc::Dielectric { ior: 1.5, absorption: glam::Vec3::new(0.01, 0.02, 0.03) }
+    );
+    assert_eq!(m[3].albedo, glam::Vec3::new(0.5, 0.5, 1.5));
+    assert_eq!(
+        s.lights,
+        [
+            LightDesc::Ambient { radiance: glam::Vec3::splat(25.0) },
+            LightDesc::Point {
+                position: DVec3::new(1.0, 2.0, 3.0),
+                intensity: glam::Vec3::splat(1000.0)
+            },
+            LightDesc::Area {
+                center: DVec3::new(0.0, 9.8, 2.0),
+                normal: DVec3::NEG_Y,
+                size: 3.0,
+                radiance: glam::Vec3::splat(150000.0)
+            },
+        ]
+    );
+}
+
+/// An invisible area light lights a floor under it (soft shadow sampling) without being
+/// seen: the camera looking straight at it sees the background.
+#[test]
+fn area_lights_light_the_scene_but_are_invisible() {
+    let body = r#"
+    <VertexData>
+        -5 -1 5
+        5 -1 5
+        5 -1 -5
+        -5 -1 -5
+    </VertexData>
+    <Objects>
+        <Mesh id="1">
+            <Material>1</Material>
+            <Faces>1 2 3 1 3 4</Faces>
+        </Mesh>
+    </Objects>"#;
+    let lights = r#"<Lights>
+        <AreaLight id="1">
+            <Position>0 1 -3</Position>
+            <Normal>0 -1 0</Normal>
+            <Size>1</Size>
+            <Radiance>100 100 100</Radiance>
+        </AreaLight>
+    </Lights>"#;
+    let text = scene_xml(body)
+        .replace("<Lights><AmbientLight>25 25 25</AmbientLight></Lights>", lights)
+        .replace("<Gaze>0 0 -1</Gaze>", "<Gaze>0 0.5 -1</Gaze>");
+    let s = one(&text);
+    for backend in BackendKind::compiled() {
+        let mut options = course_options(&s, backend);
+        options.spp = 16;
+        options.jitter = true;
+        let output = render(&s, &options).unwrap();
+        let film = &output.film;
+        // Bottom rows: the lit floor. Top rows: looking up past the light: background.
+        let floor = film.pixel(4, 7);
+        let sky = film.pixel(4, 0);
+        assert!(floor.x > 1.0, "{} floor {floor}", backend.name());
+        assert_eq!(sky, glam::Vec3::ZERO, "{}", backend.name());
+    }
+}

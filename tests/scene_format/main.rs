@@ -1,0 +1,72 @@
+//! The scene format's newer parts, parsed into the right `SceneDesc` values: lens and
+//! render settings, material types, textures, motion, repeat grids, shared meshes, smooth
+//! normals, PLY files, the new light types, and the bundled scenes that use them. (Errors
+//! are tested in `bad_input_scene`.)
+
+use embray::scene::{
+    self, IntegratorKind, LensShape, LightDesc, MaterialDesc, MeshData, PatternDesc, PhongDesc,
+    SceneDesc, ShapeDesc, SpecularDesc,
+};
+use glam::{DAffine3, DVec3, Vec2, Vec3};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+fn data_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/scene")
+}
+
+/// The (virtual) file the test scenes come from; mesh paths resolve against its directory.
+fn source() -> PathBuf {
+    data_dir().join("scene.toml")
+}
+
+const CAMERA: &str = "\
+[camera]
+lookfrom = [0.0, 0.0, -5.0]
+lookat = [0.0, 0.0, 0.0]
+vfov = 40.0
+resolution = [32, 24]
+";
+
+const WHITE: &str = "[materials.white]\nalbedo = [0.73, 0.73, 0.73]\n";
+
+fn load(text: &str) -> SceneDesc {
+    load_from(text, &source())
+}
+
+fn load_from(text: &str, source: &Path) -> SceneDesc {
+    match scene::load_str(text, source) {
+        Ok(scene) => scene,
+        Err(e) => panic!("scene should load, got: {e}\n{text}"),
+    }
+}
+
+fn scene_with(rest: &str) -> String {
+    format!("{CAMERA}{WHITE}{rest}")
+}
+
+fn mesh_of(scene: &SceneDesc, object: usize) -> &Arc<MeshData> {
+    match &scene.objects[object].shape {
+        ShapeDesc::Mesh(mesh) => mesh,
+        other => panic!("object {object} is not a mesh: {other:?}"),
+    }
+}
+
+fn material<'a>(scene: &'a SceneDesc, name: &str) -> &'a MaterialDesc {
+    scene.materials.iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no {name}"))
+}
+
+#[track_caller]
+fn assert_close(a: DVec3, b: DVec3) {
+    assert!((a - b).length() < 1e-12, "{a} != {b}");
+}
+
+fn ply_scene(file: &str, smooth: Option<bool>) -> String {
+    let smooth = smooth.map_or(String::new(), |s| format!("smooth = {s}\n"));
+    format!("[[objects]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"{file}\"\n{smooth}")
+}
+
+mod lights_and_bundled;
+mod motion_and_meshes;
+mod ply;
+mod settings_and_materials;
