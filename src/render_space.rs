@@ -282,7 +282,7 @@ pub fn to_render_scene(
             }
             LightDesc::Ambient { radiance } => ambient += *radiance,
             LightDesc::Area { center, normal, size, radiance } => {
-                let (u, v) = square_edges(*normal);
+                let (u, v) = crate::transform::course_square_axes(*normal);
                 let half = 0.5 * size;
                 let edge = |e: DVec3| to_f32(render_from_world.transform_vector3(e * half));
                 squares.push((
@@ -314,23 +314,6 @@ pub fn to_render_scene(
         background: desc.settings.background,
         effects,
     })
-}
-
-/// Unit edge directions of the course's square area light facing `normal`: the normal with
-/// its smallest component set to 1 gives a second direction, u = normalize(n × n′), v = n × u.
-fn square_edges(normal: DVec3) -> (DVec3, DVec3) {
-    let n = normal.normalize();
-    let a = n.abs();
-    let mut other = n;
-    if a.x <= a.y && a.x <= a.z {
-        other.x = 1.0;
-    } else if a.y <= a.z {
-        other.y = 1.0;
-    } else {
-        other.z = 1.0;
-    }
-    let u = n.cross(other).normalize();
-    (u, n.cross(u))
 }
 
 fn decide_effects(

@@ -34,6 +34,24 @@ pub fn from_basis_and_origin(basis: DMat3, origin: DVec3) -> DAffine3 {
     DAffine3 { matrix3: basis, translation: origin }
 }
 
+/// The course's (CENG795) axes of a square facing `normal` (area lights, glossy
+/// perturbation): the normal with its smallest component set to 1 gives a second direction;
+/// u = normalize(n × n′), v = n × u.
+pub fn course_square_axes(normal: DVec3) -> (DVec3, DVec3) {
+    let n = normal.normalize();
+    let a = n.abs();
+    let mut other = n;
+    if a.x <= a.y && a.x <= a.z {
+        other.x = 1.0;
+    } else if a.y <= a.z {
+        other.y = 1.0;
+    } else {
+        other.z = 1.0;
+    }
+    let u = n.cross(other).normalize();
+    (u, n.cross(u))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

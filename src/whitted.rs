@@ -39,20 +39,10 @@ fn reflect(d: Vec3, n: Vec3) -> Vec3 {
 }
 
 /// Perturbs a unit direction within a square of side `roughness` on its tangent plane (the
-/// course's glossy reflection). The square's axes are the course's: r with its smallest
-/// component set to 1 gives r′, u = normalize(r × r′), v = r × u.
+/// course's glossy reflection, on the course's square axes).
 fn perturb(r: Vec3, roughness: f32, u: Vec2) -> Vec3 {
-    let a = r.abs();
-    let mut other = r;
-    if a.x <= a.y && a.x <= a.z {
-        other.x = 1.0;
-    } else if a.y <= a.z {
-        other.y = 1.0;
-    } else {
-        other.z = 1.0;
-    }
-    let t = r.cross(other).normalize();
-    let b = r.cross(t);
+    let (t, b) = crate::transform::course_square_axes(r.as_dvec3());
+    let (t, b) = (t.as_vec3(), b.as_vec3());
     (r + roughness * ((u.x - 0.5) * t + (u.y - 0.5) * b)).normalize()
 }
 

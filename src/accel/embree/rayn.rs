@@ -3,6 +3,7 @@
 //! fields follow the 12 ray fields. Rust versions of the header's `RTCRayN_*` inline
 //! accessors, which bindgen cannot generate.
 
+use super::{compat, ffi};
 use glam::Vec3;
 use std::ffi::c_void;
 use std::marker::PhantomData;
@@ -124,4 +125,70 @@ impl<'a> RayHitLane<'a> {
         self.ray.set(h(GEOM_ID), hit.geom_id);
         self.ray.set(h(INST_ID), hit.inst_id);
     }
+}
+
+/// What a user-geometry test reports for one ray: distance, geometric normal (any nonzero
+/// vector will do: the integrator recomputes it) and barycentrics.
+pub struct LaneIntersection {
+    pub t: f32,
+    pub ng: Vec3,
+    pub u: f32,
+    pub v: f32,
+}
+
+/// The body of a user-geometry intersect callback: `test` on every valid lane, each hit
+/// written to its lane, and the tests counted (counting mode).
+///
+/// # Safety
+/// `args` must be the arguments Embree passed to the running intersect callback.
+pub unsafe fn intersect_lanes(
+    args: &ffi::RTCIntersectFunctionNArguments,
+    mut test: impl FnMut(&RayLane) -> Option<LaneIntersection>,
+) {
+    // SAFETY: `context` is the pointer Embree passed to this callback.
+    let inst_id = unsafe { compat::instance_id(args.context) };
+    let n = args.N as usize;
+    let mut tests = 0;
+    for i in 0..n {
+        // SAFETY: `valid` has `N` entries and `i < N`.
+        if unsafe { *args.valid.add(i) } == 0 {
+            continue;
+        }
+        tests += 1;
+        // SAFETY: `rayhit` is an `RTCRayHitN` of width `N`, ours for the call, and `i < N`.
+        let lane = unsafe { RayHitLane::new(args.rayhit.cast(), n, i) };
+        if let Some(LaneIntersection { t, ng, u, v }) = test(&lane.ray()) {
+            let (prim_id, geom_id) = (args.primID, args.geomID);
+            lane.set_hit(&LaneHit { t, ng, u, v, prim_id, geom_id, inst_id });
+        }
+    }
+    // SAFETY: `context` is the pointer Embree passed to this callback.
+    unsafe { compat::count_prim_tests(args.context, tests) };
+}
+
+/// The body of a user-geometry occluded callback: every valid lane `blocks` is marked
+/// occluded (Embree's convention: `tfar = -∞`), and the tests are counted.
+///
+/// # Safety
+/// `args` must be the arguments Embree passed to the running occluded callback.
+pub unsafe fn occluded_lanes(
+    args: &ffi::RTCOccludedFunctionNArguments,
+    mut blocks: impl FnMut(&RayLane) -> bool,
+) {
+    let n = args.N as usize;
+    let mut tests = 0;
+    for i in 0..n {
+        // SAFETY: `valid` has `N` entries and `i < N`.
+        if unsafe { *args.valid.add(i) } == 0 {
+            continue;
+        }
+        tests += 1;
+        // SAFETY: `ray` is an `RTCRayN` of width `N`, ours for the call, and `i < N`.
+        let ray = unsafe { RayLane::new(args.ray.cast(), n, i) };
+        if blocks(&ray) {
+            ray.set_tfar(f32::NEG_INFINITY);
+        }
+    }
+    // SAFETY: `context` is the pointer Embree passed to this callback.
+    unsafe { compat::count_prim_tests(args.context, tests) };
 }

@@ -8,11 +8,10 @@
 //! when the query counts (`compat::count_prim_tests`; a no-op in normal mode).
 
 use super::callback_data::CallbackData;
-use super::compat;
 use super::device::Device;
 use super::ffi;
 use super::geometry::{Geometry, UserCallbacks};
-use super::rayn::{LaneHit, RayHitLane, RayLane};
+use super::rayn::{LaneIntersection, intersect_lanes, occluded_lanes};
 use crate::accel::AccelError;
 use crate::geometry::intersect_sphere;
 use crate::render_scene::Sphere;
@@ -56,62 +55,29 @@ unsafe extern "C" fn intersect(args: *const ffi::RTCIntersectFunctionNArguments)
     // SAFETY: Embree passes arguments valid for the call; the user pointer is the `Sphere`
     // registered in `sphere_geometry`.
     let (args, sphere) = unsafe { (&*args, &*(*args).geometryUserPtr.cast::<Sphere>()) };
-    // SAFETY: `context` is the pointer Embree passed to this callback.
-    let inst_id = unsafe { compat::instance_id(args.context) };
-    let n = args.N as usize;
-    let mut tests = 0;
-    for i in 0..n {
-        // SAFETY: `valid` has `N` entries and `i < N`.
-        if unsafe { *args.valid.add(i) } == 0 {
-            continue;
-        }
-        tests += 1;
-        // SAFETY: `rayhit` is an `RTCRayHitN` of width `N`, ours for the call, and `i < N`.
-        let lane = unsafe { RayHitLane::new(args.rayhit.cast(), n, i) };
-        let ray = lane.ray();
-        let (origin, dir, tfar) = (ray.origin(), ray.dir(), ray.tfar());
-        let hit = intersect_sphere(origin, dir, ray.tnear(), tfar, sphere.center, sphere.radius)
-            .filter(|&t| t < tfar);
-        if let Some(t) = hit {
-            // Any nonzero normal will do (the integrator recomputes it); outward if possible.
+    // SAFETY: these are the arguments of the running intersect callback.
+    unsafe {
+        intersect_lanes(args, |ray| {
+            let (origin, dir, tfar) = (ray.origin(), ray.dir(), ray.tfar());
+            let t = intersect_sphere(origin, dir, ray.tnear(), tfar, sphere.center, sphere.radius)
+                .filter(|&t| t < tfar)?;
+            // Outward if possible.
             let outward = origin + t * dir - sphere.center;
             let ng = if outward == glam::Vec3::ZERO { -dir } else { outward };
-            lane.set_hit(&LaneHit {
-                t,
-                ng,
-                u: 0.0,
-                v: 0.0,
-                prim_id: args.primID,
-                geom_id: args.geomID,
-                inst_id,
-            });
-        }
-    }
-    // SAFETY: `context` is the pointer Embree passed to this callback.
-    unsafe { compat::count_prim_tests(args.context, tests) };
+            Some(LaneIntersection { t, ng, u: 0.0, v: 0.0 })
+        })
+    };
 }
 
 unsafe extern "C" fn occluded(args: *const ffi::RTCOccludedFunctionNArguments) {
     // SAFETY: as in `intersect`.
     let (args, sphere) = unsafe { (&*args, &*(*args).geometryUserPtr.cast::<Sphere>()) };
-    let n = args.N as usize;
-    let mut tests = 0;
-    for i in 0..n {
-        // SAFETY: `valid` has `N` entries and `i < N`.
-        if unsafe { *args.valid.add(i) } == 0 {
-            continue;
-        }
-        tests += 1;
-        // SAFETY: `ray` is an `RTCRayN` of width `N`, ours for the call, and `i < N`.
-        let ray = unsafe { RayLane::new(args.ray.cast(), n, i) };
-        let (origin, dir) = (ray.origin(), ray.dir());
-        if intersect_sphere(origin, dir, ray.tnear(), ray.tfar(), sphere.center, sphere.radius)
-            .is_some()
-        {
-            // Embree's convention for "occluded".
-            ray.set_tfar(f32::NEG_INFINITY);
-        }
-    }
-    // SAFETY: `context` is the pointer Embree passed to this callback.
-    unsafe { compat::count_prim_tests(args.context, tests) };
+    // SAFETY: these are the arguments of the running occluded callback.
+    unsafe {
+        occluded_lanes(args, |ray| {
+            let (origin, dir) = (ray.origin(), ray.dir());
+            intersect_sphere(origin, dir, ray.tnear(), ray.tfar(), sphere.center, sphere.radius)
+                .is_some()
+        })
+    };
 }

@@ -13,11 +13,10 @@
 //! can panic (float arithmetic, raw-pointer reads, `slice::get`; no indexing or unwraps).
 
 use super::callback_data::CallbackData;
-use super::compat;
 use super::device::Device;
 use super::ffi;
 use super::geometry::{Geometry, UserCallbacks, validate_mesh};
-use super::rayn::{LaneHit, RayHitLane, RayLane};
+use super::rayn::{LaneIntersection, intersect_lanes, occluded_lanes};
 use crate::accel::AccelError;
 use crate::geometry::intersect_triangle;
 use glam::Vec3;
@@ -84,61 +83,29 @@ unsafe extern "C" fn intersect(args: *const ffi::RTCIntersectFunctionNArguments)
     // SAFETY: Embree passes arguments valid for the call; the user pointer is the
     // `Triangles` registered in `user_triangle_geometry`.
     let (args, tri) = unsafe { (&*args, triangle((*args).geometryUserPtr, (*args).primID)) };
-    // SAFETY: `context` is the pointer Embree passed to this callback.
-    let inst_id = unsafe { compat::instance_id(args.context) };
-    let n = args.N as usize;
-    let mut tests = 0;
-    for i in 0..n {
-        // SAFETY: `valid` has `N` entries and `i < N`.
-        if unsafe { *args.valid.add(i) } == 0 {
-            continue;
-        }
-        tests += 1;
-        let Some(tri) = tri else { continue };
-        // SAFETY: `rayhit` is an `RTCRayHitN` of width `N`, ours for the call, and `i < N`.
-        let lane = unsafe { RayHitLane::new(args.rayhit.cast(), n, i) };
-        let ray = lane.ray();
-        let (origin, dir) = (ray.origin(), ray.dir());
-        // `t <= tfar` (the current closest hit): on an exact tie the later triangle wins, as
-        // with Embree's own triangle test and obvhs.
-        if let Some((t, u, v)) = intersect_triangle(origin, dir, ray.tnear(), ray.tfar(), tri) {
+    // SAFETY: these are the arguments of the running intersect callback.
+    unsafe {
+        intersect_lanes(args, |ray| {
+            let (origin, dir, tri) = (ray.origin(), ray.dir(), tri?);
+            // `t <= tfar` (the current closest hit): on an exact tie the later triangle wins,
+            // as with Embree's own triangle test and obvhs.
+            let (t, u, v) = intersect_triangle(origin, dir, ray.tnear(), ray.tfar(), tri)?;
             let ng = (tri[0] - tri[1]).cross(tri[2] - tri[0]);
-            // Any nonzero normal will do (the integrator recomputes it).
             let ng = if ng != Vec3::ZERO && ng.is_finite() { ng } else { -dir };
-            lane.set_hit(&LaneHit {
-                t,
-                ng,
-                u,
-                v,
-                prim_id: args.primID,
-                geom_id: args.geomID,
-                inst_id,
-            });
-        }
-    }
-    // SAFETY: `context` is the pointer Embree passed to this callback.
-    unsafe { compat::count_prim_tests(args.context, tests) };
+            Some(LaneIntersection { t, ng, u, v })
+        })
+    };
 }
 
 unsafe extern "C" fn occluded(args: *const ffi::RTCOccludedFunctionNArguments) {
     // SAFETY: as in `intersect`.
     let (args, tri) = unsafe { (&*args, triangle((*args).geometryUserPtr, (*args).primID)) };
-    let n = args.N as usize;
-    let mut tests = 0;
-    for i in 0..n {
-        // SAFETY: `valid` has `N` entries and `i < N`.
-        if unsafe { *args.valid.add(i) } == 0 {
-            continue;
-        }
-        tests += 1;
-        let Some(tri) = tri else { continue };
-        // SAFETY: `ray` is an `RTCRayN` of width `N`, ours for the call, and `i < N`.
-        let ray = unsafe { RayLane::new(args.ray.cast(), n, i) };
-        if intersect_triangle(ray.origin(), ray.dir(), ray.tnear(), ray.tfar(), tri).is_some() {
-            // Embree's convention for "occluded".
-            ray.set_tfar(f32::NEG_INFINITY);
-        }
-    }
-    // SAFETY: `context` is the pointer Embree passed to this callback.
-    unsafe { compat::count_prim_tests(args.context, tests) };
+    // SAFETY: these are the arguments of the running occluded callback.
+    unsafe {
+        occluded_lanes(args, |ray| {
+            tri.is_some_and(|tri| {
+                intersect_triangle(ray.origin(), ray.dir(), ray.tnear(), ray.tfar(), tri).is_some()
+            })
+        })
+    };
 }
