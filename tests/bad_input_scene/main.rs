@@ -3,24 +3,12 @@
 
 use embray::scene::{self, LightDesc, SceneDesc, ShapeDesc};
 use glam::{DVec3, Vec3};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/scene")
-}
+#[path = "../common/mod.rs"]
+mod common;
 
-/// The (virtual) file the test scenes come from; OBJ paths resolve against its directory.
-fn source() -> PathBuf {
-    data_dir().join("scene.toml")
-}
-
-const CAMERA: &str = "\
-[camera]
-lookfrom = [0.0, 0.0, -5.0]
-lookat = [0.0, 0.0, 0.0]
-vfov = 40.0
-resolution = [32, 24]
-";
+use common::scene_files::{CAMERA, data_dir, source};
 
 const WHITE: &str = "\
 [materials.white]

@@ -43,6 +43,8 @@ pub fn backends() -> Vec<BackendKind> {
 }
 
 /// Programmatic scenes for effect tests (independent of the file format).
+pub mod scene_files;
+
 pub mod build {
     use embray::scene::*;
     use glam::{DAffine3, DVec3, Vec2, Vec3};

@@ -11,22 +11,10 @@ use glam::{DAffine3, DVec3, Vec2, Vec3};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/scene")
-}
+#[path = "../common/mod.rs"]
+mod common;
 
-/// The (virtual) file the test scenes come from; mesh paths resolve against its directory.
-fn source() -> PathBuf {
-    data_dir().join("scene.toml")
-}
-
-const CAMERA: &str = "\
-[camera]
-lookfrom = [0.0, 0.0, -5.0]
-lookat = [0.0, 0.0, 0.0]
-vfov = 40.0
-resolution = [32, 24]
-";
+use common::scene_files::{CAMERA, data_dir, source};
 
 const WHITE: &str = "[materials.white]\nalbedo = [0.73, 0.73, 0.73]\n";
 

@@ -136,6 +136,22 @@ pub struct LaneIntersection {
     pub v: f32,
 }
 
+/// Calls `lane(i)` for every `i < n` that `valid` marks (nonzero), and returns how many.
+///
+/// # Safety
+/// `valid` must point to `n` readable `i32`s.
+unsafe fn for_valid_lanes(valid: *const i32, n: usize, mut lane: impl FnMut(usize)) -> u64 {
+    let mut count = 0;
+    for i in 0..n {
+        // SAFETY: `valid` has `n` entries (per the caller) and `i < n`.
+        if unsafe { *valid.add(i) } != 0 {
+            lane(i);
+            count += 1;
+        }
+    }
+    count
+}
+
 /// The body of a user-geometry intersect callback: `test` on every valid lane, each hit
 /// written to its lane, and the tests counted (counting mode).
 ///
@@ -148,20 +164,16 @@ pub unsafe fn intersect_lanes(
     // SAFETY: `context` is the pointer Embree passed to this callback.
     let inst_id = unsafe { compat::instance_id(args.context) };
     let n = args.N as usize;
-    let mut tests = 0;
-    for i in 0..n {
-        // SAFETY: `valid` has `N` entries and `i < N`.
-        if unsafe { *args.valid.add(i) } == 0 {
-            continue;
-        }
-        tests += 1;
-        // SAFETY: `rayhit` is an `RTCRayHitN` of width `N`, ours for the call, and `i < N`.
+    let each = |i| {
+        // SAFETY: `rayhit` is an `RTCRayHitN` of width `N`, ours for the call; `i < N`.
         let lane = unsafe { RayHitLane::new(args.rayhit.cast(), n, i) };
         if let Some(LaneIntersection { t, ng, u, v }) = test(&lane.ray()) {
             let (prim_id, geom_id) = (args.primID, args.geomID);
             lane.set_hit(&LaneHit { t, ng, u, v, prim_id, geom_id, inst_id });
         }
-    }
+    };
+    // SAFETY: `valid` has `N` entries.
+    let tests = unsafe { for_valid_lanes(args.valid, n, each) };
     // SAFETY: `context` is the pointer Embree passed to this callback.
     unsafe { compat::count_prim_tests(args.context, tests) };
 }
@@ -176,19 +188,15 @@ pub unsafe fn occluded_lanes(
     mut blocks: impl FnMut(&RayLane) -> bool,
 ) {
     let n = args.N as usize;
-    let mut tests = 0;
-    for i in 0..n {
-        // SAFETY: `valid` has `N` entries and `i < N`.
-        if unsafe { *args.valid.add(i) } == 0 {
-            continue;
-        }
-        tests += 1;
-        // SAFETY: `ray` is an `RTCRayN` of width `N`, ours for the call, and `i < N`.
+    let each = |i| {
+        // SAFETY: `ray` is an `RTCRayN` of width `N`, ours for the call; `i < N`.
         let ray = unsafe { RayLane::new(args.ray.cast(), n, i) };
         if blocks(&ray) {
             ray.set_tfar(f32::NEG_INFINITY);
         }
-    }
+    };
+    // SAFETY: `valid` has `N` entries.
+    let tests = unsafe { for_valid_lanes(args.valid, n, each) };
     // SAFETY: `context` is the pointer Embree passed to this callback.
     unsafe { compat::count_prim_tests(args.context, tests) };
 }
