@@ -20,11 +20,13 @@ impl Rng {
     }
 
     /// Uniform in [lo, hi).
+    #[cfg_attr(not(feature = "embree"), allow(dead_code))]
     pub(crate) fn range(&mut self, lo: f32, hi: f32) -> f32 {
         lo + (hi - lo) * self.unit()
     }
 
     /// Each component uniform in [lo, hi).
+    #[cfg_attr(not(feature = "embree"), allow(dead_code))]
     pub(crate) fn vec3(&mut self, lo: f32, hi: f32) -> Vec3 {
         Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
     }
