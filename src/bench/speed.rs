@@ -222,7 +222,6 @@ fn measure_rays(
     render_quality: BuildQuality,
 ) -> Result<(SpeedRow, Box<dyn Accel>), SpeedError> {
     let mut build_ms = [0.0; 3];
-    let mut accel_mib = 0.0;
     let mut accel = None;
     let qualities = [BuildQuality::Low, BuildQuality::Medium, BuildQuality::High];
     for (slot, build_quality) in qualities.into_iter().enumerate() {
@@ -230,18 +229,18 @@ fn measure_rays(
         let mut builds = Vec::new();
         for _ in 0..runs.max(1) {
             drop(accel.take());
-            let before = rss_kib();
             let start = Instant::now();
-            let built = build(backend, scene, &accel_options)?;
+            accel = Some(build(backend, scene, &accel_options)?);
             builds.push(start.elapsed().as_secs_f64());
-            accel_mib = rss_kib().saturating_sub(before) as f64 / 1024.0;
-            accel = Some(built);
         }
         build_ms[slot] = median(builds) * 1e3;
     }
     drop(accel);
+    // Memory of the BVH the rays and renders use.
     let render_options = AccelOptions { build_quality: render_quality, ..AccelOptions::default() };
+    let before = rss_kib();
     let accel = build(backend, scene, &render_options)?;
+    let accel_mib = rss_kib().saturating_sub(before) as f64 / 1024.0;
     let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
     let primary = primary_rays(scene);
     let diffuse = diffuse_rays(scene, accel.as_ref(), &primary);
