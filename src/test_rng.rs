@@ -20,19 +20,12 @@ impl Rng {
     }
 
     /// Uniform in [lo, hi).
-    #[cfg_attr(not(feature = "embree"), allow(dead_code))]
     pub(crate) fn range(&mut self, lo: f32, hi: f32) -> f32 {
         lo + (hi - lo) * self.unit()
     }
 
     /// Each component uniform in [lo, hi).
-    #[cfg_attr(not(feature = "embree"), allow(dead_code))]
     pub(crate) fn vec3(&mut self, lo: f32, hi: f32) -> Vec3 {
         Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
-    }
-
-    /// Each component uniform in [-scale/2, scale/2).
-    pub(crate) fn centred(&mut self, scale: f32) -> Vec3 {
-        Vec3::new(self.unit() - 0.5, self.unit() - 0.5, self.unit() - 0.5) * scale
     }
 }

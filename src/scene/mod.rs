@@ -50,9 +50,13 @@ pub fn load_str(text: &str, source: &Path) -> Result<SceneDesc, SceneError> {
 
 /// As `load`, returning the warnings instead of printing them.
 pub fn load_with_warnings(path: &Path) -> Result<(SceneDesc, Vec<String>), SceneError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|error| SceneError::Read { path: path.to_path_buf(), error })?;
-    load_str_with_warnings(&text, path)
+    load_str_with_warnings(&read_scene_file(path)?, path)
+}
+
+/// The text of a scene file, or an error naming it.
+pub(crate) fn read_scene_file(path: &Path) -> Result<String, SceneError> {
+    std::fs::read_to_string(path)
+        .map_err(|error| SceneError::Read { path: path.to_path_buf(), error })
 }
 
 /// As `load_str`, returning the warnings instead of printing them.

@@ -1,6 +1,7 @@
 //! A conservative pre-test for `crate::geometry::intersect_triangle`: rejects most of the
 //! triangles a ray passes outside of without the exact test's FMA-based edge functions.
 
+use crate::geometry::intersect_triangle;
 use glam::Vec3;
 
 /// The per-ray part of `geometry::intersect_triangle` (Woop et al.'s permutation, with the
@@ -78,6 +79,28 @@ impl<const KZ: usize> EdgeTest<KZ> {
         // then is NaN or infinite, or is refused by the exact test anyway.
         t > 0.0 && t >= tmin && t <= tmax
     }
+
+    /// Both pre-tests: false only if the exact test certainly misses.
+    #[inline(always)]
+    fn passes(&self, dir: Vec3, tmin: f32, tmax: f32, tri: &[Vec3; 3]) -> bool {
+        self.may_hit(tri) && self.in_range(dir, tmin, tmax, tri)
+    }
+
+    /// Exactly `intersect_triangle(origin, dir, tmin, tmax, tri)`, skipped where the
+    /// pre-tests prove it returns `None`.
+    #[inline(always)]
+    pub(super) fn intersect(
+        &self,
+        dir: Vec3,
+        tmin: f32,
+        tmax: f32,
+        tri: &[Vec3; 3],
+    ) -> Option<(f32, f32, f32)> {
+        if !self.passes(dir, tmin, tmax, tri) {
+            return None;
+        }
+        intersect_triangle(self.origin, dir, tmin, tmax, tri)
+    }
 }
 
 /// [`EdgeTest`] for any ray, its axis chosen at run time (for packets, whose rays may differ
@@ -97,14 +120,29 @@ impl RayEdgeTest {
         }
     }
 
-    /// False only if `intersect_triangle(origin, dir, tmin, tmax, tri)` certainly returns
-    /// `None` ([`EdgeTest::may_hit`] and [`EdgeTest::in_range`]).
+    /// [`EdgeTest::intersect`] for this ray's axis.
     #[inline(always)]
-    pub(super) fn may_hit(&self, dir: Vec3, tmin: f32, tmax: f32, tri: &[Vec3; 3]) -> bool {
+    pub(super) fn intersect(
+        &self,
+        dir: Vec3,
+        tmin: f32,
+        tmax: f32,
+        tri: &[Vec3; 3],
+    ) -> Option<(f32, f32, f32)> {
         match self {
-            RayEdgeTest::X(e) => e.may_hit(tri) && e.in_range(dir, tmin, tmax, tri),
-            RayEdgeTest::Y(e) => e.may_hit(tri) && e.in_range(dir, tmin, tmax, tri),
-            RayEdgeTest::Z(e) => e.may_hit(tri) && e.in_range(dir, tmin, tmax, tri),
+            RayEdgeTest::X(e) => e.intersect(dir, tmin, tmax, tri),
+            RayEdgeTest::Y(e) => e.intersect(dir, tmin, tmax, tri),
+            RayEdgeTest::Z(e) => e.intersect(dir, tmin, tmax, tri),
+        }
+    }
+
+    /// Both pre-tests alone ([`EdgeTest::may_hit`] and [`EdgeTest::in_range`]).
+    #[cfg(test)]
+    fn passes(&self, dir: Vec3, tmin: f32, tmax: f32, tri: &[Vec3; 3]) -> bool {
+        match self {
+            RayEdgeTest::X(e) => e.passes(dir, tmin, tmax, tri),
+            RayEdgeTest::Y(e) => e.passes(dir, tmin, tmax, tri),
+            RayEdgeTest::Z(e) => e.passes(dir, tmin, tmax, tri),
         }
     }
 }
@@ -112,7 +150,6 @@ impl RayEdgeTest {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::intersect_triangle;
     use crate::test_rng::Rng;
 
     /// The pre-tests never reject a triangle `intersect_triangle` hits: on random rays, on
@@ -124,8 +161,9 @@ mod tests {
         let (mut hits, mut misses, mut rejected) = (0, 0, 0);
         for k in 0..200_000 {
             let scale = [1e-6, 1e-3, 1.0, 1e3, 1e6][k % 5];
-            let tri = [rng.centred(scale), rng.centred(scale), rng.centred(scale)];
-            let origin = rng.centred(4.0 * scale) + Vec3::splat(scale * [0.0, 1e3][k / 5 % 2]);
+            let (lo, hi) = (-0.5 * scale, 0.5 * scale);
+            let tri = [rng.vec3(lo, hi), rng.vec3(lo, hi), rng.vec3(lo, hi)];
+            let origin = rng.vec3(4.0 * lo, 4.0 * hi) + Vec3::splat(scale * [0.0, 1e3][k / 5 % 2]);
             // Aim at a vertex, an edge point, the centre, or anywhere.
             let (a, b) = (rng.unit(), rng.unit());
             let target = match k / 10 % 4 {
@@ -147,7 +185,7 @@ mod tests {
             let tmax = if k % 3 == 0 { f32::INFINITY } else { rng.unit() * 2.0 };
             let tmin = if k % 4 == 0 { rng.unit() * 0.5 } else { 0.0 };
             let exact = intersect_triangle(origin, dir, tmin, tmax, &tri);
-            let candidate = RayEdgeTest::new(origin, dir).may_hit(dir, tmin, tmax, &tri);
+            let candidate = RayEdgeTest::new(origin, dir).passes(dir, tmin, tmax, &tri);
             match exact {
                 Some(_) => {
                     hits += 1;

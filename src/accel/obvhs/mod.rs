@@ -20,7 +20,7 @@ mod node_test;
 mod packet;
 
 use crate::accel::{Accel, AccelOptions, BuildQuality, Hit, Observes, Ray};
-use crate::geometry::{intersect_sphere, intersect_triangle};
+use crate::geometry::intersect_sphere;
 use crate::render_scene::{
     Geometry, Placement, RenderScene, Sphere, TriangleMesh, Trs, transformed_bounds,
 };
@@ -246,11 +246,7 @@ impl ObvhsAccel {
                     }
                     let index = state.primitive_id as usize;
                     let tri = &mesh.triangles[index];
-                    let candidate = edges.may_hit(tri) && edges.in_range(dir, tmin, *tmax, tri);
-                    if let Some((t, u, v)) = candidate
-                        .then(|| intersect_triangle(origin, dir, tmin, *tmax, tri))
-                        .flatten()
-                    {
+                    if let Some((t, u, v)) = edges.intersect(dir, tmin, *tmax, tri) {
                         *tmax = t;
                         node_ray.tmax = t + NODE_RAY_BACKOFF;
                         closest = Some((t, mesh.ids[index], u, v));

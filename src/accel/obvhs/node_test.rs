@@ -138,15 +138,15 @@ mod tests {
         for scale in [1e-3, 1.0, 1e3, 1e6] {
             let boxes: Vec<Aabb> = (0..400)
                 .map(|_| {
-                    let c = rng.centred(scale);
-                    let h = rng.centred(0.1 * scale).abs();
+                    let c = rng.vec3(-0.5 * scale, 0.5 * scale);
+                    let h = rng.vec3(-0.05 * scale, 0.05 * scale).abs();
                     Aabb::new(Vec3A::from(c - h), Vec3A::from(c + h))
                 })
                 .collect();
             let bvh = build_cwbvh(&boxes, BvhBuildParams::medium_build(), &mut Default::default());
             for k in 0..2000 {
-                let origin = rng.centred(1.5 * scale);
-                let mut dir = (rng.centred(1.0)).normalize_or(Vec3::X);
+                let origin = rng.vec3(-0.75 * scale, 0.75 * scale);
+                let mut dir = rng.vec3(-1.0, 1.0).normalize_or(Vec3::X);
                 if k % 5 == 0 {
                     let axis = dir.abs().max_position();
                     dir = Vec3::ZERO;

@@ -12,7 +12,6 @@ use super::edge_test::RayEdgeTest;
 use super::node_test::{NodeRay, child_hits};
 use super::{NODE_RAY_BACKOFF, ObvhsAccel};
 use crate::accel::{Hit, Ray};
-use crate::geometry::intersect_triangle;
 use crate::stats::TraversalCounters;
 use glam::{UVec2, Vec3A};
 use obvhs::traverse;
@@ -67,13 +66,11 @@ impl ObvhsAccel {
                 let index = state.primitive_id as usize;
                 let tri = &mesh.triangles[index];
                 for (lane, ray) in rays.iter().enumerate() {
-                    if lane_hits[lane] & bit == 0
-                        || !edges[lane].may_hit(ray.dir, ray.tmin, tmax[lane], tri)
-                    {
+                    if lane_hits[lane] & bit == 0 {
                         continue;
                     }
                     if let Some((t, u, v)) =
-                        intersect_triangle(ray.origin, ray.dir, ray.tmin, tmax[lane], tri)
+                        edges[lane].intersect(ray.dir, ray.tmin, tmax[lane], tri)
                     {
                         tmax[lane] = t;
                         node_rays[lane].tmax = t + NODE_RAY_BACKOFF;

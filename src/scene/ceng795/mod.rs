@@ -67,9 +67,7 @@ pub fn load(path: &Path) -> Result<Vec<CameraScene>, SceneError> {
 
 /// As `load`, returning the warnings instead of printing them.
 pub fn load_with_warnings(path: &Path) -> Result<(Vec<CameraScene>, Vec<String>), SceneError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|error| SceneError::Read { path: path.to_path_buf(), error })?;
-    load_str_with_warnings(&text, path)
+    load_str_with_warnings(&crate::scene::read_scene_file(path)?, path)
 }
 
 /// Parses XML text read from `source` (used in messages and to resolve PLY paths).
