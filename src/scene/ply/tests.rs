@@ -1,0 +1,63 @@
+//! The PLY reader on good and malformed ASCII and binary files.
+
+use super::*;
+
+const CUBE_HEADER: &str = "ply\nformat ascii 1.0\ncomment a cube\nelement vertex 8\n\
+    property float x\nproperty float y\nproperty float z\nelement face 6\n\
+    property list uchar int vertex_indices\nend_header\n";
+const CUBE_BODY: &str = "0 0 0\n0 0 1\n0 1 1\n0 1 0\n1 0 0\n1 0 1\n1 1 1\n1 1 0\n\
+    4 0 1 2 3\n4 7 6 5 4\n4 0 4 5 1\n4 1 5 6 2\n4 2 6 7 3\n4 3 7 4 0\n";
+
+fn cube() -> String {
+    format!("{CUBE_HEADER}{CUBE_BODY}")
+}
+
+#[test]
+fn ascii_cube_is_fan_triangulated() {
+    let mesh = parse(cube().as_bytes()).unwrap();
+    assert_eq!(mesh.positions.len(), 8);
+    assert_eq!(mesh.positions[6], DVec3::ONE);
+    assert_eq!(mesh.indices.len(), 12);
+    assert_eq!(mesh.indices[0..2], [[0, 1, 2], [0, 2, 3]]);
+    assert!(mesh.normals.is_none() && mesh.uvs.is_none());
+}
+
+#[test]
+fn crlf_header_and_extra_properties() {
+    let text = "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\nproperty double x\r\n\
+        property double y\r\nproperty double z\r\nproperty uchar red\r\nproperty float s\r\n\
+        property float t\r\nelement edge 1\r\nproperty int a\r\nproperty int b\r\n\
+        element face 1\r\nproperty uchar flags\r\nproperty list int uint vertex_index\r\n\
+        end_header\r\n0 0 0 255 0 0\r\n1 0 0 0 1 0\r\n0 1 0 7 0 1\r\n0 1\r\n9 3 0 1 2\r\n";
+    let mesh = parse(text.as_bytes()).unwrap();
+    assert_eq!(mesh.indices, [[0, 1, 2]]);
+    assert_eq!(mesh.uvs.unwrap()[2], Vec2::new(0.0, 1.0));
+}
+
+#[test]
+fn errors_name_the_problem_and_line() {
+    let err = parse(cube().replace("4 2 6 7 3", "4 2 6 8 3").as_bytes()).unwrap_err();
+    assert_eq!(err.line, Some(23));
+    assert_eq!(err.message, "face 4 refers to vertex 8, but the file has 8 vertices");
+
+    let err = parse(cube().replace("0 1 1\n", "0 nan 1\n").as_bytes()).unwrap_err();
+    assert_eq!(err.line, Some(13));
+    assert!(err.message.starts_with("vertex 2 has a non-finite coordinate"), "{err:?}");
+
+    let err = parse(cube().replace("float y", "half y").as_bytes()).unwrap_err();
+    assert_eq!((err.line, err.message.as_str()), (Some(6), "unsupported property type 'half'"));
+
+    let err = parse(cube().replace("4 3 7 4 0\n", "4 3 7\n").as_bytes()).unwrap_err();
+    assert!(err.message.contains("ends in face 5 of 6"), "{err:?}");
+
+    let err = parse(cube().replace("4 3 7 4 0", "4 3 7 x 0").as_bytes()).unwrap_err();
+    assert_eq!(err.message, "'x' is not a valid int (face 5, property 'vertex_indices')");
+
+    let no_faces = cube().replace("element face 6", "element face 0");
+    let err = parse(no_faces.as_bytes()).unwrap_err();
+    assert!(err.message.contains("no faces"), "{err:?}");
+
+    assert!(parse(b"solid stl\n").unwrap_err().message.contains("not a PLY file"));
+    let err = parse(cube().replace("end_header\n", "").as_bytes()).unwrap_err();
+    assert!(err.message.contains("unexpected header line '0 0 0'"), "{err:?}");
+}
