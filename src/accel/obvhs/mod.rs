@@ -17,7 +17,7 @@
 
 mod edge_test;
 mod node_test;
-mod packet;
+mod wide_bvh;
 
 use crate::accel::{Accel, AccelOptions, BuildQuality, Hit, Observes, Ray};
 use crate::geometry::intersect_sphere;
@@ -26,13 +26,13 @@ use crate::render_scene::{
 };
 use crate::stats::TraversalCounters;
 use edge_test::EdgeTest;
-use glam::{Affine3A, UVec2, Vec3, Vec3A};
-use node_test::{NodeRay, child_hits};
+use glam::{Affine3A, Vec3, Vec3A};
 use obvhs::aabb::Aabb;
-use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::builder::build_cwbvh;
-use obvhs::{BvhBuildParams, traverse};
+use obvhs::BvhBuildParams;
+use std::ops::ControlFlow;
 use std::time::Duration;
+use wide_bvh::{WideBvh, WideRay};
 
 /// Far larger than the rounding of slab distances near the origin at any scale we render.
 const NODE_RAY_BACKOFF: f32 = 1e-3;
@@ -41,7 +41,7 @@ const NODE_RAY_BACKOFF: f32 = 1e-3;
 const MOTION_BOUND_STEPS: usize = 32;
 
 struct MeshBlas {
-    bvh: CwBvh,
+    bvh: WideBvh,
     /// Triangles in BVH leaf order, so a leaf's primitives are contiguous in memory.
     triangles: Vec<[Vec3; 3]>,
     /// Geometry id (instance index; only meaningful in the baked BVH, see
@@ -76,8 +76,8 @@ pub struct ObvhsAccel {
     baked: Option<MeshBlas>,
     /// Top level over the other instances' bounds (spheres, transformed and moving
     /// instances); `None` if there are none.
-    tlas: Option<CwBvh>,
-    /// Instance (geometry id) of each primitive of `tlas`.
+    tlas: Option<WideBvh>,
+    /// Instance (geometry id) of each primitive slot of `tlas`.
     tlas_instances: Vec<u32>,
     count_traversal: bool,
 }
@@ -101,8 +101,10 @@ fn build_params(quality: BuildQuality) -> BvhBuildParams {
 /// A BVH over `triangles` (each with its geometry id and triangle index).
 fn build_mesh_blas(triangles: Vec<([Vec3; 3], (u32, u32))>, quality: BuildQuality) -> MeshBlas {
     let boxes: Vec<Aabb> = triangles.iter().map(|(t, _)| aabb_of(*t)).collect();
-    let bvh = build_cwbvh(&boxes, build_params(quality), &mut Duration::default());
-    let (triangles, ids) = bvh.primitive_indices.iter().map(|&i| triangles[i as usize]).unzip();
+    let cwbvh = build_cwbvh(&boxes, build_params(quality), &mut Duration::default());
+    let slot_boxes: Vec<Aabb> = cwbvh.primitive_indices.iter().map(|&i| boxes[i as usize]).collect();
+    let bvh = WideBvh::new(&cwbvh, &slot_boxes);
+    let (triangles, ids) = cwbvh.primitive_indices.iter().map(|&i| triangles[i as usize]).unzip();
     MeshBlas { bvh, triangles, ids }
 }
 
@@ -172,8 +174,13 @@ impl ObvhsAccel {
         }
         let baked =
             (!baked_triangles.is_empty()).then(|| build_mesh_blas(baked_triangles, quality));
-        let tlas = (!bounds.is_empty())
-            .then(|| build_cwbvh(&bounds, build_params(quality), &mut Duration::default()));
+        let tlas = (!bounds.is_empty()).then(|| {
+            let cwbvh = build_cwbvh(&bounds, build_params(quality), &mut Duration::default());
+            let slots = &cwbvh.primitive_indices;
+            let slot_boxes: Vec<Aabb> = slots.iter().map(|&i| bounds[i as usize]).collect();
+            tlas_instances = slots.iter().map(|&i| tlas_instances[i as usize]).collect();
+            WideBvh::new(&cwbvh, &slot_boxes)
+        });
         ObvhsAccel {
             blases,
             instances,
@@ -184,8 +191,8 @@ impl ObvhsAccel {
         }
     }
 
-    fn node_ray(origin: Vec3, dir: Vec3, tmax: f32) -> NodeRay {
-        NodeRay::new(origin - dir * NODE_RAY_BACKOFF, dir, 0.0, tmax + NODE_RAY_BACKOFF)
+    fn node_ray(origin: Vec3, dir: Vec3, tmax: f32) -> WideRay {
+        WideRay::new(origin - dir * NODE_RAY_BACKOFF, dir, 0.0, tmax + NODE_RAY_BACKOFF)
     }
 
     /// Closest hit within one mesh for the ray (`origin`, `dir`), narrowing `tmax`.
@@ -224,39 +231,34 @@ impl ObvhsAccel {
         counters: &mut TraversalCounters,
         any_hit: bool,
     ) -> Option<(f32, (u32, u32), f32, f32)> {
-        let mut closest = None;
+        let mut closest: Option<(f32, (u32, u32), f32, f32)> = None;
+        let mut closest_slot = usize::MAX;
         let edges = EdgeTest::<KZ>::new(origin, dir);
-        let mut node_ray = Self::node_ray(origin, dir, *tmax);
-        let mut state = mesh.bvh.new_traversal(Vec3A::from(dir));
-        let mut node;
-        'traversal: {
-            traverse!(
-                mesh.bvh,
-                node,
-                state,
-                {
-                    if COUNT {
-                        counters.node_visits += 1;
-                    }
-                    child_hits(node, &node_ray, state.oct_inv4)
-                },
-                {
-                    if COUNT {
-                        counters.prim_tests += 1;
-                    }
-                    let index = state.primitive_id as usize;
-                    let tri = &mesh.triangles[index];
-                    if let Some((t, u, v)) = edges.intersect(dir, tmin, *tmax, tri) {
-                        *tmax = t;
-                        node_ray.tmax = t + NODE_RAY_BACKOFF;
-                        closest = Some((t, mesh.ids[index], u, v));
-                        if any_hit {
-                            break 'traversal;
-                        }
-                    }
+        let mut node_ray = WideRay::new(origin, dir, 0.0, *tmax);
+        mesh.bvh.traverse::<COUNT>(&mut node_ray, counters, |slots, node_ray, counters| {
+            for slot in slots {
+                if COUNT {
+                    counters.prim_tests += 1;
                 }
-            );
-        }
+                let Some((t, u, v)) = edges.intersect(dir, tmin, *tmax, &mesh.triangles[slot])
+                else {
+                    continue;
+                };
+                // Of equally distant triangles the first slot wins, whatever the visiting
+                // order (packets visit in another).
+                if closest.is_some() && t == *tmax && slot > closest_slot {
+                    continue;
+                }
+                *tmax = t;
+                node_ray.tmax = t;
+                closest = Some((t, mesh.ids[slot], u, v));
+                closest_slot = slot;
+                if any_hit {
+                    return ControlFlow::Break(());
+                }
+            }
+            ControlFlow::Continue(())
+        });
         closest
     }
 
@@ -332,35 +334,30 @@ impl ObvhsAccel {
     ) -> Option<Hit> {
         let Some(tlas) = &self.tlas else { return best };
         let mut node_ray = Self::node_ray(ray.origin, ray.dir, tmax);
-        let mut state = tlas.new_traversal(Vec3A::from(ray.dir));
-        let mut node;
-        'traversal: {
-            traverse!(
-                tlas,
-                node,
-                state,
-                {
-                    if COUNT {
-                        counters.node_visits += 1;
-                    }
-                    child_hits(node, &node_ray, state.oct_inv4)
-                },
-                {
-                    let tlas_index = tlas.primitive_indices[state.primitive_id as usize];
-                    let geom_id = self.tlas_instances[tlas_index as usize];
-                    let instance = &self.instances[geom_id as usize];
-                    if let Some((t, prim_id, u, v)) = self
-                        .intersect_instance::<COUNT>(instance, ray, &mut tmax, counters, any_hit)
-                    {
-                        node_ray.tmax = t + NODE_RAY_BACKOFF;
-                        best = Some(Hit { t, geom_id, prim_id, u, v });
-                        if any_hit {
-                            break 'traversal;
-                        }
-                    }
+        tlas.traverse::<COUNT>(&mut node_ray, counters, |slots, node_ray, counters| {
+            for slot in slots {
+                let geom_id = self.tlas_instances[slot];
+                let instance = &self.instances[geom_id as usize];
+                let before = tmax;
+                let Some((t, prim_id, u, v)) =
+                    self.intersect_instance::<COUNT>(instance, ray, &mut tmax, counters, any_hit)
+                else {
+                    continue;
+                };
+                // Of equally distant instances the lowest geometry id wins, whatever the
+                // visiting order.
+                if matches!(best, Some(b) if t == before && b.geom_id < geom_id) {
+                    tmax = before;
+                    continue;
                 }
-            );
-        }
+                node_ray.tmax = t + NODE_RAY_BACKOFF;
+                best = Some(Hit { t, geom_id, prim_id, u, v });
+                if any_hit {
+                    return ControlFlow::Break(());
+                }
+            }
+            ControlFlow::Continue(())
+        });
         best
     }
 }
@@ -399,15 +396,11 @@ impl Accel for ObvhsAccel {
         counters: &mut TraversalCounters,
     ) {
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
-        for (rays, hits) in rays.chunks(packet::WIDTH).zip(hits.chunks_mut(packet::WIDTH)) {
-            if self.count_traversal || !self.trace_packet(rays, hits) {
-                crate::accel::intersect_one_by_one(self, rays, hits, counters);
-            }
-        }
+        crate::accel::intersect_one_by_one(self, rays, hits, counters);
     }
 
     fn prefers_batches(&self) -> bool {
-        !self.count_traversal && self.baked.is_some()
+        false
     }
 
     fn observes(&self) -> Observes {
