@@ -103,54 +103,20 @@ impl<const KZ: usize> EdgeTest<KZ> {
     }
 }
 
-/// [`EdgeTest`] for any ray, its axis chosen at run time (for packets, whose rays may differ
-/// in it).
-pub(super) enum RayEdgeTest {
-    X(EdgeTest<0>),
-    Y(EdgeTest<1>),
-    Z(EdgeTest<2>),
-}
-
-impl RayEdgeTest {
-    pub(super) fn new(origin: Vec3, dir: Vec3) -> Self {
-        match dir.abs().max_position() {
-            0 => RayEdgeTest::X(EdgeTest::new(origin, dir)),
-            1 => RayEdgeTest::Y(EdgeTest::new(origin, dir)),
-            _ => RayEdgeTest::Z(EdgeTest::new(origin, dir)),
-        }
-    }
-
-    /// [`EdgeTest::intersect`] for this ray's axis.
-    #[inline(always)]
-    pub(super) fn intersect(
-        &self,
-        dir: Vec3,
-        tmin: f32,
-        tmax: f32,
-        tri: &[Vec3; 3],
-    ) -> Option<(f32, f32, f32)> {
-        match self {
-            RayEdgeTest::X(e) => e.intersect(dir, tmin, tmax, tri),
-            RayEdgeTest::Y(e) => e.intersect(dir, tmin, tmax, tri),
-            RayEdgeTest::Z(e) => e.intersect(dir, tmin, tmax, tri),
-        }
-    }
-
-    /// Both pre-tests alone ([`EdgeTest::may_hit`] and [`EdgeTest::in_range`]).
-    #[cfg(test)]
-    fn passes(&self, dir: Vec3, tmin: f32, tmax: f32, tri: &[Vec3; 3]) -> bool {
-        match self {
-            RayEdgeTest::X(e) => e.passes(dir, tmin, tmax, tri),
-            RayEdgeTest::Y(e) => e.passes(dir, tmin, tmax, tri),
-            RayEdgeTest::Z(e) => e.passes(dir, tmin, tmax, tri),
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::test_rng::Rng;
+
+    /// Both pre-tests alone ([`EdgeTest::may_hit`] and [`EdgeTest::in_range`]) for the
+    /// ray's axis.
+    fn passes(origin: Vec3, dir: Vec3, tmin: f32, tmax: f32, tri: &[Vec3; 3]) -> bool {
+        match dir.abs().max_position() {
+            0 => EdgeTest::<0>::new(origin, dir).passes(dir, tmin, tmax, tri),
+            1 => EdgeTest::<1>::new(origin, dir).passes(dir, tmin, tmax, tri),
+            _ => EdgeTest::<2>::new(origin, dir).passes(dir, tmin, tmax, tri),
+        }
+    }
 
     /// The pre-tests never reject a triangle `intersect_triangle` hits: on random rays, on
     /// rays through vertices, edge points and shared edges, axis-aligned rays, and at scales
@@ -185,7 +151,7 @@ mod tests {
             let tmax = if k % 3 == 0 { f32::INFINITY } else { rng.unit() * 2.0 };
             let tmin = if k % 4 == 0 { rng.unit() * 0.5 } else { 0.0 };
             let exact = intersect_triangle(origin, dir, tmin, tmax, &tri);
-            let candidate = RayEdgeTest::new(origin, dir).passes(dir, tmin, tmax, &tri);
+            let candidate = passes(origin, dir, tmin, tmax, &tri);
             match exact {
                 Some(_) => {
                     hits += 1;

@@ -1,19 +1,20 @@
 //! Pure-Rust backend on the obvhs crate: every baked triangle mesh (already in render space)
-//! in one CWBVH, as Embree's top scene holds them; one CWBVH per other prototype (bottom
+//! in one BVH, as Embree's top scene holds them; one BVH per other prototype (bottom
 //! level) and one over the other instances' bounds (top level: spheres, transformed and
-//! moving instances). Traversed with obvhs's `traverse!` macro so node visits and primitive
-//! tests can be counted exactly. Transformed instances get the ray in object space; moving
-//! instances have bounds over their whole motion at the top level only, and the exact
-//! transform at the ray's time.
+//! moving instances). Transformed instances get the ray in object space; moving instances
+//! have bounds over their whole motion at the top level only, and the exact transform at
+//! the ray's time.
 //!
-//! Nodes are tested by [`node_test::child_hits`] (all eight children at once) with the ray's
-//! origin moved back by `NODE_RAY_BACKOFF` (in units of t): a spawned ray starts on the
-//! surface it leaves, where the boxes of the neighbouring wall in a corner begin, and the
-//! slab distances' rounding there must not cull them. Primitive tests use the real ray.
+//! obvhs builds each tree (PLOC, then its 8-wide CWBVH); [`WideBvh`] re-lays it out for CPU
+//! traversal and walks it nearest child first, counting node visits and primitive tests
+//! exactly. Triangles are tested with `crate::geometry::intersect_triangle` (the hits are
+//! exactly its results), after a cheap conservative test ([`EdgeTest`]) that rejects most
+//! of the triangles a ray passes outside of without its FMA-based edge functions.
 //!
-//! Triangles are tested with `crate::geometry::intersect_triangle` (the hits are exactly
-//! its results), after a cheap conservative test ([`EdgeTest`]) that rejects most of the
-//! triangles a ray passes outside of without its FMA-based edge functions.
+//! The top level's boxes are bounds of transformed boxes, rounded in f32, so its node ray
+//! starts `NODE_RAY_BACKOFF` (in units of t) behind the ray: a ray leaving a transformed
+//! instance's surface must not cull that instance's neighbours by a rounding. Mesh boxes
+//! are exact, and need no such margin (see [`node_test`]).
 
 mod edge_test;
 mod node_test;
@@ -27,14 +28,15 @@ use crate::render_scene::{
 use crate::stats::TraversalCounters;
 use edge_test::EdgeTest;
 use glam::{Affine3A, Vec3, Vec3A};
+use node_test::NodeRay;
+use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::builder::build_cwbvh;
-use obvhs::BvhBuildParams;
 use std::ops::ControlFlow;
 use std::time::Duration;
-use wide_bvh::{WideBvh, WideRay};
+use wide_bvh::WideBvh;
 
-/// Far larger than the rounding of slab distances near the origin at any scale we render.
+/// Far larger than the rounding of transformed bounds near the origin at any scale we render.
 const NODE_RAY_BACKOFF: f32 = 1e-3;
 
 /// Time samples used to bound a moving instance (plus a margin for rotation in between).
@@ -102,7 +104,8 @@ fn build_params(quality: BuildQuality) -> BvhBuildParams {
 fn build_mesh_blas(triangles: Vec<([Vec3; 3], (u32, u32))>, quality: BuildQuality) -> MeshBlas {
     let boxes: Vec<Aabb> = triangles.iter().map(|(t, _)| aabb_of(*t)).collect();
     let cwbvh = build_cwbvh(&boxes, build_params(quality), &mut Duration::default());
-    let slot_boxes: Vec<Aabb> = cwbvh.primitive_indices.iter().map(|&i| boxes[i as usize]).collect();
+    let slot_boxes: Vec<Aabb> =
+        cwbvh.primitive_indices.iter().map(|&i| boxes[i as usize]).collect();
     let bvh = WideBvh::new(&cwbvh, &slot_boxes);
     let (triangles, ids) = cwbvh.primitive_indices.iter().map(|&i| triangles[i as usize]).unzip();
     MeshBlas { bvh, triangles, ids }
@@ -191,8 +194,8 @@ impl ObvhsAccel {
         }
     }
 
-    fn node_ray(origin: Vec3, dir: Vec3, tmax: f32) -> WideRay {
-        WideRay::new(origin - dir * NODE_RAY_BACKOFF, dir, 0.0, tmax + NODE_RAY_BACKOFF)
+    fn node_ray(origin: Vec3, dir: Vec3, tmax: f32) -> NodeRay {
+        NodeRay::new(origin - dir * NODE_RAY_BACKOFF, dir, 0.0, tmax + NODE_RAY_BACKOFF)
     }
 
     /// Closest hit within one mesh for the ray (`origin`, `dir`), narrowing `tmax`.
@@ -234,7 +237,7 @@ impl ObvhsAccel {
         let mut closest: Option<(f32, (u32, u32), f32, f32)> = None;
         let mut closest_slot = usize::MAX;
         let edges = EdgeTest::<KZ>::new(origin, dir);
-        let mut node_ray = WideRay::new(origin, dir, 0.0, *tmax);
+        let mut node_ray = NodeRay::new(origin, dir, 0.0, *tmax);
         mesh.bvh.traverse::<COUNT>(&mut node_ray, counters, |slots, node_ray, counters| {
             for slot in slots {
                 if COUNT {
@@ -387,20 +390,6 @@ impl Accel for ObvhsAccel {
         } else {
             self.trace::<false>(ray, counters, true).is_some()
         }
-    }
-
-    fn intersect_batch(
-        &self,
-        rays: &[Ray],
-        hits: &mut [Option<Hit>],
-        counters: &mut TraversalCounters,
-    ) {
-        assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
-        crate::accel::intersect_one_by_one(self, rays, hits, counters);
-    }
-
-    fn prefers_batches(&self) -> bool {
-        false
     }
 
     fn observes(&self) -> Observes {

@@ -9,12 +9,12 @@
 //! and the extra visits cost more than the memory the quantization saves. Here the child
 //! boxes are the exact bounds of the primitives below them.
 
+use super::node_test::{FAR_SCALE, NodeRay, Planes, child_hits};
 use crate::stats::TraversalCounters;
-use glam::Vec3;
-use wide::f32x8;
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::CwBvh;
 use std::ops::{ControlFlow, Range};
+use wide::f32x8;
 
 /// A child reference with this bit set is a leaf: [`LEAF_COUNT_SHIFT`] and above hold its
 /// primitive count, the bits below the first primitive's slot.
@@ -22,28 +22,16 @@ const LEAF: u32 = 1 << 31;
 const LEAF_COUNT_SHIFT: u32 = 29;
 const LEAF_FIRST_MASK: u32 = (1 << LEAF_COUNT_SHIFT) - 1;
 
-/// Directions smaller than this are replaced by it (with their sign) before inverting, so
-/// `0 · ∞` cannot occur; any t a ray can reach stays far below where this changes a result.
-const TINY_DIRECTION: f32 = 1e-18;
-
-/// Slab distances carry a few roundings: the far distance is enlarged by more than their
-/// relative error (pbrt's `1 + 2γ₃`), so a box the ray touches is never culled by them.
-const FAR_SCALE: f32 = 1.0 + 4.0 * f32::EPSILON;
-
 /// Stack entries kept on the call stack; trees needing more (only degenerate input
 /// builds them) get a heap stack.
 const INLINE_STACK: usize = 128;
-
-/// Rows of [`WideNode::planes`].
-const MIN_X: usize = 0;
 
 /// One node: up to eight children, each an inner node or a leaf.
 #[derive(Clone, Copy)]
 #[repr(C, align(64))]
 pub(super) struct WideNode {
-    /// The children's boxes: rows min x, max x, min y, max y, min z, max z. Empty slots
-    /// hold the inverted box +∞..−∞, which no ray meets.
-    planes: [f32x8; 6],
+    /// The children's boxes. Empty slots hold the inverted box +∞..−∞, which no ray meets.
+    planes: Planes,
     /// Node index, or a leaf (see [`LEAF`]).
     children: [u32; 8],
 }
@@ -52,54 +40,6 @@ pub(super) struct WideBvh {
     nodes: Vec<WideNode>,
     /// Stack entries a traversal can need at most (sorted pushes of every level's children).
     stack_depth: usize,
-}
-
-/// A ray prepared for node tests.
-pub(super) struct WideRay {
-    pub(super) origin: Vec3,
-    pub(super) inv_dir: Vec3,
-    /// Per axis, the row of the planes a ray meets first (min or max, by direction sign).
-    pub(super) near_rows: [usize; 3],
-    pub(super) tmin: f32,
-    pub tmax: f32,
-}
-
-impl WideRay {
-    pub(super) fn new(origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> Self {
-        let safe = |d: f32| if d.abs() < TINY_DIRECTION { TINY_DIRECTION.copysign(d) } else { d };
-        let inv_dir = Vec3::new(1.0 / safe(dir.x), 1.0 / safe(dir.y), 1.0 / safe(dir.z));
-        let row = |axis: usize| MIN_X + 2 * axis + usize::from(inv_dir[axis] < 0.0);
-        WideRay { origin, inv_dir, near_rows: [row(0), row(1), row(2)], tmin, tmax }
-    }
-}
-
-/// Which children the ray's segment `[tmin, tmax]` meets (bit i for child i), and where it
-/// enters each.
-#[inline(always)]
-fn child_hits(node: &WideNode, ray: &WideRay) -> (u32, [f32; 8]) {
-    let slab = |axis: usize| {
-        let near = ray.near_rows[axis];
-        let (origin, inv_dir) = (f32x8::splat(ray.origin[axis]), f32x8::splat(ray.inv_dir[axis]));
-        ((node.planes[near] - origin) * inv_dir, (node.planes[near ^ 1] - origin) * inv_dir)
-    };
-    let ((near_x, far_x), (near_y, far_y), (near_z, far_z)) = (slab(0), slab(1), slab(2));
-    let near = near_x.fast_max(near_y).fast_max(near_z.fast_max(f32x8::splat(ray.tmin)));
-    let far = far_x.fast_min(far_y).fast_min(far_z.fast_min(f32x8::splat(ray.tmax)));
-    let hits = near.simd_le(far * f32x8::splat(FAR_SCALE)).to_bitmask();
-    (hits, near.to_array())
-}
-
-/// The smallest f32 box holding `aabb` (whose bounds are exact in f64).
-fn outward(lo: [f64; 3], hi: [f64; 3]) -> ([f32; 3], [f32; 3]) {
-    let down = |x: f64| {
-        let f = x as f32;
-        if f as f64 > x { f.next_down() } else { f }
-    };
-    let up = |x: f64| {
-        let f = x as f32;
-        if (f as f64) < x { f.next_up() } else { f }
-    };
-    (lo.map(down), hi.map(up))
 }
 
 impl WideBvh {
@@ -112,12 +52,18 @@ impl WideBvh {
             primitive_bounds.len()
         );
         let empty = WideNode {
-            planes: [f32x8::INFINITY, f32x8::NEG_INFINITY, f32x8::INFINITY,
-                f32x8::NEG_INFINITY, f32x8::INFINITY, f32x8::NEG_INFINITY],
+            planes: [
+                f32x8::INFINITY,
+                f32x8::NEG_INFINITY,
+                f32x8::INFINITY,
+                f32x8::NEG_INFINITY,
+                f32x8::INFINITY,
+                f32x8::NEG_INFINITY,
+            ],
             children: [0; 8],
         };
         let mut nodes = vec![empty; cwbvh.nodes.len()];
-        let mut node_bounds = vec![([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]); nodes.len()];
+        let mut node_bounds = vec![Aabb::empty(); nodes.len()];
         let mut depth_of = vec![0; nodes.len()];
         // obvhs appends a node's children after it: in reverse order every child is done
         // before its parent.
@@ -126,42 +72,30 @@ impl WideBvh {
             // Stack entries this subtree can need: its children pushed, then each child's
             // subtree with up to all its siblings still below it.
             let (mut count, mut deepest) = (0usize, 0);
-            for child in 0..8 {
-                if source.is_child_empty(child) {
-                    continue;
-                }
-                let (lo, hi, reference) = if source.is_leaf(child) {
+            for child in (0..8).filter(|&child| !source.is_child_empty(child)) {
+                let (bounds, reference) = if source.is_leaf(child) {
                     let (first, count) = source.child_primitives(child);
                     let slots = first as usize..(first + count) as usize;
-                    let mut bounds = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-                    for aabb in &primitive_bounds[slots] {
-                        for axis in 0..3 {
-                            bounds.0[axis] = bounds.0[axis].min(aabb.min[axis] as f64);
-                            bounds.1[axis] = bounds.1[axis].max(aabb.max[axis] as f64);
-                        }
-                    }
-                    (bounds.0, bounds.1, LEAF | count << LEAF_COUNT_SHIFT | first)
+                    let bounds =
+                        primitive_bounds[slots].iter().fold(Aabb::empty(), |a, b| a.union(b));
+                    (bounds, LEAF | count << LEAF_COUNT_SHIFT | first)
                 } else {
                     let child_index = source.child_node_index(child) as usize;
                     assert!(child_index > index, "obvhs stores children after their parent");
                     deepest = deepest.max(depth_of[child_index]);
-                    let (lo, hi) = node_bounds[child_index];
-                    (lo, hi, child_index as u32)
+                    (node_bounds[child_index], child_index as u32)
                 };
-                let (lo32, hi32) = outward(lo, hi);
                 for axis in 0..3 {
-                    node.planes[MIN_X + 2 * axis].as_mut_array()[child] = lo32[axis];
-                    node.planes[MIN_X + 2 * axis + 1].as_mut_array()[child] = hi32[axis];
-                    node_bounds[index].0[axis] = node_bounds[index].0[axis].min(lo[axis]);
-                    node_bounds[index].1[axis] = node_bounds[index].1[axis].max(hi[axis]);
+                    node.planes[2 * axis].as_mut_array()[child] = bounds.min[axis];
+                    node.planes[2 * axis + 1].as_mut_array()[child] = bounds.max[axis];
                 }
+                node_bounds[index] = node_bounds[index].union(&bounds);
                 node.children[child] = reference;
                 count += 1;
             }
             depth_of[index] = count.max(count.saturating_sub(1) + deepest);
         }
         let stack_depth = 1 + depth_of.first().copied().unwrap_or(0);
-        eprintln!("wide bvh: {} nodes, stack depth {stack_depth}", nodes.len());
         WideBvh { nodes, stack_depth }
     }
 
@@ -170,9 +104,9 @@ impl WideBvh {
     #[inline(always)]
     pub(super) fn traverse<const COUNT: bool>(
         &self,
-        ray: &mut WideRay,
+        ray: &mut NodeRay,
         counters: &mut TraversalCounters,
-        leaf: impl FnMut(Range<usize>, &mut WideRay, &mut TraversalCounters) -> ControlFlow<()>,
+        leaf: impl FnMut(Range<usize>, &mut NodeRay, &mut TraversalCounters) -> ControlFlow<()>,
     ) {
         // Deeper trees than this come only from degenerate input; they get a heap stack.
         if self.stack_depth <= INLINE_STACK {
@@ -185,9 +119,9 @@ impl WideBvh {
     fn walk<const COUNT: bool>(
         &self,
         stack: &mut [(u32, f32)],
-        ray: &mut WideRay,
+        ray: &mut NodeRay,
         counters: &mut TraversalCounters,
-        mut leaf: impl FnMut(Range<usize>, &mut WideRay, &mut TraversalCounters) -> ControlFlow<()>,
+        mut leaf: impl FnMut(Range<usize>, &mut NodeRay, &mut TraversalCounters) -> ControlFlow<()>,
     ) {
         if self.nodes.is_empty() {
             return;
@@ -207,7 +141,7 @@ impl WideBvh {
                     counters.node_visits += 1;
                 }
                 let node = &self.nodes[current as usize];
-                let (mut hits, t_near) = child_hits(node, ray);
+                let (mut hits, t_near) = child_hits(&node.planes, ray);
                 if hits != 0 {
                     let nearest = hits.trailing_zeros() as usize;
                     hits &= hits - 1;
