@@ -2,7 +2,9 @@
 //! triangles a ray passes outside of without the exact test's FMA-based edge functions.
 
 use crate::geometry::intersect_triangle;
+use super::triangle_block::TriangleBlock;
 use glam::Vec3;
+use wide::f32x4;
 
 /// The per-ray part of `geometry::intersect_triangle` (Woop et al.'s permutation, with the
 /// axis the direction is largest along, `KZ`, last, and shear), and a conservative version
@@ -19,6 +21,16 @@ use glam::Vec3;
 pub(super) struct EdgeTest<const KZ: usize> {
     origin: Vec3,
     shear: (f32, f32),
+}
+
+/// [`permute`] of the lanes' coordinates.
+#[inline(always)]
+fn permute_lanes<const KZ: usize>([x, y, z]: [f32x4; 3]) -> [f32x4; 3] {
+    match KZ {
+        0 => [y, z, x],
+        1 => [z, x, y],
+        _ => [x, y, z],
+    }
 }
 
 /// `intersect_triangle`'s `permute` for `dir.abs().max_position() == KZ`.
@@ -40,8 +52,9 @@ impl<const KZ: usize> EdgeTest<KZ> {
     }
 
     /// False only if `intersect_triangle(origin, dir, .., tri)` certainly returns `None`.
-    #[inline(always)]
-    pub(super) fn may_hit(&self, tri: &[Vec3; 3]) -> bool {
+    /// (The reference for [`EdgeTest::may_hit_block`], which the BVH uses.)
+    #[cfg(test)]
+    fn may_hit(&self, tri: &[Vec3; 3]) -> bool {
         let (sx, sy) = self.shear;
         // `permute(v - origin)`, then `p.x += sx * p.z; p.y += sy * p.z`, as there.
         let sheared = |v: Vec3| {
@@ -67,6 +80,31 @@ impl<const KZ: usize> EdgeTest<KZ> {
         !(negative & positive)
     }
 
+    /// [`EdgeTest::may_hit`] for every triangle of `block` at once (the same operations per
+    /// lane, so the same answers): bit i set unless triangle i certainly misses.
+    #[inline(always)]
+    pub(super) fn may_hit_block(&self, block: &TriangleBlock) -> u32 {
+        let (sx, sy) = (f32x4::splat(self.shear.0), f32x4::splat(self.shear.1));
+        let origin = self.origin.to_array().map(f32x4::splat);
+        let sheared = |v: &[f32x4; 3]| {
+            let p = permute_lanes::<KZ>([v[0] - origin[0], v[1] - origin[1], v[2] - origin[2]]);
+            (p[0] + sx * p[2], p[1] + sy * p[2])
+        };
+        let [p0, p1, p2] = block.vertices.each_ref().map(sheared);
+        let sign = |a: f32x4, b: f32x4, c: f32x4, d: f32x4| {
+            let (ab, cd) = (a * b, c * d);
+            let estimate = ab - cd;
+            let bound = (ab.abs() + cd.abs()) * f32x4::splat(4.0 * f32::EPSILON) + f32x4::splat(1e-36);
+            (estimate.simd_gt(bound), estimate.simd_lt(-bound))
+        };
+        let e0 = sign(p1.0, p2.1, p1.1, p2.0);
+        let e1 = sign(p2.0, p0.1, p2.1, p0.0);
+        let e2 = sign(p0.0, p1.1, p0.1, p1.0);
+        let positive = (e0.0 | e1.0 | e2.0).to_bitmask();
+        let negative = (e0.1 | e1.1 | e2.1).to_bitmask();
+        !(negative & positive) & block.lane_mask()
+    }
+
     /// False only if `intersect_triangle(origin, dir, tmin, tmax, tri)` certainly returns
     /// `None` because its `t` lies outside `[tmin, tmax]` (or it has no `t`): computes `t`
     /// exactly as it does (same operations, same bits) and applies its own test.
@@ -80,26 +118,26 @@ impl<const KZ: usize> EdgeTest<KZ> {
         t > 0.0 && t >= tmin && t <= tmax
     }
 
-    /// Both pre-tests: false only if the exact test certainly misses.
+    /// Exactly `intersect_triangle(origin, dir, tmin, tmax, tri)` for a triangle
+    /// [`EdgeTest::may_hit`] (or `may_hit_block`) let through.
     #[inline(always)]
-    fn passes(&self, dir: Vec3, tmin: f32, tmax: f32, tri: &[Vec3; 3]) -> bool {
-        self.may_hit(tri) && self.in_range(dir, tmin, tmax, tri)
-    }
-
-    /// Exactly `intersect_triangle(origin, dir, tmin, tmax, tri)`, skipped where the
-    /// pre-tests prove it returns `None`.
-    #[inline(always)]
-    pub(super) fn intersect(
+    pub(super) fn intersect_candidate(
         &self,
         dir: Vec3,
         tmin: f32,
         tmax: f32,
         tri: &[Vec3; 3],
     ) -> Option<(f32, f32, f32)> {
-        if !self.passes(dir, tmin, tmax, tri) {
+        if !self.in_range(dir, tmin, tmax, tri) {
             return None;
         }
         intersect_triangle(self.origin, dir, tmin, tmax, tri)
+    }
+
+    /// Both pre-tests: false only if the exact test certainly misses.
+    #[cfg(test)]
+    fn passes(&self, dir: Vec3, tmin: f32, tmax: f32, tri: &[Vec3; 3]) -> bool {
+        self.may_hit(tri) && self.in_range(dir, tmin, tmax, tri)
     }
 }
 

@@ -18,6 +18,7 @@
 
 mod edge_test;
 mod node_test;
+mod triangle_block;
 mod wide_bvh;
 
 use crate::accel::{Accel, AccelOptions, BuildQuality, Hit, Observes, Ray};
@@ -27,6 +28,7 @@ use crate::render_scene::{
 };
 use crate::stats::TraversalCounters;
 use edge_test::EdgeTest;
+use triangle_block::TriangleBlock;
 use glam::{Affine3A, Vec3, Vec3A};
 use node_test::NodeRay;
 use obvhs::BvhBuildParams;
@@ -44,10 +46,10 @@ const MOTION_BOUND_STEPS: usize = 32;
 
 struct MeshBlas {
     bvh: WideBvh,
-    /// Triangles in BVH leaf order, so a leaf's primitives are contiguous in memory.
-    triangles: Vec<[Vec3; 3]>,
+    /// Per leaf of `bvh` (by leaf index), its triangles.
+    blocks: Vec<TriangleBlock>,
     /// Geometry id (instance index; only meaningful in the baked BVH, see
-    /// [`ObvhsAccel::baked`]) and original triangle index of each entry of `triangles`.
+    /// [`ObvhsAccel::baked`]) and original triangle index of each primitive slot.
     ids: Vec<(u32, u32)>,
 }
 
@@ -107,8 +109,10 @@ fn build_mesh_blas(triangles: Vec<([Vec3; 3], (u32, u32))>, quality: BuildQualit
     let slot_boxes: Vec<Aabb> =
         cwbvh.primitive_indices.iter().map(|&i| boxes[i as usize]).collect();
     let bvh = WideBvh::new(&cwbvh, &slot_boxes);
-    let (triangles, ids) = cwbvh.primitive_indices.iter().map(|&i| triangles[i as usize]).unzip();
-    MeshBlas { bvh, triangles, ids }
+    let (triangles, ids): (Vec<_>, _) =
+        cwbvh.primitive_indices.iter().map(|&i| triangles[i as usize]).unzip();
+    let blocks = bvh.leaves().iter().map(|slots| TriangleBlock::new(&triangles, slots.clone())).collect();
+    MeshBlas { bvh, blocks, ids }
 }
 
 fn mesh_triangles(
@@ -238,17 +242,22 @@ impl ObvhsAccel {
         let mut closest_slot = usize::MAX;
         let edges = EdgeTest::<KZ>::new(origin, dir);
         let mut node_ray = NodeRay::new(origin, dir, 0.0, *tmax);
-        mesh.bvh.traverse::<COUNT>(&mut node_ray, counters, |slots, node_ray, counters| {
-            for slot in slots {
-                if COUNT {
-                    counters.prim_tests += 1;
-                }
-                let Some((t, u, v)) = edges.intersect(dir, tmin, *tmax, &mesh.triangles[slot])
-                else {
+        mesh.bvh.traverse::<COUNT>(&mut node_ray, counters, |leaf, node_ray, counters| {
+            let block = &mesh.blocks[leaf];
+            if COUNT {
+                counters.prim_tests += block.slots.len() as u64;
+            }
+            let mut candidates = edges.may_hit_block(block);
+            while candidates != 0 {
+                let lane = candidates.trailing_zeros() as usize;
+                candidates &= candidates - 1;
+                let tri = block.triangle(lane);
+                let Some((t, u, v)) = edges.intersect_candidate(dir, tmin, *tmax, &tri) else {
                     continue;
                 };
+                let slot = block.slots.start as usize + lane;
                 // Of equally distant triangles the first slot wins, whatever the visiting
-                // order (packets visit in another).
+                // order.
                 if closest.is_some() && t == *tmax && slot > closest_slot {
                     continue;
                 }
@@ -337,8 +346,9 @@ impl ObvhsAccel {
     ) -> Option<Hit> {
         let Some(tlas) = &self.tlas else { return best };
         let mut node_ray = Self::node_ray(ray.origin, ray.dir, tmax);
-        tlas.traverse::<COUNT>(&mut node_ray, counters, |slots, node_ray, counters| {
-            for slot in slots {
+        tlas.traverse::<COUNT>(&mut node_ray, counters, |leaf, node_ray, counters| {
+            for slot in tlas.leaves()[leaf].clone() {
+                let slot = slot as usize;
                 let geom_id = self.tlas_instances[slot];
                 let instance = &self.instances[geom_id as usize];
                 let before = tmax;

@@ -16,11 +16,8 @@ use obvhs::cwbvh::CwBvh;
 use std::ops::{ControlFlow, Range};
 use wide::f32x8;
 
-/// A child reference with this bit set is a leaf: [`LEAF_COUNT_SHIFT`] and above hold its
-/// primitive count, the bits below the first primitive's slot.
+/// A child reference with this bit set is a leaf, the bits below its leaf index.
 const LEAF: u32 = 1 << 31;
-const LEAF_COUNT_SHIFT: u32 = 29;
-const LEAF_FIRST_MASK: u32 = (1 << LEAF_COUNT_SHIFT) - 1;
 
 /// Stack entries kept on the call stack; trees needing more (only degenerate input
 /// builds them) get a heap stack.
@@ -38,6 +35,8 @@ pub(super) struct WideNode {
 
 pub(super) struct WideBvh {
     nodes: Vec<WideNode>,
+    /// Per leaf (in leaf index order, the leaves of a node consecutive), its primitive slots.
+    leaves: Vec<Range<u32>>,
     /// Stack entries a traversal can need at most (sorted pushes of every level's children).
     stack_depth: usize,
 }
@@ -47,7 +46,7 @@ impl WideBvh {
     /// at position `slot` of `cwbvh.primitive_indices`.
     pub(super) fn new(cwbvh: &CwBvh, primitive_bounds: &[Aabb]) -> Self {
         assert!(
-            primitive_bounds.len() <= LEAF_FIRST_MASK as usize,
+            primitive_bounds.len() < LEAF as usize,
             "{} primitives in one BVH: more than the layout addresses",
             primitive_bounds.len()
         );
@@ -63,6 +62,7 @@ impl WideBvh {
             children: [0; 8],
         };
         let mut nodes = vec![empty; cwbvh.nodes.len()];
+        let mut leaves = Vec::new();
         let mut node_bounds = vec![Aabb::empty(); nodes.len()];
         let mut depth_of = vec![0; nodes.len()];
         // obvhs appends a node's children after it: in reverse order every child is done
@@ -78,7 +78,9 @@ impl WideBvh {
                     let slots = first as usize..(first + count) as usize;
                     let bounds =
                         primitive_bounds[slots].iter().fold(Aabb::empty(), |a, b| a.union(b));
-                    (bounds, LEAF | count << LEAF_COUNT_SHIFT | first)
+                    let reference = LEAF | leaves.len() as u32;
+                    leaves.push(first..first + count);
+                    (bounds, reference)
                 } else {
                     let child_index = source.child_node_index(child) as usize;
                     assert!(child_index > index, "obvhs stores children after their parent");
@@ -96,17 +98,22 @@ impl WideBvh {
             depth_of[index] = count.max(count.saturating_sub(1) + deepest);
         }
         let stack_depth = 1 + depth_of.first().copied().unwrap_or(0);
-        WideBvh { nodes, stack_depth }
+        WideBvh { nodes, leaves, stack_depth }
     }
 
-    /// Walks the nodes `ray` meets, nearest child first, handing each leaf's primitive
-    /// slots to `leaf` (with `counters`; it narrows `ray.tmax` on a hit and breaks to stop the walk).
+    /// The leaves in leaf index order: each one's primitive slots.
+    pub(super) fn leaves(&self) -> &[Range<u32>] {
+        &self.leaves
+    }
+
+    /// Walks the nodes `ray` meets, nearest child first, handing each leaf's index to `leaf`
+    /// (with `counters`; it narrows `ray.tmax` on a hit and breaks to stop the walk).
     #[inline(always)]
     pub(super) fn traverse<const COUNT: bool>(
         &self,
         ray: &mut NodeRay,
         counters: &mut TraversalCounters,
-        leaf: impl FnMut(Range<usize>, &mut NodeRay, &mut TraversalCounters) -> ControlFlow<()>,
+        leaf: impl FnMut(usize, &mut NodeRay, &mut TraversalCounters) -> ControlFlow<()>,
     ) {
         // Deeper trees than this come only from degenerate input; they get a heap stack.
         if self.stack_depth <= INLINE_STACK {
@@ -121,7 +128,7 @@ impl WideBvh {
         stack: &mut [(u32, f32)],
         ray: &mut NodeRay,
         counters: &mut TraversalCounters,
-        mut leaf: impl FnMut(Range<usize>, &mut NodeRay, &mut TraversalCounters) -> ControlFlow<()>,
+        mut leaf: impl FnMut(usize, &mut NodeRay, &mut TraversalCounters) -> ControlFlow<()>,
     ) {
         if self.nodes.is_empty() {
             return;
@@ -131,9 +138,7 @@ impl WideBvh {
         let mut current = 0u32;
         loop {
             if current & LEAF != 0 {
-                let first = (current & LEAF_FIRST_MASK) as usize;
-                let count = ((current & !LEAF) >> LEAF_COUNT_SHIFT) as usize;
-                if leaf(first..first + count, ray, counters).is_break() {
+                if leaf((current & !LEAF) as usize, ray, counters).is_break() {
                     return;
                 }
             } else {
