@@ -1,8 +1,8 @@
 //! A conservative pre-test for `crate::geometry::intersect_triangle`: rejects most of the
 //! triangles a ray passes outside of without the exact test's FMA-based edge functions.
 
-use crate::geometry::intersect_triangle;
 use super::triangle_block::TriangleBlock;
+use crate::geometry::intersect_triangle;
 use glam::Vec3;
 use wide::f32x4;
 
@@ -94,7 +94,8 @@ impl<const KZ: usize> EdgeTest<KZ> {
         let sign = |a: f32x4, b: f32x4, c: f32x4, d: f32x4| {
             let (ab, cd) = (a * b, c * d);
             let estimate = ab - cd;
-            let bound = (ab.abs() + cd.abs()) * f32x4::splat(4.0 * f32::EPSILON) + f32x4::splat(1e-36);
+            let bound =
+                (ab.abs() + cd.abs()) * f32x4::splat(4.0 * f32::EPSILON) + f32x4::splat(1e-36);
             (estimate.simd_gt(bound), estimate.simd_lt(-bound))
         };
         let e0 = sign(p1.0, p2.1, p1.1, p2.0);
@@ -203,5 +204,40 @@ mod tests {
         }
         println!("{hits} hits, {misses} misses, {rejected} rejected by the pre-tests");
         assert!(hits > 20_000 && rejected * 10 > misses * 8, "{hits} {misses} {rejected}");
+    }
+
+    /// The block pre-test answers exactly what the one-triangle test does, lane by lane, for
+    /// blocks of one to four triangles, near and far from the origin.
+    #[test]
+    fn block_pre_test_is_the_single_pre_test_per_lane() {
+        fn check<const KZ: usize>(origin: Vec3, dir: Vec3, triangles: &[[Vec3; 3]]) -> usize {
+            let edges = EdgeTest::<KZ>::new(origin, dir);
+            let block = TriangleBlock::new(triangles, 0..triangles.len() as u32);
+            let mask = edges.may_hit_block(&block);
+            for (lane, tri) in triangles.iter().enumerate() {
+                assert_eq!(mask & (1 << lane) != 0, edges.may_hit(tri), "{origin} {dir} {tri:?}");
+            }
+            assert_eq!(mask >> triangles.len(), 0, "unused lanes must stay clear");
+            mask.count_ones() as usize
+        }
+        let mut rng = Rng(9);
+        let mut passed = 0;
+        for k in 0..20_000 {
+            let scale = [1e-3, 1.0, 1e3, 1e6][k % 4];
+            let centre = Vec3::splat(scale * [0.0, 10.0][k / 4 % 2]);
+            let count = 1 + k % 4;
+            let triangles: Vec<[Vec3; 3]> = (0..count)
+                .map(|_| std::array::from_fn(|_| centre + rng.vec3(-scale, scale)))
+                .collect();
+            let origin = centre + rng.vec3(-4.0 * scale, 4.0 * scale);
+            let target = (triangles[0][0] + triangles[0][1] + triangles[0][2]) / 3.0;
+            let dir = (target - origin + rng.vec3(-0.3 * scale, 0.3 * scale)).normalize_or(Vec3::Z);
+            passed += match dir.abs().max_position() {
+                0 => check::<0>(origin, dir, &triangles),
+                1 => check::<1>(origin, dir, &triangles),
+                _ => check::<2>(origin, dir, &triangles),
+            };
+        }
+        assert!(passed > 5_000, "only {passed} lanes passed: too few to test");
     }
 }

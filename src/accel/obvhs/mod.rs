@@ -28,14 +28,14 @@ use crate::render_scene::{
 };
 use crate::stats::TraversalCounters;
 use edge_test::EdgeTest;
-use triangle_block::TriangleBlock;
 use glam::{Affine3A, Vec3, Vec3A};
 use node_test::NodeRay;
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
-use obvhs::cwbvh::builder::build_cwbvh;
+use obvhs::bvh2::builder::build_bvh2;
 use std::ops::ControlFlow;
 use std::time::Duration;
+use triangle_block::TriangleBlock;
 use wide_bvh::WideBvh;
 
 /// Far larger than the rounding of transformed bounds near the origin at any scale we render.
@@ -94,24 +94,25 @@ fn aabb_of(points: impl IntoIterator<Item = Vec3>) -> Aabb {
     aabb
 }
 
+/// obvhs's presets, with leaves no larger than a triangle block.
 fn build_params(quality: BuildQuality) -> BvhBuildParams {
-    match quality {
+    let preset = match quality {
         BuildQuality::Low => BvhBuildParams::fastest_build(),
         BuildQuality::Medium => BvhBuildParams::medium_build(),
         BuildQuality::High => BvhBuildParams::slow_build(),
-    }
+    };
+    BvhBuildParams { max_prims_per_leaf: triangle_block::LANES as u32, ..preset }
 }
 
 /// A BVH over `triangles` (each with its geometry id and triangle index).
 fn build_mesh_blas(triangles: Vec<([Vec3; 3], (u32, u32))>, quality: BuildQuality) -> MeshBlas {
     let boxes: Vec<Aabb> = triangles.iter().map(|(t, _)| aabb_of(*t)).collect();
-    let cwbvh = build_cwbvh(&boxes, build_params(quality), &mut Duration::default());
-    let slot_boxes: Vec<Aabb> =
-        cwbvh.primitive_indices.iter().map(|&i| boxes[i as usize]).collect();
-    let bvh = WideBvh::new(&cwbvh, &slot_boxes);
+    let bvh2 = build_bvh2(&boxes, build_params(quality), &mut Duration::default());
+    let (bvh, slot_primitives) = WideBvh::new(&bvh2, &boxes);
     let (triangles, ids): (Vec<_>, _) =
-        cwbvh.primitive_indices.iter().map(|&i| triangles[i as usize]).unzip();
-    let blocks = bvh.leaves().iter().map(|slots| TriangleBlock::new(&triangles, slots.clone())).collect();
+        slot_primitives.iter().map(|&i| triangles[i as usize]).unzip();
+    let blocks =
+        bvh.leaves().iter().map(|slots| TriangleBlock::new(&triangles, slots.clone())).collect();
     MeshBlas { bvh, blocks, ids }
 }
 
@@ -182,11 +183,10 @@ impl ObvhsAccel {
         let baked =
             (!baked_triangles.is_empty()).then(|| build_mesh_blas(baked_triangles, quality));
         let tlas = (!bounds.is_empty()).then(|| {
-            let cwbvh = build_cwbvh(&bounds, build_params(quality), &mut Duration::default());
-            let slots = &cwbvh.primitive_indices;
-            let slot_boxes: Vec<Aabb> = slots.iter().map(|&i| bounds[i as usize]).collect();
-            tlas_instances = slots.iter().map(|&i| tlas_instances[i as usize]).collect();
-            WideBvh::new(&cwbvh, &slot_boxes)
+            let bvh2 = build_bvh2(&bounds, build_params(quality), &mut Duration::default());
+            let (bvh, slot_primitives) = WideBvh::new(&bvh2, &bounds);
+            tlas_instances = slot_primitives.iter().map(|&i| tlas_instances[i as usize]).collect();
+            bvh
         });
         ObvhsAccel {
             blases,

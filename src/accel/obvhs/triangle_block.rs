@@ -22,7 +22,9 @@ impl TriangleBlock {
         assert!(!block.is_empty() && block.len() <= LANES, "{} triangles in a leaf", block.len());
         let vertices = std::array::from_fn(|vertex| {
             std::array::from_fn(|axis| {
-                f32x4::new(std::array::from_fn(|lane| block[lane.min(block.len() - 1)][vertex][axis]))
+                f32x4::new(std::array::from_fn(|lane| {
+                    block[lane.min(block.len() - 1)][vertex][axis]
+                }))
             })
         });
         TriangleBlock { vertices, slots }
@@ -31,7 +33,8 @@ impl TriangleBlock {
     /// Triangle `lane`, exactly as stored.
     #[inline(always)]
     pub(super) fn triangle(&self, lane: usize) -> [Vec3; 3] {
-        self.vertices.map(|v| Vec3::new(v[0].as_array()[lane], v[1].as_array()[lane], v[2].as_array()[lane]))
+        self.vertices
+            .map(|v| Vec3::new(v[0].as_array()[lane], v[1].as_array()[lane], v[2].as_array()[lane]))
     }
 
     /// Lanes holding a triangle: bit i for lane i.

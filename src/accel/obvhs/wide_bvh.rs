@@ -12,7 +12,8 @@
 use super::node_test::{FAR_SCALE, NodeRay, Planes, child_hits};
 use crate::stats::TraversalCounters;
 use obvhs::aabb::Aabb;
-use obvhs::cwbvh::CwBvh;
+use obvhs::bvh2::Bvh2;
+use obvhs::bvh2::node::Bvh2Node;
 use std::ops::{ControlFlow, Range};
 use wide::f32x8;
 
@@ -41,64 +42,72 @@ pub(super) struct WideBvh {
     stack_depth: usize,
 }
 
+/// An empty node: every slot's box inverted.
+const EMPTY_NODE: WideNode = WideNode {
+    planes: [
+        f32x8::INFINITY,
+        f32x8::NEG_INFINITY,
+        f32x8::INFINITY,
+        f32x8::NEG_INFINITY,
+        f32x8::INFINITY,
+        f32x8::NEG_INFINITY,
+    ],
+    children: [0; 8],
+};
+
 impl WideBvh {
-    /// `cwbvh`'s tree with exact child boxes; `primitive_bounds[slot]` bounds the primitive
-    /// at position `slot` of `cwbvh.primitive_indices`.
-    pub(super) fn new(cwbvh: &CwBvh, primitive_bounds: &[Aabb]) -> Self {
+    /// An 8-wide tree from obvhs's binary one: each node takes the two children of a binary
+    /// node and keeps opening its largest inner child (by surface area) until it has eight
+    /// children or only leaves. Child boxes are the exact bounds of the primitives below
+    /// them (`primitive_bounds`, by primitive index). Also returns the primitive index of
+    /// each slot: the leaves' primitives in the order the traversal meets them in memory.
+    pub(super) fn new(bvh2: &Bvh2, primitive_bounds: &[Aabb]) -> (Self, Vec<u32>) {
         assert!(
-            primitive_bounds.len() < LEAF as usize,
+            bvh2.primitive_indices.len() < LEAF as usize,
             "{} primitives in one BVH: more than the layout addresses",
-            primitive_bounds.len()
+            bvh2.primitive_indices.len()
         );
-        let empty = WideNode {
-            planes: [
-                f32x8::INFINITY,
-                f32x8::NEG_INFINITY,
-                f32x8::INFINITY,
-                f32x8::NEG_INFINITY,
-                f32x8::INFINITY,
-                f32x8::NEG_INFINITY,
-            ],
-            children: [0; 8],
-        };
-        let mut nodes = vec![empty; cwbvh.nodes.len()];
+        let mut nodes = vec![EMPTY_NODE];
         let mut leaves = Vec::new();
-        let mut node_bounds = vec![Aabb::empty(); nodes.len()];
-        let mut depth_of = vec![0; nodes.len()];
-        // obvhs appends a node's children after it: in reverse order every child is done
-        // before its parent.
-        for (index, source) in cwbvh.nodes.iter().enumerate().rev() {
-            let node = &mut nodes[index];
-            // Stack entries this subtree can need: its children pushed, then each child's
-            // subtree with up to all its siblings still below it.
-            let (mut count, mut deepest) = (0usize, 0);
-            for child in (0..8).filter(|&child| !source.is_child_empty(child)) {
-                let (bounds, reference) = if source.is_leaf(child) {
-                    let (first, count) = source.child_primitives(child);
-                    let slots = first as usize..(first + count) as usize;
-                    let bounds =
-                        primitive_bounds[slots].iter().fold(Aabb::empty(), |a, b| a.union(b));
-                    let reference = LEAF | leaves.len() as u32;
-                    leaves.push(first..first + count);
-                    (bounds, reference)
-                } else {
-                    let child_index = source.child_node_index(child) as usize;
-                    assert!(child_index > index, "obvhs stores children after their parent");
-                    deepest = deepest.max(depth_of[child_index]);
-                    (node_bounds[child_index], child_index as u32)
-                };
-                for axis in 0..3 {
-                    node.planes[2 * axis].as_mut_array()[child] = bounds.min[axis];
-                    node.planes[2 * axis + 1].as_mut_array()[child] = bounds.max[axis];
-                }
-                node_bounds[index] = node_bounds[index].union(&bounds);
-                node.children[child] = reference;
-                count += 1;
+        let mut slot_primitives = Vec::with_capacity(bvh2.primitive_indices.len());
+        // Binary children to gather under each wide node; the root's is the binary root.
+        let mut pending = vec![(0usize, 0usize)];
+        while let Some((binary, wide)) = pending.pop() {
+            let mut gathered = arrayvec_of(&bvh2.nodes[binary], binary);
+            while gathered.1 < 8 {
+                let area = |i: &usize| bvh2.nodes[gathered.0[*i]].aabb.half_area();
+                let largest = (0..gathered.1)
+                    .filter(|&i| !bvh2.nodes[gathered.0[i]].is_leaf())
+                    .max_by(|a, b| area(a).total_cmp(&area(b)));
+                let Some(open) = largest else { break };
+                let first = bvh2.nodes[gathered.0[open]].first_index as usize;
+                gathered.0[open] = first;
+                gathered.0[gathered.1] = first + 1;
+                gathered.1 += 1;
             }
-            depth_of[index] = count.max(count.saturating_sub(1) + deepest);
+            for (slot, &child) in gathered.0[..gathered.1].iter().enumerate() {
+                let source = &bvh2.nodes[child];
+                nodes[wide].children[slot] = if source.is_leaf() {
+                    let first = source.first_index as usize;
+                    let start = slot_primitives.len() as u32;
+                    slot_primitives.extend_from_slice(
+                        &bvh2.primitive_indices[first..first + source.prim_count as usize],
+                    );
+                    leaves.push(start..slot_primitives.len() as u32);
+                    LEAF | (leaves.len() - 1) as u32
+                } else {
+                    nodes.push(EMPTY_NODE);
+                    pending.push((child, nodes.len() - 1));
+                    (nodes.len() - 1) as u32
+                };
+            }
+            // Slots left empty keep the inverted box; their reference is never followed.
+            for slot in gathered.1..8 {
+                nodes[wide].children[slot] = u32::MAX;
+            }
         }
-        let stack_depth = 1 + depth_of.first().copied().unwrap_or(0);
-        WideBvh { nodes, leaves, stack_depth }
+        let stack_depth = fit_boxes(&mut nodes, &leaves, &slot_primitives, primitive_bounds);
+        (WideBvh { nodes, leaves, stack_depth }, slot_primitives)
     }
 
     /// The leaves in leaf index order: each one's primitive slots.
@@ -215,4 +224,59 @@ impl Iterator for BitIter {
             bit
         })
     }
+}
+
+/// The children to start gathering from for binary node `index`: its two children, or the
+/// node itself if it is a leaf (a tree of one leaf).
+fn arrayvec_of(node: &Bvh2Node, index: usize) -> ([usize; 8], usize) {
+    let mut gathered = [0; 8];
+    if node.is_leaf() {
+        gathered[0] = index;
+        return (gathered, 1);
+    }
+    gathered[0] = node.first_index as usize;
+    gathered[1] = node.first_index as usize + 1;
+    (gathered, 2)
+}
+
+/// Sets every node's child boxes to the exact bounds of the primitives below them, and
+/// returns the stack entries a traversal can need at most.
+fn fit_boxes(
+    nodes: &mut [WideNode],
+    leaves: &[Range<u32>],
+    slot_primitives: &[u32],
+    primitive_bounds: &[Aabb],
+) -> usize {
+    let mut node_bounds = vec![Aabb::empty(); nodes.len()];
+    let mut depth_of = vec![0; nodes.len()];
+    // Children are stored after their parent: in reverse order every child is done first.
+    for index in (0..nodes.len()).rev() {
+        let node = &mut nodes[index];
+        // Stack entries this subtree can need: its children pushed, then each child's
+        // subtree with up to all its siblings still below it.
+        let (mut count, mut deepest) = (0usize, 0);
+        for child in 0..8 {
+            let reference = node.children[child];
+            if reference == u32::MAX {
+                continue;
+            }
+            let bounds = if reference & LEAF != 0 {
+                let slots = leaves[(reference & !LEAF) as usize].clone();
+                slot_primitives[slots.start as usize..slots.end as usize]
+                    .iter()
+                    .fold(Aabb::empty(), |a, &p| a.union(&primitive_bounds[p as usize]))
+            } else {
+                deepest = deepest.max(depth_of[reference as usize]);
+                node_bounds[reference as usize]
+            };
+            for axis in 0..3 {
+                node.planes[2 * axis].as_mut_array()[child] = bounds.min[axis];
+                node.planes[2 * axis + 1].as_mut_array()[child] = bounds.max[axis];
+            }
+            node_bounds[index] = node_bounds[index].union(&bounds);
+            count += 1;
+        }
+        depth_of[index] = count.max(count.saturating_sub(1) + deepest);
+    }
+    1 + depth_of.first().copied().unwrap_or(0)
 }
