@@ -251,7 +251,7 @@ impl TileResult {
 }
 
 /// Renders one tile. With the path tracer on a backend that traces batches faster
-/// (`Accel::prefers_batches`: Embree and obvhs packets), the camera rays of a chunk of pixels are
+/// (`Accel::prefers_batches`: Embree packets), the camera rays of a chunk of pixels are
 /// generated first (same order, same random numbers as one at a time), intersected as one
 /// batch (`Accel::intersect_batch`, whose hits equal single-ray ones but for ties between
 /// coincident surfaces, see `BatchMode`), and each path then continues from its first hit:

@@ -106,6 +106,11 @@ pub trait Accel: Send + Sync {
     fn prefers_batches(&self) -> bool {
         false
     }
+    /// Bytes the structure holds, where the backend can count them (Embree's own allocator
+    /// cannot be asked: the speed bench measures its resident memory instead).
+    fn memory_bytes(&self) -> Option<usize> {
+        None
+    }
 }
 
 /// [`Accel::intersect_batch`] done one [`Accel::intersect`] at a time (invalid rays miss):
@@ -188,8 +193,7 @@ pub enum BuildQuality {
 }
 
 /// How the Embree backend traces [`Accel::intersect_batch`] (the renderer's batches of
-/// camera rays); the obvhs backend always walks them in packets of eight, which return
-/// exactly the single-ray hits.
+/// camera rays); the obvhs backend traces them one at a time.
 ///
 /// Measured here: packets of 8 trace camera rays at 1.2× (1M-triangle sphere) to 2.5×
 /// (Cornell box) the rate of single rays and take 6-11 % off whole Embree renders (CPU time,

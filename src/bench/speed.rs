@@ -33,7 +33,8 @@ pub struct SpeedRow {
     /// Whole-render samples (camera paths) per second with 1 and 2 threads.
     pub samples_per_s_1t: f64,
     pub samples_per_s_2t: f64,
-    /// Resident memory added by building the acceleration structure, MiB.
+    /// Memory of the acceleration structure, MiB: the bytes it holds where the backend can
+    /// count them (obvhs), else the resident memory its build added (Embree).
     pub accel_mib: f64,
 }
 
@@ -240,7 +241,8 @@ fn measure_rays(
     let render_options = AccelOptions { build_quality: render_quality, ..AccelOptions::default() };
     let before = rss_kib();
     let accel = build(backend, scene, &render_options)?;
-    let accel_mib = rss_kib().saturating_sub(before) as f64 / 1024.0;
+    let rss_added = rss_kib().saturating_sub(before) * 1024;
+    let accel_mib = accel.memory_bytes().unwrap_or(rss_added as usize) as f64 / (1 << 20) as f64;
     let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
     let primary = primary_rays(scene);
     let diffuse = diffuse_rays(scene, accel.as_ref(), &primary);

@@ -402,6 +402,25 @@ impl Accel for ObvhsAccel {
         }
     }
 
+    fn memory_bytes(&self) -> Option<usize> {
+        let mesh = |m: &MeshBlas| {
+            m.bvh.memory_bytes()
+                + m.blocks.capacity() * size_of::<TriangleBlock>()
+                + m.ids.capacity() * size_of::<(u32, u32)>()
+        };
+        let blases = self.blases.iter().flatten().map(|b| match b {
+            Blas::Mesh(m) => mesh(m),
+            Blas::Sphere(_) => size_of::<Sphere>(),
+        });
+        Some(
+            blases.sum::<usize>()
+                + self.baked.as_ref().map_or(0, mesh)
+                + self.tlas.as_ref().map_or(0, WideBvh::memory_bytes)
+                + self.tlas_instances.capacity() * size_of::<u32>()
+                + self.instances.capacity() * size_of::<BlasInstance>(),
+        )
+    }
+
     fn observes(&self) -> Observes {
         Observes { node_visits: self.count_traversal, prim_tests: self.count_traversal }
     }

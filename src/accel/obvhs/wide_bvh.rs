@@ -110,6 +110,11 @@ impl WideBvh {
         (WideBvh { nodes, leaves, stack_depth }, slot_primitives)
     }
 
+    pub(super) fn memory_bytes(&self) -> usize {
+        self.nodes.capacity() * size_of::<WideNode>()
+            + self.leaves.capacity() * size_of::<Range<u32>>()
+    }
+
     /// The leaves in leaf index order: each one's primitive slots.
     pub(super) fn leaves(&self) -> &[Range<u32>] {
         &self.leaves
