@@ -5,11 +5,12 @@
 //! have bounds over their whole motion at the top level only, and the exact transform at
 //! the ray's time.
 //!
-//! obvhs builds each tree (PLOC, then its 8-wide CWBVH); [`WideBvh`] re-lays it out for CPU
-//! traversal and walks it nearest child first, counting node visits and primitive tests
-//! exactly. Triangles are tested with `crate::geometry::intersect_triangle` (the hits are
-//! exactly its results), after a cheap conservative test ([`EdgeTest`]) that rejects most
-//! of the triangles a ray passes outside of without its FMA-based edge functions.
+//! obvhs builds each binary tree (PLOC, reinsertion, leaf collapse); [`WideBvh`] turns it
+//! into an 8-wide one laid out for CPU traversal and walks it nearest child first, counting
+//! node visits and primitive tests exactly. Triangles are tested with
+//! `crate::geometry::intersect_triangle` (the hits are exactly its results), after a cheap
+//! conservative test ([`EdgeTest`], four triangles of a leaf at once) that rejects most of
+//! the triangles a ray passes outside of without its FMA-based edge functions.
 //!
 //! The top level's boxes are bounds of transformed boxes, rounded in f32, so its node ray
 //! starts `NODE_RAY_BACKOFF` (in units of t) behind the ray: a ray leaving a transformed

@@ -5,7 +5,7 @@ use glam::Vec3;
 use std::ops::Range;
 use wide::f32x4;
 
-/// Triangles one leaf can hold (obvhs's CWBVH leaves hold at most three).
+/// Triangles one leaf can hold (the build caps obvhs's leaves at this).
 pub(super) const LANES: usize = 4;
 
 pub(super) struct TriangleBlock {

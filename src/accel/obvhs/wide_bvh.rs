@@ -1,13 +1,14 @@
-//! obvhs's CWBVH re-laid out for CPU traversal: the same tree (same nodes, same leaves) with
-//! each node's eight child boxes as plain f32 planes in SoA rows, and a traversal that
-//! visits children nearest first and drops a stacked child as soon as a closer hit makes it
-//! unreachable.
+//! An 8-wide BVH laid out for CPU traversal, built from obvhs's binary tree: each node's
+//! eight child boxes as plain f32 planes in SoA rows (one 8-wide test per node), the exact
+//! bounds of the primitives below them, and a traversal that visits children nearest first
+//! and drops a stacked child as soon as a closer hit puts it out of reach.
 //!
-//! The CWBVH is laid out for GPUs: 8-bit quantized child boxes (decoded on every visit and
-//! up to 1/255 of the node larger than the child on each side) and children visited in an
-//! order fixed by the ray's octant, with no distance on the stack. On a CPU the decoding
-//! and the extra visits cost more than the memory the quantization saves. Here the child
-//! boxes are the exact bounds of the primitives below them.
+//! obvhs's own 8-wide CWBVH is laid out for GPUs: 8-bit quantized child boxes (decoded on
+//! every visit, and up to 1/255 of the node larger than the child on each side), children
+//! visited in an order fixed by the ray's octant with no distance on the stack, and leaves
+//! of at most three primitives. Measured on a 1M-triangle mesh, this layout renders about
+//! 20 % faster and builds faster (no CWBVH conversion); quantized nodes with the same
+//! nearest-first traversal were slower than float ones.
 
 use super::node_test::{FAR_SCALE, NodeRay, Planes, child_hits};
 use crate::stats::TraversalCounters;
