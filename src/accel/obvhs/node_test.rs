@@ -35,12 +35,18 @@ pub(super) struct NodeRay {
 
 impl NodeRay {
     pub(super) fn new(origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> Self {
-        let parallel = dir.abs().cmplt(Vec3::splat(TINY_DIRECTION)).into();
+        let parallel = dir.abs().cmplt(Vec3::splat(TINY_DIRECTION));
         // Parallel axes' inverses are never used; 1 keeps them finite.
-        let inv_dir =
-            Vec3::select(dir.abs().cmplt(Vec3::splat(TINY_DIRECTION)), Vec3::ONE, dir.recip());
+        let inv_dir = Vec3::select(parallel, Vec3::ONE, dir.recip());
         let row = |axis: usize| 2 * axis + usize::from(inv_dir[axis] < 0.0);
-        NodeRay { origin, inv_dir, near_rows: [row(0), row(1), row(2)], parallel, tmin, tmax }
+        NodeRay {
+            origin,
+            inv_dir,
+            near_rows: [row(0), row(1), row(2)],
+            parallel: parallel.into(),
+            tmin,
+            tmax,
+        }
     }
 }
 

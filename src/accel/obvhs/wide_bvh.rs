@@ -14,12 +14,14 @@ use super::node_test::{FAR_SCALE, NodeRay, Planes, child_hits};
 use crate::stats::TraversalCounters;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
-use obvhs::bvh2::node::Bvh2Node;
 use std::ops::{ControlFlow, Range};
 use wide::f32x8;
 
 /// A child reference with this bit set is a leaf, the bits below its leaf index.
 const LEAF: u32 = 1 << 31;
+
+/// The reference of a slot with no child (its box is inverted, so it is never followed).
+const EMPTY_SLOT: u32 = u32::MAX;
 
 /// Stack entries kept on the call stack; trees needing more (only degenerate input
 /// builds them) get a heap stack.
@@ -31,7 +33,7 @@ const INLINE_STACK: usize = 128;
 pub(super) struct WideNode {
     /// The children's boxes. Empty slots hold the inverted box +∞..−∞, which no ray meets.
     planes: Planes,
-    /// Node index, or a leaf (see [`LEAF`]).
+    /// Node index, or a leaf (see [`LEAF`]); [`EMPTY_SLOT`] where there is no child.
     children: [u32; 8],
 }
 
@@ -53,7 +55,7 @@ const EMPTY_NODE: WideNode = WideNode {
         f32x8::INFINITY,
         f32x8::NEG_INFINITY,
     ],
-    children: [0; 8],
+    children: [EMPTY_SLOT; 8],
 };
 
 impl WideBvh {
@@ -71,22 +73,29 @@ impl WideBvh {
         let mut nodes = vec![EMPTY_NODE];
         let mut leaves = Vec::new();
         let mut slot_primitives = Vec::with_capacity(bvh2.primitive_indices.len());
-        // Binary children to gather under each wide node; the root's is the binary root.
+        // Binary nodes whose children to gather under a wide node; the root's is the binary
+        // root (or, for a tree of one leaf, that leaf alone).
         let mut pending = vec![(0usize, 0usize)];
+        let mut gathered = Vec::with_capacity(8);
         while let Some((binary, wide)) = pending.pop() {
-            let mut gathered = arrayvec_of(&bvh2.nodes[binary], binary);
-            while gathered.1 < 8 {
-                let area = |i: &usize| bvh2.nodes[gathered.0[*i]].aabb.half_area();
-                let largest = (0..gathered.1)
-                    .filter(|&i| !bvh2.nodes[gathered.0[i]].is_leaf())
-                    .max_by(|a, b| area(a).total_cmp(&area(b)));
-                let Some(open) = largest else { break };
-                let first = bvh2.nodes[gathered.0[open]].first_index as usize;
-                gathered.0[open] = first;
-                gathered.0[gathered.1] = first + 1;
-                gathered.1 += 1;
+            gathered.clear();
+            let node = &bvh2.nodes[binary];
+            if node.is_leaf() {
+                gathered.push(binary);
+            } else {
+                gathered.extend([node.first_index as usize, node.first_index as usize + 1]);
             }
-            for (slot, &child) in gathered.0[..gathered.1].iter().enumerate() {
+            while gathered.len() < 8 {
+                let area = |&b: &usize| bvh2.nodes[b].aabb.half_area();
+                let largest = (0..gathered.len())
+                    .filter(|&i| !bvh2.nodes[gathered[i]].is_leaf())
+                    .max_by(|&a, &b| area(&gathered[a]).total_cmp(&area(&gathered[b])));
+                let Some(open) = largest else { break };
+                let first = bvh2.nodes[gathered[open]].first_index as usize;
+                gathered[open] = first;
+                gathered.push(first + 1);
+            }
+            for (slot, &child) in gathered.iter().enumerate() {
                 let source = &bvh2.nodes[child];
                 nodes[wide].children[slot] = if source.is_leaf() {
                     let first = source.first_index as usize;
@@ -101,10 +110,6 @@ impl WideBvh {
                     pending.push((child, nodes.len() - 1));
                     (nodes.len() - 1) as u32
                 };
-            }
-            // Slots left empty keep the inverted box; their reference is never followed.
-            for slot in gathered.1..8 {
-                nodes[wide].children[slot] = u32::MAX;
             }
         }
         let stack_depth = fit_boxes(&mut nodes, &leaves, &slot_primitives, primitive_bounds);
@@ -161,7 +166,8 @@ impl WideBvh {
                     counters.node_visits += 1;
                 }
                 let node = &self.nodes[current as usize];
-                let (mut hits, t_near) = child_hits(&node.planes, ray);
+                let (all_hits, t_near) = child_hits(&node.planes, ray);
+                let mut hits = all_hits;
                 if hits != 0 {
                     let nearest = hits.trailing_zeros() as usize;
                     hits &= hits - 1;
@@ -185,7 +191,7 @@ impl WideBvh {
                     }
                     // More: stack them all, farthest at the bottom, and enter the top one.
                     let bottom = top;
-                    for child in [nearest, other].into_iter().chain(BitIter(hits)) {
+                    for child in BitIter(all_hits) {
                         let entry = (node.children[child], t_near[child]);
                         let mut slot = top;
                         while slot > bottom && stack[slot - 1].1 < entry.1 {
@@ -217,7 +223,7 @@ impl WideBvh {
 }
 
 /// The indices of a mask's set bits, lowest first.
-pub(super) struct BitIter(pub(super) u32);
+struct BitIter(u32);
 
 impl Iterator for BitIter {
     type Item = usize;
@@ -230,19 +236,6 @@ impl Iterator for BitIter {
             bit
         })
     }
-}
-
-/// The children to start gathering from for binary node `index`: its two children, or the
-/// node itself if it is a leaf (a tree of one leaf).
-fn arrayvec_of(node: &Bvh2Node, index: usize) -> ([usize; 8], usize) {
-    let mut gathered = [0; 8];
-    if node.is_leaf() {
-        gathered[0] = index;
-        return (gathered, 1);
-    }
-    gathered[0] = node.first_index as usize;
-    gathered[1] = node.first_index as usize + 1;
-    (gathered, 2)
 }
 
 /// Sets every node's child boxes to the exact bounds of the primitives below them, and
@@ -263,7 +256,7 @@ fn fit_boxes(
         let (mut count, mut deepest) = (0usize, 0);
         for child in 0..8 {
             let reference = node.children[child];
-            if reference == u32::MAX {
+            if reference == EMPTY_SLOT {
                 continue;
             }
             let bounds = if reference & LEAF != 0 {
