@@ -239,8 +239,7 @@ impl ObvhsAccel {
         counters: &mut TraversalCounters,
         any_hit: bool,
     ) -> Option<(f32, (u32, u32), f32, f32)> {
-        let mut closest: Option<(f32, (u32, u32), f32, f32)> = None;
-        let mut closest_slot = usize::MAX;
+        let mut closest = None;
         let edges = EdgeTest::<KZ>::new(origin, dir);
         let mut node_ray = NodeRay::new(origin, dir, 0.0, *tmax);
         mesh.bvh.traverse::<COUNT>(&mut node_ray, counters, |leaf, node_ray, counters| {
@@ -256,16 +255,9 @@ impl ObvhsAccel {
                 let Some((t, u, v)) = edges.intersect_candidate(dir, tmin, *tmax, &tri) else {
                     continue;
                 };
-                let slot = block.slots.start as usize + lane;
-                // Of equally distant triangles the first slot wins, whatever the visiting
-                // order.
-                if closest.is_some() && t == *tmax && slot > closest_slot {
-                    continue;
-                }
                 *tmax = t;
                 node_ray.tmax = t;
-                closest = Some((t, mesh.ids[slot], u, v));
-                closest_slot = slot;
+                closest = Some((t, mesh.ids[block.slots.start as usize + lane], u, v));
                 if any_hit {
                     return ControlFlow::Break(());
                 }
@@ -352,18 +344,11 @@ impl ObvhsAccel {
                 let slot = slot as usize;
                 let geom_id = self.tlas_instances[slot];
                 let instance = &self.instances[geom_id as usize];
-                let before = tmax;
                 let Some((t, prim_id, u, v)) =
                     self.intersect_instance::<COUNT>(instance, ray, &mut tmax, counters, any_hit)
                 else {
                     continue;
                 };
-                // Of equally distant instances the lowest geometry id wins, whatever the
-                // visiting order.
-                if matches!(best, Some(b) if t == before && b.geom_id < geom_id) {
-                    tmax = before;
-                    continue;
-                }
                 node_ray.tmax = t + NODE_RAY_BACKOFF;
                 best = Some(Hit { t, geom_id, prim_id, u, v });
                 if any_hit {
