@@ -18,8 +18,10 @@
 //! cores; the machines this runs on are noisy, so compare within a run.
 
 use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
-use embray::accel::{Accel, AccelOptions, BackendKind, BatchMode, BuildQuality, Hit, Ray, build};
+use embray::accel::{Accel, AccelOptions, BackendKind, BatchMode, BuildQuality, build};
 use embray::bench::{procedural, speed};
+use embray::choice::Choice;
+use embray::ray::{Hit, Ray};
 use embray::render::{RenderOptions, prepare_scene};
 use embray::render_scene::RenderScene;
 use embray::scene::SceneDesc;

@@ -1,42 +1,18 @@
 //! The camera in render space: position, rotation, field of view and thin lens. Rays are
 //! generated in camera space (looking down -Z, +Y up) and rotated into render space.
 
-use crate::accel::Ray;
+use crate::ray::Ray;
 use crate::sampling::concentric_disk;
-use glam::{DMat3, DVec3, Mat3, Vec2, Vec3};
-
-/// Orthonormal camera basis (columns: right, up, back) for a camera looking along `forward`.
-///
-/// Stays well defined when `up` is parallel to `forward` (looking straight up or down): the
-/// world axis least aligned with `forward` is used instead, which is what a user pointing a
-/// camera at the zenith expects (a stable, level-ish frame) rather than NaNs.
-pub fn camera_basis(forward: DVec3, up: DVec3) -> DMat3 {
-    let forward = forward.normalize();
-    let mut right = forward.cross(up);
-    if right.length_squared() <= 1e-20 * up.length_squared().max(f64::MIN_POSITIVE) {
-        let a = forward.abs();
-        let fallback = if a.x <= a.y && a.x <= a.z {
-            DVec3::X
-        } else if a.y <= a.z {
-            DVec3::Y
-        } else {
-            DVec3::Z
-        };
-        right = forward.cross(fallback);
-    }
-    let right = right.normalize();
-    let true_up = right.cross(forward);
-    DMat3::from_cols(right, true_up, -forward)
-}
+use glam::{Mat3, Vec2, Vec3};
 
 #[derive(Clone, Debug)]
 pub struct Camera {
     /// Lens centre in render space (exactly zero in `cameraworld`).
     pub position: Vec3,
     /// Rotation from camera space to render space (identity in `camera` render space).
-    pub render_from_camera: Mat3,
+    pub render_from_camera_rotation: Mat3,
     /// Rotation from render space back to world space, for world-space normal AOVs.
-    pub world_from_render: Mat3,
+    pub world_from_render_rotation: Mat3,
     pub width: u32,
     pub height: u32,
     pub tan_half_vfov: f32,
@@ -51,8 +27,8 @@ impl Default for Camera {
     fn default() -> Self {
         Camera {
             position: Vec3::ZERO,
-            render_from_camera: Mat3::IDENTITY,
-            world_from_render: Mat3::IDENTITY,
+            render_from_camera_rotation: Mat3::IDENTITY,
+            world_from_render_rotation: Mat3::IDENTITY,
             width: 1,
             height: 1,
             tan_half_vfov: 1.0,
@@ -92,8 +68,8 @@ impl Camera {
             }
             _ => (Vec3::ZERO, dir_camera),
         };
-        let dir = (self.render_from_camera * dir_camera).normalize();
-        let origin = self.position + self.render_from_camera * origin_camera;
+        let dir = (self.render_from_camera_rotation * dir_camera).normalize();
+        let origin = self.position + self.render_from_camera_rotation * origin_camera;
         Ray::new(origin, dir, f32::INFINITY)
     }
 }
@@ -101,16 +77,6 @@ impl Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn basis_is_orthonormal_when_up_is_parallel_to_view() {
-        for forward in [DVec3::Y, DVec3::NEG_Y, DVec3::new(0.0, 1.0, 1e-12)] {
-            let b = camera_basis(forward, DVec3::Y);
-            assert!(b.is_finite());
-            assert!((b.determinant() - 1.0).abs() < 1e-9);
-            assert!((b.z_axis + forward.normalize()).length() < 1e-9);
-        }
-    }
 
     #[test]
     fn centre_pixel_looks_forward() {

@@ -1,13 +1,12 @@
 //! `embray` command line: parse, run, print the error chain, exit with a code.
 
 mod cli;
-mod commands;
 
 use clap::Parser;
 
 fn main() -> std::process::ExitCode {
     let args = cli::Cli::parse();
-    match commands::run(args) {
+    match cli::run(args) {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error:#}");

@@ -7,9 +7,9 @@
 //! once, moving objects and ellipsoids keep object-space prototypes and a transform.
 
 use crate::camera::Camera;
-use crate::effects::Effects;
-use crate::light::LightSet;
-use crate::material::Material;
+use crate::compile::effects::Effects;
+use crate::shading::light::LightSet;
+use crate::shading::material::Material;
 use glam::{Affine3A, Mat3, Quat, Vec2, Vec3};
 
 /// A triangle mesh (in render space when baked, else in object space).
@@ -173,35 +173,6 @@ pub struct RenderScene {
 }
 
 impl RenderScene {
-    /// A scene of baked shapes (one prototype per instance), for tests and tools.
-    pub fn from_baked_shapes(
-        camera: Camera,
-        shapes: Vec<(Geometry, u32)>,
-        materials: Vec<Material>,
-    ) -> RenderScene {
-        let mut prototypes = Vec::new();
-        let mut instances = Vec::new();
-        for (i, (geometry, material)) in shapes.into_iter().enumerate() {
-            prototypes.push(Prototype { geometry, name: format!("shape {i}") });
-            instances.push(Instance {
-                prototype: i as u32,
-                material,
-                placement: Placement::Baked { object_from_render: Affine3A::IDENTITY },
-                name: format!("shape {i}"),
-            });
-        }
-        let lights = LightSet::new(Vec::new(), Vec::new(), &prototypes, &instances, &materials);
-        RenderScene {
-            camera,
-            prototypes,
-            instances,
-            materials,
-            lights,
-            background: Vec3::ZERO,
-            effects: Effects::default(),
-        }
-    }
-
     pub fn prototype_of(&self, instance: u32) -> &Prototype {
         &self.prototypes[self.instances[instance as usize].prototype as usize]
     }

@@ -52,9 +52,43 @@ pub fn course_square_axes(normal: DVec3) -> (DVec3, DVec3) {
     (u, n.cross(u))
 }
 
+/// Orthonormal camera basis (columns: right, up, back) for a camera looking along `forward`.
+///
+/// Stays well defined when `up` is parallel to `forward` (looking straight up or down): the
+/// world axis least aligned with `forward` is used instead, which is what a user pointing a
+/// camera at the zenith expects (a stable, level-ish frame) rather than NaNs.
+pub fn camera_basis(forward: DVec3, up: DVec3) -> DMat3 {
+    let forward = forward.normalize();
+    let mut right = forward.cross(up);
+    if right.length_squared() <= 1e-20 * up.length_squared().max(f64::MIN_POSITIVE) {
+        let a = forward.abs();
+        let fallback = if a.x <= a.y && a.x <= a.z {
+            DVec3::X
+        } else if a.y <= a.z {
+            DVec3::Y
+        } else {
+            DVec3::Z
+        };
+        right = forward.cross(fallback);
+    }
+    let right = right.normalize();
+    let true_up = right.cross(forward);
+    DMat3::from_cols(right, true_up, -forward)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn basis_is_orthonormal_when_up_is_parallel_to_view() {
+        for forward in [DVec3::Y, DVec3::NEG_Y, DVec3::new(0.0, 1.0, 1e-12)] {
+            let b = camera_basis(forward, DVec3::Y);
+            assert!(b.is_finite());
+            assert!((b.determinant() - 1.0).abs() < 1e-9);
+            assert!((b.z_axis + forward.normalize()).length() < 1e-9);
+        }
+    }
 
     #[test]
     fn uniform_scale_detects_similarity() {

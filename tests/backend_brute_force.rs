@@ -4,13 +4,16 @@
 mod common;
 
 use common::backends;
-use embray::accel::{AccelOptions, Hit, Ray, build};
+use embray::accel::{AccelOptions, build};
 use embray::camera::Camera;
-use embray::geometry::{intersect_sphere, intersect_triangle};
-use embray::material::Material;
+use embray::choice::Choice;
+use embray::float_error::triangle_point;
+use embray::intersect::{intersect_sphere, intersect_triangle};
+use embray::ray::{Hit, Ray};
 use embray::render_scene::{Geometry, RenderScene, Sphere, TriangleMesh};
 use embray::sampling::{hash4, to_unit_f32};
-use embray::spawn::{SurfacePoint, triangle_point};
+use embray::shading::material::Material;
+use embray::shading::spawn::SurfacePoint;
 use embray::stats::TraversalCounters;
 use glam::Vec3;
 
@@ -62,7 +65,7 @@ fn random_scene(rng: &mut Rng) -> RenderScene {
         let sphere = Sphere { center: rng.in_box(10.0), radius: 0.2 + 1.5 * rng.f() };
         shapes.push((Geometry::Sphere(sphere), 0));
     }
-    RenderScene::from_baked_shapes(Camera::default(), shapes, vec![Material::default()])
+    embray::compile::baked_scene(Camera::default(), shapes, vec![Material::default()])
 }
 
 fn brute_force(scene: &RenderScene, ray: &Ray) -> Option<Hit> {
@@ -228,7 +231,7 @@ fn invalid_rays_never_reach_a_backend() {
 
 #[test]
 fn empty_scene_has_no_hits() {
-    let scene = RenderScene::from_baked_shapes(Camera::default(), Vec::new(), Vec::new());
+    let scene = embray::compile::baked_scene(Camera::default(), Vec::new(), Vec::new());
     for backend in backends() {
         let accel = build(backend, &scene, &AccelOptions::default()).unwrap();
         let ray = Ray::new(Vec3::ZERO, Vec3::X, f32::INFINITY);

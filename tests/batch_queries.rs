@@ -7,9 +7,11 @@
 mod common;
 
 use common::*;
-use embray::accel::{AccelOptions, BackendKind, BatchMode, Hit, Ray, build};
+use embray::accel::{AccelOptions, BackendKind, BatchMode, build};
 use embray::bench::speed;
-use embray::geometry::{intersect_sphere, intersect_triangle};
+use embray::choice::Choice;
+use embray::intersect::{intersect_sphere, intersect_triangle};
+use embray::ray::{Hit, Ray};
 use embray::render::{RenderOptions, prepare_scene};
 use embray::render_scene::{Geometry, Placement, RenderScene};
 use embray::scene::{MaterialDesc, MeshData, ObjectDesc, SceneDesc, ShapeDesc};
@@ -17,30 +19,7 @@ use embray::stats::TraversalCounters;
 use glam::{DAffine3, DVec3, Vec2, Vec3};
 use std::sync::Arc;
 
-/// Counter-based generator (splitmix64): deterministic, no dependency.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    fn unit(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    fn vec3(&mut self, lo: Vec3, hi: Vec3) -> Vec3 {
-        Vec3::new(self.range(lo.x, hi.x), self.range(lo.y, hi.y), self.range(lo.z, hi.z))
-    }
-}
+use embray::splitmix::SplitMix64 as Rng;
 
 /// Rays no backend may be handed: each must come back as a miss.
 fn invalid_rays() -> Vec<Ray> {
@@ -87,7 +66,7 @@ fn test_rays(scene: &RenderScene, seed: u64) -> Vec<Ray> {
         let (lo, hi) = points.iter().fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
         let margin = (hi - lo) * 0.1 + Vec3::splat(1e-3);
         for k in 0..primary.len() {
-            let origin = rng.vec3(lo - margin, hi + margin);
+            let origin = rng.between(lo - margin, hi + margin);
             let target = points[rng.next_u64() as usize % points.len()];
             let mut ray = Ray::new(origin, (target - origin) * rng.range(0.3, 3.0), f32::INFINITY);
             ray.time = if k % 8 == 0 { (k / 8 % 2) as f32 } else { rng.unit() };

@@ -2,6 +2,7 @@
 
 use embray::accel::{BackendKind, BuildQuality};
 use embray::bench::{procedural, speed};
+use embray::choice::Choice;
 
 #[test]
 fn speed_rows_of_a_tiny_scene_are_finite_and_positive() {

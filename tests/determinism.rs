@@ -3,6 +3,7 @@
 mod common;
 
 use common::*;
+use embray::choice::Choice;
 
 #[test]
 fn one_and_two_threads_give_bit_identical_images() {

@@ -5,11 +5,13 @@ mod common;
 
 use common::build::*;
 use common::*;
-use embray::accel::{AccelOptions, BackendKind, Ray, build as build_accel};
+use embray::accel::{AccelOptions, BackendKind, build as build_accel};
+use embray::choice::Choice;
+use embray::compile::EffectsMode;
 use embray::film::Film;
+use embray::ray::Ray;
 use embray::render::{RenderOptions, prepare_scene, render};
-use embray::render_space::EffectsMode;
-use embray::scene::{MaterialDesc, PatternDesc, SceneDesc, ShapeDesc, SpecularDesc, TextureDesc};
+use embray::scene::{MaterialDesc, Pattern, SceneDesc, ShapeDesc, Specular, TextureDesc};
 use embray::stats::TraversalCounters;
 use glam::{DAffine3, DVec3, Vec3};
 
@@ -226,12 +228,12 @@ fn furnace(material: MaterialDesc) -> SceneDesc {
 fn white_mirror_and_glass_conserve_energy_in_a_furnace() {
     let mirror = MaterialDesc {
         albedo: Vec3::ZERO,
-        specular: SpecularDesc::Mirror { reflectance: Vec3::ONE },
+        specular: Specular::Mirror { reflectance: Vec3::ONE },
         ..Default::default()
     };
     let glass = MaterialDesc {
         albedo: Vec3::ZERO,
-        specular: SpecularDesc::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
         ..Default::default()
     };
     for backend in backends() {
@@ -249,12 +251,7 @@ fn white_mirror_and_glass_conserve_energy_in_a_furnace() {
 }
 
 fn rss_kib() -> u64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    status
-        .lines()
-        .find(|l| l.starts_with("VmRSS:"))
-        .and_then(|l| l.split_whitespace().nth(1)?.parse().ok())
-        .unwrap_or(0)
+    embray::process_memory::resident_bytes().expect("this test needs /proc/self/status") / 1024
 }
 
 /// A 100 × 50 × 2 = 10,000-triangle grid.
@@ -350,7 +347,7 @@ fn ten_thousand_instances_cost_far_less_than_copies() {
 fn checker_material() -> MaterialDesc {
     MaterialDesc {
         texture: Some(TextureDesc {
-            pattern: PatternDesc::Checker3d {
+            pattern: Pattern::Checker3d {
                 scale: 4.0,
                 even: Vec3::splat(0.9),
                 odd: Vec3::new(0.8, 0.1, 0.1),

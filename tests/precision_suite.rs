@@ -5,14 +5,14 @@ mod common;
 
 use common::*;
 use embray::bench::accuracy::{AccuracyOptions, default_scenes, run};
+use embray::choice::Choice;
 use embray::render_space::RenderSpace;
 use embray::scene::{SceneDesc, load};
-use embray::spawn::SpawnMode;
+use embray::shading::spawn::SpawnMode;
 use glam::DVec3;
 
 fn torture_scenes() -> Vec<(String, SceneDesc)> {
-    let root = repo_path(".");
-    default_scenes(&root)
+    default_scenes()
         .into_iter()
         .filter(|p| p.to_string_lossy().contains("precision"))
         .map(|p| (p.file_stem().unwrap().to_string_lossy().into_owned(), load(&p).unwrap()))

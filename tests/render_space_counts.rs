@@ -4,6 +4,7 @@
 mod common;
 
 use common::*;
+use embray::choice::Choice;
 use embray::render::render;
 use embray::render_space::RenderSpace;
 use embray::scene::load;

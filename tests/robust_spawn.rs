@@ -3,6 +3,7 @@
 mod common;
 
 use common::*;
+use embray::choice::Choice;
 use embray::render_space::RenderSpace;
 use glam::DVec3;
 

@@ -9,9 +9,9 @@ use crate::accel::BackendKind;
 use crate::render::{RenderError, RenderOptions, render};
 use crate::render_space::RenderSpace;
 use crate::scene::{SceneDesc, SceneError, load};
-use crate::spawn::SpawnMode;
+use crate::shading::spawn::SpawnMode;
 use glam::DVec3;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Clone, Debug)]
 pub struct AccuracyOptions {
@@ -49,15 +49,10 @@ pub enum AccuracyError {
     Write { path: PathBuf, message: String },
 }
 
-/// The bundled scenes of the default report, found under `root` (a checkout).
-pub fn default_scenes(root: &Path) -> Vec<PathBuf> {
-    let mut scenes = vec![root.join("scenes/cornell.toml")];
-    let mut precision: Vec<PathBuf> = std::fs::read_dir(root.join("scenes/precision"))
-        .map(|dir| dir.filter_map(|e| e.ok().map(|e| e.path())).collect())
-        .unwrap_or_default();
-    precision.retain(|p| p.extension().is_some_and(|e| e == "toml"));
-    precision.sort();
-    scenes.extend(precision);
+/// The bundled scenes of the default report: the Cornell box and the precision scenes.
+pub fn default_scenes() -> Vec<PathBuf> {
+    let mut scenes = vec![crate::bundled::default_scene()];
+    scenes.extend(crate::bundled::scenes_in("scenes/precision"));
     scenes
 }
 

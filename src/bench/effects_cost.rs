@@ -4,8 +4,9 @@
 
 use super::median;
 use crate::accel::BackendKind;
+use crate::choice::Choice;
+use crate::compile::EffectsMode;
 use crate::render::{RenderError, RenderOptions, render};
-use crate::render_space::EffectsMode;
 use crate::scene::SceneDesc;
 use crate::stats::RenderStats;
 

@@ -2,6 +2,7 @@
 
 use super::median;
 use crate::accel::BackendKind;
+use crate::choice::Choice;
 use crate::image_error::{ImageError, image_error};
 use crate::render::{RenderError, RenderOptions, render};
 use crate::render_space::RenderSpace;

@@ -1,10 +1,11 @@
 //! Robust spawning against a fixed epsilon: time and the artefacts each causes.
 
 use crate::accel::BackendKind;
+use crate::choice::Choice;
 use crate::render::{RenderError, RenderOptions, render};
 use crate::render_space::RenderSpace;
 use crate::scene::SceneDesc;
-use crate::spawn::SpawnMode;
+use crate::shading::spawn::SpawnMode;
 use glam::DVec3;
 
 #[derive(Clone, Debug, serde::Serialize)]

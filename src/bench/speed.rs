@@ -5,13 +5,15 @@
 //! the raw loop are per core.
 
 use super::median;
-use crate::accel::{Accel, AccelError, AccelOptions, BackendKind, BuildQuality, Hit, Ray, build};
+use crate::accel::{Accel, AccelError, AccelOptions, BackendKind, BuildQuality, build};
+use crate::choice::Choice;
+use crate::ray::{Hit, Ray};
 use crate::render::{CAMERA_BATCH, RenderError, RenderOptions, prepare_scene, render_film};
 use crate::render_scene::RenderScene;
 use crate::sampling::{cosine_hemisphere, hash4, to_unit_f32};
 use crate::scene::SceneDesc;
+use crate::shading::surface::interaction;
 use crate::stats::TraversalCounters;
-use crate::surface::interaction;
 use glam::{Mat3, Vec2, Vec3};
 use std::time::Instant;
 
@@ -44,16 +46,6 @@ pub enum SpeedError {
     Render(#[from] RenderError),
     #[error(transparent)]
     Accel(#[from] AccelError),
-}
-
-fn rss_kib() -> u64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            let line = s.lines().find(|l| l.starts_with("VmRSS:"))?.to_owned();
-            line.split_whitespace().nth(1)?.parse().ok()
-        })
-        .unwrap_or(0)
 }
 
 /// One camera ray through every pixel centre.
@@ -239,9 +231,9 @@ fn measure_rays(
     drop(accel);
     // Memory of the BVH the rays and renders use.
     let render_options = AccelOptions { build_quality: render_quality, ..AccelOptions::default() };
-    let before = rss_kib();
+    let before = crate::process_memory::resident_bytes().unwrap_or(0);
     let accel = build(backend, scene, &render_options)?;
-    let rss_added = rss_kib().saturating_sub(before) * 1024;
+    let rss_added = crate::process_memory::resident_bytes().unwrap_or(0).saturating_sub(before);
     let accel_mib = accel.memory_bytes().unwrap_or(rss_added as usize) as f64 / (1 << 20) as f64;
     let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
     let primary = primary_rays(scene);

@@ -38,7 +38,7 @@ pub struct MaterialDesc {
     pub albedo: Vec3,
     /// Emitted radiance, on the side the surface normal points to.
     pub emission: Vec3,
-    pub specular: SpecularDesc,
+    pub specular: Specular,
     /// GGX roughness α of the specular part (0 = perfectly smooth).
     pub roughness: f32,
     /// A pattern that replaces `albedo`.
@@ -53,7 +53,7 @@ impl Default for MaterialDesc {
             name: String::new(),
             albedo: Vec3::splat(0.8),
             emission: Vec3::ZERO,
-            specular: SpecularDesc::None,
+            specular: Specular::None,
             roughness: 0.0,
             texture: None,
             phong: None,
@@ -61,8 +61,8 @@ impl Default for MaterialDesc {
     }
 }
 
-#[derive(Clone, Debug, PartialEq)]
-pub enum SpecularDesc {
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Specular {
     None,
     /// Perfect (or, with roughness, glossy) reflection scaled by `reflectance`.
     Mirror {
@@ -93,19 +93,19 @@ pub struct PhongDesc {
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureDesc {
-    pub pattern: PatternDesc,
+    pub pattern: Pattern,
     /// Maps the space of the object the material is attached to (the mesh's own vertex
     /// space, or for a material given at the instance level the instance's space) to the
     /// pattern's space. Set by the loader; identity for object-level materials.
     pub texture_from_object: DAffine3,
 }
 
-#[derive(Clone, Debug, PartialEq)]
-pub enum PatternDesc {
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Pattern {
     /// Checkerboard in texture coordinates: `scale` checks per unit of u and v.
-    Checker2d { scale: f64, even: Vec3, odd: Vec3 },
+    Checker2d { scale: f32, even: Vec3, odd: Vec3 },
     /// Solid checkerboard in the object's space: cubes of side 1/`scale`.
-    Checker3d { scale: f64, even: Vec3, odd: Vec3 },
+    Checker3d { scale: f32, even: Vec3, odd: Vec3 },
 }
 
 /// Mesh data in object space. Positions are f64 so that no precision is lost before the

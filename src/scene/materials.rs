@@ -2,7 +2,7 @@
 //! specular lobe chosen by `type`, emission, and the course's Phong terms. Each type takes
 //! only its own fields.
 
-use super::desc::{MaterialDesc, PatternDesc, PhongDesc, SpecularDesc, TextureDesc};
+use super::desc::{MaterialDesc, Pattern, PhongDesc, Specular, TextureDesc};
 use super::error::SceneError;
 use super::source_map::FieldPath;
 use super::toml_format::{MaterialKind, MaterialToml, MetalPreset, PhongToml, TextureKind};
@@ -89,11 +89,11 @@ pub(crate) fn material(
     let reflectance =
         |ctx: &Ctx| ctx.color(&path.key("reflectance"), m.reflectance.unwrap_or([1.0; 3]), true);
     let specular = match kind {
-        MaterialKind::Diffuse => SpecularDesc::None,
-        MaterialKind::Mirror => SpecularDesc::Mirror { reflectance: reflectance(ctx)? },
+        MaterialKind::Diffuse => Specular::None,
+        MaterialKind::Mirror => Specular::Mirror { reflectance: reflectance(ctx)? },
         MaterialKind::Conductor => {
             let (eta, k) = conductor_index(&path, &item, m, ctx)?;
-            SpecularDesc::Conductor { eta, k, reflectance: reflectance(ctx)? }
+            Specular::Conductor { eta, k, reflectance: reflectance(ctx)? }
         }
         MaterialKind::Dielectric => {
             // `roughness` is kept (GGX α) for renderers that support rough glass; the path
@@ -103,7 +103,7 @@ pub(crate) fn material(
             let ior = ctx.f32(&field, ior)?;
             let absorption =
                 ctx.color(&path.key("absorption"), m.absorption.unwrap_or([0.0; 3]), false)?;
-            SpecularDesc::Dielectric { ior, absorption }
+            Specular::Dielectric { ior, absorption }
         }
     };
     let texture = m.texture.as_ref().map(|t| texture(&path.key("texture"), t, ctx)).transpose()?;
@@ -151,8 +151,8 @@ fn texture(path: &FieldPath, t: &TextureToml, ctx: &Ctx) -> Result<TextureDesc, 
     let even = ctx.color(&path.key("even"), t.even, true)?;
     let odd = ctx.color(&path.key("odd"), t.odd, true)?;
     let pattern = match t.kind {
-        TextureKind::Checker2d => PatternDesc::Checker2d { scale, even, odd },
-        TextureKind::Checker3d => PatternDesc::Checker3d { scale, even, odd },
+        TextureKind::Checker2d => Pattern::Checker2d { scale: scale as f32, even, odd },
+        TextureKind::Checker3d => Pattern::Checker3d { scale: scale as f32, even, odd },
     };
     // A material from the table is attached to objects directly: its pattern lives in the
     // space of each object's own vertices.
@@ -172,7 +172,7 @@ fn phong(path: &FieldPath, p: &PhongToml, ctx: &Ctx) -> Result<PhongDesc, SceneE
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::desc::PatternDesc;
+    use crate::scene::desc::Pattern;
 
     #[test]
     fn presets_are_metals() {
@@ -194,7 +194,7 @@ mod tests {
         assert_eq!(with_texture_space(&plain, moved), plain);
         let textured = MaterialDesc {
             texture: Some(TextureDesc {
-                pattern: PatternDesc::Checker3d {
+                pattern: Pattern::Checker3d {
                     scale: 2.0,
                     even: glam::Vec3::ONE,
                     odd: glam::Vec3::ZERO,

@@ -112,13 +112,14 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
             Ok(CachedFile { models, materials: loaded.materials })
         }
         Some("ply") => {
-            let bytes = std::fs::read(path).map_err(|error| SceneError::PlyRead {
-                ply: path.clone(),
-                scene: mesh_ref.scene.to_path_buf(),
-                item: mesh_ref.item.clone(),
-                error,
-                line: mesh_ref.line,
-            })?;
+            let bytes =
+                super::input_file::read_bytes(path).map_err(|error| SceneError::PlyRead {
+                    ply: path.clone(),
+                    scene: mesh_ref.scene.to_path_buf(),
+                    item: mesh_ref.item.clone(),
+                    error,
+                    line: mesh_ref.line,
+                })?;
             let mesh = ply::parse(&bytes).map_err(|problem| SceneError::PlyData {
                 ply: path.clone(),
                 ply_line: super::error::Line(problem.line),

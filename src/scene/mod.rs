@@ -14,6 +14,7 @@ pub use desc::*;
 mod camera_settings;
 mod convert;
 mod error;
+pub(crate) mod input_file;
 mod materials;
 mod mesh_file;
 mod obj;
@@ -55,7 +56,7 @@ pub fn load_with_warnings(path: &Path) -> Result<(SceneDesc, Vec<String>), Scene
 
 /// The text of a scene file, or an error naming it.
 pub(crate) fn read_scene_file(path: &Path) -> Result<String, SceneError> {
-    std::fs::read_to_string(path)
+    input_file::read_text(path)
         .map_err(|error| SceneError::Read { path: path.to_path_buf(), error })
 }
 

@@ -61,7 +61,7 @@ pub(crate) struct LoadedObj {
 /// Loads the OBJ file; a missing MTL file adds a warning and leaves its materials undefined.
 pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<LoadedObj, SceneError> {
     let obj = obj_ref.obj.as_path();
-    let text = std::fs::read_to_string(obj).map_err(|error| SceneError::ObjRead {
+    let text = super::input_file::read_text(obj).map_err(|error| SceneError::ObjRead {
         obj: obj.to_path_buf(),
         scene: obj_ref.scene.to_path_buf(),
         item: obj_ref.item.clone(),
@@ -76,7 +76,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     let mtl_of_material: RefCell<HashMap<String, PathBuf>> = RefCell::new(HashMap::new());
     let material_loader = |mtl_name: &Path| -> tobj::MTLLoadResult {
         let mtl = obj_dir.join(mtl_name);
-        let mtl_text = match std::fs::read_to_string(&mtl) {
+        let mtl_text = match super::input_file::read_text(&mtl) {
             Ok(text) => text,
             Err(e) => {
                 missing_mtl.borrow_mut().push(format!(

@@ -11,7 +11,7 @@
 
 use super::desc::IntegratorKind;
 use super::desc::{
-    LensShape, LightDesc, MaterialDesc, MeshData, PatternDesc, SceneDesc, ShapeDesc, SpecularDesc,
+    LensShape, LightDesc, MaterialDesc, MeshData, Pattern, SceneDesc, ShapeDesc, Specular,
 };
 use glam::{DAffine3, DVec3, Vec3};
 use std::collections::HashMap;
@@ -254,22 +254,22 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
     at_most_one("the albedo", m.albedo)?;
     let _ = writeln!(out, "\n[materials.{}]", quoted(name));
     let kind = match m.specular {
-        SpecularDesc::None => "diffuse",
-        SpecularDesc::Mirror { .. } => "mirror",
-        SpecularDesc::Conductor { .. } => "conductor",
-        SpecularDesc::Dielectric { .. } => "dielectric",
+        Specular::None => "diffuse",
+        Specular::Mirror { .. } => "mirror",
+        Specular::Conductor { .. } => "conductor",
+        Specular::Dielectric { .. } => "dielectric",
     };
     let _ = writeln!(out, "type = \"{kind}\"\nalbedo = {}", c3(m.albedo));
     if m.emission != Vec3::ZERO {
         let _ = writeln!(out, "emission = {}", c3(m.emission));
     }
     match m.specular {
-        SpecularDesc::None => {}
-        SpecularDesc::Mirror { reflectance } => {
+        Specular::None => {}
+        Specular::Mirror { reflectance } => {
             at_most_one("the reflectance", reflectance)?;
             let _ = writeln!(out, "reflectance = {}", c3(reflectance));
         }
-        SpecularDesc::Conductor { eta, k, reflectance } => {
+        Specular::Conductor { eta, k, reflectance } => {
             at_most_one("the reflectance", reflectance)?;
             let _ = writeln!(
                 out,
@@ -279,12 +279,12 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
                 c3(reflectance)
             );
         }
-        SpecularDesc::Dielectric { ior, absorption } => {
+        Specular::Dielectric { ior, absorption } => {
             let _ = writeln!(out, "ior = {:?}\nabsorption = {}", ior, c3(absorption));
         }
     }
     // A diffuse material's roughness means nothing to either integrator.
-    if m.roughness != 0.0 && m.specular != SpecularDesc::None {
+    if m.roughness != 0.0 && m.specular != Specular::None {
         let _ = writeln!(out, "roughness = {:?}", m.roughness);
     }
     if let Some(t) = &m.texture {
@@ -292,14 +292,14 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
             return Err(unsupported("its texture is mapped through a transform".to_owned()));
         }
         let (kind, scale, even, odd) = match t.pattern {
-            PatternDesc::Checker2d { scale, even, odd } => ("checker2d", scale, even, odd),
-            PatternDesc::Checker3d { scale, even, odd } => ("checker3d", scale, even, odd),
+            Pattern::Checker2d { scale, even, odd } => ("checker2d", scale, even, odd),
+            Pattern::Checker3d { scale, even, odd } => ("checker3d", scale, even, odd),
         };
         at_most_one("a texture colour", even.max(odd))?;
         let _ = writeln!(
             out,
             "texture = {{ type = \"{kind}\", scale = {}, even = {}, odd = {} }}",
-            f(scale),
+            f(scale as f64),
             c3(even),
             c3(odd)
         );

@@ -2,6 +2,7 @@
 //! the scene description as the course defines them.
 
 use super::*;
+use embray::choice::Choice;
 
 fn one(text: &str) -> SceneDesc {
     let mut scenes = load_text(text).unwrap_or_else(|e| panic!("{e}"));
@@ -134,7 +135,7 @@ fn transformations_instances_and_motion() {
 
 #[test]
 fn materials_and_lights_map_to_the_scene_description() {
-    use embray::scene::SpecularDesc;
+    use embray::scene::Specular;
     let materials = r#"
     <Materials>
         <Material id="1">
@@ -177,7 +178,7 @@ fn materials_and_lights_map_to_the_scene_description() {
     assert_eq!(m[0].phong.as_ref().unwrap().exponent, 1.0);
     assert_eq!(
         m[1].specular,
-        SpecularDesc::Conductor {
+        Specular::Conductor {
             eta: glam::Vec3::splat(0.37),
             k: glam::Vec3::splat(2.82),
             reflectance: glam::Vec3::new(1.0, 0.86, 0.57)
@@ -186,7 +187,7 @@ fn materials_and_lights_map_to_the_scene_description() {
     assert_eq!(m[1].roughness, 0.1);
     assert_eq!(
         m[2].specular,
-        SpecularDesc::Dielectric { ior: 1.5, absorption: glam::Vec3::new(0.01, 0.02, 0.03) }
+        Specular::Dielectric { ior: 1.5, absorption: glam::Vec3::new(0.01, 0.02, 0.03) }
     );
     assert_eq!(m[3].albedo, glam::Vec3::new(0.5, 0.5, 1.5));
     assert_eq!(

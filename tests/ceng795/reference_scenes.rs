@@ -2,6 +2,7 @@
 //! effect scenes, and the XML → TOML round trip.
 
 use super::*;
+use embray::choice::Choice;
 
 /// Pixels within 3/255 in every channel required of a single-sample reference scene.
 const MIN_WITHIN: f64 = 0.99;
@@ -212,7 +213,7 @@ fn bunny_matches_exactly_with_the_course_shadow_offset() {
     let reference = read_rgb(&data.join("2021/hw1/bunny.png")).unwrap();
     let scene = &cameras[0].scene;
     let mut options = course_options(scene, BackendKind::default_compiled());
-    options.spawn = embray::spawn::SpawnMode::Epsilon(1e-3);
+    options.spawn = embray::shading::spawn::SpawnMode::Epsilon(1e-3);
     let (image, _) = render_rgb(scene, &options);
     let c = compare_images(&image, &reference, 1).unwrap();
     assert!(c.fraction_within() > 0.9999, "{:.4} % within 1/255", 100.0 * c.fraction_within());

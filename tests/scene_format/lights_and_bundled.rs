@@ -112,7 +112,7 @@ fn moving_boxes_move() {
 fn glossy_plates_are_conductors_of_increasing_roughness() {
     let scene = bundled("glossy_plates.toml");
     let mut roughness: Vec<f32> = specular_objects(&scene)
-        .filter(|m| matches!(m.specular, SpecularDesc::Conductor { .. }))
+        .filter(|m| matches!(m.specular, Specular::Conductor { .. }))
         .map(|m| m.roughness)
         .collect();
     roughness.dedup();
@@ -125,12 +125,12 @@ fn glossy_plates_are_conductors_of_increasing_roughness() {
 fn glass_has_absorbing_dielectrics_on_a_checker_floor() {
     let scene = bundled("glass.toml");
     let glass: Vec<_> = specular_objects(&scene)
-        .filter(|m| matches!(m.specular, SpecularDesc::Dielectric { absorption, .. } if absorption != Vec3::ZERO))
+        .filter(|m| matches!(m.specular, Specular::Dielectric { absorption, .. } if absorption != Vec3::ZERO))
         .collect();
     assert!(glass.len() >= 2);
     assert!(specular_objects(&scene).any(|m| matches!(
         m.texture.as_ref().map(|t| &t.pattern),
-        Some(PatternDesc::Checker2d { .. })
+        Some(Pattern::Checker2d { .. })
     )));
 }
 
@@ -159,7 +159,7 @@ fn textured_instances_use_a_solid_checker() {
         .filter(|o| {
             matches!(
                 scene.materials[o.material as usize].texture.as_ref().map(|t| &t.pattern),
-                Some(PatternDesc::Checker3d { .. })
+                Some(Pattern::Checker3d { .. })
             )
         })
         .collect();

@@ -4,8 +4,8 @@
 //! are tested in `bad_input_scene`.)
 
 use embray::scene::{
-    self, IntegratorKind, LensShape, LightDesc, MaterialDesc, MeshData, PatternDesc, PhongDesc,
-    SceneDesc, ShapeDesc, SpecularDesc,
+    self, IntegratorKind, LensShape, LightDesc, MaterialDesc, MeshData, Pattern, PhongDesc,
+    SceneDesc, ShapeDesc, Specular,
 };
 use glam::{DAffine3, DVec3, Vec2, Vec3};
 use std::path::{Path, PathBuf};

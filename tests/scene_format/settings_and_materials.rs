@@ -78,19 +78,19 @@ fn material_types_and_their_defaults() {
 
     let chrome = material(&scene, "chrome");
     assert_eq!(chrome.albedo, Vec3::ZERO);
-    assert_eq!(chrome.specular, SpecularDesc::Mirror { reflectance: Vec3::ONE });
+    assert_eq!(chrome.specular, Specular::Mirror { reflectance: Vec3::ONE });
     assert_eq!(chrome.roughness, 0.0);
 
     let tinted = material(&scene, "tinted");
     assert_eq!(tinted.albedo, Vec3::splat(0.1));
     assert_eq!(tinted.emission, Vec3::new(0.5, 0.0, 0.0));
-    assert_eq!(tinted.specular, SpecularDesc::Mirror { reflectance: Vec3::new(0.9, 0.8, 0.7) });
+    assert_eq!(tinted.specular, Specular::Mirror { reflectance: Vec3::new(0.9, 0.8, 0.7) });
     assert_eq!(tinted.roughness, 0.05);
 
     let metal = material(&scene, "metal");
     assert_eq!(
         metal.specular,
-        SpecularDesc::Conductor {
+        Specular::Conductor {
             eta: Vec3::new(0.2, 0.9, 1.1),
             k: Vec3::new(3.9, 2.4, 2.1),
             reflectance: Vec3::splat(0.5)
@@ -98,24 +98,24 @@ fn material_types_and_their_defaults() {
     );
     assert_eq!((metal.albedo, metal.roughness), (Vec3::ZERO, 0.2));
 
-    let SpecularDesc::Conductor { eta, k, reflectance } = &material(&scene, "gold").specular else {
+    let Specular::Conductor { eta, k, reflectance } = &material(&scene, "gold").specular else {
         panic!("gold is not a conductor");
     };
     assert!((*eta - Vec3::new(0.1431, 0.3750, 1.4425)).abs().max_element() < 1e-4, "{eta}");
     assert!((*k - Vec3::new(3.9832, 2.3857, 1.6032)).abs().max_element() < 1e-4, "{k}");
     assert_eq!(*reflectance, Vec3::ONE);
-    let SpecularDesc::Conductor { eta, .. } = &material(&scene, "aluminum").specular else {
+    let Specular::Conductor { eta, .. } = &material(&scene, "aluminum").specular else {
         panic!("aluminum is not a conductor");
     };
     assert!((eta.x - 1.6575).abs() < 1e-4, "{eta}");
 
     let glass = material(&scene, "glass");
-    assert_eq!(glass.specular, SpecularDesc::Dielectric { ior: 1.5, absorption: Vec3::ZERO });
+    assert_eq!(glass.specular, Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO });
     assert_eq!(glass.albedo, Vec3::ZERO);
     let green = material(&scene, "green_glass");
     assert_eq!(
         green.specular,
-        SpecularDesc::Dielectric { ior: 1.33, absorption: Vec3::new(0.5, 0.0, 0.5) }
+        Specular::Dielectric { ior: 1.33, absorption: Vec3::new(0.5, 0.0, 0.5) }
     );
     assert_eq!(green.roughness, 0.1);
 }
@@ -133,13 +133,13 @@ fn textures_and_phong_terms() {
     let floor = material(&scene, "floor").texture.clone().unwrap();
     assert_eq!(
         floor.pattern,
-        PatternDesc::Checker2d { scale: 8.0, even: Vec3::splat(0.9), odd: Vec3::splat(0.1) }
+        Pattern::Checker2d { scale: 8.0, even: Vec3::splat(0.9), odd: Vec3::splat(0.1) }
     );
     assert_eq!(floor.texture_from_object, DAffine3::IDENTITY);
     let solid = material(&scene, "solid");
     assert_eq!(
         solid.texture.as_ref().unwrap().pattern,
-        PatternDesc::Checker3d { scale: 0.5, even: Vec3::X, odd: Vec3::Z }
+        Pattern::Checker3d { scale: 0.5, even: Vec3::X, odd: Vec3::Z }
     );
     assert_eq!(
         solid.phong,

@@ -3,11 +3,12 @@
 use super::batch::BatchKind;
 use super::device::Device;
 use super::ffi;
-use super::geometry::Geometry;
+use super::geometry_handle::GeometryHandle;
 use super::scene::{CommittedScene, Scene};
 use super::sphere::sphere_geometry;
 use super::user_triangles::user_triangle_geometry;
-use crate::accel::{Accel, AccelError, AccelOptions, BatchMode, BuildQuality, Hit, Observes, Ray};
+use crate::accel::{Accel, AccelError, AccelOptions, BatchMode, BuildQuality, Observes};
+use crate::ray::{Hit, Ray};
 use crate::render_scene::{self, Placement, RenderScene};
 use crate::stats::TraversalCounters;
 use std::sync::Arc;
@@ -30,7 +31,7 @@ const DEVICE_CONFIG: &str = "";
 /// - Every triangle mesh becomes an Embree *user geometry* with one user primitive per
 ///   triangle, bounded by the triangle's exact AABB: attached to the top scene when baked,
 ///   else in the prototype's shared child scene (Embree calls it with the object-space
-///   ray). Its callbacks run our watertight `crate::geometry::intersect_triangle` (the
+///   ray). Its callbacks run our watertight `crate::intersect::intersect_triangle` (the
 ///   obvhs backend's test) and report hits as Embree's native triangles do. Spheres are
 ///   user geometry in both modes.
 /// - **`prim_tests`** counts user-primitive callback invocations, one per primitive per ray
@@ -133,10 +134,10 @@ impl EmbreeAccel {
                     prototype_geometry(&device, &prototype.geometry, counting)
                 }
                 Placement::Static { render_from_object, .. } => {
-                    Geometry::static_instance(&device, &child()?, render_from_object)
+                    GeometryHandle::static_instance(&device, &child()?, render_from_object)
                 }
                 Placement::Moving { start, end } => {
-                    Geometry::moving_instance(&device, &child()?, start, end)
+                    GeometryHandle::moving_instance(&device, &child()?, start, end)
                 }
             }
             .map_err(&name_error)?;
@@ -220,13 +221,13 @@ fn prototype_geometry(
     device: &Arc<Device>,
     geometry: &render_scene::Geometry,
     counting: bool,
-) -> Result<Geometry, AccelError> {
+) -> Result<GeometryHandle, AccelError> {
     match geometry {
         render_scene::Geometry::Triangles(mesh) if counting => {
             user_triangle_geometry(device, &mesh.positions, &mesh.indices)
         }
         render_scene::Geometry::Triangles(mesh) => {
-            Geometry::triangles(device, &mesh.positions, &mesh.indices)
+            GeometryHandle::triangles(device, &mesh.positions, &mesh.indices)
         }
         render_scene::Geometry::Sphere(sphere) => sphere_geometry(device, *sphere),
     }

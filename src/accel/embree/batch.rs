@@ -5,7 +5,7 @@ use super::compat;
 use super::ffi;
 use super::ray::{self, RayHitPacket};
 use super::scene::{CommittedScene, embree_accepts};
-use crate::accel::{Hit, Ray};
+use crate::ray::{Hit, Ray};
 
 /// How a batch of rays is handed to Embree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -2,8 +2,9 @@
 //! (`tests/batch_queries.rs` checks `Accel::intersect_batch` itself, for every backend.)
 
 use super::{BatchKind, EmbreeAccel};
-use crate::accel::{Accel, AccelOptions, Hit, Ray};
+use crate::accel::{Accel, AccelOptions};
 use crate::bench::{procedural, speed};
+use crate::ray::{Hit, Ray};
 use crate::render::{RenderOptions, prepare_scene};
 use crate::render_scene::RenderScene;
 use crate::scene::SceneDesc;

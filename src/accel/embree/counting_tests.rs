@@ -5,7 +5,8 @@ use super::EmbreeAccel;
 use super::tests::{
     Rng, close, grid, is_graze, is_sphere, random_rays, random_scene, render_scene, shape, sphere,
 };
-use crate::accel::{Accel, AccelOptions, Observes, Ray};
+use crate::accel::{Accel, AccelOptions, Observes};
+use crate::ray::Ray;
 use crate::render_scene::{self, RenderScene};
 use crate::stats::TraversalCounters;
 use glam::Vec3;
@@ -339,11 +340,6 @@ fn time_pass(accel: &dyn Accel, rays: &[Ray]) -> Pass {
     Pass { hit_seconds, shadow_seconds, hit_counters, shadow_counters, hits: hits.max(occluded) }
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
 /// What counting costs: 200k random rays into a ~100k-triangle mesh, one thread, normal vs
 /// counting mode alternating (the machines are noisy). Run with
 /// `cargo test --release --lib counting_cost -- --ignored --nocapture`.
@@ -397,7 +393,10 @@ fn counting_cost() {
         count_triangles(&scene),
         rays.len()
     );
-    let medians: Vec<(f64, f64)> = times.into_iter().map(|(h, s)| (median(h), median(s))).collect();
+    let medians: Vec<(f64, f64)> = times
+        .into_iter()
+        .map(|(h, s)| (crate::bench::median(h), crate::bench::median(s)))
+        .collect();
     for (((label, _), &(h, s)), (pass, build)) in
         builders.iter().zip(&medians).zip(passes.iter().zip(build_seconds))
     {
@@ -405,7 +404,7 @@ fn counting_cost() {
             "  {label:16} build {:5.3} s; closest hit {:5.2} Mrays/s ({:.2} prim tests, {:.2} \
              node visits per ray); occlusion {:5.2} Mrays/s ({:.2} prim tests, {:.2} node \
              visits per ray); {} hits",
-            median(build),
+            crate::bench::median(build),
             n / h / 1e6,
             pass.hit_counters.prim_tests as f64 / n,
             pass.hit_counters.node_visits as f64 / n,

@@ -6,10 +6,11 @@
 use super::EmbreeAccel;
 use super::device::Device;
 use super::ffi;
-use super::geometry::Geometry;
+use super::geometry_handle::GeometryHandle;
 use super::scene::Scene;
 use super::tests::{Rng, grid, mesh, shape, sphere, triangle_soup};
-use crate::accel::{Accel, AccelError, AccelOptions, Hit, Ray};
+use crate::accel::{Accel, AccelError, AccelOptions};
+use crate::ray::{Hit, Ray};
 use crate::render_scene::{self, Instance, Placement, Prototype, RenderScene, Trs};
 use crate::stats::TraversalCounters;
 use glam::{Affine3A, Quat, Vec3};
@@ -157,7 +158,7 @@ fn motion_geometries_only_for_moving_instances() {
 }
 
 /// The transform Embree reports for a geometry at `time`, as an affine map.
-fn embree_transform(geometry: &Geometry, time: f32) -> Affine3A {
+fn embree_transform(geometry: &GeometryHandle, time: f32) -> Affine3A {
     let mut m = [0.0f32; 12];
     // SAFETY: a live instance geometry; Embree writes 12 floats (3x4, column major).
     unsafe {
@@ -185,7 +186,7 @@ fn embree_interpolates_motion_as_trs_lerp() {
     let mut child =
         Scene::new(&device, ffi::RTCBuildQuality::MEDIUM, ffi::RTCSceneFlags::ROBUST).unwrap();
     let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
-    child.attach(Geometry::triangles(&device, &tri, &[[0, 1, 2]]).unwrap(), 0).unwrap();
+    child.attach(GeometryHandle::triangles(&device, &tri, &[[0, 1, 2]]).unwrap(), 0).unwrap();
     let child = Arc::new(child.commit().unwrap());
     let mut rng = Rng(77);
     let mut worst = 0.0f32;
@@ -201,7 +202,7 @@ fn embree_interpolates_motion_as_trs_lerp() {
             let angle = if case % 8 == 1 { 3.1 } else { 0.01 };
             end.rotation = (Quat::from_axis_angle(Vec3::Z, angle) * start.rotation).normalize();
         }
-        let geometry = Geometry::moving_instance(&device, &child, &start, &end).unwrap();
+        let geometry = GeometryHandle::moving_instance(&device, &child, &start, &end).unwrap();
         assert_eq!(geometry.time_steps(), 2);
         for step in 0..=16 {
             let time = step as f32 / 16.0;
@@ -213,7 +214,7 @@ fn embree_interpolates_motion_as_trs_lerp() {
             assert!(difference < 2e-5, "case {case}, time {time}: {got:?} vs {expected:?}");
         }
         let fixed = start.to_affine();
-        let geometry = Geometry::static_instance(&device, &child, &fixed).unwrap();
+        let geometry = GeometryHandle::static_instance(&device, &child, &fixed).unwrap();
         assert_eq!(geometry.time_steps(), 1);
         assert_eq!(embree_transform(&geometry, 0.5), fixed);
     }
@@ -419,10 +420,7 @@ fn times_outside_the_shutter_are_clamped() {
 }
 
 fn rss_bytes() -> u64 {
-    let status = std::fs::read_to_string("/proc/self/status").expect("/proc/self/status");
-    let line = status.lines().find(|l| l.starts_with("VmRSS:")).expect("a VmRSS line");
-    let kb: u64 = line.split_whitespace().nth(1).and_then(|n| n.parse().ok()).expect("VmRSS kB");
-    kb * 1024
+    crate::process_memory::resident_bytes().expect("this test needs /proc/self/status")
 }
 
 /// 10,000 static instances of one 10k-triangle mesh cost a small fraction of 10,000 copies:

@@ -18,7 +18,8 @@ mod compat;
 mod counting_tests;
 mod device;
 mod ffi;
-mod geometry;
+mod geometry_handle;
+mod instance;
 #[cfg(test)]
 mod instance_tests;
 mod ray;

@@ -1,7 +1,7 @@
 //! Conversions between our `Ray`/`Hit` and Embree's single-ray structs.
 
 use super::{compat, ffi};
-use crate::accel::{Hit, Ray};
+use crate::ray::{Hit, Ray};
 
 /// Embree's ray for `ray`, its time clamped to the shutter interval [0, 1]. Only call with a
 /// ray that satisfies `Ray::is_valid`: Debian's Embree aborts the process on NaN/Inf rays.
@@ -38,7 +38,7 @@ pub fn to_rtc_ray_hit(ray: &Ray) -> ffi::RTCRayHit {
 ///
 /// Through an instance, Embree reports the instance's id in the top scene as `instID[0]`
 /// and the child scene's geometry (always 0 here) as `geomID`; our geometry id is the
-/// instance's. Geometry attached directly to the top scene has `instID[0]` invalid. We never
+/// instance's. GeometryHandle attached directly to the top scene has `instID[0]` invalid. We never
 /// nest instances, so one level (`RTC_MAX_INSTANCE_LEVEL_COUNT = 1`) is enough. `t`, `u`,
 /// `v` and `primID` need no mapping: `t` is along the render-space ray (Embree transforms
 /// the ray into the instance without renormalising its direction) and the barycentrics

@@ -1,9 +1,10 @@
 //! `Scene` (being built) and `CommittedScene` (read-only, traced from many threads).
 
 use super::device::Device;
-use super::geometry::Geometry;
+use super::geometry_handle::GeometryHandle;
 use super::{compat, ffi, ray};
-use crate::accel::{AccelError, Hit, Ray};
+use crate::accel::AccelError;
+use crate::ray::{Hit, Ray};
 use crate::stats::TraversalCounters;
 use std::any::Any;
 use std::sync::Arc;
@@ -13,7 +14,7 @@ pub struct Scene {
     handle: ffi::RTCScene,
     device: Arc<Device>,
     /// What the attached geometries need alive (their callback data, instanced child
-    /// scenes; see `Geometry::take_keep_alive`). Freed after the Embree scene is released
+    /// scenes; see `GeometryHandle::take_keep_alive`). Freed after the Embree scene is released
     /// (fields drop after `Drop::drop`), so no callback or traversal can outlive it.
     keep_alive: Vec<Box<dyn Any + Send + Sync>>,
     /// Attached geometries with more than one time step.
@@ -49,7 +50,7 @@ impl Scene {
     }
 
     /// Attaches `geometry` with geometry id `id` (what hits report as `geomID`).
-    pub fn attach(&mut self, mut geometry: Geometry, id: u32) -> Result<(), AccelError> {
+    pub fn attach(&mut self, mut geometry: GeometryHandle, id: u32) -> Result<(), AccelError> {
         if !Arc::ptr_eq(geometry.device(), &self.device) {
             return Err(AccelError::Embree(
                 "geometry and scene belong to different devices".into(),

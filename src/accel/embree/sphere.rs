@@ -1,4 +1,4 @@
-//! Spheres as Embree user geometry. The callbacks call `crate::geometry::intersect_sphere`,
+//! Spheres as Embree user geometry. The callbacks call `crate::intersect::intersect_sphere`,
 //! the function the pure-Rust backend uses, so both backends agree bit for bit on spheres.
 //!
 //! The callbacks are `extern "C"`: unwinding out of them would abort, so nothing in them
@@ -10,15 +10,15 @@
 use super::callback_data::CallbackData;
 use super::device::Device;
 use super::ffi;
-use super::geometry::{Geometry, UserCallbacks};
+use super::geometry_handle::{GeometryHandle, UserCallbacks};
 use super::rayn::{LaneIntersection, intersect_lanes, occluded_lanes};
 use crate::accel::AccelError;
-use crate::geometry::intersect_sphere;
+use crate::intersect::intersect_sphere;
 use crate::render_scene::Sphere;
 use std::sync::Arc;
 
 /// An Embree user geometry with one primitive, `sphere`.
-pub fn sphere_geometry(device: &Arc<Device>, sphere: Sphere) -> Result<Geometry, AccelError> {
+pub fn sphere_geometry(device: &Arc<Device>, sphere: Sphere) -> Result<GeometryHandle, AccelError> {
     if !sphere.center.is_finite() || !sphere.radius.is_finite() || sphere.radius < 0.0 {
         return Err(AccelError::Embree(format!(
             "invalid sphere: center {}, radius {}",
@@ -32,7 +32,7 @@ pub fn sphere_geometry(device: &Arc<Device>, sphere: Sphere) -> Result<Geometry,
     };
     // SAFETY: the data is a `Sphere`, and the three callbacks below read the user pointer as
     // `*const Sphere`.
-    unsafe { Geometry::user(device, CallbackData::new(sphere), 1, callbacks) }
+    unsafe { GeometryHandle::user(device, CallbackData::new(sphere), 1, callbacks) }
 }
 
 unsafe extern "C" fn bounds(args: *const ffi::RTCBoundsFunctionArguments) {

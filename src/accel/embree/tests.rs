@@ -3,18 +3,19 @@
 use super::EmbreeAccel;
 use super::device::Device;
 use super::ffi;
-use super::geometry::Geometry;
+use super::geometry_handle::GeometryHandle;
 use super::scene::Scene;
-use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind, Hit, Ray};
+use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind};
 use crate::camera::Camera;
-use crate::geometry::{intersect_sphere, intersect_triangle};
-use crate::material::Material;
+use crate::intersect::{intersect_sphere, intersect_triangle};
+use crate::ray::{Hit, Ray};
 use crate::render_scene::{self, RenderScene, Sphere, TriangleMesh};
+use crate::shading::material::Material;
 use crate::stats::TraversalCounters;
 use glam::Vec3;
 use std::sync::Arc;
 
-pub(super) use crate::test_rng::Rng;
+pub(super) use crate::splitmix::SplitMix64 as Rng;
 
 /// A named shape of a test scene: a baked instance of its own prototype.
 #[derive(Clone)]
@@ -29,7 +30,7 @@ pub(super) fn render_scene(shapes: Vec<Shape>) -> RenderScene {
     let names: Vec<String> = shapes.iter().map(|s| s.name.clone()).collect();
     let baked = shapes.into_iter().map(|s| (s.geometry, 0)).collect();
     let mut scene =
-        RenderScene::from_baked_shapes(Camera::default(), baked, vec![Material::default()]);
+        crate::compile::baked_scene(Camera::default(), baked, vec![Material::default()]);
     for (i, name) in names.into_iter().enumerate() {
         scene.prototypes[i].name.clone_from(&name);
         scene.instances[i].name = name;
@@ -345,8 +346,8 @@ fn attaching_two_geometries_with_one_id_is_an_error() {
     let mut scene =
         Scene::new(&device, ffi::RTCBuildQuality::MEDIUM, ffi::RTCSceneFlags::ROBUST).unwrap();
     let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
-    scene.attach(Geometry::triangles(&device, &tri, &[[0, 1, 2]]).unwrap(), 0).unwrap();
-    let second = Geometry::triangles(&device, &tri, &[[0, 1, 2]]).unwrap();
+    scene.attach(GeometryHandle::triangles(&device, &tri, &[[0, 1, 2]]).unwrap(), 0).unwrap();
+    let second = GeometryHandle::triangles(&device, &tri, &[[0, 1, 2]]).unwrap();
     assert!(matches!(scene.attach(second, 0), Err(AccelError::Embree(_))));
 }
 

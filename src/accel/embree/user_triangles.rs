@@ -1,7 +1,7 @@
 //! Triangle meshes as Embree user geometry, for counting mode (see `EmbreeAccel`).
 //!
 //! One user primitive per triangle, bounded by the triangle's exact AABB. The callbacks run
-//! `crate::geometry::intersect_triangle`, the watertight test the pure-Rust backend uses,
+//! `crate::intersect::intersect_triangle`, the watertight test the pure-Rust backend uses,
 //! so hits agree bit for bit with that backend wherever both report the same triangle, and
 //! they report hits exactly as Embree's native triangles do (`u`, `v` barycentrics of
 //! vertices 1 and 2, `primID`, `geomID`, an unnormalised `Ng = (v0 - v1) × (v2 - v0)`).
@@ -15,10 +15,10 @@
 use super::callback_data::CallbackData;
 use super::device::Device;
 use super::ffi;
-use super::geometry::{Geometry, UserCallbacks, validate_mesh};
+use super::geometry_handle::{GeometryHandle, UserCallbacks, validate_mesh};
 use super::rayn::{LaneIntersection, intersect_lanes, occluded_lanes};
 use crate::accel::AccelError;
-use crate::geometry::intersect_triangle;
+use crate::intersect::intersect_triangle;
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -31,7 +31,7 @@ pub fn user_triangle_geometry(
     device: &Arc<Device>,
     positions: &[Vec3],
     indices: &[[u32; 3]],
-) -> Result<Geometry, AccelError> {
+) -> Result<GeometryHandle, AccelError> {
     validate_mesh(positions, indices).map_err(AccelError::Embree)?;
     let count = u32::try_from(indices.len())
         .map_err(|_| AccelError::Embree("too many triangles".into()))?;
@@ -44,7 +44,9 @@ pub fn user_triangle_geometry(
     };
     // SAFETY: the data is a `Triangles`, and the three callbacks below read the user pointer
     // as `*const Triangles`.
-    unsafe { Geometry::user(device, CallbackData::new(Triangles(triangles)), count, callbacks) }
+    unsafe {
+        GeometryHandle::user(device, CallbackData::new(Triangles(triangles)), count, callbacks)
+    }
 }
 
 /// The triangle `prim_id` of the geometry whose user pointer is `user_ptr`.

@@ -1,8 +1,8 @@
-//! A conservative pre-test for `crate::geometry::intersect_triangle`: rejects most of the
+//! A conservative pre-test for `crate::intersect::intersect_triangle`: rejects most of the
 //! triangles a ray passes outside of without the exact test's FMA-based edge functions.
 
 use super::triangle_block::TriangleBlock;
-use crate::geometry::intersect_triangle;
+use crate::intersect::intersect_triangle;
 use glam::Vec3;
 use wide::f32x4;
 
@@ -145,7 +145,7 @@ impl<const KZ: usize> EdgeTest<KZ> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_rng::Rng;
+    use crate::splitmix::SplitMix64 as Rng;
 
     /// Both pre-tests alone ([`EdgeTest::may_hit`] and [`EdgeTest::in_range`]) for the
     /// ray's axis.

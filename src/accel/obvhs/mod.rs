@@ -8,7 +8,7 @@
 //! obvhs builds each binary tree (PLOC, reinsertion, leaf collapse); [`WideBvh`] turns it
 //! into an 8-wide one laid out for CPU traversal and walks it nearest child first, counting
 //! node visits and primitive tests exactly. Triangles are tested with
-//! `crate::geometry::intersect_triangle` (the hits are exactly its results), after a cheap
+//! `crate::intersect::intersect_triangle` (the hits are exactly its results), after a cheap
 //! conservative test ([`EdgeTest`], four triangles of a leaf at once) that rejects most of
 //! the triangles a ray passes outside of without its FMA-based edge functions.
 //!
@@ -22,8 +22,9 @@ mod node_test;
 mod triangle_block;
 mod wide_bvh;
 
-use crate::accel::{Accel, AccelOptions, BuildQuality, Hit, Observes, Ray};
-use crate::geometry::intersect_sphere;
+use crate::accel::{Accel, AccelOptions, BuildQuality, Observes};
+use crate::intersect::intersect_sphere;
+use crate::ray::{Hit, Ray};
 use crate::render_scene::{
     Geometry, Placement, RenderScene, Sphere, TriangleMesh, Trs, transformed_bounds,
 };

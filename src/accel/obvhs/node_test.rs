@@ -77,7 +77,7 @@ pub(super) fn child_hits(planes: &Planes, ray: &NodeRay) -> (u32, [f32; 8]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_rng::Rng;
+    use crate::splitmix::SplitMix64 as Rng;
     use glam::DVec3;
 
     /// Whether the segment [tmin, tmax] of the ray meets the box, in f64.

@@ -10,10 +10,10 @@
 //! the horizontal angle always follows the resolution's aspect.
 
 use super::xml::Xml;
-use crate::camera::camera_basis;
 use crate::scene::MAX_RESOLUTION;
 use crate::scene::desc::{CameraDesc, LensShape};
 use crate::scene::error::SceneError;
+use crate::transform::camera_basis;
 use glam::DVec3;
 use roxmltree::Node;
 

@@ -9,7 +9,7 @@
 //! square in which the course perturbs reflected directions.
 
 use super::xml::Xml;
-use crate::scene::desc::{MaterialDesc, PhongDesc, SpecularDesc};
+use crate::scene::desc::{MaterialDesc, PhongDesc, Specular};
 use crate::scene::error::SceneError;
 use glam::Vec3;
 use roxmltree::Node;
@@ -98,15 +98,15 @@ fn material(x: &Xml, node: Node, id: &str) -> Result<MaterialDesc, SceneError> {
     };
     let kind = node.attribute("type").map(str::trim).unwrap_or("");
     let specular = match kind {
-        "" => SpecularDesc::None,
-        "mirror" => SpecularDesc::Mirror { reflectance: color("MirrorReflectance")? },
+        "" => Specular::None,
+        "mirror" => Specular::Mirror { reflectance: color("MirrorReflectance")? },
         "conductor" => {
             let eta = scalar("RefractionIndex", None)?;
             if !(eta > 0.0) {
                 let n = x.required(node, "RefractionIndex")?;
                 return Err(x.out_of_range(n, eta, "> 0"));
             }
-            SpecularDesc::Conductor {
+            Specular::Conductor {
                 eta: Vec3::splat(eta as f32),
                 k: Vec3::splat(scalar("AbsorptionIndex", Some(0.0))? as f32),
                 reflectance: color("MirrorReflectance")?,
@@ -118,10 +118,7 @@ fn material(x: &Xml, node: Node, id: &str) -> Result<MaterialDesc, SceneError> {
                 let n = x.required(node, "RefractionIndex")?;
                 return Err(x.out_of_range(n, ior, "> 0"));
             }
-            SpecularDesc::Dielectric {
-                ior: ior as f32,
-                absorption: color("AbsorptionCoefficient")?,
-            }
+            Specular::Dielectric { ior: ior as f32, absorption: color("AbsorptionCoefficient")? }
         }
         other => {
             return Err(x.error(
@@ -135,7 +132,7 @@ fn material(x: &Xml, node: Node, id: &str) -> Result<MaterialDesc, SceneError> {
     };
     // Roughness only means something for a reflecting material.
     let roughness = match specular {
-        SpecularDesc::None => 0.0,
+        Specular::None => 0.0,
         _ => scalar("Roughness", Some(0.0))? as f32,
     };
     Ok(MaterialDesc {

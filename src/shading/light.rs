@@ -2,10 +2,9 @@
 //! primitives, which are sampled by area in proportion to their emitted power. Emitters
 //! without geometry (the course's area lights) are sampled the same way but never hit.
 
-use crate::material::Material;
-use crate::render_scene::{Geometry, Instance, Placement, Prototype};
+use crate::color::luminance;
+use crate::float_error::{gamma, triangle_point};
 use crate::sampling::uniform_triangle;
-use crate::spawn::{gamma, triangle_point};
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -83,74 +82,15 @@ pub struct LightSet {
     first_emitter: Vec<Option<u32>>,
 }
 
-fn luminance(c: Vec3) -> f32 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
-}
-
-fn instance_emitters(
-    geom_id: u32,
-    prototype: &Prototype,
-    instance: &Instance,
-    emission: Vec3,
-) -> Vec<Emitter> {
-    // Emitters that really move are not sampled: their emission is counted where rays hit
-    // them (an emitter "moving" from a pose to the same pose is static).
-    let transform = match &instance.placement {
-        Placement::Baked { .. } => None,
-        Placement::Static { render_from_object, .. } => Some(*render_from_object),
-        Placement::Moving { start, end } if start == end => Some(start.to_affine()),
-        Placement::Moving { .. } => return Vec::new(),
-    };
-    match &prototype.geometry {
-        Geometry::Triangles(mesh) => (0..mesh.indices.len() as u32)
-            .map(|prim| {
-                let mut tri = mesh.triangle(prim);
-                if let Some(m) = transform {
-                    tri = tri.map(|p| m.transform_point3(p));
-                }
-                let area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
-                Emitter { geom_id, shape: EmitterShape::Triangle(tri), emission, area }
-            })
-            .collect(),
-        Geometry::Sphere(s) => {
-            if transform.is_some() {
-                // Ellipsoids are not sampled either (no closed-form area sampling).
-                return Vec::new();
-            }
-            let area = 4.0 * std::f32::consts::PI * s.radius * s.radius;
-            vec![Emitter {
-                geom_id,
-                shape: EmitterShape::Sphere { center: s.center, radius: s.radius },
-                emission,
-                area,
-            }]
-        }
-    }
-}
-
 impl LightSet {
-    /// Collects the emissive primitives of the scene's instances.
+    /// Point, directional and emitting-primitive lights; `first_emitter[i]` is the index of
+    /// instance i's first emitter (its primitive p is emitter first + p).
     pub fn new(
         points: Vec<PointLight>,
         directional: Vec<DirectionalLight>,
-        prototypes: &[Prototype],
-        instances: &[Instance],
-        materials: &[Material],
+        emitters: Vec<Emitter>,
+        first_emitter: Vec<Option<u32>>,
     ) -> Self {
-        let mut emitters = Vec::new();
-        let mut first_emitter = vec![None; instances.len()];
-        for (geom_id, instance) in instances.iter().enumerate() {
-            let material = &materials[instance.material as usize];
-            if !material.is_emissive() {
-                continue;
-            }
-            let prototype = &prototypes[instance.prototype as usize];
-            let mine = instance_emitters(geom_id as u32, prototype, instance, material.emission);
-            if !mine.is_empty() {
-                first_emitter[geom_id] = Some(emitters.len() as u32);
-                emitters.extend(mine);
-            }
-        }
         let mut set = LightSet {
             points,
             directional,

@@ -1,24 +1,13 @@
-//! Surface materials as the integrator sees them (f32, textures ready to evaluate).
+//! Surface materials as the integrators see them. `Material` is the scene's `MaterialDesc`
+//! prepared for shading: textures mapped by an f32 transform, the one roughness split into
+//! its two meanings (GGX α, Whitted perturbation), no name. The specular lobe and the
+//! pattern are the scene's own types.
 
-use crate::scene::{MaterialDesc, PatternDesc, PhongDesc, SpecularDesc};
+use crate::scene::{MaterialDesc, Pattern, PhongDesc, Specular};
 use glam::{Affine3A, Vec2, Vec3};
 
 /// Below this GGX α a lobe is treated as perfectly smooth (a delta distribution).
 pub const SMOOTH_ROUGHNESS: f32 = 1e-3;
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Specular {
-    None,
-    Mirror { reflectance: Vec3 },
-    Conductor { eta: Vec3, k: Vec3, reflectance: Vec3 },
-    Dielectric { ior: f32, absorption: Vec3 },
-}
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Pattern {
-    Checker2d { scale: f32, even: Vec3, odd: Vec3 },
-    Checker3d { scale: f32, even: Vec3, odd: Vec3 },
-}
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Texture {
@@ -55,8 +44,11 @@ pub struct Material {
     /// mesh's counter-clockwise winding, a sphere's outside).
     pub emission: Vec3,
     pub specular: Specular,
-    /// GGX α of the specular lobe.
-    pub roughness: f32,
+    /// GGX α of the specular lobe (the path tracer).
+    pub ggx_alpha: f32,
+    /// Side of the square on the tangent plane within which the course's Whitted model
+    /// perturbs reflected rays (its glossy reflection).
+    pub perturbation: f32,
     pub texture: Option<Texture>,
     pub phong: Option<PhongDesc>,
 }
@@ -67,7 +59,8 @@ impl Default for Material {
             albedo: Vec3::splat(0.8),
             emission: Vec3::ZERO,
             specular: Specular::None,
-            roughness: 0.0,
+            ggx_alpha: 0.0,
+            perturbation: 0.0,
             texture: None,
             phong: None,
         }
@@ -81,25 +74,8 @@ impl Material {
     }
 
     pub fn from_desc(desc: &MaterialDesc) -> Self {
-        let specular = match desc.specular {
-            SpecularDesc::None => Specular::None,
-            SpecularDesc::Mirror { reflectance } => Specular::Mirror { reflectance },
-            SpecularDesc::Conductor { eta, k, reflectance } => {
-                Specular::Conductor { eta, k, reflectance }
-            }
-            SpecularDesc::Dielectric { ior, absorption } => {
-                Specular::Dielectric { ior, absorption }
-            }
-        };
         let texture = desc.texture.as_ref().map(|t| Texture {
-            pattern: match t.pattern {
-                PatternDesc::Checker2d { scale, even, odd } => {
-                    Pattern::Checker2d { scale: scale as f32, even, odd }
-                }
-                PatternDesc::Checker3d { scale, even, odd } => {
-                    Pattern::Checker3d { scale: scale as f32, even, odd }
-                }
-            },
+            pattern: t.pattern,
             texture_from_object: Affine3A::from_mat4(
                 glam::DMat4::from(t.texture_from_object).as_mat4(),
             ),
@@ -107,8 +83,11 @@ impl Material {
         Material {
             albedo: desc.albedo,
             emission: desc.emission,
-            specular,
-            roughness: desc.roughness,
+            specular: desc.specular,
+            // The scene's one roughness means a GGX α to the path tracer and the side of the
+            // perturbation square to the course's Whitted model.
+            ggx_alpha: desc.roughness,
+            perturbation: desc.roughness,
             texture,
             phong: desc.phong.clone(),
         }
@@ -128,7 +107,7 @@ impl Material {
             Specular::None => false,
             // The path tracer treats glass as smooth whatever its roughness.
             Specular::Dielectric { .. } => true,
-            _ => self.roughness < SMOOTH_ROUGHNESS,
+            _ => self.ggx_alpha < SMOOTH_ROUGHNESS,
         }
     }
 }

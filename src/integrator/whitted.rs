@@ -15,53 +15,47 @@
 //! - radiance stays in 0–255 display units; the PNG writer clamps and truncates it
 //!   (`ToneMap::Clamp255`).
 
-use crate::accel::{Accel, Ray};
-use crate::bsdf::{fresnel_conductor, fresnel_dielectric};
-use crate::integrator::PathSample;
-use crate::material::Specular;
+use super::PathSample;
+use super::trace::SceneTracer;
+use crate::ray::Ray;
 use crate::render_scene::{Geometry, RenderScene};
 use crate::sampling::SampleStream;
-use crate::spawn::{SpawnMode, SurfacePoint};
+use crate::scene::Specular;
+use crate::shading::bsdf::{fresnel_conductor, fresnel_dielectric};
+use crate::shading::spawn::SurfacePoint;
+use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
-use crate::surface::{SurfaceInteraction, interaction};
 use glam::{Vec2, Vec3};
 
 pub struct WhittedTracer<'a> {
-    scene: &'a RenderScene,
-    accel: &'a dyn Accel,
+    tracer: SceneTracer<'a>,
     /// Reflection/refraction bounces after the camera ray.
     max_depth: u32,
-    spawn: SpawnMode,
 }
 
 fn reflect(d: Vec3, n: Vec3) -> Vec3 {
     d - 2.0 * d.dot(n) * n
 }
 
-/// Perturbs a unit direction within a square of side `roughness` on its tangent plane (the
+/// Perturbs a unit direction within a square of side `side` on its tangent plane (the
 /// course's glossy reflection, on the course's square axes).
-fn perturb(r: Vec3, roughness: f32, u: Vec2) -> Vec3 {
+fn perturb(r: Vec3, side: f32, u: Vec2) -> Vec3 {
     let (t, b) = crate::transform::course_square_axes(r.as_dvec3());
     let (t, b) = (t.as_vec3(), b.as_vec3());
-    (r + roughness * ((u.x - 0.5) * t + (u.y - 0.5) * b)).normalize()
+    (r + side * ((u.x - 0.5) * t + (u.y - 0.5) * b)).normalize()
 }
 
 impl<'a> WhittedTracer<'a> {
-    pub fn new(
-        scene: &'a RenderScene,
-        accel: &'a dyn Accel,
-        max_depth: u32,
-        spawn: SpawnMode,
-    ) -> Self {
-        WhittedTracer { scene, accel, max_depth, spawn }
+    pub(crate) fn new(tracer: SceneTracer<'a>, max_depth: u32) -> Self {
+        WhittedTracer { tracer, max_depth }
     }
 
     pub fn scene(&self) -> &RenderScene {
-        self.scene
+        self.tracer.scene
     }
 
     fn occluded(&self, ray: &Ray, stats: &mut RenderStats) -> bool {
-        crate::integrator::trace_shadow_ray(self.accel, ray, stats)
+        self.tracer.occluded(ray, stats)
     }
 
     /// Ambient + diffuse + Blinn-Phong specular from every light at `si`.
@@ -73,8 +67,8 @@ impl<'a> WhittedTracer<'a> {
         stream: &mut SampleStream,
         stats: &mut RenderStats,
     ) -> Vec3 {
-        let material = &self.scene.materials[si.material as usize];
-        let lights = &self.scene.lights;
+        let material = &self.tracer.scene.materials[si.material as usize];
+        let lights = &self.tracer.scene.lights;
         let (ambient, specular, exponent) = match &material.phong {
             Some(p) => (p.ambient, p.specular, p.exponent),
             None => (Vec3::ZERO, Vec3::ZERO, 1.0),
@@ -102,14 +96,15 @@ impl<'a> WhittedTracer<'a> {
             if !faces(wi) {
                 continue;
             }
-            let shadow = self.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
+            let shadow =
+                self.tracer.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
             if !self.occluded(&shadow, stats) {
                 color += shade(wi, light.intensity / dist2);
             }
         }
         for light in &lights.directional {
             let wi = -light.direction;
-            if faces(wi) && !self.occluded(&self.spawn.ray(&si.surface, wi, time), stats) {
+            if faces(wi) && !self.occluded(&self.tracer.spawn.ray(&si.surface, wi, time), stats) {
                 color += shade(wi, light.irradiance);
             }
         }
@@ -126,7 +121,7 @@ impl<'a> WhittedTracer<'a> {
                 };
                 if faces(wi)
                     && sample.geom_id != si.geom_id
-                    && !self.occluded(&self.spawn.ray_to(&si.surface, &target, time), stats)
+                    && !self.occluded(&self.tracer.spawn.ray_to(&si.surface, &target, time), stats)
                 {
                     color += shade(wi, sample.emission * cos_light / (dist2 * sample.pdf_area));
                 }
@@ -152,22 +147,21 @@ impl<'a> WhittedTracer<'a> {
         if !ray.is_valid() {
             return Vec3::ZERO;
         }
-        let counts = if camera_ray { &mut stats.camera } else { &mut stats.indirect };
-        counts.rays += 1;
-        let Some(hit) = self.accel.intersect(ray, &mut stats.traversal) else {
-            return self.scene.background;
+        let Some(hit) = self.tracer.closest_hit(ray, camera_ray, None, stats) else {
+            return self.tracer.scene.background;
         };
-        let counts = if camera_ray { &mut stats.camera } else { &mut stats.indirect };
-        counts.hits += 1;
-        let si = interaction(self.scene, ray, &hit);
+        let si = interaction(self.tracer.scene, ray, &hit);
         // The course culls triangles seen from behind by camera rays, and its scenes rely
         // on it: cornellbox_boxes_dynamic's front wall faces into the box, away from the
         // camera. The ray continues past the culled triangle.
         let culled = camera_ray
             && !si.front_face
-            && matches!(self.scene.prototype_of(hit.geom_id).geometry, Geometry::Triangles(_));
+            && matches!(
+                self.tracer.scene.prototype_of(hit.geom_id).geometry,
+                Geometry::Triangles(_)
+            );
         if culled {
-            let next = self.spawn.ray(&si.surface, ray.dir, ray.time);
+            let next = self.tracer.spawn.ray(&si.surface, ray.dir, ray.time);
             let color = self.radiance(&next, depth_left, camera_ray, medium, stream, stats, first);
             if let Some(depth) = &mut first.depth {
                 *depth += hit.t; // the continued ray starts at the culled triangle
@@ -176,9 +170,10 @@ impl<'a> WhittedTracer<'a> {
         }
         if camera_ray {
             first.depth = Some(hit.t);
-            first.normal = Some(self.scene.camera.world_from_render * si.shading_normal);
+            first.normal =
+                Some(self.tracer.scene.camera.world_from_render_rotation * si.shading_normal);
         }
-        let material = &self.scene.materials[si.material as usize];
+        let material = &self.tracer.scene.materials[si.material as usize];
         let wo = -ray.dir.normalize();
         // The course shades every surface but the inside of a dielectric, dielectrics too
         // (their ambient, diffuse and specular terms are usually zero, but not always:
@@ -212,7 +207,7 @@ impl<'a> WhittedTracer<'a> {
         stats: &mut RenderStats,
         first: &mut PathSample,
     ) -> Vec3 {
-        let material = &self.scene.materials[si.material as usize];
+        let material = &self.tracer.scene.materials[si.material as usize];
         let n = si.shading_normal;
         let cos_o = n.dot(wo).clamp(0.0, 1.0);
         // A reflected ray stays in the medium the incoming ray came through.
@@ -221,13 +216,13 @@ impl<'a> WhittedTracer<'a> {
                 return Vec3::ZERO;
             }
             let mut dir = reflect(-wo, n);
-            if material.roughness > 0.0 {
-                dir = perturb(dir, material.roughness, stream.next_2d());
+            if material.perturbation > 0.0 {
+                dir = perturb(dir, material.perturbation, stream.next_2d());
             }
             if dir.dot(si.surface.normal) <= 0.0 {
                 return Vec3::ZERO;
             }
-            let next = self.spawn.ray(&si.surface, dir, ray.time);
+            let next = self.tracer.spawn.ray(&si.surface, dir, ray.time);
             tint * self.radiance(&next, depth_left, false, medium, stream, stats, first)
         };
         match material.specular {
@@ -245,7 +240,7 @@ impl<'a> WhittedTracer<'a> {
                     let sin2_t = (1.0 - cos_o * cos_o) / (eta * eta);
                     let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
                     let dir = (-wo / eta + (cos_o / eta - cos_t) * n).normalize();
-                    let next = self.spawn.ray(&si.surface, dir, ray.time);
+                    let next = self.tracer.spawn.ray(&si.surface, dir, ray.time);
                     let beyond = if si.front_face { Some(absorption) } else { None };
                     let inside =
                         self.radiance(&next, depth_left, false, beyond, stream, stats, first);

@@ -3,36 +3,27 @@
 //! `light_samples` to points sampled on emitters; then the BSDF picks the next direction.
 //! Only the random dimensions the scene's effects call for are drawn.
 
-use crate::accel::{Accel, Hit, Ray};
-use crate::bsdf::Bsdf;
-use crate::material::Material;
+use super::PathSample;
+use super::trace::SceneTracer;
+use crate::accel::Accel;
+use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::sampling::SampleStream;
-use crate::spawn::{SpawnMode, SurfacePoint};
+use crate::shading::bsdf::Bsdf;
+use crate::shading::material::Material;
+use crate::shading::spawn::SurfacePoint;
+use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
-use crate::surface::{SurfaceInteraction, interaction};
 use glam::{Mat3, Quat, Vec3};
 
-/// What one camera sample contributes to a pixel.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct PathSample {
-    pub radiance: Vec3,
-    /// Distance to the first hit along the (unit) camera ray.
-    pub depth: Option<f32>,
-    /// World-space shading normal at the first hit.
-    pub normal: Option<Vec3>,
-}
-
 pub struct PathTracer<'a> {
-    scene: &'a RenderScene,
-    accel: &'a dyn Accel,
+    tracer: SceneTracer<'a>,
     /// Number of surface interactions that gather light (1 = direct lighting only).
     max_depth: u32,
     /// Shadow rays to emitters per shading point.
     light_samples: u32,
     /// Rotation into the space where directions are sampled (see `sampling_from_world`).
     sampling_from_render: Mat3,
-    spawn: SpawnMode,
 }
 
 /// Orthonormal basis whose Z axis is `n` (Duff et al. 2017, branchless).
@@ -57,18 +48,6 @@ fn sampling_from_world() -> Mat3 {
     Mat3::from_quat(Quat::from_rotation_arc(generic, Vec3::Z))
 }
 
-/// Traces a shadow ray and counts it; an invalid ray (which must never reach Embree) counts
-/// as blocked.
-pub(crate) fn trace_shadow_ray(accel: &dyn Accel, ray: &Ray, stats: &mut RenderStats) -> bool {
-    if !ray.is_valid() {
-        return true;
-    }
-    stats.shadow.rays += 1;
-    let blocked = accel.occluded(ray, &mut stats.traversal);
-    stats.shadow.hits += blocked as u64;
-    blocked
-}
-
 /// Power-heuristic weight of a strategy with density `a` against one with density `b`.
 fn power_heuristic(a: f32, b: f32) -> f32 {
     let (a2, b2) = (a * a, b * b);
@@ -82,30 +61,18 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 }
 
 impl<'a> PathTracer<'a> {
-    pub fn new(
-        scene: &'a RenderScene,
-        accel: &'a dyn Accel,
-        max_depth: u32,
-        light_samples: u32,
-        spawn: SpawnMode,
-    ) -> Self {
-        let sampling_from_render = sampling_from_world() * scene.camera.world_from_render;
-        PathTracer {
-            scene,
-            accel,
-            max_depth,
-            light_samples: light_samples.max(1),
-            sampling_from_render,
-            spawn,
-        }
+    pub(crate) fn new(tracer: SceneTracer<'a>, max_depth: u32, light_samples: u32) -> Self {
+        let sampling_from_render =
+            sampling_from_world() * tracer.scene.camera.world_from_render_rotation;
+        PathTracer { tracer, max_depth, light_samples: light_samples.max(1), sampling_from_render }
     }
 
     pub fn scene(&self) -> &RenderScene {
-        self.scene
+        self.tracer.scene
     }
 
     fn occluded(&self, ray: &Ray, stats: &mut RenderStats) -> bool {
-        trace_shadow_ray(self.accel, ray, stats)
+        self.tracer.occluded(ray, stats)
     }
 
     /// Local shading frame (normal = +Z) → render space, built in the world-fixed sampling
@@ -120,7 +87,7 @@ impl<'a> PathTracer<'a> {
             None => material.albedo,
             Some(texture) => {
                 let p_object = if texture.needs_object_point() {
-                    let placement = &self.scene.instances[si.geom_id as usize].placement;
+                    let placement = &self.tracer.scene.instances[si.geom_id as usize].placement;
                     placement.texture_object_from_render(time).transform_point3(si.surface.point)
                 } else {
                     Vec3::ZERO
@@ -142,7 +109,7 @@ impl<'a> PathTracer<'a> {
         stream: &mut SampleStream,
         stats: &mut RenderStats,
     ) -> Vec3 {
-        let lights = &self.scene.lights;
+        let lights = &self.tracer.scene.lights;
         let p = si.surface.point;
         let faces = |wi: Vec3| si.surface.normal.dot(wi) > 0.0;
         let mut sum = Vec3::ZERO;
@@ -154,7 +121,8 @@ impl<'a> PathTracer<'a> {
             if f_cos == Vec3::ZERO || !faces(wi) || !(dist2 > 0.0) {
                 continue;
             }
-            let shadow = self.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
+            let shadow =
+                self.tracer.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
             if !self.occluded(&shadow, stats) {
                 sum += f_cos * light.intensity / dist2;
             }
@@ -165,7 +133,7 @@ impl<'a> PathTracer<'a> {
             if f_cos == Vec3::ZERO || !faces(wi) {
                 continue;
             }
-            if !self.occluded(&self.spawn.ray(&si.surface, wi, time), stats) {
+            if !self.occluded(&self.tracer.spawn.ray(&si.surface, wi, time), stats) {
                 sum += f_cos * light.irradiance;
             }
         }
@@ -195,7 +163,7 @@ impl<'a> PathTracer<'a> {
                     error: sample.error,
                     normal: sample.normal,
                 };
-                if self.occluded(&self.spawn.ray_to(&si.surface, &target, time), stats) {
+                if self.occluded(&self.tracer.spawn.ray_to(&si.surface, &target, time), stats) {
                     continue;
                 }
                 let pdf_light = sample.pdf_area * dist2 / cos_light;
@@ -216,7 +184,7 @@ impl<'a> PathTracer<'a> {
 
     /// MIS weight of emission found by BSDF sampling with density `pdf_bsdf`.
     fn emission_weight(&self, ray: &Ray, si: &SurfaceInteraction, t: f32, pdf_bsdf: f32) -> f32 {
-        let Some(pdf_area) = self.scene.lights.pdf_area(si.geom_id, si.prim_id) else {
+        let Some(pdf_area) = self.tracer.scene.lights.pdf_area(si.geom_id, si.prim_id) else {
             return 1.0; // not sampled by next-event estimation
         };
         let distance = t * ray.dir.length();
@@ -230,7 +198,7 @@ impl<'a> PathTracer<'a> {
 
     /// The acceleration structure paths are traced with.
     pub fn accel(&self) -> &'a dyn Accel {
-        self.accel
+        self.tracer.accel
     }
 
     /// Traces one camera path.
@@ -244,7 +212,7 @@ impl<'a> PathTracer<'a> {
     }
 
     /// Exactly [`PathTracer::trace`], with the camera ray's closest hit already found:
-    /// `first_hit` must be what `self.accel().intersect(&camera_ray, ..)` returns (e.g. from
+    /// `first_hit` must be what `self.tracer.accel().intersect(&camera_ray, ..)` returns (e.g. from
     /// `Accel::intersect_batch`); it is not looked up again. Counts as `trace` does.
     pub fn trace_from_hit(
         &self,
@@ -276,27 +244,21 @@ impl<'a> PathTracer<'a> {
             if !ray.is_valid() {
                 break;
             }
-            let counts = if depth == 0 { &mut stats.camera } else { &mut stats.indirect };
-            counts.rays += 1;
-            let found = match first_hit.take() {
-                Some(first) => first,
-                None => self.accel.intersect(&ray, &mut stats.traversal),
-            };
+            let found = self.tracer.closest_hit(&ray, depth == 0, first_hit.take(), stats);
             let Some(hit) = found else {
-                result.radiance += throughput * self.scene.background;
+                result.radiance += throughput * self.tracer.scene.background;
                 break;
             };
-            let counts = if depth == 0 { &mut stats.camera } else { &mut stats.indirect };
-            counts.hits += 1;
             if absorption != Vec3::ZERO {
                 let distance = hit.t * ray.dir.length();
                 throughput *= (-absorption * distance).exp();
             }
-            let si = interaction(self.scene, &ray, &hit);
-            let material = &self.scene.materials[si.material as usize];
+            let si = interaction(self.tracer.scene, &ray, &hit);
+            let material = &self.tracer.scene.materials[si.material as usize];
             if depth == 0 {
                 result.depth = Some(hit.t);
-                result.normal = Some(self.scene.camera.world_from_render * si.shading_normal);
+                result.normal =
+                    Some(self.tracer.scene.camera.world_from_render_rotation * si.shading_normal);
             }
             if material.is_emissive() && si.front_face {
                 let weight = if specular_bounce {
@@ -334,11 +296,7 @@ impl<'a> PathTracer<'a> {
             pdf_bsdf = sample.pdf;
             if sample.transmitted {
                 absorption = match material.specular {
-                    crate::material::Specular::Dielectric { absorption: a, .. }
-                        if si.front_face =>
-                    {
-                        a
-                    }
+                    crate::scene::Specular::Dielectric { absorption: a, .. } if si.front_face => a,
                     _ => Vec3::ZERO,
                 };
             }
@@ -349,7 +307,7 @@ impl<'a> PathTracer<'a> {
                 }
                 throughput /= survive;
             }
-            ray = self.spawn.ray(&si.surface, sample.wi, ray.time);
+            ray = self.tracer.spawn.ray(&si.surface, sample.wi, ray.time);
         }
         result
     }

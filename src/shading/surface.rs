@@ -2,9 +2,10 @@
 //! incoming ray, material and texture coordinates. Computed from the backend's `Hit` the same
 //! way for every backend.
 
-use crate::accel::{Hit, Ray};
+use crate::float_error::{gamma, sphere_point, triangle_point, triangle_point_from_ray};
+use crate::ray::{Hit, Ray};
 use crate::render_scene::{Geometry, RenderScene};
-use crate::spawn::{SurfacePoint, gamma, sphere_point, triangle_point, triangle_point_from_ray};
+use crate::shading::spawn::SurfacePoint;
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug)]

@@ -2,13 +2,11 @@
 //! conductor with Fresnel, or glass), GGX microfacets for rough mirrors and metals.
 //! Directions are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
-use crate::material::{Material, Specular};
+use crate::color::luminance;
+use crate::scene::Specular;
+use crate::shading::material::Material;
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
-
-fn luminance(c: Vec3) -> f32 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
-}
 
 /// Unpolarised Fresnel reflectance of a dielectric interface; `eta` = n_transmitted /
 /// n_incident, `cos_i` ≥ 0 on the incident side.
@@ -148,7 +146,7 @@ impl Bsdf {
             frame,
             albedo: if material.is_dielectric() { Vec3::ZERO } else { albedo },
             specular: material.specular,
-            alpha: material.roughness.max(1e-4),
+            alpha: material.ggx_alpha.max(1e-4),
             delta_specular: material.specular_is_delta(),
             front_face,
             p_specular,

@@ -3,32 +3,9 @@
 //! pushed along the geometric normal just past the bound, then rounded away from the
 //! surface, so a spawned ray can never re-hit the surface it left, at any scale.
 
-use crate::accel::Ray;
+use crate::float_error::{next_float_down, next_float_up};
+use crate::ray::Ray;
 use glam::Vec3;
-
-/// γ(n) = nε / (1 − nε), the relative error bound of n chained f32 operations.
-pub fn gamma(n: i32) -> f32 {
-    let eps = f32::EPSILON * 0.5;
-    (n as f32 * eps) / (1.0 - n as f32 * eps)
-}
-
-pub fn next_float_up(v: f32) -> f32 {
-    if v.is_infinite() && v > 0.0 {
-        return v;
-    }
-    let v = if v == -0.0 { 0.0 } else { v };
-    let bits = v.to_bits();
-    f32::from_bits(if v >= 0.0 { bits + 1 } else { bits - 1 })
-}
-
-pub fn next_float_down(v: f32) -> f32 {
-    if v.is_infinite() && v < 0.0 {
-        return v;
-    }
-    let v = if v == 0.0 { -0.0 } else { v };
-    let bits = v.to_bits();
-    f32::from_bits(if v > 0.0 { bits - 1 } else { bits + 1 })
-}
 
 /// A point on a surface with a conservative bound on its rounding error per axis.
 #[derive(Clone, Copy, Debug)]
@@ -143,79 +120,10 @@ impl SpawnMode {
     }
 }
 
-/// Hit point on a triangle from barycentrics, with its error bound.
-///
-/// Two terms: pbrt-v4's bound on evaluating the barycentric sum (eq. 6.24), which grows with
-/// the coordinates' magnitude; and the error of the ray-triangle test itself, which computes
-/// relative to a vertex and so grows with the triangle's edge lengths. The second term matters
-/// in camera-relative space, where a huge ground plane passes close to the origin: there the
-/// first term is tiny, but an intersector re-testing the same plane can still report a small
-/// positive t unless the origin is pushed past its own rounding error.
-pub fn triangle_point(tri: &[Vec3; 3], b1: f32, b2: f32) -> (Vec3, Vec3) {
-    let b0 = 1.0 - b1 - b2;
-    let terms = [tri[0] * b0, tri[1] * b1, tri[2] * b2];
-    let point = terms[0] + terms[1] + terms[2];
-    let abs_sum = terms[0].abs() + terms[1].abs() + terms[2].abs();
-    let edges = (tri[1] - tri[0]).abs() + (tri[2] - tri[0]).abs();
-    (point, abs_sum * gamma(7) + edges * gamma(8) + Vec3::splat(MIN_OFFSET))
-}
-
-/// Hit point on a triangle from the ray (`origin + t·dir`) projected onto the triangle's
-/// plane, with its error bound; `None` if the triangle is degenerate.
-///
-/// For a huge triangle seen from close by (a kilometre ground plane under a camera), the
-/// barycentric sum of `triangle_point` carries the vertices' rounding (millimetres), while
-/// the ray point is accurate in the plane and the projection removes its error across it.
-/// `surface.rs` keeps whichever of the two has the smaller bound across the surface.
-pub fn triangle_point_from_ray(
-    tri: &[Vec3; 3],
-    origin: Vec3,
-    dir: Vec3,
-    t: f32,
-) -> Option<(Vec3, Vec3)> {
-    let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
-    if normal == Vec3::ZERO {
-        return None;
-    }
-    let on_ray = origin + dir * t;
-    let from_vertex = on_ray - tri[0];
-    let distance = from_vertex.dot(normal);
-    let point = on_ray - normal * distance;
-    // The plane distance's own rounding, then the projection's.
-    let across = gamma(4) * from_vertex.abs().dot(normal.abs()) + gamma(2) * distance.abs();
-    let error = Vec3::splat(across) + point.abs() * gamma(2) + Vec3::splat(MIN_OFFSET);
-    Some((point, error))
-}
-
-/// Floor of every error bound: far below any geometric feature, but large enough that
-/// t = -offset / |dir| cannot underflow to -0.0 (which compares equal to a zero `tmin`).
-const MIN_OFFSET: f32 = 1e-20;
-
-/// Hit point on a sphere: `origin + t·dir` reprojected onto the surface, with its bound.
-pub fn sphere_point(center: Vec3, radius: f32, origin: Vec3, dir: Vec3, t: f32) -> (Vec3, Vec3) {
-    let mut local = origin + dir * t - center;
-    let len = local.length();
-    if len > 0.0 {
-        local *= radius / len;
-    }
-    let point = center + local;
-    // Reprojection (pbrt: γ5·|p|) plus the final addition of the centre.
-    let error = local.abs() * gamma(5)
-        + (center.abs() + local.abs()) * gamma(1)
-        + Vec3::splat(radius * gamma(8) + MIN_OFFSET);
-    (point, error)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn next_float_moves_by_one_ulp() {
-        assert!(next_float_up(1.0) > 1.0 && next_float_down(1.0) < 1.0);
-        assert_eq!(next_float_up(-0.0), f32::from_bits(1));
-        assert_eq!(next_float_down(0.0), -f32::from_bits(1));
-    }
+    use crate::float_error::triangle_point;
 
     #[test]
     fn exact_points_on_axis_aligned_planes_still_leave_the_plane() {

@@ -1,0 +1,123 @@
+//! How a backend is chosen and built: the backend, its build quality, the batch mode of the
+//! Embree backend and the options passed to `accel::build`.
+
+use crate::choice::{Choice, choice_text};
+
+/// Which backend to build.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BackendKind {
+    Embree,
+    Obvhs,
+}
+
+/// How long a backend may spend building its BVH to make traversal faster.
+///
+/// Measured here (`benches/throughput.rs`, one thread, 256×256 camera rays): with Embree
+/// 3.13.5 `Low` builds the 1M-triangle sphere about 10 % faster but traces 5-20 % fewer
+/// rays per second; `High` is the same as `Medium`, because Embree has no spatial-split
+/// builder for the robust triangle layout every scene of ours uses (`RTC_SCENE_FLAG_ROBUST`;
+/// also none for user geometry and instances). obvhs: `Low` builds about 20 % faster and
+/// `High` 2× slower, with whole renders within 2 % of `Medium`. Hence `Medium`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BuildQuality {
+    /// Embree `RTC_BUILD_QUALITY_LOW` (its two-level Morton builder); obvhs `fastest_build`.
+    Low,
+    /// Embree `RTC_BUILD_QUALITY_MEDIUM` (binned SAH); obvhs `medium_build`.
+    #[default]
+    Medium,
+    /// Embree `RTC_BUILD_QUALITY_HIGH` (SAH with spatial splits, where Embree has it: not for
+    /// our robust scenes in 3.13.5); obvhs `slow_build`.
+    High,
+}
+
+/// How the Embree backend traces [`Accel::intersect_batch`] (the renderer's batches of
+/// camera rays); the obvhs backend traces them one at a time.
+///
+/// Measured here: packets of 8 trace camera rays at 1.2× (1M-triangle sphere) to 2.5×
+/// (Cornell box) the rate of single rays and take 6-11 % off whole Embree renders (CPU time,
+/// bundled scenes and the 1M sphere). They return the single-ray hits bit for bit, with one
+/// exception: on an exact or 1-ulp tie between coincident surfaces (two faces in the same
+/// plane that share no edge, e.g. a box standing on the floor seen from below, or duplicated
+/// faces) Embree's packet kernel may report the other surface (see
+/// `EmbreeAccel::intersect_batch`). Every bundled scene renders bit-identically either way.
+/// `Single` is exact in every case, at the single-ray speed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BatchMode {
+    /// One `rtcIntersect1` per ray: exactly the hits of `Accel::intersect`.
+    Single,
+    /// Packets of 8 rays (`rtcIntersect8`), the faster width on large meshes here.
+    #[default]
+    Packets8,
+    /// Packets of 16 rays (`rtcIntersect16`).
+    Packets16,
+}
+
+/// Options that change how a backend is built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AccelOptions {
+    /// Count node visits / primitive tests (may cost time; off by default).
+    pub count_traversal: bool,
+    /// BVH build quality, both backends.
+    pub build_quality: BuildQuality,
+    /// Embree: `RTC_SCENE_FLAG_COMPACT`: a smaller BVH (triangles stored as indices), but
+    /// 15-25 % fewer rays per second and renders 4-16 % slower here, so off by default.
+    pub compact: bool,
+    /// Embree: how batches of rays (`Accel::intersect_batch`) are traced.
+    pub batch: BatchMode,
+}
+
+impl AccelOptions {
+    /// The defaults (chosen by measurement, see `benches/throughput.rs`).
+    pub const DEFAULT: AccelOptions = AccelOptions {
+        count_traversal: false,
+        build_quality: BuildQuality::Medium,
+        compact: false,
+        batch: BatchMode::Packets8,
+    };
+}
+
+impl Default for AccelOptions {
+    fn default() -> Self {
+        AccelOptions::DEFAULT
+    }
+}
+
+impl Choice for BackendKind {
+    const WHAT: &'static str = "backend";
+    const ALL: &'static [Self] = &[BackendKind::Embree, BackendKind::Obvhs];
+    fn name(self) -> &'static str {
+        match self {
+            BackendKind::Embree => "embree",
+            BackendKind::Obvhs => "obvhs",
+        }
+    }
+}
+choice_text!(BackendKind);
+
+impl Choice for BuildQuality {
+    const WHAT: &'static str = "build quality";
+    const ALL: &'static [Self] = &[BuildQuality::Low, BuildQuality::Medium, BuildQuality::High];
+    fn name(self) -> &'static str {
+        match self {
+            BuildQuality::Low => "low",
+            BuildQuality::Medium => "medium",
+            BuildQuality::High => "high",
+        }
+    }
+}
+choice_text!(BuildQuality);
+
+impl Choice for BatchMode {
+    const WHAT: &'static str = "batch mode";
+    const ALL: &'static [Self] = &[BatchMode::Single, BatchMode::Packets8, BatchMode::Packets16];
+    fn name(self) -> &'static str {
+        match self {
+            BatchMode::Single => "single",
+            BatchMode::Packets8 => "packets8",
+            BatchMode::Packets16 => "packets16",
+        }
+    }
+}
+choice_text!(BatchMode);

@@ -1,0 +1,241 @@
+//! `embray bench`: the measurements (render spaces, accuracy, speed, effects' cost).
+
+use super::choices::choice;
+use super::load_scene;
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand};
+use embray::accel::BuildQuality;
+use embray::bundled;
+use embray::render_space::RenderSpace;
+use embray::shading::spawn::SpawnMode;
+use std::path::PathBuf;
+
+#[derive(Subcommand, Debug)]
+pub enum BenchCommand {
+    /// Render space × backend (× offset) on one scene: time, counters and image error against
+    /// the cameraworld render at offset 0. Default scene: scenes/city_block.toml.
+    Spaces(BenchArgs),
+    /// The accuracy/time report: every bundled precision scene (or the named ones) × render
+    /// space × backend × offset, written as Markdown, CSV, charts and an image strip.
+    Accuracy(AccuracyArgs),
+    /// Throughput of each backend on scenes from a dozen to a million triangles: build time,
+    /// primary and diffuse Mrays/s, samples/s on 1 and 2 threads, memory.
+    Speed(SpeedArgs),
+    /// What motion-blur and lens support cost a static scene: normal vs all effects forced.
+    Effects(EffectsArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct EffectsArgs {
+    /// Scene file; the built-in Cornell box if omitted.
+    pub scene: Option<PathBuf>,
+    #[arg(long, default_value_t = 5)]
+    pub runs: usize,
+    #[arg(long, default_value_t = 16)]
+    pub spp: u32,
+}
+
+#[derive(Args, Debug)]
+pub struct SpeedArgs {
+    /// Triangles in the largest (procedural) scene.
+    #[arg(long, default_value_t = 1_000_000)]
+    pub large: usize,
+    /// Timed runs per measurement (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    pub runs: usize,
+    /// Samples per pixel of the whole-render measurement.
+    #[arg(long, default_value_t = 4)]
+    pub spp: u32,
+    /// Longest image side.
+    #[arg(long, default_value_t = 256)]
+    pub size: u32,
+    /// Build quality of the BVHs the rays and renders are measured on.
+    #[arg(long, value_parser = choice::<BuildQuality>(), default_value_t = BuildQuality::Medium)]
+    pub build_quality: BuildQuality,
+    /// Only these scenes (comma-separated: cornell, city_block, instances, large).
+    #[arg(long, value_delimiter = ',')]
+    pub only: Vec<String>,
+}
+
+#[derive(Args, Debug)]
+pub struct AccuracyArgs {
+    /// Scene files; the bundled Cornell box and scenes/precision/*.toml if omitted.
+    pub scenes: Vec<PathBuf>,
+    /// Distances from the origin, comma separated (applied on all three axes).
+    #[arg(long, value_delimiter = ',', default_value = "0,1e3,1e5,1e6,1e7")]
+    pub offsets: Vec<f64>,
+    /// Timed runs per configuration (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    pub runs: usize,
+    #[arg(long, default_value_t = 4)]
+    pub spp: u32,
+    /// Longest image side; larger scenes are scaled down.
+    #[arg(long, default_value_t = 64)]
+    pub max_size: u32,
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Folder for report.md, report.csv, the charts and strip.png.
+    #[arg(long, default_value = "accuracy-report")]
+    pub out: PathBuf,
+    /// Spawn methods compared on the grazing-plane and thin-wall scenes.
+    #[arg(long, value_delimiter = ',', value_parser = SpawnMode::parse,
+          default_value = "robust,epsilon=1e-4,epsilon=1e-2")]
+    pub spawn: Vec<SpawnMode>,
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Scene file; scenes/city_block.toml if omitted.
+    pub scene: Option<PathBuf>,
+    /// Timed runs per configuration (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    pub runs: usize,
+    #[arg(long)]
+    pub spp: Option<u32>,
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Offsets from the origin to test, comma separated (applied on all three axes).
+    #[arg(long, value_delimiter = ',', default_value = "0")]
+    pub offsets: Vec<f64>,
+    /// Also write the table as CSV.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+}
+
+/// Runs one bench command.
+pub fn run(command: BenchCommand) -> Result<()> {
+    match command {
+        BenchCommand::Spaces(args) => bench_spaces(&args),
+        BenchCommand::Accuracy(args) => bench_accuracy(&args),
+        BenchCommand::Speed(args) => bench_speed(&args),
+        BenchCommand::Effects(args) => bench_effects(&args),
+    }
+}
+
+fn bench_effects(args: &EffectsArgs) -> Result<()> {
+    use embray::bench::effects_cost;
+    anyhow::ensure!(args.spp > 0, "--spp must be at least 1");
+    let scene = load_scene(args.scene.as_deref())?;
+    let mut base = embray::render::RenderOptions::for_scene(&scene);
+    base.spp = args.spp;
+    let rows =
+        effects_cost::measure(&scene, &base, &embray::accel::BackendKind::compiled(), args.runs)?;
+    print!("{}", effects_cost::markdown(&rows));
+    Ok(())
+}
+
+fn bench_speed(args: &SpeedArgs) -> Result<()> {
+    use embray::bench::{procedural, speed};
+    anyhow::ensure!(args.spp > 0 && args.size > 0 && args.large > 0, "sizes must be positive");
+    const NAMES: [&str; 4] = ["cornell", "city_block", "instances", "large"];
+    if let Some(unknown) = args.only.iter().find(|n| !NAMES.contains(&n.as_str())) {
+        bail!("--only: unknown scene '{unknown}' (expected some of {})", NAMES.join(", "));
+    }
+    let wanted = |name: &str| args.only.is_empty() || args.only.iter().any(|n| n == name);
+    let mut scenes = Vec::new();
+    for name in NAMES[..3].iter().filter(|n| wanted(n)) {
+        let path = bundled::path(&format!("scenes/{name}.toml"));
+        scenes.push((name.to_string(), embray::scene::load(&path)?));
+    }
+    if wanted("large") {
+        let large = format!("sphere_{}k", args.large / 1000);
+        scenes.push((large, procedural::displaced_sphere_scene(args.large, 256, 256)));
+    }
+    let mut rows = Vec::new();
+    let bar = indicatif::ProgressBar::new(scenes.len() as u64);
+    for (name, mut scene) in scenes {
+        let longest = scene.camera.width.max(scene.camera.height);
+        if longest > args.size {
+            let scale = args.size as f64 / longest as f64;
+            scene.camera.width = ((scene.camera.width as f64 * scale) as u32).max(1);
+            scene.camera.height = ((scene.camera.height as f64 * scale) as u32).max(1);
+        }
+        bar.set_message(name.clone());
+        let backends = embray::accel::BackendKind::compiled();
+        rows.extend(speed::measure_scene(
+            &name,
+            &scene,
+            &backends,
+            args.spp,
+            args.runs,
+            args.build_quality,
+        )?);
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    print!("{}", speed::markdown(&rows));
+    Ok(())
+}
+
+fn bench_accuracy(args: &AccuracyArgs) -> Result<()> {
+    use embray::bench::{accuracy, table};
+    anyhow::ensure!(args.spp > 0, "--spp must be at least 1");
+    anyhow::ensure!(args.max_size > 0, "--max-size must be at least 1");
+    anyhow::ensure!(!args.offsets.is_empty(), "--offsets needs at least one value");
+    anyhow::ensure!(args.offsets.iter().all(|o| o.is_finite()), "--offsets must be finite numbers");
+    let scenes =
+        if args.scenes.is_empty() { accuracy::default_scenes() } else { args.scenes.clone() };
+    let grazing = bundled::path("scenes/precision/grazing_plane.toml");
+    let thin = bundled::path("scenes/precision/thin_walls.toml");
+    let options = accuracy::AccuracyOptions {
+        scenes,
+        offsets: args.offsets.clone(),
+        backends: embray::accel::BackendKind::compiled(),
+        runs: args.runs,
+        spp: args.spp,
+        max_size: args.max_size,
+        threads: args.threads,
+        out_dir: args.out.clone(),
+        spawn_scenes: Some((grazing, thin)),
+        spawn_methods: args.spawn.clone(),
+    };
+    let total = options.scenes.len() * options.offsets.len() * 3 * options.backends.len();
+    let bar = indicatif::ProgressBar::new(total as u64 + 1);
+    let report = accuracy::run(&options, |message| {
+        bar.set_message(message.to_string());
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    print!("{}", table::markdown(&report.rows));
+    if !report.spawn_rows.is_empty() {
+        println!();
+        print!("{}", embray::bench::spawn_report::markdown(&report.spawn_rows));
+    }
+    for warning in &report.warnings {
+        eprintln!("warning: {warning}");
+    }
+    for file in &report.files {
+        eprintln!("wrote {}", file.display());
+    }
+    Ok(())
+}
+
+fn bench_spaces(args: &BenchArgs) -> Result<()> {
+    use embray::bench::{grid, table};
+    let path = args.scene.clone().unwrap_or_else(|| bundled::path("scenes/city_block.toml"));
+    let scene = load_scene(Some(&path))?;
+    let mut options = embray::render::RenderOptions::for_scene(&scene);
+    if let Some(spp) = args.spp {
+        anyhow::ensure!(spp > 0, "--spp must be at least 1");
+        options.spp = spp;
+    }
+    options.threads = args.threads;
+    anyhow::ensure!(args.offsets.iter().all(|o| o.is_finite()), "--offsets must be finite numbers");
+    let backends = embray::accel::BackendKind::compiled();
+    let spaces = vec![RenderSpace::World, RenderSpace::Camera, RenderSpace::Cameraworld];
+    let grid = grid::Grid { backends, spaces, offsets: args.offsets.clone(), runs: args.runs };
+    let total = (grid.backends.len() * grid.spaces.len() * grid.offsets.len()) as u64;
+    let bar = indicatif::ProgressBar::new(total);
+    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let rows = grid::measure(&name, &scene, &options, &grid, |row| {
+        bar.set_message(format!("{} {} {:e}", row.backend, row.render_space, row.offset));
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    print!("{}", table::markdown(&rows));
+    if let Some(csv) = &args.csv {
+        std::fs::write(csv, table::csv(&rows))
+            .with_context(|| format!("cannot write '{}'", csv.display()))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,77 @@
+//! The command line: clap arguments, one thin file per command. The only place that knows
+//! clap; the library is driven through its own option types.
+
+mod bench;
+mod choices;
+mod compare;
+mod convert;
+mod info;
+mod render;
+
+use anyhow::{Context, Result};
+use clap::{Parser, Subcommand};
+use embray::scene::SceneDesc;
+use std::path::{Path, PathBuf};
+
+pub use bench::BenchCommand;
+pub use compare::CompareArgs;
+pub use convert::ConvertArgs;
+pub use render::RenderArgs;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "embray",
+    version,
+    about = "Ray tracer on Embree (FFI) or obvhs, rendering in camera-relative space"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a scene to EXR (with depth and normal AOVs) and PNG.
+    Render(RenderArgs),
+    /// Measure renders over backends, render spaces and offsets.
+    #[command(subcommand)]
+    Bench(BenchCommand),
+    /// Print what a scene contains (for a CENG795 .xml file: each camera's scene).
+    Info {
+        /// Scene file (.toml, or .xml for the CENG795 format); the built-in Cornell box if
+        /// omitted.
+        scene: Option<PathBuf>,
+    },
+    /// Convert a CENG795 .xml scene to the native TOML format. Meshes are written as OBJ
+    /// files into OUT_meshes/ beside it. A file with several cameras gives one TOML per
+    /// camera, OUT_<image name>.toml, sharing the meshes.
+    Convert(ConvertArgs),
+    /// Compare two images: mean absolute error (in 1/255 units), the fraction of pixels with
+    /// some channel off by more than the tolerance, and optionally a heat map of the
+    /// per-pixel largest channel difference.
+    Compare(CompareArgs),
+}
+
+/// Runs the command `cli` names.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Render(args) => render::run(&args),
+        Command::Bench(command) => bench::run(command),
+        Command::Info { scene } => info::run(scene.as_deref()),
+        Command::Convert(args) => convert::run(&args),
+        Command::Compare(args) => compare::run(&args),
+    }
+}
+
+/// Loads the named scene, or the built-in default. For a CENG795 .xml file with several
+/// cameras, the first camera's scene.
+pub fn load_scene(path: Option<&Path>) -> Result<SceneDesc> {
+    Ok(match path {
+        Some(path) if embray::scene::ceng795::is_ceng795_path(path) => {
+            embray::scene::ceng795::load(path)?.swap_remove(0).scene
+        }
+        Some(path) => embray::scene::load(path)?,
+        None => embray::scene::load(&embray::bundled::default_scene())
+            .context("the built-in default scene failed to load")?,
+    })
+}

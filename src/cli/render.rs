@@ -1,0 +1,253 @@
+//! `embray render`: one scene (or every camera of a CENG795 file) to EXR and PNG, with the
+//! summary line and the statistics.
+
+use super::choices::{TonemapArg, choice, tonemap};
+use super::load_scene;
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use embray::accel::{BackendKind, BatchMode, BuildQuality};
+use embray::compile::EffectsMode;
+use embray::output::stats::{StatsReport, stats_table};
+use embray::output::{camera_outputs, write_exr, write_png};
+use embray::render::{RenderOptions, RenderOutput, render};
+use embray::render_space::RenderSpace;
+use embray::scene::{SceneDesc, ceng795};
+use embray::shading::spawn::SpawnMode;
+use glam::DVec3;
+use std::path::{Path, PathBuf};
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file: .toml (native) or .xml (CENG795, every camera rendered to its ImageName
+    /// in --out-dir); the built-in Cornell box if omitted.
+    pub scene: Option<PathBuf>,
+    /// EXR output (linear RGB, Z, N.X/N.Y/N.Z) [default: render.exr; for a one-camera .xml
+    /// scene: the ImageName with .exr in --out-dir].
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// PNG output (tone-mapped sRGB); defaults to the EXR path with a .png extension.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+    /// Folder for the images of a CENG795 .xml scene: each camera's ImageName (PNG) and an
+    /// EXR with the same stem. Not used with -o.
+    #[arg(long, default_value = ".")]
+    pub out_dir: PathBuf,
+    /// Samples per pixel (default: the scene's, else 16).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Maximum number of surface interactions per path (1 = direct light only).
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+    /// Worker threads (default: all cores). The image does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Space the committed scene lives in.
+    #[arg(long, value_parser = choice::<RenderSpace>(), default_value_t = RenderSpace::Cameraworld)]
+    pub render_space: RenderSpace,
+    /// Move the whole scene and camera by X,Y,Z (e.g. 1e7,1e7,1e7) to test precision.
+    #[arg(long, value_parser = parse_offset, allow_hyphen_values = true)]
+    pub offset: Option<DVec3>,
+    /// Put samples at stratum centres instead of jittering them.
+    #[arg(long)]
+    pub no_jitter: bool,
+    /// Intersection backend.
+    #[arg(long, value_parser = choice::<BackendKind>())]
+    pub backend: Option<BackendKind>,
+    /// BVH build quality (both backends; medium was fastest overall when measured).
+    #[arg(long, value_parser = choice::<BuildQuality>(), default_value_t = BuildQuality::Medium)]
+    pub build_quality: BuildQuality,
+    /// Embree: build a compact BVH (less memory, slower traversal).
+    #[arg(long)]
+    pub compact: bool,
+    /// Embree: how camera rays are traced — single rays, or packets of 8 or 16.
+    #[arg(long, value_parser = choice::<BatchMode>(), default_value_t = BatchMode::Packets8)]
+    pub batch: BatchMode,
+    /// PNG tone curve.
+    /// auto: clamp255 for Whitted (CENG795) scenes, aces otherwise; none: clamp to [0, 1];
+    /// reinhard: x / (1 + x); aces: Narkowicz's ACES fit (all sRGB encoded); clamp255:
+    /// values in 0–255 units clamped and truncated, no curve, no sRGB (the CENG795 output).
+    #[arg(long, value_parser = tonemap(), default_value = "auto")]
+    pub tonemap: TonemapArg,
+    /// Exposure adjustment in stops, applied before tone mapping (PNG only).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub exposure: f32,
+    /// Print ray and traversal counters as a table (counting node visits and primitive
+    /// tests costs time; the summary's Mrays/s is then not representative).
+    #[arg(long)]
+    pub stats: bool,
+    /// Write the counters as JSON to this file (implies counting, like --stats).
+    #[arg(long)]
+    pub stats_json: Option<PathBuf>,
+    /// Shadow rays to area lights per shading point (default: the scene's, else 1).
+    #[arg(long)]
+    pub light_samples: Option<u32>,
+    /// Sample every effect (time, lens) and build motion BVHs even where the scene needs
+    /// none: measures what the effects machinery would cost a static scene.
+    #[arg(long)]
+    pub force_all_effects: bool,
+    /// How rays leave surfaces: `robust` (error-bound offsets) or `epsilon=VALUE`.
+    #[arg(long, value_parser = SpawnMode::parse, default_value = "robust")]
+    pub spawn: SpawnMode,
+    /// No progress bar or summary line.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn parse_offset(text: &str) -> Result<DVec3, String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("expected X,Y,Z, got '{text}'"));
+    }
+    let mut v = [0.0; 3];
+    for (slot, part) in v.iter_mut().zip(&parts) {
+        let value: f64 = part.trim().parse().map_err(|_| format!("'{part}' is not a number"))?;
+        if !value.is_finite() {
+            return Err(format!("'{part}' is not finite"));
+        }
+        *slot = value;
+    }
+    Ok(DVec3::from_array(v))
+}
+
+impl RenderArgs {
+    /// The EXR path (`-o`, default render.exr).
+    pub fn output_path(&self) -> PathBuf {
+        self.output.clone().unwrap_or_else(|| PathBuf::from("render.exr"))
+    }
+
+    pub fn png_path(&self) -> PathBuf {
+        self.png.clone().unwrap_or_else(|| self.output_path().with_extension("png"))
+    }
+
+    pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {
+        let mut options = RenderOptions::for_scene(scene);
+        if let Some(spp) = self.spp {
+            if spp == 0 {
+                bail!("--spp must be at least 1");
+            }
+            options.spp = spp;
+        }
+        if let Some(depth) = self.max_depth {
+            options.max_depth = depth;
+        }
+        if let Some(threads) = self.threads {
+            if threads == 0 {
+                bail!("--threads must be at least 1");
+            }
+            options.threads = Some(threads);
+        }
+        if !self.exposure.is_finite() {
+            bail!("--exposure must be a finite number");
+        }
+        options.seed = self.seed;
+        options.jitter = !self.no_jitter;
+        options.render_space = self.render_space;
+        options.offset = self.offset.unwrap_or(DVec3::ZERO);
+        if let Some(backend) = self.backend {
+            options.backend = backend;
+        }
+        options.count_traversal = self.stats || self.stats_json.is_some();
+        options.accel.build_quality = self.build_quality;
+        options.accel.compact = self.compact;
+        options.accel.batch = self.batch;
+        if let Some(n) = self.light_samples {
+            if n == 0 {
+                bail!("--light-samples must be at least 1");
+            }
+            options.light_samples = n;
+        }
+        options.spawn = self.spawn;
+        if self.force_all_effects {
+            options.effects_mode = EffectsMode::ForceAll;
+        }
+        options.progress = !self.quiet;
+        Ok(options)
+    }
+}
+
+pub fn run(args: &RenderArgs) -> Result<()> {
+    if let Some(path) = args.scene.as_deref().filter(|p| ceng795::is_ceng795_path(p)) {
+        return render_ceng795(args, path);
+    }
+    let scene = load_scene(args.scene.as_deref())?;
+    render_one(args, &scene, &args.output_path(), &args.png_path())
+}
+
+/// Renders every camera of a CENG795 file: each to its ImageName (PNG) in --out-dir and an
+/// EXR of the same stem, or, for a one-camera file, to -o/--png when given.
+fn render_ceng795(args: &RenderArgs, path: &Path) -> Result<()> {
+    let cameras = ceng795::load(path)?;
+    if cameras.len() > 1 {
+        for (flag, given) in [
+            ("-o", args.output.is_some()),
+            ("--png", args.png.is_some()),
+            ("--stats-json", args.stats_json.is_some()),
+        ] {
+            if given {
+                bail!(
+                    "{flag} names one file, but '{}' has {} cameras: their images are written \
+                     to --out-dir under their ImageName",
+                    path.display(),
+                    cameras.len()
+                );
+            }
+        }
+    }
+    for camera in &cameras {
+        args.to_options(&camera.scene)?;
+    }
+    if args.output.is_none() {
+        std::fs::create_dir_all(&args.out_dir)
+            .with_context(|| format!("cannot create '{}'", args.out_dir.display()))?;
+    }
+    for camera in &cameras {
+        let (exr, png) = camera_outputs(
+            &camera.image_name,
+            &args.out_dir,
+            args.output.as_deref(),
+            args.png.as_deref(),
+        );
+        render_one(args, &camera.scene, &exr, &png)?;
+    }
+    Ok(())
+}
+
+/// Renders `scene`; writes the EXR and the PNG, prints the summary and the statistics.
+fn render_one(args: &RenderArgs, scene: &SceneDesc, exr: &Path, png: &Path) -> Result<()> {
+    let options = args.to_options(scene)?;
+    let output = render(scene, &options)?;
+    write_exr(&output.film, exr)?;
+    let curve = args.tonemap.resolve(scene.settings.integrator);
+    write_png(&output.film, png, curve, args.exposure)?;
+    if !args.quiet {
+        eprintln!("{}", summary(&output, &options, exr, png));
+    }
+    if args.stats {
+        print!("{}", stats_table(&output.stats, output.observes));
+    }
+    if let Some(path) = &args.stats_json {
+        StatsReport::new(&output, &options).write(path)?;
+    }
+    Ok(())
+}
+
+fn summary(output: &RenderOutput, options: &RenderOptions, exr: &Path, png: &Path) -> String {
+    let seconds = output.render_time.as_secs_f64();
+    let rays = output.stats.total_rays();
+    format!(
+        "{}x{} @ {} spp on {} ({}): build {:.1} ms, render {:.3} s, {} rays, {:.2} Mrays/s → {}, {}",
+        output.film.width,
+        output.film.height,
+        options.spp,
+        output.backend,
+        options.render_space,
+        output.build_time.as_secs_f64() * 1e3,
+        seconds,
+        rays,
+        rays as f64 / seconds.max(1e-9) / 1e6,
+        exr.display(),
+        png.display(),
+    )
+}

@@ -1,0 +1,178 @@
+//! Objects into prototypes and instances: a mesh used once and not moving is baked into
+//! render space; a mesh used by several objects (or moving) becomes one shared prototype
+//! placed by transforms; a sphere under a uniform scale is baked, an ellipsoid or a moving
+//! sphere is an object-space sphere placed by a transform.
+
+use super::CompileError;
+use crate::render_scene::{Geometry, Instance, Placement, Prototype, Sphere, TriangleMesh, Trs};
+use crate::scene::{MeshData, ObjectDesc, ShapeDesc};
+use crate::transform::{normal_matrix, uniform_scale};
+use glam::{Affine3A, DAffine3, DMat4, Vec3};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+pub(super) fn to_affine_f32(m: &DAffine3) -> Affine3A {
+    Affine3A::from_mat4(DMat4::from(*m).as_mat4())
+}
+
+fn place_mesh(
+    mesh: &MeshData,
+    render_from_object: &DAffine3,
+    name: &str,
+) -> Result<TriangleMesh, CompileError> {
+    let positions: Vec<Vec3> =
+        mesh.positions.iter().map(|&p| render_from_object.transform_point3(p).as_vec3()).collect();
+    if positions.iter().any(|p| !p.is_finite()) {
+        return Err(CompileError::NotRepresentable(name.to_string()));
+    }
+    let normals = match &mesh.normals {
+        Some(normals) => {
+            let normal_from_object = normal_matrix(render_from_object)
+                .ok_or_else(|| CompileError::SingularTransform(name.to_string()))?;
+            Some(
+                normals
+                    .iter()
+                    .map(|&n| (normal_from_object * n).normalize_or_zero().as_vec3())
+                    .collect(),
+            )
+        }
+        None => None,
+    };
+    Ok(TriangleMesh { positions, indices: mesh.indices.clone(), normals, uvs: mesh.uvs.clone() })
+}
+
+/// Translation · rotation · scale of `m`, or `None` if `m` shears.
+fn decompose(m: &DAffine3) -> Option<Trs> {
+    let (scale, rotation, translation) = m.to_scale_rotation_translation();
+    let back = DAffine3::from_scale_rotation_translation(scale, rotation, translation);
+    let tolerance = 1e-9 * m.matrix3.abs().to_cols_array().iter().fold(1.0f64, |a, &b| a.max(b));
+    if !back.matrix3.abs_diff_eq(m.matrix3, tolerance) || !scale.is_finite() {
+        return None;
+    }
+    Some(Trs {
+        translation: translation.as_vec3(),
+        rotation: rotation.as_quat().normalize(),
+        scale: scale.as_vec3(),
+    })
+}
+
+/// Builds prototypes and instances object by object.
+pub(super) struct Placer {
+    render_from_world: DAffine3,
+    /// Every object gets a motion placement (`EffectsMode::ForceAll`).
+    force_motion: bool,
+    /// How many objects name each mesh.
+    mesh_users: HashMap<*const MeshData, usize>,
+    /// The prototype of each mesh placed by transforms.
+    shared_prototypes: HashMap<*const MeshData, u32>,
+    pub(super) prototypes: Vec<Prototype>,
+    pub(super) instances: Vec<Instance>,
+}
+
+impl Placer {
+    pub(super) fn new(
+        objects: &[ObjectDesc],
+        render_from_world: DAffine3,
+        force_motion: bool,
+    ) -> Self {
+        let mut mesh_users: HashMap<*const MeshData, usize> = HashMap::new();
+        for object in objects {
+            if let ShapeDesc::Mesh(mesh) = &object.shape {
+                *mesh_users.entry(Arc::as_ptr(mesh)).or_default() += 1;
+            }
+        }
+        Placer {
+            render_from_world,
+            force_motion,
+            mesh_users,
+            shared_prototypes: HashMap::new(),
+            prototypes: Vec::new(),
+            instances: Vec::with_capacity(objects.len()),
+        }
+    }
+
+    fn push_prototype(&mut self, geometry: Geometry, name: &str) -> u32 {
+        self.prototypes.push(Prototype { geometry, name: name.to_owned() });
+        (self.prototypes.len() - 1) as u32
+    }
+
+    /// Adds one object as an instance (and its prototype, unless it shares one).
+    pub(super) fn place(&mut self, object: &ObjectDesc) -> Result<(), CompileError> {
+        let name = &object.name;
+        let render_from_object = self.render_from_world * object.world_from_object;
+        if !render_from_object.is_finite() || render_from_object.matrix3.determinant() == 0.0 {
+            return Err(CompileError::SingularTransform(name.clone()));
+        }
+        let moving = object.is_moving() || self.force_motion;
+        let render_from_world = self.render_from_world;
+        let transformed = || -> Result<Placement, CompileError> {
+            if moving {
+                let end = render_from_world
+                    * object.world_from_object_end.unwrap_or(object.world_from_object);
+                let start = decompose(&render_from_object)
+                    .ok_or_else(|| CompileError::MotionShear(name.clone()))?;
+                let end = decompose(&end).ok_or_else(|| CompileError::MotionShear(name.clone()))?;
+                Ok(Placement::Moving { start, end })
+            } else {
+                Ok(Placement::Static {
+                    render_from_object: to_affine_f32(&render_from_object),
+                    object_from_render: to_affine_f32(&render_from_object.inverse()),
+                })
+            }
+        };
+        let baked =
+            Placement::Baked { object_from_render: to_affine_f32(&render_from_object.inverse()) };
+        let (prototype, placement) = match &object.shape {
+            ShapeDesc::Mesh(mesh) => {
+                let key = Arc::as_ptr(mesh);
+                if self.mesh_users[&key] == 1 && !moving {
+                    let geometry =
+                        Geometry::Triangles(place_mesh(mesh, &render_from_object, name)?);
+                    (self.push_prototype(geometry, name), baked)
+                } else {
+                    let index = match self.shared_prototypes.get(&key) {
+                        Some(&index) => index,
+                        None => {
+                            let geometry =
+                                Geometry::Triangles(place_mesh(mesh, &DAffine3::IDENTITY, name)?);
+                            let index = self.push_prototype(geometry, name);
+                            self.shared_prototypes.insert(key, index);
+                            index
+                        }
+                    };
+                    (index, transformed()?)
+                }
+            }
+            ShapeDesc::Sphere { center, radius } => {
+                match uniform_scale(&object.world_from_object).filter(|_| !moving) {
+                    Some(scale) => {
+                        let sphere = Sphere {
+                            center: render_from_object.transform_point3(*center).as_vec3(),
+                            radius: (radius * scale) as f32,
+                        };
+                        if !sphere.center.is_finite()
+                            || !(sphere.radius > 0.0)
+                            || !sphere.radius.is_finite()
+                        {
+                            return Err(CompileError::NotRepresentable(name.clone()));
+                        }
+                        (self.push_prototype(Geometry::Sphere(sphere), name), baked)
+                    }
+                    None => {
+                        // Ellipsoids and moving spheres: an object-space sphere, transformed.
+                        let sphere = Sphere { center: center.as_vec3(), radius: *radius as f32 };
+                        let placement = transformed()?;
+                        (self.push_prototype(Geometry::Sphere(sphere), name), placement)
+                    }
+                }
+            }
+        };
+        self.instances.push(Instance {
+            prototype,
+            material: object.material,
+            placement,
+            name: name.clone(),
+        });
+        Ok(())
+    }
+}

@@ -1,0 +1,72 @@
+//! Light transport: the path tracer (NEE + MIS) and the course's Whitted model, siblings
+//! over one shared trace helper.
+
+pub mod path;
+mod trace;
+pub mod whitted;
+
+use crate::accel::Accel;
+use crate::ray::Ray;
+use crate::render_scene::RenderScene;
+use crate::sampling::SampleStream;
+use crate::scene::IntegratorKind;
+use crate::shading::spawn::SpawnMode;
+use crate::stats::RenderStats;
+use glam::Vec3;
+pub use path::PathTracer;
+use trace::SceneTracer;
+pub use whitted::WhittedTracer;
+
+/// What one camera sample contributes to a pixel.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PathSample {
+    pub radiance: Vec3,
+    /// Distance to the first hit along the (unit) camera ray.
+    pub depth: Option<f32>,
+    /// World-space shading normal at the first hit.
+    pub normal: Option<Vec3>,
+}
+
+/// The light-transport algorithm of one render.
+pub enum Tracer<'a> {
+    Path(PathTracer<'a>),
+    Whitted(WhittedTracer<'a>),
+}
+
+impl<'a> Tracer<'a> {
+    /// `max_depth` counts surface interactions (the path tracer) or bounces after the
+    /// camera ray (Whitted); `light_samples` is the path tracer's shadow rays to emitters.
+    pub fn new(
+        kind: IntegratorKind,
+        scene: &'a RenderScene,
+        accel: &'a dyn Accel,
+        max_depth: u32,
+        light_samples: u32,
+        spawn: SpawnMode,
+    ) -> Self {
+        let tracer = SceneTracer { scene, accel, spawn };
+        match kind {
+            IntegratorKind::Path => Tracer::Path(PathTracer::new(tracer, max_depth, light_samples)),
+            IntegratorKind::Whitted => Tracer::Whitted(WhittedTracer::new(tracer, max_depth)),
+        }
+    }
+
+    pub fn scene(&self) -> &RenderScene {
+        match self {
+            Tracer::Path(t) => t.scene(),
+            Tracer::Whitted(t) => t.scene(),
+        }
+    }
+
+    pub fn trace(
+        &self,
+        ray: Ray,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+    ) -> PathSample {
+        match self {
+            Tracer::Path(t) => t.trace(ray, stream, stats),
+            Tracer::Whitted(t) => t.trace(ray, stream, stats),
+        }
+    }
+}

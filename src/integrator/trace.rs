@@ -1,0 +1,48 @@
+//! What both integrators do with rays: closest hits and shadow rays against the scene's
+//! backend, counted per ray kind; rays leave surfaces by the render's spawn mode.
+
+use crate::accel::Accel;
+use crate::ray::{Hit, Ray};
+use crate::render_scene::RenderScene;
+use crate::shading::spawn::SpawnMode;
+use crate::stats::RenderStats;
+
+/// A scene, the backend built over it, and how rays leave surfaces.
+pub(crate) struct SceneTracer<'a> {
+    pub scene: &'a RenderScene,
+    pub accel: &'a dyn Accel,
+    pub spawn: SpawnMode,
+}
+
+impl SceneTracer<'_> {
+    /// Traces a shadow ray and counts it; an invalid ray (which must never reach Embree)
+    /// counts as blocked.
+    pub fn occluded(&self, ray: &Ray, stats: &mut RenderStats) -> bool {
+        if !ray.is_valid() {
+            return true;
+        }
+        stats.shadow.rays += 1;
+        let blocked = self.accel.occluded(ray, &mut stats.traversal);
+        stats.shadow.hits += blocked as u64;
+        blocked
+    }
+
+    /// The closest hit of a valid `ray`, counted as a camera or an indirect ray. `known` is
+    /// the hit when a batch already found it (it is then not looked up again).
+    pub fn closest_hit(
+        &self,
+        ray: &Ray,
+        camera_ray: bool,
+        known: Option<Option<Hit>>,
+        stats: &mut RenderStats,
+    ) -> Option<Hit> {
+        let hit = match known {
+            Some(hit) => hit,
+            None => self.accel.intersect(ray, &mut stats.traversal),
+        };
+        let counts = if camera_ray { &mut stats.camera } else { &mut stats.indirect };
+        counts.rays += 1;
+        counts.hits += hit.is_some() as u64;
+        hit
+    }
+}

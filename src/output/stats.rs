@@ -1,0 +1,67 @@
+//! A render's counters: as a plain-text table for the terminal, and as the JSON report of
+//! `--stats-json` (its schema is the `StatsReport` type).
+
+use super::{OutputError, write_atomically};
+use crate::accel::{BatchMode, BuildQuality, Observes};
+use crate::render::{RenderOptions, RenderOutput};
+use crate::stats::RenderStats;
+use std::path::Path;
+
+/// What `--stats-json` writes (keys in alphabetical order).
+#[derive(Debug, serde::Serialize)]
+pub struct StatsReport {
+    pub backend: &'static str,
+    pub batch: BatchMode,
+    pub build_quality: BuildQuality,
+    pub build_seconds: f64,
+    pub compact: bool,
+    pub observes: Observes,
+    pub render_seconds: f64,
+    pub render_space: &'static str,
+    pub spp: u32,
+    pub stats: RenderStats,
+}
+
+impl StatsReport {
+    pub fn new(output: &RenderOutput, options: &RenderOptions) -> Self {
+        StatsReport {
+            backend: output.backend,
+            batch: options.accel.batch,
+            build_quality: options.accel.build_quality,
+            build_seconds: output.build_time.as_secs_f64(),
+            compact: options.accel.compact,
+            observes: output.observes,
+            render_seconds: output.render_time.as_secs_f64(),
+            render_space: crate::choice::Choice::name(options.render_space),
+            spp: options.spp,
+            stats: output.stats,
+        }
+    }
+
+    /// Writes the report as pretty JSON, atomically.
+    pub fn write(&self, path: &Path) -> Result<(), OutputError> {
+        let text = serde_json::to_string_pretty(self).map_err(|e| e.to_string());
+        write_atomically(path, |temp| {
+            std::fs::write(temp, text.clone()? + "\n").map_err(|e| e.to_string())
+        })
+    }
+}
+
+/// Counters as a plain-text table.
+pub fn stats_table(stats: &RenderStats, observes: Observes) -> String {
+    let mut out = String::from("ray kind   rays          hits\n");
+    for (name, c) in
+        [("camera", stats.camera), ("shadow", stats.shadow), ("indirect", stats.indirect)]
+    {
+        out += &format!("{name:<10} {:<13} {}\n", c.rays, c.hits);
+    }
+    let shown = |value: u64, observed: bool| {
+        if observed { value.to_string() } else { "not observable".to_string() }
+    };
+    out += &format!(
+        "node visits      {}\nprimitive tests  {}\n",
+        shown(stats.traversal.node_visits, observes.node_visits),
+        shown(stats.traversal.prim_tests, observes.prim_tests)
+    );
+    out
+}

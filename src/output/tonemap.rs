@@ -1,0 +1,74 @@
+//! Tone curves from linear radiance to display values, and the sRGB encoding.
+
+use crate::choice::{Choice, choice_text};
+use crate::scene::IntegratorKind;
+use glam::Vec3;
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ToneMap {
+    /// Clamp to [0, 1].
+    None,
+    /// x / (1 + x) per channel.
+    Reinhard,
+    /// Narkowicz's fit of the ACES filmic curve.
+    #[default]
+    Aces,
+    /// The CENG795 course's output: radiance is already in 0–255 display units and is
+    /// clamped to [0, 255] and truncated to an integer (as the course's reference images
+    /// are; rounding makes a quarter of their pixels one step brighter), with no tone curve
+    /// and no sRGB encoding.
+    Clamp255,
+}
+
+impl Choice for ToneMap {
+    const WHAT: &'static str = "tone curve";
+    const ALL: &'static [Self] =
+        &[ToneMap::None, ToneMap::Reinhard, ToneMap::Aces, ToneMap::Clamp255];
+    fn name(self) -> &'static str {
+        match self {
+            ToneMap::None => "none",
+            ToneMap::Reinhard => "reinhard",
+            ToneMap::Aces => "aces",
+            ToneMap::Clamp255 => "clamp255",
+        }
+    }
+}
+choice_text!(ToneMap);
+
+impl ToneMap {
+    /// The curve a scene gets unless one is asked for: the course's clamp for Whitted
+    /// (CENG795) scenes, ACES otherwise.
+    pub fn for_integrator(integrator: IntegratorKind) -> Self {
+        match integrator {
+            IntegratorKind::Whitted => ToneMap::Clamp255,
+            IntegratorKind::Path => ToneMap::Aces,
+        }
+    }
+}
+
+pub(super) fn tone_map(c: Vec3, curve: ToneMap) -> Vec3 {
+    match curve {
+        ToneMap::None | ToneMap::Clamp255 => c,
+        ToneMap::Reinhard => c / (Vec3::ONE + c),
+        ToneMap::Aces => {
+            let (a, b, cc, d, e) = (2.51, 0.03, 2.43, 0.59, 0.14);
+            (c * (a * c + b)) / (c * (cc * c + d) + e)
+        }
+    }
+}
+
+pub(super) fn srgb_encode(linear: f32) -> f32 {
+    if linear <= 0.003_130_8 { 12.92 * linear } else { 1.055 * linear.powf(1.0 / 2.4) - 0.055 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_encoding_hits_known_points() {
+        assert_eq!(srgb_encode(0.0), 0.0);
+        assert!((srgb_encode(1.0) - 1.0).abs() < 1e-6);
+        assert!((srgb_encode(0.18) - 0.4614).abs() < 1e-3);
+    }
+}

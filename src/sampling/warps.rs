@@ -1,0 +1,36 @@
+//! Warps from the unit square to the domains lights and BSDFs sample.
+
+use glam::{Vec2, Vec3};
+
+/// Cosine-weighted direction about +Z (Malley's method); pdf = cos θ / π.
+pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
+    let d = concentric_disk(u);
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    Vec3::new(d.x, d.y, z)
+}
+
+/// Uniform point on the unit disk (Shirley–Chiu concentric map).
+pub fn concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o == Vec2::ZERO {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, std::f32::consts::FRAC_PI_4 * (o.y / o.x))
+    } else {
+        (o.y, std::f32::consts::FRAC_PI_2 - std::f32::consts::FRAC_PI_4 * (o.x / o.y))
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+/// Uniform barycentrics (b1, b2) on a triangle.
+pub fn uniform_triangle(u: Vec2) -> Vec2 {
+    // Heitz 2019 low-distortion mapping keeps stratification.
+    if u.y > u.x {
+        let b0 = u.x / 2.0;
+        Vec2::new(b0, u.y - b0)
+    } else {
+        let b1 = u.y / 2.0;
+        Vec2::new(u.x - b1, b1)
+    }
+}

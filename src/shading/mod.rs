@@ -1,0 +1,8 @@
+//! What happens at a surface: materials and textures, BSDFs, lights and their sampling, the
+//! surface interaction at a hit, and how rays leave it.
+
+pub mod bsdf;
+pub mod light;
+pub mod material;
+pub mod spawn;
+pub mod surface;
