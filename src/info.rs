@@ -1,10 +1,12 @@
 //! `embray info`: what a scene contains and which effects it calls for. The effects are the
 //! scene compiler's own decision, so the scene is compiled (in `cameraworld`) to report them.
 
-use crate::compile::effects::{FeatureList, features};
 use crate::compile::{EffectsMode, to_render_scene};
+use crate::render_scene::{Geometry, Placement, RenderScene};
 use crate::render_space::RenderSpace;
-use crate::scene::{LightDesc, SceneDesc, ShapeDesc};
+use crate::scene::{LightDesc, SceneDesc, ShapeDesc, Specular};
+use crate::shading::material::Material;
+use std::fmt;
 
 /// A few lines describing `scene`.
 pub fn describe(scene: &SceneDesc) -> String {
@@ -61,4 +63,43 @@ pub fn describe(scene: &SceneDesc) -> String {
         Err(e) => out += &format!("effects: cannot prepare the scene: {e}\n"),
     }
     out
+}
+
+/// Everything `scene` simulates, by name: its effects, then its lights, materials and
+/// geometry features.
+pub fn features(scene: &RenderScene) -> Vec<&'static str> {
+    let used = |f: &dyn Fn(&Material) -> bool| {
+        scene.instances.iter().any(|i| f(&scene.materials[i.material as usize]))
+    };
+    let all = [
+        (scene.effects.depth_of_field, "depth of field"),
+        (scene.effects.motion_blur, "motion blur"),
+        (scene.lights.has_emitters(), "area lights"),
+        (scene.lights.has_delta_lights(), "point/directional lights"),
+        (used(&|m| m.specular != Specular::None && !m.specular_is_delta()), "glossy"),
+        (used(&|m| m.specular != Specular::None && m.specular_is_delta()), "mirror/glass"),
+        (used(&|m| m.is_dielectric()), "refraction"),
+        (used(&|m| m.texture.is_some()), "textures"),
+        (
+            scene.instances.iter().any(|i| !matches!(i.placement, Placement::Baked { .. })),
+            "instancing",
+        ),
+        (
+            scene
+                .prototypes
+                .iter()
+                .any(|p| matches!(&p.geometry, Geometry::Triangles(m) if m.normals.is_some())),
+            "smooth shading",
+        ),
+    ];
+    all.iter().filter(|(on, _)| *on).map(|(_, name)| *name).collect()
+}
+
+/// `features` joined for one line of text ("none" when empty).
+pub struct FeatureList(pub Vec<&'static str>);
+
+impl fmt::Display for FeatureList {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_empty() { write!(f, "none") } else { write!(f, "{}", self.0.join(", ")) }
+    }
 }

@@ -123,3 +123,18 @@ pub fn build(
         BackendKind::Obvhs => Err(AccelError::NotCompiled("obvhs")),
     }
 }
+
+/// A bare `rtcIntersect1` loop over `scene` (closest hits, counted), the yardstick our
+/// Embree wrapper is measured against; `None` without Embree (or if its build fails).
+pub fn raw_embree_loop(scene: &RenderScene) -> Option<Box<dyn Fn(&[Ray]) -> usize + Send + Sync>> {
+    #[cfg(feature = "embree")]
+    {
+        let raw = embree::EmbreeAccel::build(scene, &AccelOptions::default()).ok()?;
+        Some(Box::new(move |rays: &[Ray]| raw.raw_intersect_loop(rays)))
+    }
+    #[cfg(not(feature = "embree"))]
+    {
+        let _ = scene;
+        None
+    }
+}

@@ -116,16 +116,8 @@ pub fn batch_throughput(accel: &dyn Accel, rays: &[Ray], runs: usize) -> f64 {
 
 /// The bare `rtcIntersect1` loop over `rays`, in rays per second; `None` without Embree.
 fn raw_embree_throughput(scene: &RenderScene, rays: &[Ray], runs: usize) -> Option<f64> {
-    #[cfg(feature = "embree")]
-    {
-        let raw = crate::accel::embree::EmbreeAccel::build(scene, &AccelOptions::default()).ok()?;
-        Some(rays_per_second(rays, runs, |rays| raw.raw_intersect_loop(rays)))
-    }
-    #[cfg(not(feature = "embree"))]
-    {
-        let _ = (scene, rays, runs);
-        None
-    }
+    let raw = crate::accel::raw_embree_loop(scene)?;
+    Some(rays_per_second(rays, runs, |rays| raw(rays)))
 }
 
 /// Hits of `rays` one by one (for comparing batched paths against).

@@ -64,7 +64,10 @@ pub fn to_render_scene(
     let camera = camera::place_camera(&desc.camera, &camera_transform);
     let effects = match mode {
         EffectsMode::ForceAll => Effects::all(),
-        EffectsMode::Auto => Effects::decide(&camera, &instances),
+        EffectsMode::Auto => Effects {
+            depth_of_field: camera.has_lens(),
+            motion_blur: instances.iter().any(|i| i.placement.is_moving()),
+        },
     };
     Ok(RenderScene {
         camera,

@@ -12,8 +12,8 @@ pub mod desc;
 pub use desc::*;
 
 mod camera_settings;
-mod convert;
 mod error;
+mod from_toml;
 pub(crate) mod input_file;
 mod materials;
 mod mesh_file;
@@ -28,8 +28,8 @@ mod transform_list;
 mod validate;
 
 pub use camera_settings::MAX_RESOLUTION;
-pub use convert::MAX_REPEAT_COPIES;
 pub use error::{Line, SceneError};
+pub use from_toml::MAX_REPEAT_COPIES;
 pub use materials::with_texture_space;
 pub use mesh_file::area_weighted_normals;
 
@@ -72,7 +72,7 @@ pub fn load_str_with_warnings(
     let ctx = validate::Ctx { file: source, map };
     let base_dir = source.parent().unwrap_or(Path::new(""));
     let mut warnings = Vec::new();
-    let scene = convert::scene_desc(file, &ctx, base_dir, &mut warnings)?;
+    let scene = from_toml::scene_desc(file, &ctx, base_dir, &mut warnings)?;
     Ok((scene, warnings))
 }
 

@@ -2,20 +2,24 @@
 //! repeat grids) and lights, each checked with its field path and line (camera and settings:
 //! `camera_settings`; materials: `materials`).
 
-use super::camera_settings::{camera, settings};
-use super::desc::{LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc};
-use super::error::SceneError;
-use super::materials;
-use super::mesh_file::MeshCache;
-use super::obj::ObjRef;
-use super::shapes::{box_mesh, quad_mesh};
-use super::source_map::FieldPath;
-use super::toml_format::{
-    LightKind, LightToml, ObjectKind, ObjectToml, RepeatToml, SceneFile, TransformEntry, Vec3,
+mod lights;
+mod repeat;
+
+use crate::scene::camera_settings::{camera, settings};
+use crate::scene::desc::{LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc};
+use crate::scene::error::SceneError;
+use crate::scene::materials;
+use crate::scene::mesh_file::MeshCache;
+use crate::scene::obj::ObjRef;
+use crate::scene::shapes::{box_mesh, quad_mesh};
+use crate::scene::source_map::FieldPath;
+use crate::scene::toml_format::{
+    ObjectKind, ObjectToml, RepeatToml, SceneFile, TransformEntry, Vec3,
 };
-use super::transform_list::{self, fmt_vec};
-use super::validate::Ctx;
+use crate::scene::transform_list::{self, fmt_vec};
+use crate::scene::validate::Ctx;
 use glam::{DAffine3, DVec3};
+use repeat::{Grid, Placement};
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -70,12 +74,17 @@ pub(crate) fn scene_desc(
     })
 }
 
-fn dvec(v: Vec3) -> DVec3 {
+pub(super) fn dvec(v: Vec3) -> DVec3 {
     DVec3::from_array(v)
 }
 
 /// The mesh file `file` (relative to `base_dir`) named by the item at `path`.
-fn mesh_ref<'c>(ctx: &Ctx<'c>, base_dir: &Path, path: &FieldPath, file: &str) -> ObjRef<'c> {
+pub(super) fn mesh_ref<'c>(
+    ctx: &Ctx<'c>,
+    base_dir: &Path,
+    path: &FieldPath,
+    file: &str,
+) -> ObjRef<'c> {
     ObjRef {
         obj: base_dir.join(file),
         scene: ctx.file,
@@ -84,76 +93,30 @@ fn mesh_ref<'c>(ctx: &Ctx<'c>, base_dir: &Path, path: &FieldPath, file: &str) ->
     }
 }
 
-/// Where an object goes: at shutter open, and at shutter close if it moves.
-#[derive(Clone, Copy)]
-struct Placement {
-    start: DAffine3,
-    end: Option<DAffine3>,
-}
-
-impl Placement {
-    fn fixed(start: DAffine3) -> Self {
-        Placement { start, end: None }
-    }
-
-    /// Both placements moved by `offset` in world space (exactly: only the translations
-    /// change).
-    fn shifted(&self, offset: DVec3) -> Placement {
-        let shift =
-            |t: DAffine3| DAffine3 { matrix3: t.matrix3, translation: t.translation + offset };
-        Placement { start: shift(self.start), end: self.end.map(shift) }
-    }
-}
-
-/// A validated `repeat`: `count` copies along each axis, `spacing` apart.
-#[derive(Clone, Copy)]
-struct Grid {
-    count: [u32; 3],
-    spacing: DVec3,
-}
-
-impl Grid {
-    fn offsets(&self) -> impl Iterator<Item = ([u32; 3], DVec3)> + use<> {
-        let Grid { count: [nx, ny, nz], spacing } = *self;
-        (0..nx).flat_map(move |i| {
-            (0..ny).flat_map(move |j| {
-                (0..nz).map(move |k| {
-                    let offset = DVec3::new(i as f64, j as f64, k as f64) * spacing;
-                    ([i, j, k], offset)
-                })
-            })
-        })
-    }
-
-    fn total(&self) -> usize {
-        self.count.iter().map(|&n| n as usize).product()
-    }
-}
-
-struct Builder<'a> {
-    ctx: &'a Ctx<'a>,
-    base_dir: &'a Path,
-    warnings: &'a mut Vec<String>,
-    materials: Vec<MaterialDesc>,
+pub(super) struct Builder<'a> {
+    pub(super) ctx: &'a Ctx<'a>,
+    pub(super) base_dir: &'a Path,
+    pub(super) warnings: &'a mut Vec<String>,
+    pub(super) materials: Vec<MaterialDesc>,
     /// The `[materials]` table: name → index.
-    named: BTreeMap<String, u32>,
+    pub(super) named: BTreeMap<String, u32>,
     /// Shared by mesh models without an MTL material; created on first use.
-    default_material: Option<u32>,
+    pub(super) default_material: Option<u32>,
     /// The scene material made for each MTL material, keyed by mesh file and its index
     /// there, so that objects naming one file share them.
-    mtl_materials: HashMap<(PathBuf, usize), u32>,
-    meshes: MeshCache,
-    objects: Vec<ObjectDesc>,
-    lights: Vec<LightDesc>,
+    pub(super) mtl_materials: HashMap<(PathBuf, usize), u32>,
+    pub(super) meshes: MeshCache,
+    pub(super) objects: Vec<ObjectDesc>,
+    pub(super) lights: Vec<LightDesc>,
 }
 
 impl Builder<'_> {
-    fn add_material(&mut self, material: MaterialDesc) -> u32 {
+    pub(super) fn add_material(&mut self, material: MaterialDesc) -> u32 {
         self.materials.push(material);
         (self.materials.len() - 1) as u32
     }
 
-    fn lookup_material(&self, path: &FieldPath, name: &str) -> Result<u32, SceneError> {
+    pub(super) fn lookup_material(&self, path: &FieldPath, name: &str) -> Result<u32, SceneError> {
         self.named.get(name).copied().ok_or_else(|| {
             let defined: Vec<&str> = self.named.keys().map(String::as_str).collect();
             SceneError::UnknownMaterial {
@@ -166,7 +129,7 @@ impl Builder<'_> {
         })
     }
 
-    fn default_material(&mut self) -> u32 {
+    pub(super) fn default_material(&mut self) -> u32 {
         if let Some(index) = self.default_material {
             return index;
         }
@@ -177,7 +140,7 @@ impl Builder<'_> {
     }
 
     /// An emissive, otherwise black material for a light named `item`.
-    fn light_material(&mut self, item: &str, emission: glam::Vec3) -> u32 {
+    pub(super) fn light_material(&mut self, item: &str, emission: glam::Vec3) -> u32 {
         self.add_material(MaterialDesc {
             name: item.to_owned(),
             albedo: glam::Vec3::ZERO,
@@ -187,7 +150,7 @@ impl Builder<'_> {
     }
 
     /// The transform list at `path.key`, composed (identity when absent).
-    fn transform(
+    pub(super) fn transform(
         &self,
         path: &FieldPath,
         key: &str,
@@ -219,7 +182,11 @@ impl Builder<'_> {
     }
 
     /// `transform` and `transform_end`.
-    fn placement(&self, path: &FieldPath, o: &ObjectToml) -> Result<Placement, SceneError> {
+    pub(super) fn placement(
+        &self,
+        path: &FieldPath,
+        o: &ObjectToml,
+    ) -> Result<Placement, SceneError> {
         let start = self.transform(path, "transform", o.transform.as_ref())?;
         let end = match &o.transform_end {
             Some(entries) => Some(self.transform(path, "transform_end", Some(entries))?),
@@ -230,7 +197,7 @@ impl Builder<'_> {
 
     /// Validates `repeat`: counts >= 1, at most `MAX_REPEAT_COPIES` in all, and the farthest
     /// copy still at a finite position.
-    fn grid(
+    pub(super) fn grid(
         &self,
         path: &FieldPath,
         repeat: Option<&RepeatToml>,
@@ -272,7 +239,7 @@ impl Builder<'_> {
     }
 
     /// Adds the object, or one per copy of `grid`, all sharing `shape`.
-    fn push(
+    pub(super) fn push(
         &mut self,
         name: String,
         shape: ShapeDesc,
@@ -307,7 +274,7 @@ impl Builder<'_> {
         }
     }
 
-    fn degenerate(&self, path: &FieldPath, item: &str, problem: String) -> SceneError {
+    pub(super) fn degenerate(&self, path: &FieldPath, item: &str, problem: String) -> SceneError {
         SceneError::DegenerateShape {
             file: self.ctx.file.to_path_buf(),
             item: item.to_owned(),
@@ -316,7 +283,7 @@ impl Builder<'_> {
         }
     }
 
-    fn object(&mut self, i: usize, o: &ObjectToml) -> Result<(), SceneError> {
+    pub(super) fn object(&mut self, i: usize, o: &ObjectToml) -> Result<(), SceneError> {
         let path = FieldPath::root("objects").index(i);
         const PLACED: [&str; 4] = ["type", "transform", "transform_end", "repeat"];
         let (kind, own): (&str, &[&str]) = match o.kind {
@@ -383,7 +350,7 @@ impl Builder<'_> {
 
     /// One object per model of the mesh file (an OBJ file has one per material), times the
     /// copies of `grid`. `material` overrides the MTL materials.
-    fn mesh_objects(
+    pub(super) fn mesh_objects(
         &mut self,
         path: &FieldPath,
         file: &str,
@@ -417,122 +384,6 @@ impl Builder<'_> {
                 None => format!("{path} ({file})"),
             };
             self.push(name, ShapeDesc::Mesh(model.mesh), index, placement, grid);
-        }
-        Ok(())
-    }
-
-    fn light(&mut self, i: usize, l: &LightToml) -> Result<(), SceneError> {
-        let path = FieldPath::root("lights").index(i);
-        let (kind, allowed): (&str, &[&str]) = match l.kind {
-            LightKind::Point => ("point light", &["type", "position", "intensity"]),
-            LightKind::Quad => {
-                ("quad light", &["type", "corner", "u", "v", "emission", "transform"])
-            }
-            LightKind::Directional => ("directional light", &["type", "direction", "irradiance"]),
-            LightKind::Ambient => ("ambient light", &["type", "radiance"]),
-            LightKind::Sphere => {
-                ("sphere light", &["type", "center", "radius", "emission", "transform"])
-            }
-            LightKind::Mesh => ("mesh light", &["type", "file", "emission", "transform"]),
-            LightKind::Area => ("area light", &["type", "center", "normal", "size", "radiance"]),
-        };
-        let item = format!("{path} ({kind})");
-        let present = [
-            ("position", l.position.is_some()),
-            ("intensity", l.intensity.is_some()),
-            ("corner", l.corner.is_some()),
-            ("u", l.u.is_some()),
-            ("v", l.v.is_some()),
-            ("emission", l.emission.is_some()),
-            ("direction", l.direction.is_some()),
-            ("irradiance", l.irradiance.is_some()),
-            ("radiance", l.radiance.is_some()),
-            ("center", l.center.is_some()),
-            ("radius", l.radius.is_some()),
-            ("file", l.file.is_some()),
-            ("transform", l.transform.is_some()),
-            ("normal", l.normal.is_some()),
-            ("size", l.size.is_some()),
-        ];
-        let ctx = self.ctx;
-        ctx.check_fields(&path, &item, &present, allowed)?;
-        let emission = |ctx: &Ctx| -> Result<glam::Vec3, SceneError> {
-            let emission = ctx.required(&path, &item, "emission", l.emission)?;
-            ctx.color(&path.key("emission"), emission, false)
-        };
-        match l.kind {
-            LightKind::Point => {
-                let position = ctx.required(&path, &item, "position", l.position)?;
-                let intensity = ctx.required(&path, &item, "intensity", l.intensity)?;
-                let intensity = ctx.color(&path.key("intensity"), intensity, false)?;
-                self.lights.push(LightDesc::Point { position: dvec(position), intensity });
-            }
-            LightKind::Directional => {
-                let direction = ctx.required(&path, &item, "direction", l.direction)?;
-                let field = path.key("direction");
-                let unit = dvec(direction).try_normalize().ok_or_else(|| {
-                    ctx.out_of_range(&field, fmt_vec(&direction), "a non-zero vector")
-                })?;
-                let irradiance = ctx.required(&path, &item, "irradiance", l.irradiance)?;
-                let irradiance = ctx.color(&path.key("irradiance"), irradiance, false)?;
-                self.lights.push(LightDesc::Directional { direction: unit, irradiance });
-            }
-            LightKind::Ambient => {
-                let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
-                let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
-                self.lights.push(LightDesc::Ambient { radiance });
-            }
-            LightKind::Area => {
-                let center = ctx.required(&path, &item, "center", l.center)?;
-                let normal = ctx.required(&path, &item, "normal", l.normal)?;
-                let field = path.key("normal");
-                let normal = dvec(normal).try_normalize().ok_or_else(|| {
-                    ctx.out_of_range(&field, fmt_vec(&normal), "a non-zero vector")
-                })?;
-                let size = ctx.required(&path, &item, "size", l.size)?;
-                let size = ctx.positive(&path.key("size"), size)?;
-                let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
-                let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
-                self.lights.push(LightDesc::Area { center: dvec(center), normal, size, radiance });
-            }
-            LightKind::Quad => {
-                let corner = ctx.required(&path, &item, "corner", l.corner)?;
-                let u = ctx.required(&path, &item, "u", l.u)?;
-                let v = ctx.required(&path, &item, "v", l.v)?;
-                let emission = emission(ctx)?;
-                let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
-                let mesh = quad_mesh(dvec(corner), dvec(u), dvec(v))
-                    .map_err(|p| self.degenerate(&path, &item, p))?;
-                let material = self.light_material(&item, emission);
-                let shape = ShapeDesc::Mesh(Arc::new(mesh));
-                self.push(item, shape, material, Placement::fixed(world_from_object), None);
-            }
-            LightKind::Sphere => {
-                let center = ctx.required(&path, &item, "center", l.center)?;
-                let radius = ctx.required(&path, &item, "radius", l.radius)?;
-                let radius = ctx.positive(&path.key("radius"), radius)?;
-                let emission = emission(ctx)?;
-                let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
-                let material = self.light_material(&item, emission);
-                let shape = ShapeDesc::Sphere { center: dvec(center), radius };
-                self.push(item, shape, material, Placement::fixed(world_from_object), None);
-            }
-            LightKind::Mesh => {
-                let file = ctx.required(&path, &item, "file", l.file.as_deref())?;
-                let emission = emission(ctx)?;
-                let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
-                let material = self.light_material(&item, emission);
-                let mesh_ref = mesh_ref(ctx, self.base_dir, &path, file);
-                let (_, models) = self.meshes.models(&mesh_ref, None, self.warnings)?;
-                for model in models {
-                    let name = match &model.name {
-                        Some(model_name) => format!("{item} ({file}: {model_name})"),
-                        None => format!("{item} ({file})"),
-                    };
-                    let shape = ShapeDesc::Mesh(model.mesh);
-                    self.push(name, shape, material, Placement::fixed(world_from_object), None);
-                }
-            }
         }
         Ok(())
     }

@@ -1,0 +1,131 @@
+//! `[[lights]]` entries into `LightDesc`s (and emissive objects for quad, sphere and mesh
+//! lights).
+
+use super::repeat::Placement;
+use super::{Builder, dvec, mesh_ref};
+use crate::scene::desc::{LightDesc, ShapeDesc};
+use crate::scene::error::SceneError;
+use crate::scene::shapes::quad_mesh;
+use crate::scene::source_map::FieldPath;
+use crate::scene::toml_format::{LightKind, LightToml};
+use crate::scene::transform_list::fmt_vec;
+use crate::scene::validate::Ctx;
+use std::sync::Arc;
+
+impl Builder<'_> {
+    pub(super) fn light(&mut self, i: usize, l: &LightToml) -> Result<(), SceneError> {
+        let path = FieldPath::root("lights").index(i);
+        let (kind, allowed): (&str, &[&str]) = match l.kind {
+            LightKind::Point => ("point light", &["type", "position", "intensity"]),
+            LightKind::Quad => {
+                ("quad light", &["type", "corner", "u", "v", "emission", "transform"])
+            }
+            LightKind::Directional => ("directional light", &["type", "direction", "irradiance"]),
+            LightKind::Ambient => ("ambient light", &["type", "radiance"]),
+            LightKind::Sphere => {
+                ("sphere light", &["type", "center", "radius", "emission", "transform"])
+            }
+            LightKind::Mesh => ("mesh light", &["type", "file", "emission", "transform"]),
+            LightKind::Area => ("area light", &["type", "center", "normal", "size", "radiance"]),
+        };
+        let item = format!("{path} ({kind})");
+        let present = [
+            ("position", l.position.is_some()),
+            ("intensity", l.intensity.is_some()),
+            ("corner", l.corner.is_some()),
+            ("u", l.u.is_some()),
+            ("v", l.v.is_some()),
+            ("emission", l.emission.is_some()),
+            ("direction", l.direction.is_some()),
+            ("irradiance", l.irradiance.is_some()),
+            ("radiance", l.radiance.is_some()),
+            ("center", l.center.is_some()),
+            ("radius", l.radius.is_some()),
+            ("file", l.file.is_some()),
+            ("transform", l.transform.is_some()),
+            ("normal", l.normal.is_some()),
+            ("size", l.size.is_some()),
+        ];
+        let ctx = self.ctx;
+        ctx.check_fields(&path, &item, &present, allowed)?;
+        let emission = |ctx: &Ctx| -> Result<glam::Vec3, SceneError> {
+            let emission = ctx.required(&path, &item, "emission", l.emission)?;
+            ctx.color(&path.key("emission"), emission, false)
+        };
+        match l.kind {
+            LightKind::Point => {
+                let position = ctx.required(&path, &item, "position", l.position)?;
+                let intensity = ctx.required(&path, &item, "intensity", l.intensity)?;
+                let intensity = ctx.color(&path.key("intensity"), intensity, false)?;
+                self.lights.push(LightDesc::Point { position: dvec(position), intensity });
+            }
+            LightKind::Directional => {
+                let direction = ctx.required(&path, &item, "direction", l.direction)?;
+                let field = path.key("direction");
+                let unit = dvec(direction).try_normalize().ok_or_else(|| {
+                    ctx.out_of_range(&field, fmt_vec(&direction), "a non-zero vector")
+                })?;
+                let irradiance = ctx.required(&path, &item, "irradiance", l.irradiance)?;
+                let irradiance = ctx.color(&path.key("irradiance"), irradiance, false)?;
+                self.lights.push(LightDesc::Directional { direction: unit, irradiance });
+            }
+            LightKind::Ambient => {
+                let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
+                let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
+                self.lights.push(LightDesc::Ambient { radiance });
+            }
+            LightKind::Area => {
+                let center = ctx.required(&path, &item, "center", l.center)?;
+                let normal = ctx.required(&path, &item, "normal", l.normal)?;
+                let field = path.key("normal");
+                let normal = dvec(normal).try_normalize().ok_or_else(|| {
+                    ctx.out_of_range(&field, fmt_vec(&normal), "a non-zero vector")
+                })?;
+                let size = ctx.required(&path, &item, "size", l.size)?;
+                let size = ctx.positive(&path.key("size"), size)?;
+                let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
+                let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
+                self.lights.push(LightDesc::Area { center: dvec(center), normal, size, radiance });
+            }
+            LightKind::Quad => {
+                let corner = ctx.required(&path, &item, "corner", l.corner)?;
+                let u = ctx.required(&path, &item, "u", l.u)?;
+                let v = ctx.required(&path, &item, "v", l.v)?;
+                let emission = emission(ctx)?;
+                let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
+                let mesh = quad_mesh(dvec(corner), dvec(u), dvec(v))
+                    .map_err(|p| self.degenerate(&path, &item, p))?;
+                let material = self.light_material(&item, emission);
+                let shape = ShapeDesc::Mesh(Arc::new(mesh));
+                self.push(item, shape, material, Placement::fixed(world_from_object), None);
+            }
+            LightKind::Sphere => {
+                let center = ctx.required(&path, &item, "center", l.center)?;
+                let radius = ctx.required(&path, &item, "radius", l.radius)?;
+                let radius = ctx.positive(&path.key("radius"), radius)?;
+                let emission = emission(ctx)?;
+                let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
+                let material = self.light_material(&item, emission);
+                let shape = ShapeDesc::Sphere { center: dvec(center), radius };
+                self.push(item, shape, material, Placement::fixed(world_from_object), None);
+            }
+            LightKind::Mesh => {
+                let file = ctx.required(&path, &item, "file", l.file.as_deref())?;
+                let emission = emission(ctx)?;
+                let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
+                let material = self.light_material(&item, emission);
+                let mesh_ref = mesh_ref(ctx, self.base_dir, &path, file);
+                let (_, models) = self.meshes.models(&mesh_ref, None, self.warnings)?;
+                for model in models {
+                    let name = match &model.name {
+                        Some(model_name) => format!("{item} ({file}: {model_name})"),
+                        None => format!("{item} ({file})"),
+                    };
+                    let shape = ShapeDesc::Mesh(model.mesh);
+                    self.push(name, shape, material, Placement::fixed(world_from_object), None);
+                }
+            }
+        }
+        Ok(())
+    }
+}

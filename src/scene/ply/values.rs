@@ -1,0 +1,102 @@
+//! The PLY body as a stream of numbers, from ASCII text or binary of either endianness.
+
+use super::header::{Scalar, type_name};
+
+/// Why a value could not be read.
+pub(super) enum ReadError {
+    /// The data ended.
+    End,
+    /// An ASCII token that is not a number of the property's type.
+    Bad(String),
+}
+
+/// The body: a stream of numbers, ASCII or binary.
+pub(super) trait Values {
+    fn next(&mut self, ty: Scalar) -> Result<f64, ReadError>;
+    /// The line of the value read last (ASCII only).
+    fn line(&self) -> Option<usize>;
+    /// Bytes left, to bound allocations by what the file can hold.
+    fn remaining(&self) -> usize;
+}
+
+pub(super) struct Binary<'a> {
+    pub(super) data: &'a [u8],
+    pub(super) pos: usize,
+    pub(super) big_endian: bool,
+}
+
+impl Binary<'_> {
+    pub(super) fn take<const N: usize>(&mut self) -> Result<[u8; N], ReadError> {
+        let bytes = self.data.get(self.pos..self.pos + N).ok_or(ReadError::End)?;
+        self.pos += N;
+        let mut array: [u8; N] = bytes.try_into().expect("N bytes");
+        if self.big_endian {
+            array.reverse();
+        }
+        Ok(array)
+    }
+}
+
+impl Values for Binary<'_> {
+    fn next(&mut self, ty: Scalar) -> Result<f64, ReadError> {
+        // `take` returns the bytes in little-endian order.
+        Ok(match ty {
+            Scalar::I8 => i8::from_le_bytes(self.take()?).into(),
+            Scalar::U8 => u8::from_le_bytes(self.take()?).into(),
+            Scalar::I16 => i16::from_le_bytes(self.take()?).into(),
+            Scalar::U16 => u16::from_le_bytes(self.take()?).into(),
+            Scalar::I32 => i32::from_le_bytes(self.take()?).into(),
+            Scalar::U32 => u32::from_le_bytes(self.take()?).into(),
+            Scalar::F32 => f32::from_le_bytes(self.take()?).into(),
+            Scalar::F64 => f64::from_le_bytes(self.take()?),
+        })
+    }
+
+    fn line(&self) -> Option<usize> {
+        None
+    }
+
+    fn remaining(&self) -> usize {
+        self.data.len().saturating_sub(self.pos)
+    }
+}
+
+pub(super) struct Ascii<'a> {
+    pub(super) lines: std::str::Lines<'a>,
+    pub(super) words: std::str::SplitWhitespace<'a>,
+    /// Line of the current `words`.
+    pub(super) line: usize,
+    pub(super) remaining: usize,
+}
+
+impl Values for Ascii<'_> {
+    fn next(&mut self, ty: Scalar) -> Result<f64, ReadError> {
+        let word = loop {
+            if let Some(word) = self.words.next() {
+                break word;
+            }
+            let line = self.lines.next().ok_or(ReadError::End)?;
+            self.remaining = self.remaining.saturating_sub(line.len() + 1);
+            self.words = line.split_whitespace();
+            self.line += 1;
+        };
+        let bad = || ReadError::Bad(format!("'{word}' is not a valid {}", type_name(ty)));
+        // Rust parses "nan" and "inf" too: those are caught as non-finite values later.
+        let value: f64 = word.parse().map_err(|_| bad())?;
+        if ty.is_integer() {
+            let (min, max) = ty.range();
+            if value.fract() != 0.0 || value < min || value > max {
+                return Err(bad());
+            }
+        }
+        Ok(value)
+    }
+
+    fn line(&self) -> Option<usize> {
+        Some(self.line)
+    }
+
+    fn remaining(&self) -> usize {
+        self.remaining
+    }
+}
