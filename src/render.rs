@@ -284,7 +284,7 @@ fn render_tile(
         let samples = scratch.rays.iter().zip(&scratch.hits).zip(&mut scratch.streams);
         let mut sum = PixelSum::default();
         for (k, ((ray, hit), stream)) in samples.enumerate() {
-            sum.add(&path.trace_from_hit(*ray, *hit, stream, &mut result.stats));
+            sum.add(&path.trace(*ray, Some(*hit), stream, &mut result.stats));
             if (k + 1) % spp as usize == 0 {
                 result.push(std::mem::take(&mut sum), spp);
             }

@@ -298,8 +298,7 @@ fn instanced_scene(copies: usize) -> SceneDesc {
 #[test]
 fn ten_thousand_instances_cost_far_less_than_copies() {
     for backend in backends() {
-        let measure = |copies: usize| {
-            let desc = instanced_scene(copies);
+        let measure_desc = |desc: SceneDesc| {
             let opts = options(&desc, backend, 1);
             let before = rss_kib();
             let scene = prepare_scene(&desc, &opts).unwrap();
@@ -308,6 +307,7 @@ fn ten_thousand_instances_cost_far_less_than_copies() {
             drop((accel, scene));
             grown
         };
+        let measure = |copies: usize| measure_desc(instanced_scene(copies));
         // Real copies for comparison: 200 placements of 200 distinct (equal) meshes.
         let copies_scene = |n: usize| {
             let mut desc = instanced_scene(n);
@@ -317,15 +317,6 @@ fn ten_thousand_instances_cost_far_less_than_copies() {
                 }
             }
             desc
-        };
-        let measure_desc = |desc: SceneDesc| {
-            let opts = options(&desc, backend, 1);
-            let before = rss_kib();
-            let scene = prepare_scene(&desc, &opts).unwrap();
-            let accel = build_accel(backend, &scene, &AccelOptions::default()).unwrap();
-            let grown = rss_kib().saturating_sub(before);
-            drop((accel, scene));
-            grown
         };
         measure(2); // warm-up: the first build also pays one-off allocations (thread pools)
         let one = (measure_desc(copies_scene(200)) / 200).max(1);

@@ -27,6 +27,39 @@ fn font_available() -> bool {
 }
 
 type PlotResult = Result<(), Box<dyn std::error::Error>>;
+type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+
+/// A chart on a white `root` with the report's caption style and margins.
+fn chart_on<'a, 'b>(
+    root: &'a Area<'b>,
+    caption: &str,
+    y_labels: u32,
+) -> ChartBuilder<'a, 'b, BitMapBackend<'b>> {
+    let mut builder = ChartBuilder::on(root);
+    builder
+        .caption(caption, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(y_labels);
+    builder
+}
+
+/// Draws one chart with `draw` into a PNG of `size` at `path`.
+fn write_chart(
+    path: &Path,
+    size: (u32, u32),
+    rows: &[Measurement],
+    draw: fn(&Area, &[Measurement]) -> PlotResult,
+) -> Result<(), String> {
+    let run = || -> PlotResult {
+        let root = BitMapBackend::new(path, size).into_drawing_area();
+        root.fill(&WHITE)?;
+        draw(&root, rows)?;
+        root.present()?;
+        Ok(())
+    };
+    run().map_err(|e| format!("{}: {e}", path.display()))
+}
 
 /// Mean relative MSE over scenes, per (render space, backend) and offset.
 fn error_series(rows: &[Measurement]) -> BTreeMap<String, Vec<(f64, f64)>> {
@@ -48,23 +81,16 @@ fn error_series(rows: &[Measurement]) -> BTreeMap<String, Vec<(f64, f64)>> {
     series
 }
 
-fn draw_error_chart<DB: DrawingBackend>(
-    root: DrawingArea<DB, plotters::coord::Shift>,
-    rows: &[Measurement],
-) -> PlotResult
-where
-    DB::ErrorType: 'static,
-{
-    root.fill(&WHITE)?;
+fn draw_error_chart(root: &Area, rows: &[Measurement]) -> PlotResult {
     let series = error_series(rows);
     let max_offset = rows.iter().map(|r| r.offset).fold(10.0f64, f64::max);
     let max_error = series.values().flatten().map(|p| p.1).fold(1e-12f64, f64::max) * 10.0;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("Image error vs distance from the origin (mean over scenes)", ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d((1.0..max_offset * 2.0).log_scale(), (1e-16..max_error).log_scale())?;
+    let mut chart =
+        chart_on(root, "Image error vs distance from the origin (mean over scenes)", 70)
+            .build_cartesian_2d(
+                (1.0..max_offset * 2.0).log_scale(),
+                (1e-16..max_error).log_scale(),
+            )?;
     chart
         .configure_mesh()
         .x_desc("offset (0 drawn at 1)")
@@ -83,18 +109,10 @@ where
         chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
     }
     chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
-    root.present()?;
     Ok(())
 }
 
-fn draw_time_chart<DB: DrawingBackend>(
-    root: DrawingArea<DB, plotters::coord::Shift>,
-    rows: &[Measurement],
-) -> PlotResult
-where
-    DB::ErrorType: 'static,
-{
-    root.fill(&WHITE)?;
+fn draw_time_chart(root: &Area, rows: &[Measurement]) -> PlotResult {
     let spaces = ["world", "camera", "cameraworld"];
     let mut backends: Vec<&str> = rows.iter().map(|r| r.backend).collect();
     backends.dedup();
@@ -112,11 +130,7 @@ where
         .fold(1e-6f64, f64::max)
         * 1.2;
     let groups = spaces.len() as f64;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("Render time by render space (offset 0, all scenes)", ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
+    let mut chart = chart_on(root, "Render time by render space (offset 0, all scenes)", 60)
         .build_cartesian_2d(0.0..groups, 0.0..max_time)?;
     chart
         .configure_mesh()
@@ -147,7 +161,6 @@ where
             .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], color.filled()));
     }
     chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
-    root.present()?;
     Ok(())
 }
 
@@ -161,10 +174,8 @@ pub fn write_charts(dir: &Path, rows: &[Measurement]) -> Result<Vec<PathBuf>, St
     }
     let size = (900, 560);
     let error_path = dir.join("error_vs_offset.png");
-    draw_error_chart(BitMapBackend::new(&error_path, size).into_drawing_area(), rows)
-        .map_err(|e| format!("{}: {e}", error_path.display()))?;
+    write_chart(&error_path, size, rows, draw_error_chart)?;
     let time_path = dir.join("time_vs_space.png");
-    draw_time_chart(BitMapBackend::new(&time_path, size).into_drawing_area(), rows)
-        .map_err(|e| format!("{}: {e}", time_path.display()))?;
+    write_chart(&time_path, size, rows, draw_time_chart)?;
     Ok(vec![error_path, time_path])
 }

@@ -65,7 +65,7 @@ impl<'a> Tracer<'a> {
         stats: &mut RenderStats,
     ) -> PathSample {
         match self {
-            Tracer::Path(t) => t.trace(ray, stream, stats),
+            Tracer::Path(t) => t.trace(ray, None, stream, stats),
             Tracer::Whitted(t) => t.trace(ray, stream, stats),
         }
     }

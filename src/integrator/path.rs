@@ -201,31 +201,11 @@ impl<'a> PathTracer<'a> {
         self.tracer.accel
     }
 
-    /// Traces one camera path.
+    /// Traces one camera path. `first_hit`, when given, is the camera ray's closest hit as
+    /// `self.accel().intersect(&camera_ray, ..)` returns it (e.g. from
+    /// `Accel::intersect_batch`); it is not looked up again, and is counted as `intersect`
+    /// would count it.
     pub fn trace(
-        &self,
-        camera_ray: Ray,
-        stream: &mut SampleStream,
-        stats: &mut RenderStats,
-    ) -> PathSample {
-        self.trace_path(camera_ray, None, stream, stats)
-    }
-
-    /// Exactly [`PathTracer::trace`], with the camera ray's closest hit already found:
-    /// `first_hit` must be what `self.tracer.accel().intersect(&camera_ray, ..)` returns (e.g. from
-    /// `Accel::intersect_batch`); it is not looked up again. Counts as `trace` does.
-    pub fn trace_from_hit(
-        &self,
-        camera_ray: Ray,
-        first_hit: Option<Hit>,
-        stream: &mut SampleStream,
-        stats: &mut RenderStats,
-    ) -> PathSample {
-        self.trace_path(camera_ray, Some(first_hit), stream, stats)
-    }
-
-    /// `trace`, with the first intersection given by `first_hit` when it is `Some`.
-    fn trace_path(
         &self,
         camera_ray: Ray,
         mut first_hit: Option<Option<Hit>>,

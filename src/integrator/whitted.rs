@@ -251,6 +251,7 @@ impl<'a> WhittedTracer<'a> {
         }
     }
 
+    /// Traces one camera ray.
     pub fn trace(
         &self,
         camera_ray: Ray,

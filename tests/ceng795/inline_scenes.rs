@@ -136,15 +136,9 @@ fn transformations_instances_and_motion() {
 #[test]
 fn materials_and_lights_map_to_the_scene_description() {
     use embray::scene::Specular;
-    let materials = r#"
-    <Materials>
-        <Material id="1">
-            <AmbientReflectance>1 1 1</AmbientReflectance>
-            <DiffuseReflectance>1 1 1</DiffuseReflectance>
-            <SpecularReflectance>1 1 1</SpecularReflectance>
-            <PhongExponent>1</PhongExponent>
-        </Material>
-        <Material id="2" type="conductor">
+    let materials = MATERIALS.replace(
+        "    </Materials>",
+        r#"    <Material id="2" type="conductor">
             <MirrorReflectance>1 0.86 0.57</MirrorReflectance>
             <RefractionIndex>0.37</RefractionIndex>
             <AbsorptionIndex>2.82</AbsorptionIndex>
@@ -158,20 +152,14 @@ fn materials_and_lights_map_to_the_scene_description() {
             <DiffuseReflectance>0.5 0.5 1.5</DiffuseReflectance>
             <MirrorReflectance>0.5 0.5 0.5</MirrorReflectance>
         </Material>
-    </Materials>"#;
-    let lights = r#"<Lights>
-        <AmbientLight>25 25 25</AmbientLight>
-        <PointLight id="1"><Position>1 2 3</Position><Intensity>1000 1000 1000</Intensity></PointLight>
-        <AreaLight id="1">
-            <Position>0 9.8 2</Position>
-            <Normal>0 -2 0</Normal>
-            <Size>3</Size>
-            <Radiance>150000 150000 150000</Radiance>
-        </AreaLight>
-    </Lights>"#;
-    let text = scene_xml(TRIANGLE)
-        .replace(MATERIALS, materials)
-        .replace("<Lights><AmbientLight>25 25 25</AmbientLight></Lights>", lights);
+    </Materials>"#,
+    );
+    let lights = format!(
+        "<AmbientLight>25 25 25</AmbientLight>\n\
+         <PointLight id=\"1\"><Position>1 2 3</Position><Intensity>1000 1000 1000</Intensity></PointLight>\n{}",
+        area_light("0 9.8 2", "0 -2 0", 3, "150000 150000 150000")
+    );
+    let text = with_lights(scene_xml(TRIANGLE).replace(MATERIALS, &materials), &lights);
     let s = one(&text);
     let m = &s.materials;
     assert_eq!(m.len(), 4);
@@ -225,16 +213,7 @@ fn area_lights_light_the_scene_but_are_invisible() {
             <Faces>1 2 3 1 3 4</Faces>
         </Mesh>
     </Objects>"#;
-    let lights = r#"<Lights>
-        <AreaLight id="1">
-            <Position>0 1 -3</Position>
-            <Normal>0 -1 0</Normal>
-            <Size>1</Size>
-            <Radiance>100 100 100</Radiance>
-        </AreaLight>
-    </Lights>"#;
-    let text = scene_xml(body)
-        .replace("<Lights><AmbientLight>25 25 25</AmbientLight></Lights>", lights)
+    let text = with_lights(scene_xml(body), &area_light("0 1 -3", "0 -1 0", 1, "100 100 100"))
         .replace("<Gaze>0 0 -1</Gaze>", "<Gaze>0 0.5 -1</Gaze>");
     let s = one(&text);
     for backend in BackendKind::compiled() {
@@ -249,4 +228,20 @@ fn area_lights_light_the_scene_but_are_invisible() {
         assert!(floor.x > 1.0, "{} floor {floor}", backend.name());
         assert_eq!(sky, glam::Vec3::ZERO, "{}", backend.name());
     }
+}
+
+/// `text` (from `scene_xml`) with its lights replaced by `lights` (XML elements).
+fn with_lights(text: String, lights: &str) -> String {
+    text.replace(
+        "<Lights><AmbientLight>25 25 25</AmbientLight></Lights>",
+        &format!("<Lights>\n{lights}\n</Lights>"),
+    )
+}
+
+/// A course area light (a square of side `size`).
+fn area_light(position: &str, normal: &str, size: u32, radiance: &str) -> String {
+    format!(
+        "<AreaLight id=\"1\"><Position>{position}</Position><Normal>{normal}</Normal>\
+         <Size>{size}</Size><Radiance>{radiance}</Radiance></AreaLight>"
+    )
 }

@@ -8,7 +8,7 @@ use super::device::Device;
 use super::ffi;
 use super::geometry_handle::GeometryHandle;
 use super::scene::Scene;
-use super::tests::{Rng, grid, mesh, shape, sphere, triangle_soup};
+use super::tests::{Rng, grid, mesh, rays_through_boxes, shape, sphere, triangle_soup};
 use crate::accel::{Accel, AccelError, AccelOptions};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{self, Instance, Placement, Prototype, RenderScene, Trs};
@@ -116,25 +116,7 @@ fn instanced_scene(moving: bool) -> (RenderScene, Vec<Kind>) {
 /// Random rays through the scene's region with random shutter times, some with a `tmin`
 /// or a finite `tmax`.
 fn instanced_rays(count: usize) -> Vec<Ray> {
-    let mut rng = Rng(31);
-    (0..count)
-        .map(|k| {
-            let origin = rng.vec3(-9.0, 9.0);
-            let target = rng.vec3(-5.0, 5.0);
-            let mut ray = Ray::new(origin, (target - origin) * rng.range(0.3, 3.0), f32::INFINITY);
-            ray.time = rng.range(0.0, 1.0);
-            if k % 8 == 0 {
-                ray.time = [0.0, 1.0][k / 8 % 2];
-            }
-            if k % 4 == 1 {
-                ray.tmin = rng.range(0.0, 0.5);
-            }
-            if k % 2 == 1 {
-                ray.tmax = ray.tmin + rng.range(0.1, 2.0);
-            }
-            ray
-        })
-        .collect()
+    rays_through_boxes(31, count, 9.0, 5.0, true)
 }
 
 #[test]

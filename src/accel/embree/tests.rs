@@ -94,12 +94,31 @@ pub(super) fn random_scene() -> RenderScene {
 }
 
 pub(super) fn random_rays(count: usize) -> Vec<Ray> {
-    let mut rng = Rng(99);
+    rays_through_boxes(99, count, 2.0, 1.0, false)
+}
+
+/// `count` rays from a cube of half-side `origin_half` towards one of half-side
+/// `target_half`, some with a raised `tmin` or a finite `tmax`; `timed` rays also get
+/// shutter times (every 8th exactly 0 or 1).
+pub(super) fn rays_through_boxes(
+    seed: u64,
+    count: usize,
+    origin_half: f32,
+    target_half: f32,
+    timed: bool,
+) -> Vec<Ray> {
+    let mut rng = Rng(seed);
     (0..count)
         .map(|k| {
-            let origin = rng.vec3(-2.0, 2.0);
-            let target = rng.vec3(-1.0, 1.0);
+            let origin = rng.vec3(-origin_half, origin_half);
+            let target = rng.vec3(-target_half, target_half);
             let mut ray = Ray::new(origin, (target - origin) * rng.range(0.3, 3.0), f32::INFINITY);
+            if timed {
+                ray.time = rng.range(0.0, 1.0);
+                if k % 8 == 0 {
+                    ray.time = [0.0, 1.0][k / 8 % 2];
+                }
+            }
             if k % 4 == 1 {
                 ray.tmin = rng.range(0.0, 0.5);
             }

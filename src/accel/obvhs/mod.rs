@@ -58,6 +58,17 @@ struct BlasInstance {
     object_from_render: InstanceTransform,
 }
 
+/// One ray's query against a mesh BVH; `tmax` narrows as closer hits are found.
+#[derive(Clone, Copy)]
+struct MeshQuery {
+    origin: Vec3,
+    dir: Vec3,
+    tmin: f32,
+    tmax: f32,
+    /// Stop at the first hit (shadow rays).
+    any_hit: bool,
+}
+
 pub struct ObvhsAccel {
     /// Per prototype: its BVH, built only for prototypes that some non-baked instance
     /// places (baked meshes live in `baked`).
@@ -135,42 +146,28 @@ impl ObvhsAccel {
         NodeRay::new(origin - dir * NODE_RAY_BACKOFF, dir, 0.0, tmax + NODE_RAY_BACKOFF)
     }
 
-    /// Closest hit within one mesh for the ray (`origin`, `dir`), narrowing `tmax`.
-    #[allow(clippy::too_many_arguments)]
+    /// Closest hit within one mesh for `query`, narrowing `query.tmax`.
     fn intersect_mesh<const COUNT: bool>(
         mesh: &MeshBlas,
-        origin: Vec3,
-        dir: Vec3,
-        tmin: f32,
-        tmax: &mut f32,
+        query: &mut MeshQuery,
         counters: &mut TraversalCounters,
-        any_hit: bool,
     ) -> Option<(f32, (u32, u32), f32, f32)> {
         // One traversal per permutation of the triangle test, so it is known at compile time.
-        match dir.abs().max_position() {
-            0 => Self::intersect_mesh_axes::<COUNT, 0>(
-                mesh, origin, dir, tmin, tmax, counters, any_hit,
-            ),
-            1 => Self::intersect_mesh_axes::<COUNT, 1>(
-                mesh, origin, dir, tmin, tmax, counters, any_hit,
-            ),
-            _ => Self::intersect_mesh_axes::<COUNT, 2>(
-                mesh, origin, dir, tmin, tmax, counters, any_hit,
-            ),
+        match query.dir.abs().max_position() {
+            0 => Self::intersect_mesh_axes::<COUNT, 0>(mesh, query, counters),
+            1 => Self::intersect_mesh_axes::<COUNT, 1>(mesh, query, counters),
+            _ => Self::intersect_mesh_axes::<COUNT, 2>(mesh, query, counters),
         }
     }
 
     /// `intersect_mesh` for a ray whose direction is largest along axis `KZ`.
-    #[allow(clippy::too_many_arguments)]
     fn intersect_mesh_axes<const COUNT: bool, const KZ: usize>(
         mesh: &MeshBlas,
-        origin: Vec3,
-        dir: Vec3,
-        tmin: f32,
-        tmax: &mut f32,
+        query: &mut MeshQuery,
         counters: &mut TraversalCounters,
-        any_hit: bool,
     ) -> Option<(f32, (u32, u32), f32, f32)> {
+        let MeshQuery { origin, dir, tmin, any_hit, .. } = *query;
+        let tmax = &mut query.tmax;
         let mut closest = None;
         let edges = EdgeTest::<KZ>::new(origin, dir);
         let mut node_ray = NodeRay::new(origin, dir, 0.0, *tmax);
@@ -221,8 +218,10 @@ impl ObvhsAccel {
         };
         match &self.blases[instance.blas as usize] {
             Some(Blas::Mesh(mesh)) => {
-                Self::intersect_mesh::<COUNT>(mesh, origin, dir, ray.tmin, tmax, counters, any_hit)
-                    .map(|(t, (_, prim_id), u, v)| (t, prim_id, u, v))
+                let mut query = MeshQuery { origin, dir, tmin: ray.tmin, tmax: *tmax, any_hit };
+                let hit = Self::intersect_mesh::<COUNT>(mesh, &mut query, counters);
+                *tmax = query.tmax;
+                hit.map(|(t, (_, prim_id), u, v)| (t, prim_id, u, v))
             }
             Some(Blas::Sphere(s)) => {
                 if COUNT {
@@ -246,9 +245,10 @@ impl ObvhsAccel {
         let mut tmax = ray.tmax;
         let mut best: Option<Hit> = None;
         if let Some(baked) = &self.baked {
-            let hit = Self::intersect_mesh::<COUNT>(
-                baked, ray.origin, ray.dir, ray.tmin, &mut tmax, counters, any_hit,
-            );
+            let mut query =
+                MeshQuery { origin: ray.origin, dir: ray.dir, tmin: ray.tmin, tmax, any_hit };
+            let hit = Self::intersect_mesh::<COUNT>(baked, &mut query, counters);
+            tmax = query.tmax;
             if let Some((t, (geom_id, prim_id), u, v)) = hit {
                 best = Some(Hit { t, geom_id, prim_id, u, v });
                 if any_hit {
