@@ -30,9 +30,19 @@ pub struct UnknownChoice {
     pub expected: Vec<&'static str>,
 }
 
-/// `FromStr` and `Display` through [`Choice`].
-macro_rules! choice_text {
-    ($ty:ty) => {
+/// Implements [`Choice`], `FromStr` and `Display` for an enum from its variants' names:
+/// `named_choices!(RenderSpace, "render space", { Cameraworld => "cameraworld", .. })`.
+macro_rules! named_choices {
+    ($ty:ident, $what:literal, { $($variant:ident => $name:literal),+ $(,)? }) => {
+        impl $crate::choice::Choice for $ty {
+            const WHAT: &'static str = $what;
+            const ALL: &'static [Self] = &[$($ty::$variant),+];
+            fn name(self) -> &'static str {
+                match self {
+                    $($ty::$variant => $name),+
+                }
+            }
+        }
         impl std::str::FromStr for $ty {
             type Err = $crate::choice::UnknownChoice;
             fn from_str(text: &str) -> Result<Self, Self::Err> {
@@ -46,7 +56,7 @@ macro_rules! choice_text {
         }
     };
 }
-pub(crate) use choice_text;
+pub(crate) use named_choices;
 
 #[cfg(test)]
 mod tests {

@@ -6,7 +6,7 @@
 //! `cameraworld` a scene and camera 10⁷ units from the origin cancel exactly and render like
 //! a scene at the origin.
 
-use crate::choice::{Choice, choice_text};
+use crate::choice::named_choices;
 use crate::scene::CameraDesc;
 use crate::transform::camera_basis;
 use glam::{DAffine3, DMat3};
@@ -23,19 +23,11 @@ pub enum RenderSpace {
     World,
 }
 
-impl Choice for RenderSpace {
-    const WHAT: &'static str = "render space";
-    const ALL: &'static [Self] =
-        &[RenderSpace::Cameraworld, RenderSpace::Camera, RenderSpace::World];
-    fn name(self) -> &'static str {
-        match self {
-            RenderSpace::Cameraworld => "cameraworld",
-            RenderSpace::Camera => "camera",
-            RenderSpace::World => "world",
-        }
-    }
-}
-choice_text!(RenderSpace);
+named_choices!(RenderSpace, "render space", {
+    Cameraworld => "cameraworld",
+    Camera => "camera",
+    World => "world",
+});
 
 /// Where render space sits relative to the world and to the camera.
 #[derive(Clone, Debug, PartialEq)]

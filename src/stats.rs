@@ -4,6 +4,17 @@
 
 use std::ops::AddAssign;
 
+/// `AddAssign` that adds every listed field.
+macro_rules! add_fields {
+    ($ty:ident { $($field:ident),+ }) => {
+        impl AddAssign for $ty {
+            fn add_assign(&mut self, other: Self) {
+                $(self.$field += other.$field;)+
+            }
+        }
+    };
+}
+
 /// What a backend observed while traversing its acceleration structure.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct TraversalCounters {
@@ -13,12 +24,7 @@ pub struct TraversalCounters {
     pub prim_tests: u64,
 }
 
-impl AddAssign for TraversalCounters {
-    fn add_assign(&mut self, other: Self) {
-        self.node_visits += other.node_visits;
-        self.prim_tests += other.prim_tests;
-    }
-}
+add_fields!(TraversalCounters { node_visits, prim_tests });
 
 /// Rays traced and hits found, for one kind of ray.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -27,12 +33,7 @@ pub struct RayKindCounts {
     pub hits: u64,
 }
 
-impl AddAssign for RayKindCounts {
-    fn add_assign(&mut self, other: Self) {
-        self.rays += other.rays;
-        self.hits += other.hits;
-    }
-}
+add_fields!(RayKindCounts { rays, hits });
 
 /// All counters of a render (or of one worker's share of it).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -50,11 +51,4 @@ impl RenderStats {
     }
 }
 
-impl AddAssign for RenderStats {
-    fn add_assign(&mut self, other: Self) {
-        self.camera += other.camera;
-        self.shadow += other.shadow;
-        self.indirect += other.indirect;
-        self.traversal += other.traversal;
-    }
-}
+add_fields!(RenderStats { camera, shadow, indirect, traversal });

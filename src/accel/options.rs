@@ -1,7 +1,7 @@
 //! How a backend is chosen and built: the backend, its build quality, the batch mode of the
 //! Embree backend and the options passed to `accel::build`.
 
-use crate::choice::{Choice, choice_text};
+use crate::choice::named_choices;
 
 /// Which backend to build.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -84,40 +84,19 @@ impl Default for AccelOptions {
     }
 }
 
-impl Choice for BackendKind {
-    const WHAT: &'static str = "backend";
-    const ALL: &'static [Self] = &[BackendKind::Embree, BackendKind::Obvhs];
-    fn name(self) -> &'static str {
-        match self {
-            BackendKind::Embree => "embree",
-            BackendKind::Obvhs => "obvhs",
-        }
-    }
-}
-choice_text!(BackendKind);
+named_choices!(BackendKind, "backend", {
+    Embree => "embree",
+    Obvhs => "obvhs",
+});
 
-impl Choice for BuildQuality {
-    const WHAT: &'static str = "build quality";
-    const ALL: &'static [Self] = &[BuildQuality::Low, BuildQuality::Medium, BuildQuality::High];
-    fn name(self) -> &'static str {
-        match self {
-            BuildQuality::Low => "low",
-            BuildQuality::Medium => "medium",
-            BuildQuality::High => "high",
-        }
-    }
-}
-choice_text!(BuildQuality);
+named_choices!(BuildQuality, "build quality", {
+    Low => "low",
+    Medium => "medium",
+    High => "high",
+});
 
-impl Choice for BatchMode {
-    const WHAT: &'static str = "batch mode";
-    const ALL: &'static [Self] = &[BatchMode::Single, BatchMode::Packets8, BatchMode::Packets16];
-    fn name(self) -> &'static str {
-        match self {
-            BatchMode::Single => "single",
-            BatchMode::Packets8 => "packets8",
-            BatchMode::Packets16 => "packets16",
-        }
-    }
-}
-choice_text!(BatchMode);
+named_choices!(BatchMode, "batch mode", {
+    Single => "single",
+    Packets8 => "packets8",
+    Packets16 => "packets16",
+});

@@ -1,6 +1,6 @@
 //! Tone curves from linear radiance to display values, and the sRGB encoding.
 
-use crate::choice::{Choice, choice_text};
+use crate::choice::named_choices;
 use crate::scene::IntegratorKind;
 use glam::Vec3;
 
@@ -20,20 +20,12 @@ pub enum ToneMap {
     Clamp255,
 }
 
-impl Choice for ToneMap {
-    const WHAT: &'static str = "tone curve";
-    const ALL: &'static [Self] =
-        &[ToneMap::None, ToneMap::Reinhard, ToneMap::Aces, ToneMap::Clamp255];
-    fn name(self) -> &'static str {
-        match self {
-            ToneMap::None => "none",
-            ToneMap::Reinhard => "reinhard",
-            ToneMap::Aces => "aces",
-            ToneMap::Clamp255 => "clamp255",
-        }
-    }
-}
-choice_text!(ToneMap);
+named_choices!(ToneMap, "tone curve", {
+    None => "none",
+    Reinhard => "reinhard",
+    Aces => "aces",
+    Clamp255 => "clamp255",
+});
 
 impl ToneMap {
     /// The curve a scene gets unless one is asked for: the course's clamp for Whitted

@@ -88,16 +88,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         }
         None => 1,
     };
-    let near_distance = match x.child(node, "NearDistance")? {
-        Some(n) => {
-            let d = x.scalar(n)?;
-            if !(d > 0.0) {
-                return Err(x.out_of_range(n, d, "> 0"));
-            }
-            Some(d)
-        }
-        None => None,
-    };
+    let near_distance = optional_positive(x, node, "NearDistance")?;
 
     let mut notes = Vec::new();
     let (gaze, vfov_deg) = if look_at {
@@ -145,16 +136,9 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         }
         None => 0.0,
     };
-    let focus_distance = match x.child(node, "FocusDistance")? {
-        Some(n) => {
-            let f = x.scalar(n)?;
-            if !(f > 0.0) {
-                return Err(x.out_of_range(n, f, "> 0"));
-            }
-            Some(f)
-        }
+    let focus_distance = match optional_positive(x, node, "FocusDistance")? {
         None if aperture > 0.0 => return Err(x.missing(node, "FocusDistance")),
-        None => None,
+        distance => distance,
     };
     for note in &mut notes {
         *note = format!("camera '{image_name}': {note}");
@@ -226,4 +210,14 @@ impl Window {
         let pitch = 0.5 * (top + bottom);
         (-w + yaw.tan() * u + pitch.tan() * v, vfov)
     }
+}
+
+/// The positive number in `node`'s child `name`, if it has one.
+fn optional_positive(x: &Xml, node: Node, name: &str) -> Result<Option<f64>, SceneError> {
+    let Some(n) = x.child(node, name)? else { return Ok(None) };
+    let value = x.scalar(n)?;
+    if !(value > 0.0) {
+        return Err(x.out_of_range(n, value, "> 0"));
+    }
+    Ok(Some(value))
 }
