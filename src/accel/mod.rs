@@ -124,9 +124,12 @@ pub fn build(
     }
 }
 
+/// Traces a slice of rays, returning how many hit.
+pub type RawLoop = Box<dyn Fn(&[Ray]) -> usize + Send + Sync>;
+
 /// A bare `rtcIntersect1` loop over `scene` (closest hits, counted), the yardstick our
 /// Embree wrapper is measured against; `None` without Embree (or if its build fails).
-pub fn raw_embree_loop(scene: &RenderScene) -> Option<Box<dyn Fn(&[Ray]) -> usize + Send + Sync>> {
+pub fn raw_embree_loop(scene: &RenderScene) -> Option<RawLoop> {
     #[cfg(feature = "embree")]
     {
         let raw = embree::EmbreeAccel::build(scene, &AccelOptions::default()).ok()?;
