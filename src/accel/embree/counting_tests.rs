@@ -2,7 +2,7 @@
 //! deterministic primitive-test counts, and (ignored by default) what counting costs.
 
 use super::EmbreeAccel;
-use super::tests::{
+use super::test_scenes::{
     Rng, close, grid, is_graze, is_sphere, random_rays, random_scene, render_scene, shape, sphere,
 };
 use crate::accel::{Accel, AccelOptions, Observes};

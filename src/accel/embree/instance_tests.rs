@@ -8,7 +8,7 @@ use super::device::Device;
 use super::ffi;
 use super::geometry_handle::GeometryHandle;
 use super::scene::Scene;
-use super::tests::{Rng, grid, mesh, rays_through_boxes, shape, sphere, triangle_soup};
+use super::test_scenes::{Rng, grid, mesh, rays_through_boxes, shape, sphere, triangle_soup};
 use crate::accel::{Accel, AccelError, AccelOptions};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{self, Instance, Placement, Prototype, RenderScene, Trs};
@@ -78,7 +78,7 @@ enum Kind {
 /// a moving ellipsoid, plus baked shapes so both kinds of geometry id mix in one scene.
 fn instanced_scene(moving: bool) -> (RenderScene, Vec<Kind>) {
     let mut rng = Rng(2024);
-    let mut scene = super::tests::render_scene(vec![
+    let mut scene = super::test_scenes::render_scene(vec![
         shape("baked soup", triangle_soup(&mut rng, 100)),
         shape("baked ball", sphere(Vec3::new(1.0, -2.0, 0.5), 0.7)),
     ]);
@@ -121,7 +121,7 @@ fn instanced_rays(count: usize) -> Vec<Ray> {
 
 #[test]
 fn motion_geometries_only_for_moving_instances() {
-    let baked = super::tests::random_scene();
+    let baked = super::test_scenes::random_scene();
     assert_eq!(EmbreeAccel::build(&baked, &NORMAL).unwrap().motion_geometries(), 0);
     let (static_scene, _) = instanced_scene(false);
     for options in [NORMAL, COUNTING] {
@@ -205,7 +205,7 @@ fn embree_interpolates_motion_as_trs_lerp() {
 
 /// A single-instance scene of `geometry` placed by `placement`.
 fn one_instance(geometry: render_scene::Geometry, placement: Placement) -> RenderScene {
-    let mut scene = super::tests::render_scene(Vec::new());
+    let mut scene = super::test_scenes::render_scene(Vec::new());
     let p = add_prototype(&mut scene, "thing", geometry);
     add_instance(&mut scene, p, placement);
     scene

@@ -27,6 +27,8 @@ mod rayn;
 mod scene;
 mod sphere;
 #[cfg(test)]
+mod test_scenes;
+#[cfg(test)]
 mod tests;
 mod user_triangles;
 

@@ -15,7 +15,7 @@ fn cost_scene() -> (RenderScene, String) {
                 let positions = p.chunks(3).map(|c| Vec3::new(c[0], c[1], c[2])).collect();
                 let i = &m.mesh.indices;
                 let indices = i.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
-                shape(&m.name, crate::accel::embree::tests::mesh(positions, indices))
+                shape(&m.name, crate::accel::embree::test_scenes::mesh(positions, indices))
             })
             .collect();
         return (render_scene(shapes), "dragon-100k.obj".into());

@@ -70,9 +70,9 @@ fn instances_share_their_prototype() {
         render_scene::Geometry::Sphere(_) => unreachable!(),
     };
     // Warm up: Embree's thread pool and first allocations are not the instances' cost.
-    drop(EmbreeAccel::build(&crate::accel::embree::tests::random_scene(), &NORMAL).unwrap());
+    drop(EmbreeAccel::build(&crate::accel::embree::test_scenes::random_scene(), &NORMAL).unwrap());
     // What one copy costs: a scene of baked copies.
-    let copies = crate::accel::embree::tests::render_scene(
+    let copies = crate::accel::embree::test_scenes::render_scene(
         (0..COPIES_MEASURED).map(|i| shape(&format!("copy {i}"), terrain.clone())).collect(),
     );
     let before = rss_bytes();
@@ -84,7 +84,7 @@ fn instances_share_their_prototype() {
     let per_copy = per_copy_measured.max(24 * triangles as u64);
 
     let mut rng = Rng(5);
-    let mut scene = crate::accel::embree::tests::render_scene(Vec::new());
+    let mut scene = crate::accel::embree::test_scenes::render_scene(Vec::new());
     let p = add_prototype(&mut scene, "terrain", terrain);
     for _ in 0..INSTANCES {
         add_instance(&mut scene, p, static_placement(&random_trs(&mut rng, 500.0)));

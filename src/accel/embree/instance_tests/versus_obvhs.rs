@@ -1,6 +1,6 @@
 //! Instanced and moving scenes on Embree against the obvhs backend, the reference semantics.
 
-use super::super::tests::{close, is_graze, is_sphere};
+use super::super::test_scenes::{close, is_graze, is_sphere};
 use super::*;
 
 /// Embree (in `options`' mode) against obvhs on `instanced_scene`: the same instance and
