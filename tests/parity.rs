@@ -28,16 +28,12 @@ fn bundled_scenes() -> Vec<(String, SceneDesc)> {
     scenes
 }
 
-fn within(a: u64, b: u64, fraction: f64) -> bool {
-    (a as f64 - b as f64).abs() <= fraction * a.max(b) as f64
-}
-
 #[test]
+#[cfg_attr(
+    not(all(feature = "embree", feature = "obvhs")),
+    ignore = "needs both backends compiled in (the default features)"
+)]
 fn every_bundled_scene_renders_alike_on_both_backends() {
-    if backends().len() < 2 {
-        eprintln!("skipped: only one backend compiled in");
-        return;
-    }
     let scenes = bundled_scenes();
     assert!(scenes.len() >= 2);
     for (name, scene) in scenes {
@@ -47,19 +43,24 @@ fn every_bundled_scene_renders_alike_on_both_backends() {
         let (e, o) = (embree.stats, obvhs.stats);
         println!("{name}: {error:?}");
         println!("  embree {e:?}\n  obvhs  {o:?}");
-        // Tolerance: the two backends use different triangle tests (Embree's own vs ours), so
-        // a path may occasionally diverge at an edge; the images must otherwise be equal.
-        assert!(error.relative_mse < 1e-4, "{name}: {error:?}");
-        assert!(error.fraction_off < 0.01, "{name}: {error:?}");
+        // Observed: static scenes agree to a relative MSE of 1e-15 with equal counts, but for
+        // one pixel of glossy_plates (2e-9, a path diverging at a triangle edge: Embree's
+        // triangle test is not ours); moving_boxes to 2e-6 with one shadow ray of 7515
+        // ending differently (Embree interpolates instance motion in its own last bits).
+        assert!(error.relative_mse < 1e-5, "{name}: {error:?}");
+        assert!(error.fraction_off < 1e-3, "{name}: {error:?}");
         assert_eq!(error.non_finite, 0);
-        assert_eq!(e.camera.rays, o.camera.rays, "{name}");
+        let moving = scene.objects.iter().any(|o| o.is_moving());
         for (kind, a, b) in [
             ("camera", e.camera, o.camera),
             ("shadow", e.shadow, o.shadow),
             ("indirect", e.indirect, o.indirect),
         ] {
-            assert!(within(a.rays, b.rays, 1e-3), "{name} {kind} rays: {a:?} vs {b:?}");
-            assert!(within(a.hits, b.hits, 1e-3), "{name} {kind} hits: {a:?} vs {b:?}");
+            let allowed = if moving { 1 + a.rays / 5000 } else { 0 };
+            assert!(
+                a.rays.abs_diff(b.rays) <= allowed && a.hits.abs_diff(b.hits) <= allowed,
+                "{name} {kind}: {a:?} vs {b:?} (at most {allowed} may differ)"
+            );
         }
     }
 }

@@ -142,10 +142,9 @@ impl<'a> PathTracer<'a> {
             for _ in 0..self.light_samples {
                 let pick = stream.next_1d();
                 let on_surface = stream.next_2d();
+                // A point on the shading point's own emitter is a sample like any other: a
+                // concave emitter lights itself, and its BSDF hits are MIS-weighted against it.
                 let Some(sample) = lights.sample_emitter(pick, on_surface) else { continue };
-                if sample.geom_id == si.geom_id {
-                    continue;
-                }
                 let to_light = sample.point - p;
                 let dist2 = to_light.length_squared();
                 let wi = to_light / dist2.sqrt();

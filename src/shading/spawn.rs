@@ -42,13 +42,14 @@ impl SurfacePoint {
         Ray { origin: self.offset_origin(dir), dir, tmin: 0.0, tmax: f32::INFINITY, time }
     }
 
-    /// A shadow ray from this surface towards `target`, stopping just short of it.
-    /// `target` may itself be a surface point (its own offset is applied) or a point light.
+    /// A shadow ray from this surface to `target`. Both ends are already pushed off their
+    /// surfaces past their error bounds, so the ray runs the whole way (`tmax` = 1) and an
+    /// occluder however close to either end is found. `target` may itself be a surface point
+    /// (its own offset is applied) or a point light (no error, no offset).
     pub fn spawn_ray_to(&self, target: &SurfacePoint, time: f32) -> Ray {
-        const SHADOW_EPSILON: f32 = 1e-4;
         let origin = self.offset_origin(target.point - self.point);
         let end = target.offset_origin(origin - target.point);
-        Ray { origin, dir: end - origin, tmin: 0.0, tmax: 1.0 - SHADOW_EPSILON, time }
+        Ray { origin, dir: end - origin, tmin: 0.0, tmax: 1.0, time }
     }
 
     /// A point with no error and no surface (a point light).

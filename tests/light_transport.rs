@@ -1,0 +1,97 @@
+//! Light transport that is right by construction: shadow rays that reach their light,
+//! concave emitters that keep their energy, and one handedness rule for mirrored objects.
+
+mod common;
+
+use common::build::*;
+use common::*;
+use embray::choice::Choice;
+use embray::film::Film;
+use embray::scene::{MeshData, SceneDesc, ShapeDesc};
+use glam::{DAffine3, DVec3, Vec3};
+use std::sync::Arc;
+
+fn mean(film: &Film) -> Vec3 {
+    film.color.iter().copied().sum::<Vec3>() / film.color.len() as f32
+}
+
+/// A floor lit only by a 10×10 emissive quad 10⁴ units above it, looking down; with
+/// `sheet`, a 1 mm thick slab twice the light's size 0.5 units below the light blocks it.
+fn far_light_scene(sheet: bool) -> SceneDesc {
+    let mut s = scene(camera([0.0, 50.0, 0.1], [0.0, 0.0, 0.0], 40.0, 16, 16));
+    s.settings.max_depth = 1;
+    let floor = add_material(&mut s, diffuse(0.8));
+    let light = add_material(&mut s, emissive(1e9));
+    let grey = add_material(&mut s, diffuse(0.0));
+    let id = DAffine3::IDENTITY;
+    s.objects.push(object(
+        "floor",
+        quad([-100.0, 0.0, 100.0], [200.0, 0.0, 0.0], [0.0, 0.0, -200.0]),
+        floor,
+        id,
+    ));
+    // Facing down (u × v = -y).
+    s.objects.push(object(
+        "light",
+        quad([-5.0, 1e4, -5.0], [10.0, 0.0, 0.0], [0.0, 0.0, 10.0]),
+        light,
+        id,
+    ));
+    if sheet {
+        let slab = DAffine3::from_translation(DVec3::new(-10.0, 1e4 - 0.5, -10.0))
+            * DAffine3::from_scale(DVec3::new(20.0, 1e-3, 20.0));
+        s.objects.push(object("sheet", ShapeDesc::Mesh(cube()), grey, slab));
+    }
+    s
+}
+
+#[test]
+fn a_thin_sheet_just_in_front_of_a_far_light_blocks_it() {
+    for backend in backends() {
+        let lit = render_ok(&far_light_scene(false), &options(&far_light_scene(false), backend, 4));
+        let blocked_scene = far_light_scene(true);
+        let blocked = render_ok(&blocked_scene, &options(&blocked_scene, backend, 4));
+        let (lit, blocked) = (mean(&lit.film), mean(&blocked.film));
+        println!("{}: lit {lit}, behind the sheet {blocked}", backend.name());
+        assert!(lit.x > 1.0, "{}: the control render must be lit ({lit})", backend.name());
+        assert_eq!(blocked, Vec3::ZERO, "{}: light leaks past the sheet", backend.name());
+    }
+}
+
+/// The unit cube [-1, 1]³ wound inwards (normals point into the box).
+fn inward_cube() -> Arc<MeshData> {
+    let outward = cube();
+    Arc::new(MeshData {
+        positions: outward.positions.iter().map(|p| *p * 2.0 - DVec3::ONE).collect(),
+        indices: outward.indices.iter().map(|t| [t[0], t[2], t[1]]).collect(),
+        normals: None,
+        uvs: None,
+    })
+}
+
+#[test]
+fn a_closed_emitter_seen_from_inside_is_a_furnace() {
+    // Inside a closed box emitting E with albedo a, every direction sees E directly, plus
+    // aE lit by it, and so on: with N surface interactions, each gathering direct light,
+    // E · (1 + a + … + a^N) = E (1 − a^(N+1)) / (1 − a).
+    let (emission, albedo, depth) = (1.0f32, 0.5f32, 4u32);
+    let mut s = scene(camera([0.1, 0.2, 0.3], [0.5, -0.3, 0.9], 70.0, 16, 16));
+    s.settings.max_depth = depth;
+    let mut wall = emissive(emission);
+    wall.albedo = Vec3::splat(albedo);
+    let wall = add_material(&mut s, wall);
+    s.objects.push(object("box", ShapeDesc::Mesh(inward_cube()), wall, DAffine3::IDENTITY));
+    let expected = emission * (1.0 - albedo.powi(depth as i32 + 1)) / (1.0 - albedo);
+    for backend in backends() {
+        let film = render_ok(&s, &options(&s, backend, 64)).film;
+        let m = mean(&film);
+        println!("{}: mean {m}, expected {expected}", backend.name());
+        for c in m.to_array() {
+            assert!(
+                (c - expected).abs() < 0.01 * expected,
+                "{}: {m} vs {expected}",
+                backend.name()
+            );
+        }
+    }
+}
