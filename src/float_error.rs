@@ -5,7 +5,7 @@
 use glam::Vec3;
 
 /// γ(n) = nε / (1 − nε), the relative error bound of n chained f32 operations.
-pub fn gamma(n: i32) -> f32 {
+pub const fn gamma(n: i32) -> f32 {
     let eps = f32::EPSILON * 0.5;
     (n as f32 * eps) / (1.0 - n as f32 * eps)
 }

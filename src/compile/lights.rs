@@ -29,6 +29,10 @@ fn instance_emitters(
                 let mut tri = mesh.triangle(prim);
                 if let Some(m) = transform {
                     tri = tri.map(|p| m.transform_point3(p));
+                    // Sampled normals must face where hit normals do (see `place_mesh`).
+                    if m.matrix3.determinant() < 0.0 {
+                        tri.swap(1, 2);
+                    }
                 }
                 let area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
                 Emitter { geom_id, shape: EmitterShape::Triangle(tri), emission, area }

@@ -38,7 +38,16 @@ fn place_mesh(
         }
         None => None,
     };
-    Ok(TriangleMesh { positions, indices: mesh.indices.clone(), normals, uvs: mesh.uvs.clone() })
+    // One handedness rule: a surface's outward side is where its normal, transformed as a
+    // normal (`normal_matrix`), points. A mirroring transform reverses the winding's cross
+    // product, so a mirrored mesh baked into render space gets its winding flipped, and its
+    // normal agrees with the same mesh placed as an instance.
+    let indices = if render_from_object.matrix3.determinant() < 0.0 {
+        mesh.indices.iter().map(|&[a, b, c]| [a, c, b]).collect()
+    } else {
+        mesh.indices.clone()
+    };
+    Ok(TriangleMesh { positions, indices, normals, uvs: mesh.uvs.clone() })
 }
 
 /// Translation · rotation · scale of `m`, or `None` if `m` shears.
