@@ -140,7 +140,7 @@ impl<'a> PathTracer<'a> {
         if lights.has_emitters() {
             let n = self.light_samples as f32;
             for _ in 0..self.light_samples {
-                let pick = stream.next_1d();
+                let pick = stream.next_2d();
                 let on_surface = stream.next_2d();
                 // A point on the shading point's own emitter is a sample like any other: a
                 // concave emitter lights itself, and its BSDF hits are MIS-weighted against it.

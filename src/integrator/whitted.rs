@@ -109,7 +109,7 @@ impl<'a> WhittedTracer<'a> {
             }
         }
         if lights.has_emitters() {
-            if let Some(sample) = lights.sample_emitter(stream.next_1d(), stream.next_2d()) {
+            if let Some(sample) = lights.sample_emitter(stream.next_2d(), stream.next_2d()) {
                 let to_light = sample.point - si.surface.point;
                 let dist2 = to_light.length_squared();
                 let wi = to_light / dist2.sqrt();

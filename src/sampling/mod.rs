@@ -2,6 +2,7 @@
 //! so an image does not depend on the thread count or the order of work, and both backends
 //! see exactly the same rays.
 
+pub mod alias;
 mod pixel;
 mod warps;
 

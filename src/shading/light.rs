@@ -4,6 +4,7 @@
 
 use crate::color::luminance;
 use crate::float_error::{gamma, triangle_point};
+use crate::sampling::alias::AliasTable;
 use crate::sampling::uniform_triangle;
 use glam::{Vec2, Vec3};
 
@@ -76,8 +77,8 @@ pub struct LightSet {
     /// Ambient radiance (used by the Whitted integrator only).
     pub ambient: Vec3,
     pub emitters: Vec<Emitter>,
-    /// Cumulative emitted power of `emitters`, normalised so the last entry is 1.
-    emitter_cdf: Vec<f32>,
+    /// Picks emitters in proportion to their power.
+    selection: Option<AliasTable>,
     /// Per instance: index of its first emitter (emitter of primitive p = first + p).
     first_emitter: Vec<Option<u32>>,
 }
@@ -96,10 +97,10 @@ impl LightSet {
             directional,
             ambient: Vec3::ZERO,
             emitters,
-            emitter_cdf: Vec::new(),
+            selection: None,
             first_emitter,
         };
-        set.build_cdf();
+        set.build_selection();
         set
     }
 
@@ -115,33 +116,15 @@ impl LightSet {
             };
             self.emitters.push(Emitter { geom_id: NO_GEOMETRY, shape, emission, area });
         }
-        self.build_cdf();
+        self.build_selection();
     }
 
-    /// The cumulative power of the emitters; drops them all if none emits.
-    fn build_cdf(&mut self) {
-        let mut total = 0.0f64;
-        self.emitter_cdf = self
-            .emitters
-            .iter()
-            .map(|e| {
-                let power = e.area * luminance(e.emission);
-                if power.is_finite() && power > 0.0 {
-                    total += power as f64;
-                }
-                total as f32
-            })
-            .collect();
-        if total > 0.0 {
-            for c in &mut self.emitter_cdf {
-                *c = (*c as f64 / total) as f32;
-            }
-            if let Some(last) = self.emitter_cdf.last_mut() {
-                *last = 1.0;
-            }
-        } else {
+    /// The table that picks emitters by power; drops them all if none emits.
+    fn build_selection(&mut self) {
+        let powers = self.emitters.iter().map(|e| e.area as f64 * luminance(e.emission) as f64);
+        self.selection = AliasTable::new(powers);
+        if self.selection.is_none() {
             self.emitters.clear();
-            self.emitter_cdf.clear();
             self.first_emitter.iter_mut().for_each(|f| *f = None);
         }
     }
@@ -155,8 +138,7 @@ impl LightSet {
     }
 
     fn emitter_probability(&self, index: usize) -> f32 {
-        let below = if index == 0 { 0.0 } else { self.emitter_cdf[index - 1] };
-        self.emitter_cdf[index] - below
+        self.selection.as_ref().map_or(0.0, |t| t.pmf(index) as f32)
     }
 
     /// Density per unit area with which `sample_emitter` picks a point on primitive `prim`
@@ -170,13 +152,10 @@ impl LightSet {
             .then(|| self.emitter_probability(index) / emitter.area)
     }
 
-    /// Picks an emitter in proportion to its power (with `pick`) and a point on it uniformly
-    /// by area (with `on_surface`).
-    pub fn sample_emitter(&self, pick: f32, on_surface: Vec2) -> Option<EmitterSample> {
-        if self.emitters.is_empty() {
-            return None;
-        }
-        let index = self.emitter_cdf.partition_point(|&c| c <= pick).min(self.emitters.len() - 1);
+    /// Picks an emitter in proportion to its power (with the two numbers of `pick`, see
+    /// `AliasTable::sample`) and a point on it uniformly by area (with `on_surface`).
+    pub fn sample_emitter(&self, pick: Vec2, on_surface: Vec2) -> Option<EmitterSample> {
+        let index = self.selection.as_ref()?.sample(pick.to_array());
         let emitter = &self.emitters[index];
         let probability = self.emitter_probability(index);
         if probability <= 0.0 || emitter.area <= 0.0 {
