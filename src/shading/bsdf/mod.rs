@@ -1,0 +1,203 @@
+//! Scattering at a surface: a Lambertian lobe plus at most one specular lobe (mirror,
+//! conductor with Fresnel, or glass), GGX microfacets for rough mirrors and metals.
+//! Directions are in render space; `frame` maps the local shading frame (normal = +Z) to it.
+
+mod fresnel;
+mod ggx;
+
+pub use fresnel::{fresnel_conductor, fresnel_dielectric};
+
+use crate::color::luminance;
+use crate::scene::Specular;
+use crate::shading::material::Material;
+use glam::{Mat3, Vec2, Vec3};
+use std::f32::consts::FRAC_1_PI;
+
+/// A sampled scattering direction.
+#[derive(Clone, Copy, Debug)]
+pub struct BsdfSample {
+    pub wi: Vec3,
+    /// f · |cos θ| / pdf.
+    pub weight: Vec3,
+    /// Density of `wi` (0 for a delta lobe).
+    pub pdf: f32,
+    pub delta: bool,
+    /// The direction passes through the surface (refraction).
+    pub transmitted: bool,
+}
+
+/// The scattering function at one shading point.
+#[derive(Clone, Copy, Debug)]
+pub struct Bsdf {
+    /// Local (tangent, bitangent, normal) → render space.
+    frame: Mat3,
+    /// Lambertian reflectance, after the energy coupling of `Bsdf::new`.
+    diffuse: Vec3,
+    specular: Specular,
+    alpha: f32,
+    delta_specular: bool,
+    /// Whether the incoming ray arrived on the side the surface normal points to.
+    front_face: bool,
+    /// Probability of choosing the specular lobe.
+    p_specular: f32,
+}
+
+impl Bsdf {
+    /// The BSDF of `material` with Lambertian reflectance `albedo` (its texture's value here).
+    ///
+    /// Energy is conserved by construction: the specular lobe reflects at most
+    /// `reflectance` of what arrives (Fresnel ≤ 1, and single-scattering GGX loses energy,
+    /// never gains it), so the Lambertian part gets only the remainder,
+    /// `albedo · (1 − reflectance)`, and albedos above 1 (allowed by the course's Whitted
+    /// model) are clamped to 1. Glass has no Lambertian part.
+    pub fn new(material: &Material, albedo: Vec3, frame: Mat3, front_face: bool) -> Self {
+        let albedo = albedo.clamp(Vec3::ZERO, Vec3::ONE);
+        let diffuse = match material.specular {
+            Specular::None => albedo,
+            Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
+                albedo * (Vec3::ONE - reflectance.clamp(Vec3::ZERO, Vec3::ONE))
+            }
+            Specular::Dielectric { .. } => Vec3::ZERO,
+        };
+        let specular_weight = match material.specular {
+            Specular::None => 0.0,
+            Specular::Mirror { reflectance } => luminance(reflectance),
+            Specular::Conductor { eta, k, reflectance } => {
+                luminance(fresnel_conductor(1.0, eta, k) * reflectance)
+            }
+            Specular::Dielectric { .. } => f32::INFINITY,
+        };
+        let diffuse_weight = luminance(diffuse);
+        let p_specular = if specular_weight.is_infinite() {
+            1.0
+        } else if specular_weight + diffuse_weight > 0.0 {
+            specular_weight / (specular_weight + diffuse_weight)
+        } else {
+            0.0
+        };
+        Bsdf {
+            frame,
+            diffuse,
+            specular: material.specular,
+            alpha: material.ggx_alpha.max(1e-4),
+            delta_specular: material.specular_is_delta(),
+            front_face,
+            p_specular,
+        }
+    }
+
+    /// True if light sampling can contribute (some lobe is not a delta distribution).
+    pub fn has_smooth_lobe(&self) -> bool {
+        self.p_specular < 1.0 || !self.delta_specular
+    }
+
+    fn local_from_render(&self, w: Vec3) -> Vec3 {
+        self.frame.transpose() * w
+    }
+
+    fn specular_tint(&self, cos: f32) -> Vec3 {
+        match self.specular {
+            Specular::Mirror { reflectance } => reflectance,
+            Specular::Conductor { eta, k, reflectance } => {
+                fresnel_conductor(cos, eta, k) * reflectance
+            }
+            _ => Vec3::ZERO,
+        }
+    }
+
+    /// f · |cos θi| and the density of sampling `wi`, for the non-delta lobes.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        let (wo, wi) = (self.local_from_render(wo), self.local_from_render(wi));
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return (Vec3::ZERO, 0.0);
+        }
+        let p_diffuse = 1.0 - self.p_specular;
+        let mut value = self.diffuse * FRAC_1_PI * wi.z;
+        let mut pdf = p_diffuse * wi.z * FRAC_1_PI;
+        if self.p_specular > 0.0 && !self.delta_specular {
+            let h = (wo + wi).normalize();
+            let d = ggx::d(h, self.alpha);
+            let f = self.specular_tint(wo.dot(h));
+            value += f * (d * ggx::g2(wo, wi, self.alpha) / (4.0 * wo.z));
+            pdf += self.p_specular * ggx::pdf_reflect(wo, h, self.alpha);
+        }
+        (value, pdf)
+    }
+
+    /// Samples an incident direction for outgoing `wo` (both render space).
+    pub fn sample(&self, wo_render: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        let wo = self.local_from_render(wo_render);
+        if wo.z <= 0.0 {
+            return None;
+        }
+        if u_lobe < self.p_specular {
+            if let Specular::Dielectric { ior, .. } = self.specular {
+                return Some(self.sample_dielectric(wo, ior, u.x));
+            }
+            if self.delta_specular {
+                let wi = Vec3::new(-wo.x, -wo.y, wo.z);
+                return Some(BsdfSample {
+                    wi: self.frame * wi,
+                    weight: self.specular_tint(wo.z) / self.p_specular,
+                    pdf: 0.0,
+                    delta: true,
+                    transmitted: false,
+                });
+            }
+            let h = ggx::sample_visible_normal(wo, self.alpha, u);
+            let wi = 2.0 * wo.dot(h) * h - wo;
+            if wi.z <= 0.0 {
+                return None;
+            }
+            return self.mixture_sample(wo_render, self.frame * wi);
+        }
+        let wi = crate::sampling::cosine_hemisphere(u);
+        if wi.z <= 0.0 {
+            return None;
+        }
+        self.mixture_sample(wo_render, self.frame * wi)
+    }
+
+    /// A non-delta sample weighted by the whole mixture (needed for MIS to be consistent).
+    fn mixture_sample(&self, wo: Vec3, wi: Vec3) -> Option<BsdfSample> {
+        let (value, pdf) = self.eval(wo, wi);
+        (pdf > 0.0).then(|| BsdfSample {
+            wi,
+            weight: value / pdf,
+            pdf,
+            delta: false,
+            transmitted: false,
+        })
+    }
+
+    fn sample_dielectric(&self, wo: Vec3, ior: f32, u: f32) -> BsdfSample {
+        // Relative index across the interface in the direction of travel.
+        let eta = if self.front_face { ior } else { 1.0 / ior };
+        let reflectance = fresnel_dielectric(wo.z, eta);
+        if u < reflectance {
+            let wi = Vec3::new(-wo.x, -wo.y, wo.z);
+            return BsdfSample {
+                wi: self.frame * wi,
+                weight: Vec3::ONE,
+                pdf: 0.0,
+                delta: true,
+                transmitted: false,
+            };
+        }
+        let cos_i = wo.z;
+        let sin2_t = (1.0 - cos_i * cos_i) / (eta * eta);
+        let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
+        let wi = -wo / eta + (cos_i / eta - cos_t) * Vec3::Z;
+        BsdfSample {
+            wi: self.frame * wi.normalize(),
+            // Radiance is compressed entering a denser medium: (η_i/η_t)².
+            weight: Vec3::splat(1.0 / (eta * eta)),
+            pdf: 0.0,
+            delta: true,
+            transmitted: true,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

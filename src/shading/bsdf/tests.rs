@@ -1,0 +1,233 @@
+//! The BSDFs checked the way the field checks them: each sampler against its own density
+//! with a chi-square test over the hemisphere, white furnaces (no material reflects more
+//! than it receives), and Fresnel's limits.
+
+use super::*;
+use crate::splitmix::SplitMix64;
+use std::f32::consts::PI;
+
+/// Cells of the (θ, φ) grid over the upper hemisphere.
+const THETA_CELLS: usize = 12;
+const PHI_CELLS: usize = 24;
+/// Sub-samples per cell side when integrating the density over a cell: enough for the
+/// sharpest lobe tested (GGX α 0.05, about 3° wide) to be integrated to well under 1 %.
+const SUB: usize = 24;
+
+fn cell_of(w: Vec3) -> usize {
+    let theta = w.z.clamp(0.0, 1.0).acos();
+    let c = ((theta / (0.5 * PI) * THETA_CELLS as f32) as usize).min(THETA_CELLS - 1);
+    let phi = w.y.atan2(w.x).rem_euclid(2.0 * PI);
+    let p = ((phi / (2.0 * PI) * PHI_CELLS as f32) as usize).min(PHI_CELLS - 1);
+    c * PHI_CELLS + p
+}
+
+/// ∫ pdf dω over each cell (midpoint rule on a SUB × SUB grid; dω = sin θ dθ dφ).
+fn expected_fractions(bsdf: &Bsdf, wo: Vec3) -> Vec<f64> {
+    let dtheta = 0.5 * std::f64::consts::PI / (THETA_CELLS * SUB) as f64;
+    let dphi = 2.0 * std::f64::consts::PI / (PHI_CELLS * SUB) as f64;
+    (0..THETA_CELLS * PHI_CELLS)
+        .map(|cell| {
+            let (c, p) = (cell / PHI_CELLS, cell % PHI_CELLS);
+            let mut sum = 0.0f64;
+            for i in 0..SUB {
+                let theta = ((c * SUB + i) as f64 + 0.5) * dtheta;
+                for j in 0..SUB {
+                    let phi = ((p * SUB + j) as f64 + 0.5) * dphi;
+                    let (st, ct) = theta.sin_cos();
+                    let wi = Vec3::new((st * phi.cos()) as f32, (st * phi.sin()) as f32, ct as f32);
+                    sum += bsdf.eval(wo, wi).1 as f64 * st * dtheta * dphi;
+                }
+            }
+            sum
+        })
+        .collect()
+}
+
+/// Wilson–Hilferty: the χ² value exceeded with probability 1e-4 at `dof` degrees of freedom.
+fn chi_square_limit(dof: usize) -> f64 {
+    let k = dof as f64;
+    let z = 3.719; // the normal quantile of 1 − 1e-4
+    k * (1.0 - 2.0 / (9.0 * k) + z * (2.0 / (9.0 * k)).sqrt()).powi(3)
+}
+
+/// Samples `bsdf` for `wo` and tests the directions against `pdf` (plus the rejected mass:
+/// samples the sampler refuses must be exactly what the density does not cover).
+fn chi_square_test(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u64) {
+    let samples = 300_000u64;
+    let mut rng = SplitMix64(seed);
+    let mut counts = vec![0u64; THETA_CELLS * PHI_CELLS + 1];
+    for _ in 0..samples {
+        let u_lobe = rng.unit();
+        let u = Vec2::new(rng.unit(), rng.unit());
+        match bsdf.sample(wo, u_lobe, u) {
+            Some(s) => {
+                assert!(!s.delta, "{name}: a smooth lobe returned a delta sample");
+                assert!(s.pdf > 0.0 && s.weight.is_finite(), "{name}: {s:?}");
+                let (value, pdf) = bsdf.eval(wo, s.wi);
+                assert!(
+                    (pdf - s.pdf).abs() <= 1e-3 * pdf,
+                    "{name}: sample pdf {} vs eval {pdf}",
+                    s.pdf
+                );
+                let weight = value / pdf;
+                assert!(
+                    (weight - s.weight).abs().max_element()
+                        <= 1e-3 * weight.max_element().max(1e-3)
+                );
+                counts[cell_of(s.wi)] += 1;
+            }
+            None => counts[THETA_CELLS * PHI_CELLS] += 1,
+        }
+    }
+    let mut expected = expected_fractions(bsdf, wo);
+    let covered: f64 = expected.iter().sum();
+    expected.push((1.0 - covered).max(0.0));
+    // Pool cells expecting fewer than 5 samples into one (the usual chi-square rule).
+    let (mut statistic, mut dof) = (0.0f64, 0usize);
+    let (mut pooled_count, mut pooled_expected) = (0u64, 0.0f64);
+    for (&count, &p) in counts.iter().zip(&expected) {
+        let e = p * samples as f64;
+        if e < 5.0 {
+            pooled_count += count;
+            pooled_expected += e;
+        } else {
+            statistic += (count as f64 - e).powi(2) / e;
+            dof += 1;
+        }
+    }
+    if pooled_expected > 0.0 {
+        statistic += (pooled_count as f64 - pooled_expected).powi(2) / pooled_expected.max(1.0);
+        dof += 1;
+    }
+    let limit = chi_square_limit(dof - 1);
+    println!(
+        "{name}: χ² {statistic:.1} over {} dof (limit {limit:.1}); ∫pdf {covered:.4}",
+        dof - 1
+    );
+    assert!(statistic < limit, "{name}: χ² {statistic} ≥ {limit}");
+}
+
+fn conductor(roughness: f32, reflectance: Vec3) -> Material {
+    let (eta, k) = (Vec3::new(0.2, 0.92, 1.1), Vec3::new(3.9, 2.45, 2.14)); // copper
+    Material {
+        albedo: Vec3::ZERO,
+        specular: Specular::Conductor { eta, k, reflectance },
+        ggx_alpha: roughness,
+        ..Default::default()
+    }
+}
+
+fn rough_mirror(roughness: f32, albedo: Vec3) -> Material {
+    Material {
+        albedo,
+        specular: Specular::Mirror { reflectance: Vec3::splat(0.6) },
+        ggx_alpha: roughness,
+        ..Default::default()
+    }
+}
+
+fn directions() -> [Vec3; 3] {
+    [Vec3::Z, Vec3::new(0.4, 0.1, 0.9).normalize(), Vec3::new(-0.9, 0.3, 0.2).normalize()]
+}
+
+#[test]
+fn every_smooth_lobe_samples_its_own_density() {
+    let materials = [
+        ("lambert", Material::diffuse(Vec3::new(0.5, 0.6, 0.7))),
+        ("ggx conductor α 0.3", conductor(0.3, Vec3::ONE)),
+        ("ggx conductor α 0.05", conductor(0.05, Vec3::ONE)),
+        ("lambert + ggx mirror α 0.2", rough_mirror(0.2, Vec3::splat(0.8))),
+    ];
+    for (m, (name, material)) in materials.iter().enumerate() {
+        let bsdf = Bsdf::new(material, material.albedo, Mat3::IDENTITY, true);
+        for (d, wo) in directions().into_iter().enumerate() {
+            chi_square_test(&format!("{name}, wo {wo}"), &bsdf, wo, (m * 10 + d) as u64);
+        }
+    }
+}
+
+/// Mean of the sample weights: the directional albedo ∫ f cos dω for `wo`.
+fn furnace(material: &Material, wo: Vec3, samples: usize) -> Vec3 {
+    let bsdf = Bsdf::new(material, material.albedo, Mat3::IDENTITY, true);
+    let mut rng = SplitMix64(99);
+    let mut total = Vec3::ZERO;
+    for _ in 0..samples {
+        let u_lobe = rng.unit();
+        if let Some(s) = bsdf.sample(wo, u_lobe, Vec2::new(rng.unit(), rng.unit())) {
+            // Radiance weights of refraction carry the η² compression; energy does not.
+            total += if s.transmitted { Vec3::ONE } else { s.weight };
+        }
+    }
+    total / samples as f32
+}
+
+#[test]
+fn white_furnace_no_material_reflects_more_than_it_receives() {
+    let white = Vec3::ONE;
+    let smooth_glass = Material {
+        albedo: white,
+        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+        ..Default::default()
+    };
+    let mirror_over_lambert = Material {
+        albedo: white,
+        specular: Specular::Mirror { reflectance: Vec3::splat(0.5) },
+        ..Default::default()
+    };
+    let white_mirror =
+        Material { specular: Specular::Mirror { reflectance: white }, ..Default::default() };
+    let cases: [(&str, Material, f32, f32); 7] = [
+        // (name, material, least and most energy reflected)
+        ("white lambert", Material::diffuse(white), 0.995, 1.005),
+        ("white mirror", white_mirror, 0.9999, 1.0001),
+        ("half mirror over white lambert", mirror_over_lambert, 0.995, 1.005),
+        ("white rough mirror α 0.3 over white lambert", rough_mirror(0.3, white), 0.6, 1.005),
+        ("rough conductor α 0.5, reflectance 1", conductor(0.5, white), 0.3, 1.005),
+        (
+            "lambert albedo 1.5 (the course allows it)",
+            Material::diffuse(Vec3::splat(1.5)),
+            0.995,
+            1.005,
+        ),
+        ("glass", smooth_glass, 0.9999, 1.0001),
+    ];
+    for (name, material, least, most) in cases {
+        for wo in directions() {
+            let energy = furnace(&material, wo, 100_000);
+            println!("{name}, wo {wo}: {energy}");
+            for c in energy.to_array() {
+                assert!(c >= least && c <= most, "{name}, wo {wo}: reflects {energy}");
+            }
+        }
+    }
+}
+
+#[test]
+fn glass_reflects_the_fresnel_fraction() {
+    let glass = Material {
+        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+        ..Default::default()
+    };
+    let bsdf = Bsdf::new(&glass, Vec3::ZERO, Mat3::IDENTITY, true);
+    let wo = Vec3::new(0.6, 0.0, 0.8);
+    let mut rng = SplitMix64(5);
+    let n = 200_000;
+    let reflected = (0..n)
+        .filter(|_| {
+            let s = bsdf.sample(wo, rng.unit(), Vec2::new(rng.unit(), rng.unit())).unwrap();
+            !s.transmitted
+        })
+        .count() as f64;
+    let expected = fresnel_dielectric(0.8, 1.5) as f64;
+    let sigma = (expected * (1.0 - expected) / n as f64).sqrt();
+    println!("reflected {:.5}, Fresnel {expected:.5}", reflected / n as f64);
+    assert!((reflected / n as f64 - expected).abs() < 4.0 * sigma);
+}
+
+#[test]
+fn fresnel_limits() {
+    assert!((fresnel_dielectric(1.0, 1.5) - 0.04).abs() < 1e-3);
+    assert_eq!(fresnel_dielectric(0.1, 1.0 / 1.5), 1.0);
+    let gold = fresnel_conductor(1.0, Vec3::new(0.143, 0.374, 1.442), Vec3::new(3.98, 2.38, 1.60));
+    assert!(gold.x > gold.z && gold.x > 0.9);
+}
