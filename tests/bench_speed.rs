@@ -29,7 +29,7 @@ fn speed_rows_of_a_tiny_scene_are_finite_and_positive() {
         let raw = row.raw_embree_mrays;
         assert_eq!(raw.is_some(), backend == BackendKind::Embree, "{row:?}");
         assert!(raw.is_none_or(|r| r.is_finite() && r > 0.0), "{row:?}");
-        // Resident memory can stay flat for a scene this small.
-        assert!(row.accel_mib.is_finite() && row.accel_mib >= 0.0, "{row:?}");
+        // Both backends count their structure's bytes; any BVH takes some.
+        assert!(row.accel_mib.is_finite() && row.accel_mib > 0.0, "{row:?}");
     }
 }

@@ -250,10 +250,6 @@ fn white_mirror_and_glass_conserve_energy_in_a_furnace() {
     }
 }
 
-fn rss_kib() -> u64 {
-    embray::process_memory::resident_bytes().expect("this test needs /proc/self/status") / 1024
-}
-
 /// A 100 × 50 × 2 = 10,000-triangle grid.
 fn grid_mesh() -> std::sync::Arc<embray::scene::MeshData> {
     let (nx, nz) = (100u32, 50u32);
@@ -298,16 +294,13 @@ fn instanced_scene(copies: usize) -> SceneDesc {
 #[test]
 fn ten_thousand_instances_cost_far_less_than_copies() {
     for backend in backends() {
-        let measure_desc = |desc: SceneDesc| {
-            let opts = options(&desc, backend, 1);
-            let before = rss_kib();
-            let scene = prepare_scene(&desc, &opts).unwrap();
+        // The structure's own byte count (obvhs counts its arrays, Embree's memory monitor
+        // its device): exact, and untouched by tests running alongside.
+        let measure = |desc: SceneDesc| {
+            let scene = prepare_scene(&desc, &options(&desc, backend, 1)).unwrap();
             let accel = build_accel(backend, &scene, &AccelOptions::default()).unwrap();
-            let grown = rss_kib().saturating_sub(before);
-            drop((accel, scene));
-            grown
+            accel.memory_bytes().expect("both backends count their bytes")
         };
-        let measure = |copies: usize| measure_desc(instanced_scene(copies));
         // Real copies for comparison: 200 placements of 200 distinct (equal) meshes.
         let copies_scene = |n: usize| {
             let mut desc = instanced_scene(n);
@@ -318,17 +311,18 @@ fn ten_thousand_instances_cost_far_less_than_copies() {
             }
             desc
         };
-        measure(2); // warm-up: the first build also pays one-off allocations (thread pools)
-        let one = (measure_desc(copies_scene(200)) / 200).max(1);
-        let many = measure(10_000);
+        let one = measure(copies_scene(200)) / 200;
+        let many = measure(instanced_scene(10_000));
         println!(
-            "{}: ~{one} KiB for one placed copy; 10,000 instances grew RSS by {many} KiB \
-             (copies would need ~{} KiB)",
+            "{}: {one} bytes for one placed copy; 10,000 instances take {many} bytes \
+             (copies would need ~{} bytes, {:.3} %)",
             backend.name(),
-            one * 10_000
+            one * 10_000,
+            100.0 * many as f64 / (one * 10_000) as f64
         );
+        // Measured 0.024 % (Embree) and 0.026 % (obvhs).
         assert!(
-            many < one * 10_000 / 20,
+            many < one * 10_000 / 1000,
             "{}: instancing is not O(1) per instance",
             backend.name()
         );
@@ -400,7 +394,8 @@ fn solid_texture_stays_fixed_to_its_object() {
 }
 
 #[test]
-fn static_scene_pays_nothing_for_motion_support() {
+/// What the forcing costs in time is measured by `embray bench effects`, not here.
+fn static_scene_builds_no_motion_support_and_forcing_it_changes_no_ray() {
     let desc = cornell(32, 32);
     for backend in backends() {
         let opts = options(&desc, backend, 4);
@@ -418,7 +413,8 @@ fn static_scene_pays_nothing_for_motion_support() {
             normal.stats,
             forced.stats
         );
-        assert_eq!(normal.stats.camera, forced.stats.camera);
-        assert!(error.relative_mse < 1e-6, "{}: {error:?}", backend.name());
+        assert_eq!(normal.stats, forced.stats, "{}: every ray kind, every hit", backend.name());
+        // Measured 2e-14: moving-instance transforms round differently from baked meshes.
+        assert!(error.relative_mse < 1e-10, "{}: {error:?}", backend.name());
     }
 }

@@ -35,8 +35,9 @@ pub struct SpeedRow {
     /// Whole-render samples (camera paths) per second with 1 and 2 threads.
     pub samples_per_s_1t: f64,
     pub samples_per_s_2t: f64,
-    /// Memory of the acceleration structure, MiB: the bytes it holds where the backend can
-    /// count them (obvhs), else the resident memory its build added (Embree).
+    /// Memory of the acceleration structure, MiB, counted by each backend the same way:
+    /// every byte it allocated for the structure (obvhs: nodes, leaf blocks and ids;
+    /// Embree: what its device memory monitor reported).
     pub accel_mib: f64,
 }
 
@@ -223,10 +224,8 @@ fn measure_rays(
     drop(accel);
     // Memory of the BVH the rays and renders use.
     let render_options = AccelOptions { build_quality: render_quality, ..AccelOptions::default() };
-    let before = crate::process_memory::resident_bytes().unwrap_or(0);
     let accel = build(backend, scene, &render_options)?;
-    let rss_added = crate::process_memory::resident_bytes().unwrap_or(0).saturating_sub(before);
-    let accel_mib = accel.memory_bytes().unwrap_or(rss_added as usize) as f64 / (1 << 20) as f64;
+    let accel_mib = accel.memory_bytes().unwrap_or(0) as f64 / (1 << 20) as f64;
     let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
     let primary = primary_rays(scene);
     let diffuse = diffuse_rays(scene, accel.as_ref(), &primary);

@@ -4,8 +4,9 @@
 use super::*;
 use embray::choice::Choice;
 
-/// Pixels within 3/255 in every channel required of a single-sample reference scene.
-const MIN_WITHIN: f64 = 0.99;
+/// Pixels within 3/255 in every channel required of a single-sample reference scene (the
+/// README claims 99.6 %; the lowest measured is 99.64 %, the smooth-shaded car).
+const MIN_WITHIN: f64 = 0.996;
 
 /// Scenes whose reference cannot match for a reason outside our control, with what was
 /// measured (robust spawning, both backends) and why. They are still rendered and reported;
@@ -28,14 +29,12 @@ const MISSING_MESHES: &[&str] = &[
     "2024/hw1/inputs/deniz_sayin/lobster.xml",
 ];
 
-fn data_dir() -> Option<PathBuf> {
+/// The CENG795 packs. Tests that need them are ignored when the build did not find them
+/// (`cfg(course_data)`, set by build.rs), so they never pass without checking.
+fn data_dir() -> PathBuf {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ceng795");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        println!("skipped: the CENG795 scene packs are not at {}", dir.display());
-        None
-    }
+    assert!(dir.is_dir(), "the CENG795 scene packs are not at {}", dir.display());
+    dir
 }
 
 /// Every .xml under `dir` (recursively), sorted.
@@ -107,8 +106,9 @@ struct Row {
 }
 
 #[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn reference_scenes_match_the_course_images() {
-    let Some(data) = data_dir() else { return };
+    let data = data_dir();
     let mut files = Vec::new();
     for folder in ["2021/hw1", "2021/hw2", "2024/hw1/inputs"] {
         files.extend(xml_files(&data.join(folder)));
@@ -207,8 +207,9 @@ fn hw3_scenes(data: &Path) -> Vec<(String, PathBuf, Vec<CameraScene>)> {
 }
 
 #[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn bunny_matches_exactly_with_the_course_shadow_offset() {
-    let Some(data) = data_dir() else { return };
+    let data = data_dir();
     let (cameras, _) = ceng795::load_with_warnings(&data.join("2021/hw1/bunny.xml")).unwrap();
     let reference = read_rgb(&data.join("2021/hw1/bunny.png")).unwrap();
     let scene = &cameras[0].scene;
@@ -220,8 +221,9 @@ fn bunny_matches_exactly_with_the_course_shadow_offset() {
 }
 
 #[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn hw3_effect_scenes_render_on_every_backend() {
-    let Some(data) = data_dir() else { return };
+    let data = data_dir();
     let scenes = hw3_scenes(&data);
     assert!(scenes.len() >= 7, "expected the hw3 scenes, found {}", scenes.len());
     println!("\n| scene | resolution | spp | backend | seconds | mean value |");
@@ -258,8 +260,9 @@ fn hw3_effect_scenes_render_on_every_backend() {
 }
 
 #[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn info_reports_the_hw3_effects() {
-    let Some(data) = data_dir() else { return };
+    let data = data_dir();
     let expected: &[(&str, &[&str])] = &[
         ("cornellbox_area.xml", &["area lights", "area lights (invisible squares): 1"]),
         ("cornellbox_boxes_dynamic.xml", &["motion blur", "instancing", "mirror/glass"]),
@@ -307,8 +310,9 @@ fn mesh_sharing(scene: &SceneDesc) -> Vec<usize> {
 }
 
 #[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn converted_toml_renders_like_the_xml() {
-    let Some(data) = data_dir() else { return };
+    let data = data_dir();
     let dir = std::env::temp_dir().join(format!("embray-ceng795-convert-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();

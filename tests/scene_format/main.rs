@@ -8,7 +8,7 @@ use embray::scene::{
     SceneDesc, ShapeDesc, Specular,
 };
 use glam::{DAffine3, DVec3, Vec2, Vec3};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 #[path = "../common/mod.rs"]

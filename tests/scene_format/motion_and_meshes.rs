@@ -127,7 +127,7 @@ fn smooth_normals_are_area_weighted() {
     assert_close(normals[0], DVec3::new(-2.0, -2.0, -1.0) / 3.0);
     // Vertex 6 = (1,1,1): both triangles of z = 1 ("1 5 6 2"), one of x = 1 and of y = 1.
     assert_close(normals[6], DVec3::new(1.0, 1.0, 2.0) / 6f64.sqrt());
-    assert_eq!(embray::scene::area_weighted_normals(&smooth.positions, &smooth.indices), *normals);
+    assert!(normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-12), "{normals:?}");
 }
 
 #[test]

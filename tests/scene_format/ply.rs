@@ -108,21 +108,10 @@ fn ply_ascii_and_binary_give_the_same_mesh() {
     assert_eq!(scene.objects[0].name, format!("objects[0] ({})", files[0].display()));
 }
 
-/// The course's PLY files in `shared/` beside the repository; `None` (with a message) when
-/// they are not there.
-fn course_data() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ceng795");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipping: the course data {} is absent", dir.display());
-        None
-    }
-}
-
 #[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn course_ply_files_load() {
-    let Some(dir) = course_data() else { return };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ceng795");
     // (file, vertices, triangles): binary little endian triangle meshes, and Greg Turk's
     // ASCII cube of quads.
     let cases = [
@@ -135,10 +124,7 @@ fn course_ply_files_load() {
     ];
     for (file, vertices, triangles) in cases {
         let path = dir.join(file);
-        if !path.exists() {
-            eprintln!("skipping {}: absent", path.display());
-            continue;
-        }
+        assert!(path.exists(), "{} is missing from the course packs", path.display());
         let scene = load(&scene_with(&ply_scene(&path.display().to_string(), Some(true))));
         let mesh = mesh_of(&scene, 0);
         assert_eq!((mesh.positions.len(), mesh.indices.len()), (vertices, triangles), "{file}");

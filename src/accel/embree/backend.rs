@@ -309,4 +309,10 @@ impl Accel for EmbreeAccel {
     fn observes(&self) -> Observes {
         Observes { node_visits: false, prim_tests: self.counting }
     }
+
+    /// What Embree's memory monitor counted for this backend's device: its BVHs, buffers
+    /// and allocator blocks.
+    fn memory_bytes(&self) -> Option<usize> {
+        Some(self.scene.device().allocated_bytes())
+    }
 }

@@ -263,7 +263,10 @@ fn counting_mode_matches_obvhs_and_counts_comparably() {
         count_triangles(&scene),
         co.node_visits as f64 / rays.len() as f64
     );
-    assert!(e > 0.2 * o && e < 5.0 * o, "embree {e}, obvhs {o}");
+    // Measured 4.27 against 14.37 (0.30): obvhs tests whole 4-wide leaf blocks where
+    // Embree's user-geometry leaves call back per primitive. A change of either builder
+    // that moves this ratio should be looked at.
+    assert!(e > 0.25 * o && e < 0.4 * o, "embree {e}, obvhs {o}");
 }
 
 fn count_triangles(scene: &RenderScene) -> usize {

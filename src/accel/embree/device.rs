@@ -5,6 +5,7 @@ use super::ffi;
 use crate::accel::AccelError;
 use std::ffi::{CStr, CString, c_char, c_void};
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicIsize, Ordering};
 
 /// Errors Embree reported through the callback since the last [`Device::check`].
 ///
@@ -29,6 +30,9 @@ pub struct Device {
     /// Embree keeps its address as the error callback's user pointer; dropped after the
     /// callback is unregistered (field drop runs after `Drop::drop`).
     log: CallbackData<ErrorLog>,
+    /// Bytes Embree holds for this device (its BVHs, buffers and allocators), counted by
+    /// its memory monitor callback; unregistered in `Drop` like the error callback.
+    allocated: CallbackData<AtomicIsize>,
 }
 
 // SAFETY: Embree's API is thread-safe for a device (objects created from it may be used from
@@ -56,11 +60,21 @@ impl Device {
         // SAFETY: `handle` is a live device. The user pointer is owned by the returned
         // `Device`, which unregisters the callback before freeing it (see `Drop`).
         unsafe { ffi::rtcSetDeviceErrorFunction(handle, Some(on_error), log.user_ptr()) };
-        Ok(Device { handle, log })
+        let allocated = CallbackData::new(AtomicIsize::new(0));
+        // SAFETY: as for the error callback: the counter outlives the registration.
+        unsafe {
+            ffi::rtcSetDeviceMemoryMonitorFunction(handle, Some(on_memory), allocated.user_ptr())
+        };
+        Ok(Device { handle, log, allocated })
     }
 
     pub fn handle(&self) -> ffi::RTCDevice {
         self.handle
+    }
+
+    /// Bytes Embree currently holds for this device, as its memory monitor reports them.
+    pub fn allocated_bytes(&self) -> usize {
+        self.allocated.get().load(Ordering::Relaxed).max(0) as usize
     }
 
     /// `Err` with Embree's messages if it reported any error since the last check.
@@ -86,6 +100,7 @@ impl Drop for Device {
         // the device alive for a moment, it can never call back into the freed log.
         unsafe {
             ffi::rtcSetDeviceErrorFunction(self.handle, None, std::ptr::null_mut());
+            ffi::rtcSetDeviceMemoryMonitorFunction(self.handle, None, std::ptr::null_mut());
             ffi::rtcReleaseDevice(self.handle);
         }
     }
@@ -117,4 +132,18 @@ unsafe extern "C" fn on_error(user_ptr: *mut c_void, code: ffi::RTCError, messag
         let msg = unsafe { CStr::from_ptr(message) }.to_string_lossy();
         format!("{msg} ({code:?})")
     });
+}
+
+/// Embree's memory monitor: `bytes` allocated (positive) or freed (negative). Embree's
+/// documentation tracks usage by accumulating every call (an allocation that fails is
+/// reported back with negative bytes); returning true lets the allocation go ahead.
+/// `extern "C"`: nothing here can panic.
+unsafe extern "C" fn on_memory(user_ptr: *mut c_void, bytes: isize, _post: bool) -> bool {
+    if !user_ptr.is_null() {
+        // SAFETY: `user_ptr` was registered in `Device::new` and points to the device's
+        // counter, alive until the callback is unregistered in `Drop`.
+        let counter = unsafe { &*user_ptr.cast::<AtomicIsize>() };
+        counter.fetch_add(bytes, Ordering::Relaxed);
+    }
+    true
 }
