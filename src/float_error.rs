@@ -58,7 +58,9 @@ pub fn triangle_point_from_ray(
     dir: Vec3,
     t: f32,
 ) -> Option<(Vec3, Vec3)> {
-    let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
+    let (e1, e2) = (tri[1] - tri[0], tri[2] - tri[0]);
+    let cross = e1.cross(e2);
+    let normal = cross.normalize_or_zero();
     if normal == Vec3::ZERO {
         return None;
     }
@@ -66,8 +68,15 @@ pub fn triangle_point_from_ray(
     let from_vertex = on_ray - tri[0];
     let distance = from_vertex.dot(normal);
     let point = on_ray - normal * distance;
-    // The plane distance's own rounding, then the projection's.
-    let across = gamma(4) * from_vertex.abs().dot(normal.abs()) + gamma(2) * distance.abs();
+    // The rounded normal tilts the plane through tri[0] by at most `tilt` radians: each
+    // cross-product component is off by γ(3)·|e1||e2| (large against |e1 × e2| for a
+    // sliver), normalising adds γ(3). At `from_vertex` that moves the plane by
+    // |from_vertex| · tilt.
+    let tilt = gamma(3) * (e1.length() * e2.length()) / cross.length() + gamma(3);
+    // Then the plane distance's own rounding, and the projection's.
+    let across = gamma(4) * from_vertex.abs().dot(normal.abs())
+        + gamma(2) * distance.abs()
+        + from_vertex.length() * tilt;
     let error = Vec3::splat(across) + point.abs() * gamma(2) + Vec3::splat(MIN_OFFSET);
     Some((point, error))
 }

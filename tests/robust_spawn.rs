@@ -57,3 +57,95 @@ fn grazing_light_at_offset_1e6_causes_no_self_shadowing() {
         }
     }
 }
+
+/// A 20 km square tilted 37° about a skew axis, 10⁶ units from the origin, seen from 2 units
+/// above it (so in `cameraworld` the huge triangle passes right by the origin): placed once
+/// (baked into render space), twice (an instance), or moving; `kind` picks which.
+fn tilted_plane_scene(kind: &str) -> embray::scene::SceneDesc {
+    use common::build::*;
+    use glam::DAffine3;
+    let far = DVec3::new(1e6, -2e6, 1.5e6);
+    let tilt = DAffine3::from_translation(far)
+        * DAffine3::from_axis_angle(DVec3::new(1.0, 0.3, -0.2).normalize(), 37f64.to_radians());
+    let eye = tilt.transform_point3(DVec3::new(100.0, 2.0, 50.0));
+    let target = tilt.transform_point3(DVec3::new(300.0, 0.0, -200.0));
+    let mut s = scene(camera(eye.to_array(), target.to_array(), 60.0, 8, 8));
+    let m = add_material(&mut s, diffuse(0.5));
+    let plane = quad([-1e4, 0.0, 1e4], [2e4, 0.0, 0.0], [0.0, 0.0, -2e4]);
+    let mut object = object("plane", plane.clone(), m, tilt);
+    if kind == "moving" {
+        object.world_from_object_end =
+            Some(DAffine3::from_translation(DVec3::new(3.0, 1.0, 0.0)) * tilt);
+    }
+    s.objects.push(object);
+    if kind == "instanced" {
+        let away = DAffine3::from_translation(far + DVec3::new(0.0, -1e5, 0.0));
+        s.objects.push(embray::scene::ObjectDesc {
+            name: "copy".into(),
+            shape: plane,
+            material: m,
+            world_from_object: away,
+            world_from_object_end: None,
+        });
+    }
+    s
+}
+
+#[test]
+fn rays_leaving_a_large_tilted_triangle_far_away_never_hit_it_again() {
+    use embray::accel::{AccelOptions, build};
+    use embray::render::prepare_scene;
+    use embray::shading::spawn::SpawnMode;
+    use embray::shading::surface::interaction;
+    use embray::splitmix::SplitMix64;
+    use embray::stats::TraversalCounters;
+    use glam::{Vec2, Vec3};
+    for kind in ["baked", "instanced", "moving"] {
+        let desc = tilted_plane_scene(kind);
+        for backend in backends() {
+            for space in [RenderSpace::Cameraworld, RenderSpace::World] {
+                let mut o = options(&desc, backend, 1);
+                o.render_space = space;
+                let scene = prepare_scene(&desc, &o).unwrap();
+                let placement = &scene.instances[0].placement;
+                assert_eq!(placement.is_moving(), kind == "moving", "{kind}");
+                assert_eq!(
+                    matches!(placement, embray::render_scene::Placement::Baked { .. }),
+                    kind == "baked",
+                    "{kind}"
+                );
+                let accel = build(backend, &scene, &AccelOptions::default()).unwrap();
+                let mut counters = TraversalCounters::default();
+                let mut rng = SplitMix64(17);
+                let (mut spawned, mut self_hits) = (0, 0);
+                for _ in 0..400 {
+                    let raster = Vec2::new(rng.range(0.0, 8.0), rng.range(0.0, 8.0));
+                    let mut ray = scene.camera.generate_ray(raster, None);
+                    ray.time = rng.unit();
+                    let Some(hit) = accel.intersect(&ray, &mut counters) else { continue };
+                    let si = interaction(&scene, &ray, &hit);
+                    for _ in 0..8 {
+                        // Any direction, on either side of the surface (reflected or
+                        // transmitted), grazing ones included.
+                        let dir = rng.vec3(-1.0, 1.0).normalize_or_zero();
+                        if dir == Vec3::ZERO || dir.dot(si.surface.normal) == 0.0 {
+                            continue;
+                        }
+                        let next = SpawnMode::Robust.ray(&si.surface, dir, ray.time);
+                        spawned += 1;
+                        if let Some(again) = accel.intersect(&next, &mut counters) {
+                            self_hits += (again.geom_id == hit.geom_id) as usize;
+                        }
+                    }
+                }
+                println!(
+                    "{kind} {} {}: {spawned} rays spawned, {self_hits} self-hits",
+                    backend.name(),
+                    space.name()
+                );
+                assert!(spawned > 1000, "{kind}: the camera must see the plane");
+                assert_eq!(self_hits, 0, "{kind} {} {}", backend.name(), space.name());
+            }
+        }
+    }
+}

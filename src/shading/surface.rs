@@ -80,10 +80,14 @@ fn local_hit(geometry: &Geometry, hit: &Hit, origin: Vec3, dir: Vec3) -> LocalHi
 pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteraction {
     let instance = &scene.instances[hit.geom_id as usize];
     let geometry = &scene.prototypes[instance.prototype as usize].geometry;
-    let mut local = match instance.placement.render_from_object(ray.time) {
+    let placement = &instance.placement;
+    let transforms =
+        placement.render_from_object(ray.time).zip(placement.object_from_render(ray.time));
+    let mut local = match transforms {
         None => local_hit(geometry, hit, ray.origin, ray.dir),
-        Some(render_from_object) => {
-            let object_from_render = render_from_object.inverse();
+        // The stored inverse (static instances), or the one the backends trace moving
+        // instances with: the object-space ray is the one that found the hit.
+        Some((render_from_object, object_from_render)) => {
             let origin = object_from_render.transform_point3(ray.origin);
             let dir = object_from_render.transform_vector3(ray.dir);
             let mut l = local_hit(geometry, hit, origin, dir);
