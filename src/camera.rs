@@ -21,6 +21,8 @@ pub struct Camera {
     pub focus_distance: f32,
     /// The course's square lens instead of a disk.
     pub square_lens: bool,
+    /// Lens shift: the window centre at unit distance (camera space x, y).
+    pub shift: Vec2,
 }
 
 impl Default for Camera {
@@ -35,6 +37,7 @@ impl Default for Camera {
             lens_radius: 0.0,
             focus_distance: 1.0,
             square_lens: false,
+            shift: Vec2::ZERO,
         }
     }
 }
@@ -50,7 +53,11 @@ impl Camera {
         let aspect = self.width as f32 / self.height as f32;
         let ndc_x = 2.0 * raster.x / self.width as f32 - 1.0;
         let ndc_y = 1.0 - 2.0 * raster.y / self.height as f32;
-        Vec3::new(ndc_x * self.tan_half_vfov * aspect, ndc_y * self.tan_half_vfov, -1.0)
+        Vec3::new(
+            ndc_x * self.tan_half_vfov * aspect + self.shift.x,
+            ndc_y * self.tan_half_vfov + self.shift.y,
+            -1.0,
+        )
     }
 
     /// The primary ray through `raster`. `lens` is a uniform sample in [0,1)² and is only

@@ -83,6 +83,7 @@ mod tests {
             aperture: 0.0,
             focus_distance: None,
             lens_shape: LensShape::Disk,
+            shift: glam::DVec2::ZERO,
         }
     }
 

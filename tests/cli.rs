@@ -132,7 +132,7 @@ fn build_options_are_reported_and_keep_the_image() {
 #[test]
 fn render_without_a_scene_draws_the_default_cornell_box() {
     let dir = temp_dir("default");
-    let out = embray(&["render", "--spp", "1", "--quiet", "-o", "cornell.exr"], &dir);
+    let out = embray(&["render", "--spp", "16", "--quiet", "-o", "cornell.exr"], &dir);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let png = image::open(dir.join("cornell.png")).unwrap().to_rgb8();
     assert_eq!(png.dimensions(), (256, 256));

@@ -52,6 +52,7 @@ pub fn displaced_sphere_scene(triangles: usize, width: u32, height: u32) -> Scen
         aperture: 0.0,
         focus_distance: None,
         lens_shape: LensShape::Disk,
+        shift: glam::DVec2::ZERO,
     };
     let ground = MeshData {
         positions: vec![

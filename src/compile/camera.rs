@@ -18,5 +18,6 @@ pub(super) fn place_camera(desc: &CameraDesc, camera_transform: &CameraTransform
         lens_radius: (desc.aperture * 0.5) as f32,
         focus_distance: focus_distance as f32,
         square_lens: desc.lens_shape == LensShape::Square,
+        shift: desc.shift.as_vec2(),
     }
 }

@@ -148,8 +148,7 @@ impl<'a> PathTracer<'a> {
                 let to_light = sample.point - p;
                 let dist2 = to_light.length_squared();
                 let wi = to_light / dist2.sqrt();
-                // Emitters are one-sided: they shine on the side their normal points to.
-                let cos_light = -sample.normal.dot(wi);
+                let cos_light = sample.emitted_cosine(-wi);
                 if !faces(wi) || !(cos_light > 0.0) || !(dist2 > 0.0) {
                     continue;
                 }

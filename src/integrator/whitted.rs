@@ -113,7 +113,7 @@ impl<'a> WhittedTracer<'a> {
                 let to_light = sample.point - si.surface.point;
                 let dist2 = to_light.length_squared();
                 let wi = to_light / dist2.sqrt();
-                let cos_light = (-sample.normal.dot(wi)).max(0.0);
+                let cos_light = sample.emitted_cosine(-wi).max(0.0);
                 let target = SurfacePoint {
                     point: sample.point,
                     error: sample.error,

@@ -6,7 +6,7 @@ use super::source_map::FieldPath;
 use super::toml_format::{CameraToml, IntegratorToml, LensToml, RenderToml};
 use super::transform_list::fmt_vec;
 use super::validate::Ctx;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// The largest width or height accepted.
 pub const MAX_RESOLUTION: u32 = 16384;
@@ -71,6 +71,7 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
             None | Some(LensToml::Disk) => LensShape::Disk,
             Some(LensToml::Square) => LensShape::Square,
         },
+        shift: DVec2::from_array(cam.shift.unwrap_or([0.0; 2])),
     })
 }
 

@@ -1,7 +1,7 @@
 //! `SceneDesc`: a validated scene in world space with f64 transforms, independent of the file
 //! format it came from.
 
-use glam::{DAffine3, DVec3, Vec2, Vec3};
+use glam::{DAffine3, DVec2, DVec3, Vec2, Vec3};
 use std::path::PathBuf;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -18,6 +18,10 @@ pub struct CameraDesc {
     /// Distance to the plane in focus; `None` means the lookat distance.
     pub focus_distance: Option<f64>,
     pub lens_shape: LensShape,
+    /// Lens shift: the image window's centre, at unit distance in front of the lens, along
+    /// the camera's right and up axes (0 = centred; an off-axis projection otherwise, as the
+    /// course's off-centre near planes need).
+    pub shift: DVec2,
 }
 
 /// The shape of the lens aperture (`aperture` is its diameter, or its side for a square).
@@ -165,9 +169,8 @@ pub enum LightDesc {
     Area { center: DVec3, normal: DVec3, size: f64, radiance: Vec3 },
 }
 
-/// Defaults for the renderer that a scene may carry; command-line options override them.
 /// Which light-transport algorithm renders the scene.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum IntegratorKind {
     /// Path tracing with next-event estimation and MIS.
     #[default]
@@ -177,6 +180,12 @@ pub enum IntegratorKind {
     Whitted,
 }
 
+crate::choice::named_choices!(IntegratorKind, "integrator", {
+    Path => "path",
+    Whitted => "whitted",
+});
+
+/// Defaults for the renderer that a scene may carry; command-line options override them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderSettings {
     pub spp: u32,

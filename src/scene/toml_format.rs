@@ -38,6 +38,8 @@ pub(crate) struct CameraToml {
     pub focal_length: Option<f64>,
     pub lens: Option<LensToml>,
     pub focus_distance: Option<f64>,
+    /// Lens shift (off-axis projection): the window centre at unit distance.
+    pub shift: Option<[f64; 2]>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]

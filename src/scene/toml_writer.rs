@@ -209,6 +209,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) {
     if let Some(d) = c.focus_distance {
         let _ = writeln!(out, "focus_distance = {}", f(d));
     }
+    if c.shift != glam::DVec2::ZERO {
+        let _ = writeln!(out, "shift = [{}, {}]", f(c.shift.x), f(c.shift.y));
+    }
     let s = &scene.settings;
     let integrator = match s.integrator {
         IntegratorKind::Path => "path",

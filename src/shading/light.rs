@@ -33,6 +33,7 @@ pub enum EmitterShape {
     },
     /// A geometry-less square (the course's area light): `center ± edge_u ± edge_v`, with
     /// `edge_u`, `edge_v` half an edge long and perpendicular to `normal` (unit length).
+    /// It emits on both sides.
     Square {
         center: Vec3,
         edge_u: Vec3,
@@ -68,6 +69,17 @@ pub struct EmitterSample {
     /// Whether rays can hit the emitter. An invisible one (`NO_GEOMETRY`) is only ever
     /// found by light sampling, which then gets full weight.
     pub visible: bool,
+    /// Emits on both sides (the course's area lights), not only where `normal` points.
+    pub two_sided: bool,
+}
+
+impl EmitterSample {
+    /// The cosine at which light leaves the emitter towards `towards` (a unit direction
+    /// from the sampled point): negative where a one-sided emitter sends nothing.
+    pub fn emitted_cosine(&self, towards: Vec3) -> f32 {
+        let cos = self.normal.dot(towards);
+        if self.two_sided { cos.abs() } else { cos }
+    }
 }
 
 #[derive(Clone, Debug, Default)]
@@ -121,7 +133,10 @@ impl LightSet {
 
     /// The table that picks emitters by power; drops them all if none emits.
     fn build_selection(&mut self) {
-        let powers = self.emitters.iter().map(|e| e.area as f64 * luminance(e.emission) as f64);
+        let powers = self.emitters.iter().map(|e| {
+            let sides = if matches!(e.shape, EmitterShape::Square { .. }) { 2.0 } else { 1.0 };
+            sides * e.area as f64 * luminance(e.emission) as f64
+        });
         self.selection = AliasTable::new(powers);
         if self.selection.is_none() {
             self.emitters.clear();
@@ -194,6 +209,7 @@ impl LightSet {
             pdf_area: probability / emitter.area,
             geom_id: emitter.geom_id,
             visible: emitter.geom_id != NO_GEOMETRY,
+            two_sided: matches!(emitter.shape, EmitterShape::Square { .. }),
         })
     }
 }

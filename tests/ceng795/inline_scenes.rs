@@ -57,21 +57,33 @@ fn cameras_follow_the_course_conventions() {
 }
 
 #[test]
-fn off_centre_windows_are_approximated_with_a_note() {
+fn off_centre_windows_are_reproduced_exactly_by_a_lens_shift() {
+    use embray::compile::{EffectsMode, to_render_scene};
+    use embray::render_space::RenderSpace;
     let text = scene_xml(TRIANGLE)
-        .replace("<NearPlane>-1 1 -1 1</NearPlane>", "<NearPlane>-1 1 -1 0.6</NearPlane>")
+        .replace("<NearPlane>-1 1 -1 1</NearPlane>", "<NearPlane>-1 1.5 -1 0.6</NearPlane>")
         .replace(
             "<ImageResolution>8 8</ImageResolution>",
-            "<ImageResolution>10 8</ImageResolution>",
+            "<ImageResolution>25 16</ImageResolution>",
         );
     let (scenes, warnings) = ceng795::load_str_with_warnings(&text, Path::new("x.xml")).unwrap();
-    assert!(warnings.iter().any(|w| w.contains("off-centre")), "{warnings:?}");
-    let c = &scenes[0].scene.camera;
-    // Same vertical angle, turned down to the middle of the window's angles.
-    let (top, bottom) = (0.6f64.atan(), (-1.0f64).atan());
-    assert!((c.vfov_deg - (top - bottom).to_degrees()).abs() < 1e-9);
-    let view = (c.lookat - c.lookfrom).normalize();
-    assert!((view.y.atan2(-view.z) - 0.5 * (top + bottom)).abs() < 1e-9);
+    assert!(warnings.is_empty(), "an off-centre window is no approximation: {warnings:?}");
+    let desc = &scenes[0].scene;
+    // The view stays along the gaze; the window's height gives the angle, its centre the shift.
+    let view = (desc.camera.lookat - desc.camera.lookfrom).normalize();
+    assert!((view - DVec3::NEG_Z).length() < 1e-12);
+    assert!((desc.camera.vfov_deg - 2.0 * 0.8f64.atan().to_degrees()).abs() < 1e-9);
+    assert_eq!(desc.camera.shift, glam::DVec2::new(0.25, -0.2));
+    // The corner rays go through the window's corners (NearDistance 1, camera at 0, -Z).
+    let scene = to_render_scene(desc, RenderSpace::Camera, EffectsMode::Auto).unwrap();
+    for (raster, corner) in [
+        (glam::Vec2::new(0.0, 0.0), glam::Vec3::new(-1.0, 0.6, -1.0)),
+        (glam::Vec2::new(25.0, 16.0), glam::Vec3::new(1.5, -1.0, -1.0)),
+    ] {
+        let ray = scene.camera.generate_ray(raster, None);
+        let at_plane = ray.origin + ray.dir * (1.0 / -ray.dir.z);
+        assert!((at_plane - corner).length() < 1e-5, "{raster}: {at_plane} vs {corner}");
+    }
 }
 
 #[test]

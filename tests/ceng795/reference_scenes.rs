@@ -367,3 +367,40 @@ fn converted_toml_renders_like_the_xml() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The hw3 scenes against the instructor's images, compared on 8×8 block means (the
+/// references are 100–900 spp; ours, at 16 spp, leave a block mean 1024 samples).
+#[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
+fn hw3_scenes_match_the_references_in_8x8_block_means() {
+    let data = data_dir();
+    let mut failures = Vec::new();
+    println!("\n| scene | resolution | spp | block | mean abs error (1/255) | max block error |");
+    println!("|---|---|---|---|---|---|");
+    for xml in xml_files(&data.join("2021/hw3")) {
+        let name = relative(&data, &xml);
+        let Some(cameras) = load_or_skip(&data, &xml) else { continue };
+        for camera in cameras {
+            let reference = read_rgb(&xml.parent().unwrap().join(&camera.image_name)).unwrap();
+            let mut scene = camera.scene;
+            let (w, h) = (scene.camera.width, scene.camera.height);
+            // 8×8 blocks, or the next size that tiles the image (750×600: 10×10).
+            let b = (8..=16).find(|b| w % b == 0 && h % b == 0).expect("a block size");
+            scene.settings.spp = scene.settings.spp.min(16);
+            let options = course_options(&scene, BackendKind::default_compiled());
+            let (image, _) = render_rgb(&scene, &options);
+            let ours = embray::compare::downsample_box(&image, b);
+            let theirs = embray::compare::downsample_box(&reference, b);
+            let c = compare_images(&ours, &theirs, 1).unwrap();
+            println!(
+                "| {name} | {w}×{h} | {} | {b}×{b} | {:.3} | {} |",
+                scene.settings.spp, c.mean_abs_error, c.max_abs_error
+            );
+            if c.mean_abs_error > 1.0 {
+                let kept = keep(&format!("hw3_{name}"), &image, &c);
+                failures.push(format!("{name}: {:.3}/255 ({})", c.mean_abs_error, kept.display()));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "hw3 scenes off in block means:\n{}", failures.join("\n"));
+}

@@ -67,6 +67,7 @@ pub mod build {
             aperture: 0.0,
             focus_distance: None,
             lens_shape: LensShape::Disk,
+            shift: glam::DVec2::ZERO,
         }
     }
 

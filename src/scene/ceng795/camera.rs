@@ -3,18 +3,16 @@
 //! The course's camera: w = −normalize(Gaze), u = normalize(Up × w), v = w × u (the same
 //! frame `camera::camera_basis` builds from lookfrom/lookat/up), an image window
 //! `NearPlane` = l r b t at `NearDistance` along −w, pixel centres at (i + ½, j + ½).
-//! embray's camera is symmetric with square pixels, so a window with l = −r and b = −t whose
-//! aspect matches the resolution is reproduced exactly (vfov = 2·atan(t / d)). Other windows
-//! are approximated, with a note: an off-centre window is replaced by a symmetric one of the
-//! same vertical angle (atan(t/d) − atan(b/d)) aimed at the middle of the window's angles;
-//! the horizontal angle always follows the resolution's aspect.
+//! A near-plane window is reproduced exactly, off-centre ones included: its height gives the
+//! vertical field of view (2·atan((t − b) / 2d)) and its centre the lens shift
+//! ((l + r) / 2d, (b + t) / 2d). Pixels stay square, so a window whose aspect differs from
+//! the resolution's is noted and the horizontal extent follows the resolution.
 
 use super::xml::Xml;
 use crate::scene::MAX_RESOLUTION;
 use crate::scene::desc::{CameraDesc, LensShape};
 use crate::scene::error::SceneError;
-use crate::transform::camera_basis;
-use glam::DVec3;
+use glam::DVec2;
 use roxmltree::Node;
 
 /// One camera of the file: what it renders and where the image goes.
@@ -91,7 +89,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
     let near_distance = optional_positive(x, node, "NearDistance")?;
 
     let mut notes = Vec::new();
-    let (gaze, vfov_deg) = if look_at {
+    let (gaze, vfov_deg, shift) = if look_at {
         let gaze_point = x.vec3(x.required(node, "GazePoint")?)?;
         let fov_node = x.required(node, "FovY")?;
         let fov = x.scalar(fov_node)?;
@@ -102,7 +100,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         if gaze.try_normalize().is_none() {
             return Err(x.error(node, "<GazePoint> is the same point as <Position>"));
         }
-        (gaze, fov)
+        (gaze, fov, DVec2::ZERO)
     } else {
         let gaze_node = x.required(node, "Gaze")?;
         let gaze = x.vec3(gaze_node)?;
@@ -122,8 +120,8 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
             return Err(x.missing(node, "NearDistance"));
         };
         let window = Window { l, r, b, t, d };
-        let (aimed, vfov) = window.symmetric(gaze, up, (width, height), &mut notes);
-        (aimed, vfov)
+        let (vfov, shift) = window.projection((width, height), &mut notes);
+        (gaze, vfov, shift)
     };
 
     let aperture = match x.child(node, "ApertureSize")? {
@@ -155,6 +153,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
             aperture,
             focus_distance,
             lens_shape: if aperture > 0.0 { LensShape::Square } else { LensShape::Disk },
+            shift,
         },
         spp,
         notes,
@@ -171,21 +170,12 @@ struct Window {
 }
 
 impl Window {
-    /// The view direction and vertical field of view (degrees) of the symmetric camera that
-    /// matches (or best approximates) this window; notes what is approximated.
-    fn symmetric(
-        &self,
-        gaze: DVec3,
-        up: DVec3,
-        (width, height): (u32, u32),
-        notes: &mut Vec<String>,
-    ) -> (DVec3, f64) {
+    /// The vertical field of view (degrees) and the lens shift that reproduce this window
+    /// exactly, off-centre or not; notes a window whose aspect differs from the image's
+    /// (pixels stay square: the horizontal extent follows the resolution).
+    fn projection(&self, (width, height): (u32, u32), notes: &mut Vec<String>) -> (f64, DVec2) {
         let Window { l, r, b, t, d } = *self;
-        let (top, bottom) = ((t / d).atan(), (b / d).atan());
-        let (right, left) = ((r / d).atan(), (l / d).atan());
-        let vfov = (top - bottom).to_degrees();
-        let tolerance = 1e-9 * (r - l).max(t - b);
-        let off_centre = (l + r).abs() > tolerance || (b + t).abs() > tolerance;
+        let vfov = 2.0 * ((t - b) / (2.0 * d)).atan().to_degrees();
         let plane_aspect = (r - l) / (t - b);
         let image_aspect = width as f64 / height as f64;
         if (plane_aspect - image_aspect).abs() > 1e-6 * image_aspect {
@@ -195,20 +185,7 @@ impl Window {
                  follows the resolution"
             ));
         }
-        if !off_centre {
-            return (gaze, vfov);
-        }
-        notes.push(format!(
-            "the near plane {l} {r} {b} {t} is off-centre; embray's camera is symmetric, so \
-             the view is turned to the middle of the window's angles with the same vertical \
-             angle ({vfov:.3}°): an approximation, exact only along the image's centre lines"
-        ));
-        // The camera frame of the course (w = −gaze, u = up × w, v = w × u).
-        let basis = camera_basis(gaze, up);
-        let (u, v, w) = (basis.x_axis, basis.y_axis, basis.z_axis);
-        let yaw = 0.5 * (right + left);
-        let pitch = 0.5 * (top + bottom);
-        (-w + yaw.tan() * u + pitch.tan() * v, vfov)
+        (vfov, DVec2::new((l + r) / (2.0 * d), (b + t) / (2.0 * d)))
     }
 }
 
