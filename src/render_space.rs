@@ -69,22 +69,10 @@ impl CameraTransform {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::LensShape;
     use glam::DVec3;
 
     fn camera_at(lookfrom: DVec3) -> CameraDesc {
-        CameraDesc {
-            lookfrom,
-            lookat: lookfrom + DVec3::new(1.0, -0.5, 2.0),
-            up: DVec3::Y,
-            vfov_deg: 40.0,
-            width: 8,
-            height: 8,
-            aperture: 0.0,
-            focus_distance: None,
-            lens_shape: LensShape::Disk,
-            shift: glam::DVec2::ZERO,
-        }
+        CameraDesc::pinhole(lookfrom, lookfrom + DVec3::new(1.0, -0.5, 2.0), 40.0, 8, 8)
     }
 
     #[test]

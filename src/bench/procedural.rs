@@ -1,8 +1,7 @@
 //! Procedurally generated benchmark scenes, so the large ones need no files.
 
 use crate::scene::{
-    CameraDesc, LensShape, LightDesc, MaterialDesc, MeshData, ObjectDesc, RenderSettings,
-    SceneDesc, ShapeDesc,
+    CameraDesc, LightDesc, MaterialDesc, MeshData, ObjectDesc, RenderSettings, SceneDesc, ShapeDesc,
 };
 use glam::{DAffine3, DVec3, Vec3};
 use std::sync::Arc;
@@ -42,18 +41,13 @@ pub fn displaced_sphere(triangles: usize) -> MeshData {
 
 /// The displaced sphere on a ground quad, lit by a point light.
 pub fn displaced_sphere_scene(triangles: usize, width: u32, height: u32) -> SceneDesc {
-    let camera = CameraDesc {
-        lookfrom: DVec3::new(0.0, 1.2, 3.2),
-        lookat: DVec3::new(0.0, 0.1, 0.0),
-        up: DVec3::Y,
-        vfov_deg: 40.0,
+    let camera = CameraDesc::pinhole(
+        DVec3::new(0.0, 1.2, 3.2),
+        DVec3::new(0.0, 0.1, 0.0),
+        40.0,
         width,
         height,
-        aperture: 0.0,
-        focus_distance: None,
-        lens_shape: LensShape::Disk,
-        shift: glam::DVec2::ZERO,
-    };
+    );
     let ground = MeshData {
         positions: vec![
             DVec3::new(-10.0, -1.1, -10.0),

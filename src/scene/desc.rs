@@ -24,6 +24,24 @@ pub struct CameraDesc {
     pub shift: DVec2,
 }
 
+impl CameraDesc {
+    /// A pinhole camera at `lookfrom` looking at `lookat` (up +Y, no lens shift).
+    pub fn pinhole(lookfrom: DVec3, lookat: DVec3, vfov_deg: f64, width: u32, height: u32) -> Self {
+        CameraDesc {
+            lookfrom,
+            lookat,
+            up: DVec3::Y,
+            vfov_deg,
+            width,
+            height,
+            aperture: 0.0,
+            focus_distance: None,
+            lens_shape: LensShape::Disk,
+            shift: DVec2::ZERO,
+        }
+    }
+}
+
 /// The shape of the lens aperture (`aperture` is its diameter, or its side for a square).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum LensShape {

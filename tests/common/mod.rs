@@ -57,18 +57,13 @@ pub mod build {
         width: u32,
         height: u32,
     ) -> CameraDesc {
-        CameraDesc {
-            lookfrom: DVec3::from_array(lookfrom),
-            lookat: DVec3::from_array(lookat),
-            up: DVec3::Y,
-            vfov_deg: vfov,
+        CameraDesc::pinhole(
+            DVec3::from_array(lookfrom),
+            DVec3::from_array(lookat),
+            vfov,
             width,
             height,
-            aperture: 0.0,
-            focus_distance: None,
-            lens_shape: LensShape::Disk,
-            shift: glam::DVec2::ZERO,
-        }
+        )
     }
 
     pub fn scene(camera: CameraDesc) -> SceneDesc {
