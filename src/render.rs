@@ -153,8 +153,8 @@ struct TileResult {
     stats: RenderStats,
 }
 
-/// How many camera rays are generated and intersected as one batch: a chunk of a tile's
-/// pixels, all samples of each.
+/// How many camera rays are generated and intersected as one batch: a run of a tile's
+/// samples, which may end inside a pixel.
 pub const CAMERA_BATCH: usize = 1024;
 
 /// Buffers one worker reuses from tile to tile, so tracing a tile allocates only its result.
@@ -263,29 +263,32 @@ fn render_tile(
         }
         return result;
     };
+    // The tile's samples as one stream, pixel by pixel and sample by sample, cut into
+    // batches of `CAMERA_BATCH`: memory stays bounded whatever the spp (a pixel's samples
+    // may span batches; its sum carries over).
     let width = (tile.x1 - tile.x0) as usize;
-    let pixels_per_batch = (CAMERA_BATCH / spp as usize).max(1);
+    let spp_n = spp as usize;
+    let total = n * spp_n;
+    let mut sum = PixelSum::default();
     let mut first = 0;
-    while first < n {
-        let last = (first + pixels_per_batch).min(n);
+    while first < total {
+        let last = (first + CAMERA_BATCH).min(total);
         let pixel = |i: usize| (tile.x0 + (i % width) as u32, tile.y0 + (i / width) as u32);
         scratch.rays.clear();
         scratch.streams.clear();
-        for i in first..last {
-            for s in 0..spp {
-                let (ray, stream) = camera_sample(scene, options, pixel(i), s, spp);
-                scratch.rays.push(ray);
-                scratch.streams.push(stream);
-            }
+        for g in first..last {
+            let (ray, stream) =
+                camera_sample(scene, options, pixel(g / spp_n), (g % spp_n) as u32, spp);
+            scratch.rays.push(ray);
+            scratch.streams.push(stream);
         }
         scratch.hits.clear();
         scratch.hits.resize(scratch.rays.len(), None);
         path.accel().intersect_batch(&scratch.rays, &mut scratch.hits, &mut result.stats.traversal);
         let samples = scratch.rays.iter().zip(&scratch.hits).zip(&mut scratch.streams);
-        let mut sum = PixelSum::default();
         for (k, ((ray, hit), stream)) in samples.enumerate() {
             sum.add(&path.trace(*ray, Some(*hit), stream, &mut result.stats));
-            if (k + 1) % spp as usize == 0 {
+            if (first + k + 1) % spp_n == 0 {
                 result.push(std::mem::take(&mut sum), spp);
             }
         }
