@@ -21,7 +21,12 @@ pub fn describe(scene: &SceneDesc) -> String {
         c.lookat.to_array(),
         c.aperture
     );
-    out += &format!("render: {} spp, max depth {}\n", scene.settings.spp, scene.settings.max_depth);
+    out += &format!(
+        "render: {} spp, max depth {}, {} sampler (the default; `render --sampler` chooses)\n",
+        scene.settings.spp,
+        scene.settings.max_depth,
+        crate::sampling::SamplerKind::default()
+    );
     let (mut meshes, mut triangles, mut spheres) = (0, 0, 0);
     for object in &scene.objects {
         match &object.shape {

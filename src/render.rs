@@ -8,7 +8,7 @@ use crate::integrator::{PathSample, Tracer};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::render_space::RenderSpace;
-use crate::sampling::{SLOT_LENS, SLOT_TIME, SampleStream, pixel_sample};
+use crate::sampling::{SLOT_LENS, SLOT_TIME, SampleStream, SamplerKind};
 use crate::scene::IntegratorKind;
 use crate::scene::SceneDesc;
 use crate::shading::spawn::SpawnMode;
@@ -48,6 +48,7 @@ pub struct RenderOptions {
     pub effects_mode: EffectsMode,
     pub integrator: IntegratorKind,
     pub spawn: SpawnMode,
+    pub sampler: SamplerKind,
 }
 
 impl RenderOptions {
@@ -69,6 +70,7 @@ impl RenderOptions {
             effects_mode: EffectsMode::Auto,
             integrator: scene.settings.integrator,
             spawn: SpawnMode::Robust,
+            sampler: SamplerKind::default(),
         }
     }
 }
@@ -176,9 +178,8 @@ fn camera_sample(
 ) -> (Ray, SampleStream) {
     let camera = &scene.camera;
     let pixel = y as u64 * camera.width as u64 + x as u64;
-    let mut stream = SampleStream::new(options.seed, pixel, s as u64);
-    let jitter = options.jitters().then(|| stream.next_2d());
-    let in_pixel = pixel_sample(s, spp, jitter, options.seed, pixel);
+    let mut stream = SampleStream::new(options.sampler, options.seed, pixel, s as u64);
+    let in_pixel = stream.pixel_position(s, spp, options.jitters());
     let raster = Vec2::new(x as f32, y as f32) + in_pixel;
     let effects = &scene.effects;
     let lens = effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS));

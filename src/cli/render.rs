@@ -11,6 +11,7 @@ use embray::output::stats::{StatsReport, stats_table};
 use embray::output::{camera_outputs, write_exr, write_png};
 use embray::render::{RenderOptions, RenderOutput, render};
 use embray::render_space::RenderSpace;
+use embray::sampling::SamplerKind;
 use embray::scene::{SceneDesc, ceng795};
 use embray::shading::spawn::SpawnMode;
 use glam::DVec3;
@@ -87,6 +88,10 @@ pub struct RenderArgs {
     /// none: measures what the effects machinery would cost a static scene.
     #[arg(long)]
     pub force_all_effects: bool,
+    /// Random numbers: Owen-scrambled Sobol, stratified pixels with hashed dimensions, or
+    /// all independent (for comparisons).
+    #[arg(long, value_parser = choice::<SamplerKind>(), default_value_t = SamplerKind::Sobol)]
+    pub sampler: SamplerKind,
     /// How rays leave surfaces: `robust` (error-bound offsets) or `epsilon=VALUE`.
     #[arg(long, value_parser = SpawnMode::parse, default_value = "robust")]
     pub spawn: SpawnMode,
@@ -159,6 +164,7 @@ impl RenderArgs {
             options.light_samples = n;
         }
         options.spawn = self.spawn;
+        options.sampler = self.sampler;
         if self.force_all_effects {
             options.effects_mode = EffectsMode::ForceAll;
         }
@@ -237,10 +243,11 @@ fn summary(output: &RenderOutput, options: &RenderOptions, exr: &Path, png: &Pat
     let seconds = output.render_time.as_secs_f64();
     let rays = output.stats.total_rays();
     format!(
-        "{}x{} @ {} spp on {} ({}): build {:.1} ms, render {:.3} s, {} rays, {:.2} Mrays/s → {}, {}",
+        "{}x{} @ {} spp ({} sampler) on {} ({}): build {:.1} ms, render {:.3} s, {} rays, {:.2} Mrays/s → {}, {}",
         output.film.width,
         output.film.height,
         options.spp,
+        options.sampler,
         output.backend,
         options.render_space,
         output.build_time.as_secs_f64() * 1e3,

@@ -18,6 +18,7 @@ pub struct StatsReport {
     pub observes: Observes,
     pub render_seconds: f64,
     pub render_space: &'static str,
+    pub sampler: &'static str,
     pub spp: u32,
     pub stats: RenderStats,
 }
@@ -33,6 +34,7 @@ impl StatsReport {
             observes: output.observes,
             render_seconds: output.render_time.as_secs_f64(),
             render_space: crate::choice::Choice::name(options.render_space),
+            sampler: crate::choice::Choice::name(options.sampler),
             spp: options.spp,
             stats: output.stats,
         }

@@ -24,10 +24,37 @@ pub fn to_unit_f32(h: u64) -> f32 {
     (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
 }
 
+/// How a render draws its random numbers. Every kind is a pure function of (seed, pixel,
+/// sample, dimension), so images do not depend on threads, order or backend.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SamplerKind {
+    /// Owen-scrambled Sobol (Burley 2020, the `sobol_burley` crate): each pixel's samples
+    /// are a (0, 2)-sequence in every pair of dimensions, decorrelated between pairs by
+    /// seeding ("padding"); hashed numbers beyond its 2¹⁶ samples per pixel.
+    #[default]
+    Sobol,
+    /// Stratified pixel positions (a jittered grid, or Latin-hypercube strata), every other
+    /// dimension hashed: embray's sampler before Sobol.
+    Stratified,
+    /// Every number hashed, pixel positions included.
+    Independent,
+}
+
+crate::choice::named_choices!(SamplerKind, "sampler", {
+    Sobol => "sobol",
+    Stratified => "stratified",
+    Independent => "independent",
+});
+
+/// Samples per pixel the Sobol sequence covers; later samples are hashed.
+const SOBOL_SAMPLES: u64 = 1 << 16;
+
 /// The random stream of one camera sample of one pixel. Each call consumes the next
-/// dimension; the integrator asks for dimensions only for effects the scene uses.
+/// dimension (two for a 2-D draw); the integrator asks for dimensions only for effects the
+/// scene uses.
 #[derive(Clone, Debug)]
 pub struct SampleStream {
+    kind: SamplerKind,
     seed: u64,
     pixel: u64,
     sample: u64,
@@ -35,38 +62,65 @@ pub struct SampleStream {
 }
 
 impl SampleStream {
-    pub fn new(seed: u64, pixel: u64, sample: u64) -> Self {
-        SampleStream { seed, pixel, sample, dimension: 0 }
+    pub fn new(kind: SamplerKind, seed: u64, pixel: u64, sample: u64) -> Self {
+        SampleStream { kind, seed, pixel, sample, dimension: 0 }
+    }
+
+    /// Dimension `d`, component `axis` (0 or 1) of a 2-D draw.
+    fn value(&self, d: u64, axis: u32) -> f32 {
+        if self.kind == SamplerKind::Sobol && self.sample < SOBOL_SAMPLES {
+            // One scrambled sequence per (seed, pixel, dimension pair): the pair's two
+            // components are its Sobol dimensions 0 and 1.
+            let scramble = hash4(self.seed, self.pixel, u64::MAX, d) as u32;
+            sobol_burley::sample(self.sample as u32, axis, scramble)
+        } else {
+            to_unit_f32(hash4(self.seed, self.pixel, self.sample, d + axis as u64))
+        }
     }
 
     pub fn next_1d(&mut self) -> f32 {
-        let h = hash4(self.seed, self.pixel, self.sample, self.dimension);
+        let x = self.value(self.dimension, 0);
         self.dimension += 1;
-        to_unit_f32(h)
+        x
     }
 
     pub fn next_2d(&mut self) -> Vec2 {
-        let x = self.next_1d();
-        Vec2::new(x, self.next_1d())
+        let v = Vec2::new(self.value(self.dimension, 0), self.value(self.dimension, 1));
+        self.dimension += 2;
+        v
     }
 
     /// A value from a reserved dimension `slot`, outside the sequential stream: effects that
     /// only some scenes use (lens, time) draw from here, so turning them on or off does not
     /// shift the numbers every other decision sees.
     pub fn reserved_1d(&self, slot: u64) -> f32 {
-        to_unit_f32(hash4(self.seed, self.pixel, self.sample, RESERVED_BASE + slot))
+        self.value(RESERVED_BASE + slot, 0)
     }
 
     pub fn reserved_2d(&self, slot: u64) -> Vec2 {
-        Vec2::new(self.reserved_1d(slot), self.reserved_1d(slot + 1))
+        let d = RESERVED_BASE + slot;
+        Vec2::new(self.value(d, 0), self.value(d, 1))
+    }
+
+    /// The sample's position inside its pixel (`jitter`: else stratum centres).
+    pub fn pixel_position(&mut self, index: u32, count: u32, jitter: bool) -> Vec2 {
+        match self.kind {
+            SamplerKind::Stratified => {
+                let offset = jitter.then(|| self.next_2d());
+                pixel_sample(index, count, offset, self.seed, self.pixel)
+            }
+            _ if !jitter => pixel_sample(index, count, None, self.seed, self.pixel),
+            SamplerKind::Sobol | SamplerKind::Independent => self.reserved_2d(SLOT_PIXEL),
+        }
     }
 }
 
 /// Reserved dimensions start far beyond any path's sequential use.
 const RESERVED_BASE: u64 = 1 << 40;
-/// Reserved slots: lens position (2 dimensions) and time.
+/// Reserved slots: lens position (2 dimensions), time, and the position in the pixel.
 pub const SLOT_LENS: u64 = 0;
 pub const SLOT_TIME: u64 = 2;
+pub const SLOT_PIXEL: u64 = 4;
 
 #[cfg(test)]
 mod tests {
@@ -75,10 +129,10 @@ mod tests {
     #[test]
     fn stream_is_a_pure_function_of_its_counters() {
         let a: Vec<f32> = {
-            let mut s = SampleStream::new(3, 10, 2);
+            let mut s = SampleStream::new(SamplerKind::Independent, 3, 10, 2);
             (0..8).map(|_| s.next_1d()).collect()
         };
-        let mut s = SampleStream::new(3, 10, 2);
+        let mut s = SampleStream::new(SamplerKind::Independent, 3, 10, 2);
         let b: Vec<f32> = (0..8).map(|_| s.next_1d()).collect();
         assert_eq!(a, b);
         let mean = (0..10_000).map(|i| to_unit_f32(hash4(1, i, 0, 0)) as f64).sum::<f64>() / 1e4;
