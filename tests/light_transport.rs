@@ -20,23 +20,9 @@ fn mean(film: &Film) -> Vec3 {
 fn far_light_scene(sheet: bool) -> SceneDesc {
     let mut s = scene(camera([0.0, 50.0, 0.1], [0.0, 0.0, 0.0], 40.0, 16, 16));
     s.settings.max_depth = 1;
-    let floor = add_material(&mut s, diffuse(0.8));
-    let light = add_material(&mut s, emissive(1e9));
+    add_floor(&mut s, 0.8, 100.0);
+    add_ceiling_light(&mut s, [-5.0, -5.0], [10.0, 10.0], 1e4, 1e9);
     let grey = add_material(&mut s, diffuse(0.0));
-    let id = DAffine3::IDENTITY;
-    s.objects.push(object(
-        "floor",
-        quad([-100.0, 0.0, 100.0], [200.0, 0.0, 0.0], [0.0, 0.0, -200.0]),
-        floor,
-        id,
-    ));
-    // Facing down (u × v = -y).
-    s.objects.push(object(
-        "light",
-        quad([-5.0, 1e4, -5.0], [10.0, 0.0, 0.0], [0.0, 0.0, 10.0]),
-        light,
-        id,
-    ));
     if sheet {
         let slab = DAffine3::from_translation(DVec3::new(-10.0, 1e4 - 0.5, -10.0))
             * DAffine3::from_scale(DVec3::new(20.0, 1e-3, 20.0));

@@ -30,22 +30,8 @@ fn quad_light_scene() -> (SceneDesc, f64) {
     s.camera.up = DVec3::Z;
     s.settings.max_depth = 1;
     let (albedo, radiance) = (0.6f32, 2.0f32);
-    let floor = add_material(&mut s, diffuse(albedo));
-    let light = add_material(&mut s, emissive(radiance));
-    let id = DAffine3::IDENTITY;
-    s.objects.push(object(
-        "floor",
-        quad([-50.0, 0.0, 50.0], [100.0, 0.0, 0.0], [0.0, 0.0, -100.0]),
-        floor,
-        id,
-    ));
-    // Facing down: u × v = −y.
-    s.objects.push(object(
-        "light",
-        quad([-2.0, 1.5, -1.0], [4.0, 0.0, 0.0], [0.0, 0.0, 2.0]),
-        light,
-        id,
-    ));
+    add_floor(&mut s, albedo, 50.0);
+    add_ceiling_light(&mut s, [-2.0, -1.0], [4.0, 2.0], 1.5, radiance);
     // Irradiance E = π L F; the floor's radiance ρ E / π = ρ L F.
     let form_factor = 4.0 * corner_form_factor(2.0, 1.0, 1.5);
     (s, (albedo * radiance) as f64 * form_factor)
@@ -68,21 +54,8 @@ fn every_sampler_matches_the_analytic_form_factor() {
 fn soft_shadow_scene() -> SceneDesc {
     let mut s = scene(camera([0.0, 4.0, 6.0], [0.0, 0.0, 0.0], 40.0, 24, 24));
     s.settings.max_depth = 1;
-    let floor = add_material(&mut s, diffuse(0.7));
-    let light = add_material(&mut s, emissive(3.0));
-    let id = DAffine3::IDENTITY;
-    s.objects.push(object(
-        "floor",
-        quad([-20.0, 0.0, 20.0], [40.0, 0.0, 0.0], [0.0, 0.0, -40.0]),
-        floor,
-        id,
-    ));
-    s.objects.push(object(
-        "light",
-        quad([-2.0, 3.0, -2.0], [4.0, 0.0, 0.0], [0.0, 0.0, 4.0]),
-        light,
-        id,
-    ));
+    let floor = add_floor(&mut s, 0.7, 20.0);
+    add_ceiling_light(&mut s, [-2.0, -2.0], [4.0, 4.0], 3.0, 3.0);
     s.objects.push(object(
         "ball",
         sphere(0.7),

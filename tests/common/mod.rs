@@ -125,6 +125,28 @@ pub mod build {
         }))
     }
 
+    /// A diffuse floor: the square of half-side `half` in the plane y = 0, facing up.
+    pub fn add_floor(scene: &mut SceneDesc, albedo: f32, half: f64) -> u32 {
+        let m = add_material(scene, diffuse(albedo));
+        let shape = quad([-half, 0.0, half], [2.0 * half, 0.0, 0.0], [0.0, 0.0, -2.0 * half]);
+        scene.objects.push(object("floor", shape, m, DAffine3::IDENTITY));
+        m
+    }
+
+    /// An emissive rectangle at height `y`, `size` = (x, z) extents from `corner` = (x, z),
+    /// facing down (u × v = −y).
+    pub fn add_ceiling_light(
+        scene: &mut SceneDesc,
+        corner: [f64; 2],
+        size: [f64; 2],
+        y: f64,
+        radiance: f32,
+    ) {
+        let m = add_material(scene, emissive(radiance));
+        let shape = quad([corner[0], y, corner[1]], [size[0], 0.0, 0.0], [0.0, 0.0, size[1]]);
+        scene.objects.push(object("light", shape, m, DAffine3::IDENTITY));
+    }
+
     /// A closed unit cube [0,1]³ with outward winding.
     pub fn cube() -> Arc<MeshData> {
         let positions = (0..8)
