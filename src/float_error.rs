@@ -36,13 +36,27 @@ pub fn next_float_down(v: f32) -> f32 {
 /// in camera-relative space, where a huge ground plane passes close to the origin: there the
 /// first term is tiny, but an intersector re-testing the same plane can still report a small
 /// positive t unless the origin is pushed past its own rounding error.
+///
+/// A third term covers slivers: where the edges are nearly parallel, the plane the
+/// intersector works with is tilted by `plane_tilt`, which moves it by up to an edge length
+/// times that angle.
 pub fn triangle_point(tri: &[Vec3; 3], b1: f32, b2: f32) -> (Vec3, Vec3) {
     let b0 = 1.0 - b1 - b2;
     let terms = [tri[0] * b0, tri[1] * b1, tri[2] * b2];
     let point = terms[0] + terms[1] + terms[2];
     let abs_sum = terms[0].abs() + terms[1].abs() + terms[2].abs();
-    let edges = (tri[1] - tri[0]).abs() + (tri[2] - tri[0]).abs();
-    (point, abs_sum * gamma(7) + edges * gamma(8) + Vec3::splat(MIN_OFFSET))
+    let (e1, e2) = (tri[1] - tri[0], tri[2] - tri[0]);
+    let edges = e1.abs() + e2.abs();
+    let tilted = e1.length().max(e2.length()) * plane_tilt(e1, e2);
+    (point, abs_sum * gamma(7) + edges * gamma(8) + Vec3::splat(tilted + MIN_OFFSET))
+}
+
+/// How far (radians) the plane computed from edges `e1`, `e2` can be tilted by rounding:
+/// each component of e1 × e2 is off by γ(3)·|e1||e2|, which is large against |e1 × e2|
+/// for a sliver, and normalising adds γ(3). 0 for a degenerate triangle (no plane).
+fn plane_tilt(e1: Vec3, e2: Vec3) -> f32 {
+    let cross = e1.cross(e2).length();
+    if cross > 0.0 { gamma(3) * (e1.length() * e2.length()) / cross + gamma(3) } else { 0.0 }
 }
 
 /// Hit point on a triangle from the ray (`origin + t·dir`) projected onto the triangle's
@@ -68,11 +82,9 @@ pub fn triangle_point_from_ray(
     let from_vertex = on_ray - tri[0];
     let distance = from_vertex.dot(normal);
     let point = on_ray - normal * distance;
-    // The rounded normal tilts the plane through tri[0] by at most `tilt` radians: each
-    // cross-product component is off by γ(3)·|e1||e2| (large against |e1 × e2| for a
-    // sliver), normalising adds γ(3). At `from_vertex` that moves the plane by
+    // The rounded normal tilts the plane through tri[0]: at `from_vertex` that moves it by
     // |from_vertex| · tilt.
-    let tilt = gamma(3) * (e1.length() * e2.length()) / cross.length() + gamma(3);
+    let tilt = plane_tilt(e1, e2);
     // Then the plane distance's own rounding, and the projection's.
     let across = gamma(4) * from_vertex.abs().dot(normal.abs())
         + gamma(2) * distance.abs()

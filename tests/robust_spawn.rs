@@ -149,3 +149,74 @@ fn rays_leaving_a_large_tilted_triangle_far_away_never_hit_it_again() {
         }
     }
 }
+
+/// Slivers: triangles 10⁴ long and 10⁻² wide (their cross product is tiny against their
+/// edges, so the rounded normal tilts), tilted, seen from close by.
+#[test]
+fn rays_leaving_sliver_triangles_never_hit_them_again() {
+    use common::build::*;
+    use embray::accel::{AccelOptions, build};
+    use embray::render::prepare_scene;
+    use embray::scene::{MeshData, ShapeDesc};
+    use embray::shading::spawn::SpawnMode;
+    use embray::shading::surface::interaction;
+    use embray::splitmix::SplitMix64;
+    use embray::stats::TraversalCounters;
+    use glam::{DAffine3, Vec2, Vec3};
+    use std::sync::Arc;
+    let mut positions = Vec::new();
+    let mut indices = Vec::new();
+    for i in 0..40u32 {
+        let z = i as f64 * 0.02;
+        let base = positions.len() as u32;
+        positions.push(DVec3::new(-5e3, 0.0, z));
+        positions.push(DVec3::new(5e3, 0.0, z + 0.003));
+        positions.push(DVec3::new(5e3, 0.0, z + 0.013));
+        indices.push([base, base + 1, base + 2]);
+    }
+    let mesh = Arc::new(MeshData { positions, indices, normals: None, uvs: None });
+    let tilt = DAffine3::from_translation(DVec3::new(3e5, 1e5, -2e5))
+        * DAffine3::from_axis_angle(DVec3::new(0.3, 1.0, 0.5).normalize(), 0.7);
+    let eye = tilt.transform_point3(DVec3::new(4000.0, 0.5, 0.4));
+    let target = tilt.transform_point3(DVec3::new(4000.3, 0.0, 0.4));
+    let mut s = scene(camera(eye.to_array(), target.to_array(), 60.0, 16, 16));
+    let m = add_material(&mut s, diffuse(0.5));
+    s.objects.push(object("slivers", ShapeDesc::Mesh(mesh), m, tilt));
+    let mut total_self_hits = 0;
+    for backend in backends() {
+        for space in [RenderSpace::Cameraworld, RenderSpace::World] {
+            let mut o = options(&s, backend, 1);
+            o.render_space = space;
+            let scene = prepare_scene(&s, &o).unwrap();
+            let accel = build(backend, &scene, &AccelOptions::default()).unwrap();
+            let mut counters = TraversalCounters::default();
+            let mut rng = SplitMix64(3);
+            let (mut spawned, mut self_hits) = (0, 0);
+            for _ in 0..2000 {
+                let raster = Vec2::new(rng.range(0.0, 16.0), rng.range(0.0, 16.0));
+                let ray = scene.camera.generate_ray(raster, None);
+                let Some(hit) = accel.intersect(&ray, &mut counters) else { continue };
+                let si = interaction(&scene, &ray, &hit);
+                for _ in 0..8 {
+                    let dir = rng.vec3(-1.0, 1.0).normalize_or_zero();
+                    if dir == Vec3::ZERO {
+                        continue;
+                    }
+                    let next = SpawnMode::Robust.ray(&si.surface, dir, 0.0);
+                    spawned += 1;
+                    if let Some(again) = accel.intersect(&next, &mut counters) {
+                        self_hits += (again.prim_id == hit.prim_id) as usize;
+                    }
+                }
+            }
+            println!(
+                "{} {}: {spawned} rays spawned, {self_hits} self-hits",
+                backend.name(),
+                space.name()
+            );
+            assert!(spawned > 1000, "the camera must see the slivers");
+            total_self_hits += self_hits;
+        }
+    }
+    assert_eq!(total_self_hits, 0);
+}
