@@ -216,3 +216,40 @@ fn unwritable_output_is_an_error_not_a_panic() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A full disk or a closed pipe on standard output is an error with a message, not a panic;
+/// an unwritable standard error changes nothing (the images are written, exit 0).
+#[test]
+fn unwritable_terminal_streams_are_errors_not_panics() {
+    let dir = temp_dir("streams");
+    let full = || std::fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full");
+    let out = Command::new(env!("CARGO_BIN_EXE_embray"))
+        .arg("info")
+        .current_dir(&dir)
+        .stdout(full())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("cannot write to standard output"), "{stderr}");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_embray"))
+        .args(["info"])
+        .current_dir(&dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // the reader goes away before embray writes
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked") && out.status.code() != Some(101), "{stderr}");
+    let out = Command::new(env!("CARGO_BIN_EXE_embray"))
+        .args(["render", "--spp", "1", "-o", "x.exr"])
+        .current_dir(&dir)
+        .stderr(full())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert!(dir.join("x.exr").exists() && dir.join("x.png").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

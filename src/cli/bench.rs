@@ -1,6 +1,7 @@
 //! `embray bench`: the measurements (render spaces, accuracy, speed, effects' cost).
 
 use super::choices::choice;
+use super::console::{note, out};
 use super::load_scene;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
@@ -120,7 +121,7 @@ fn bench_effects(args: &EffectsArgs) -> Result<()> {
     base.spp = args.spp;
     let rows =
         effects_cost::measure(&scene, &base, &embray::accel::BackendKind::compiled(), args.runs)?;
-    print!("{}", effects_cost::markdown(&rows));
+    out(effects_cost::markdown(&rows))?;
     Ok(())
 }
 
@@ -163,7 +164,7 @@ fn bench_speed(args: &SpeedArgs) -> Result<()> {
         bar.inc(1);
     }
     bar.finish_and_clear();
-    print!("{}", speed::markdown(&rows));
+    out(speed::markdown(&rows))?;
     Ok(())
 }
 
@@ -196,16 +197,15 @@ fn bench_accuracy(args: &AccuracyArgs) -> Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    print!("{}", table::markdown(&report.rows));
+    out(table::markdown(&report.rows))?;
     if !report.spawn_rows.is_empty() {
-        println!();
-        print!("{}", embray::bench::spawn_report::markdown(&report.spawn_rows));
+        out(format!("\n{}", embray::bench::spawn_report::markdown(&report.spawn_rows)))?;
     }
     for warning in &report.warnings {
-        eprintln!("warning: {warning}");
+        note(format!("warning: {warning}"));
     }
     for file in &report.files {
-        eprintln!("wrote {}", file.display());
+        note(format!("wrote {}", file.display()));
     }
     Ok(())
 }
@@ -232,7 +232,7 @@ fn bench_spaces(args: &BenchArgs) -> Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    print!("{}", table::markdown(&rows));
+    out(table::markdown(&rows))?;
     if let Some(csv) = &args.csv {
         std::fs::write(csv, table::csv(&rows))
             .with_context(|| format!("cannot write '{}'", csv.display()))?;

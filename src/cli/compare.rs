@@ -5,6 +5,8 @@ use clap::Args;
 use embray::compare::{compare_images, read_rgb, write_heatmap};
 use std::path::PathBuf;
 
+use super::console::{note, out};
+
 #[derive(Args, Debug)]
 pub struct CompareArgs {
     /// First image (e.g. the render).
@@ -22,7 +24,7 @@ pub struct CompareArgs {
 
 pub fn run(args: &CompareArgs) -> Result<()> {
     let c = compare_images(&read_rgb(&args.a)?, &read_rgb(&args.b)?, args.tolerance)?;
-    println!(
+    out(format!(
         "{}x{}: mean abs error {:.4}/255, max {}/255; {:.4} % of pixels off by more than {}/255 \
          ({:.4} % within)",
         c.width,
@@ -32,10 +34,10 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         100.0 * c.fraction_over,
         c.tolerance,
         100.0 * c.fraction_within()
-    );
+    ))?;
     if let Some(path) = &args.heatmap {
         write_heatmap(&c, path)?;
-        eprintln!("wrote {}", path.display());
+        note(format!("wrote {}", path.display()));
     }
     Ok(())
 }

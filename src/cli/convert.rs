@@ -6,6 +6,8 @@ use embray::scene::ceng795;
 use embray::scene::toml_writer::TomlWriter;
 use std::path::{Path, PathBuf};
 
+use super::console::note;
+
 #[derive(Args, Debug)]
 pub struct ConvertArgs {
     /// The CENG795 scene (.xml).
@@ -34,18 +36,18 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
             let image = Path::new(&camera.image_name).file_stem().unwrap_or_default();
             dir.join(format!("{stem}_{}.toml", image.to_string_lossy()))
         };
-        let note = format!(
+        let provenance = format!(
             "Converted by embray from '{}' (camera '{}').",
             args.input.display(),
             camera.image_name
         );
-        writer.write(&camera.scene, &path, &note)?;
-        eprintln!("wrote {}", path.display());
+        writer.write(&camera.scene, &path, &provenance)?;
+        note(format!("wrote {}", path.display()));
     }
     let meshes = writer.mesh_files();
     if let Some(first) = meshes.first() {
         let folder = first.parent().unwrap_or(Path::new("."));
-        eprintln!("wrote {} mesh file(s) in {}", meshes.len(), folder.display());
+        note(format!("wrote {} mesh file(s) in {}", meshes.len(), folder.display()));
     }
     Ok(())
 }

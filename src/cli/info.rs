@@ -1,5 +1,6 @@
 //! `embray info`: what a scene (or each camera's scene of a CENG795 file) contains.
 
+use super::console::out;
 use anyhow::Result;
 use embray::info::describe;
 use embray::scene::ceng795;
@@ -8,11 +9,9 @@ use std::path::Path;
 pub fn run(scene: Option<&Path>) -> Result<()> {
     if let Some(path) = scene.filter(|p| ceng795::is_ceng795_path(p)) {
         for camera in ceng795::load(path)? {
-            println!("camera: {}", camera.image_name);
-            print!("{}", describe(&camera.scene));
+            out(format!("camera: {}\n{}", camera.image_name, describe(&camera.scene)))?;
         }
         return Ok(());
     }
-    print!("{}", describe(&super::load_scene(scene)?));
-    Ok(())
+    out(describe(&super::load_scene(scene)?))
 }

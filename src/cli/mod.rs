@@ -4,6 +4,7 @@
 mod bench;
 mod choices;
 mod compare;
+mod console;
 mod convert;
 mod info;
 mod render;

@@ -2,6 +2,7 @@
 //! summary line and the statistics.
 
 use super::choices::{TonemapArg, choice, tonemap};
+use super::console::{note, out};
 use super::load_scene;
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -228,10 +229,10 @@ fn render_one(args: &RenderArgs, scene: &SceneDesc, exr: &Path, png: &Path) -> R
     let curve = args.tonemap.resolve(scene.settings.integrator);
     write_png(&output.film, png, curve, args.exposure)?;
     if !args.quiet {
-        eprintln!("{}", summary(&output, &options, exr, png));
+        note(summary(&output, &options, exr, png));
     }
     if args.stats {
-        print!("{}", stats_table(&output.stats, output.observes));
+        out(stats_table(&output.stats, output.observes))?;
     }
     if let Some(path) = &args.stats_json {
         StatsReport::new(&output, &options).write(path)?;

@@ -33,6 +33,7 @@ pub use from_toml::MAX_REPEAT_COPIES;
 pub use materials::with_texture_space;
 pub use mesh_file::area_weighted_normals;
 
+use std::io::Write;
 use std::path::Path;
 
 /// Loads the scene file at `path`. Warnings (a missing MTL file) go to stderr.
@@ -78,6 +79,6 @@ pub fn load_str_with_warnings(
 
 fn print_warnings(warnings: &[String]) {
     for warning in warnings {
-        eprintln!("warning: {warning}");
+        let _ = writeln!(std::io::stderr(), "warning: {warning}");
     }
 }

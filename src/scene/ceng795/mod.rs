@@ -21,6 +21,7 @@ use super::desc::{IntegratorKind, RenderSettings, SceneDesc};
 use super::error::{Line, SceneError};
 use glam::Vec3;
 use roxmltree::{Document, Node};
+use std::io::Write;
 use std::path::Path;
 use xml::Xml;
 
@@ -60,7 +61,7 @@ pub fn is_ceng795_path(path: &Path) -> bool {
 pub fn load(path: &Path) -> Result<Vec<CameraScene>, SceneError> {
     let (scenes, warnings) = load_with_warnings(path)?;
     for warning in &warnings {
-        eprintln!("warning: {warning}");
+        let _ = writeln!(std::io::stderr(), "warning: {warning}");
     }
     Ok(scenes)
 }
