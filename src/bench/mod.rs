@@ -3,6 +3,7 @@
 //! the charts, image strip and spawn comparison of the accuracy report.
 
 pub mod accuracy;
+pub mod convergence;
 pub mod effects_cost;
 pub mod grid;
 pub mod plots;

@@ -5,9 +5,10 @@ use super::console::{note, out};
 use super::load_scene;
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
-use embray::accel::BuildQuality;
+use embray::accel::{BackendKind, BuildQuality};
 use embray::bundled;
 use embray::render_space::RenderSpace;
+use embray::sampling::SamplerKind;
 use embray::shading::spawn::SpawnMode;
 use std::path::PathBuf;
 
@@ -24,6 +25,36 @@ pub enum BenchCommand {
     Speed(SpeedArgs),
     /// What motion-blur and lens support cost a static scene: normal vs all effects forced.
     Effects(EffectsArgs),
+    /// Error against a reference EXR at each spp, render time and MSE × seconds (the
+    /// time-to-equal-error figure), as Markdown (and CSV).
+    Convergence(ConvergenceArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct ConvergenceArgs {
+    /// Scene file (.toml, or .xml: its first camera).
+    pub scene: PathBuf,
+    /// Reference image (linear EXR with R, G, B channels, the scene's resolution), e.g. a
+    /// high-spp render of embray or of another renderer.
+    #[arg(long)]
+    pub reference: PathBuf,
+    /// Samples per pixel to measure, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "4,16,64,256")]
+    pub spps: Vec<u32>,
+    #[arg(long, value_parser = choice::<BackendKind>())]
+    pub backend: Option<BackendKind>,
+    #[arg(long, value_parser = choice::<SamplerKind>(), default_value_t = SamplerKind::Sobol)]
+    pub sampler: SamplerKind,
+    #[arg(long)]
+    pub threads: Option<usize>,
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Also print the spp at which the RMSE would reach this value (MSE ∝ 1/spp).
+    #[arg(long)]
+    pub target_rmse: Option<f64>,
+    /// Also write the table as CSV.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -110,6 +141,7 @@ pub fn run(command: BenchCommand) -> Result<()> {
         BenchCommand::Accuracy(args) => bench_accuracy(&args),
         BenchCommand::Speed(args) => bench_speed(&args),
         BenchCommand::Effects(args) => bench_effects(&args),
+        BenchCommand::Convergence(args) => bench_convergence(&args),
     }
 }
 
@@ -235,6 +267,36 @@ fn bench_spaces(args: &BenchArgs) -> Result<()> {
     out(table::markdown(&rows))?;
     if let Some(csv) = &args.csv {
         std::fs::write(csv, table::csv(&rows))
+            .with_context(|| format!("cannot write '{}'", csv.display()))?;
+    }
+    Ok(())
+}
+
+fn bench_convergence(args: &ConvergenceArgs) -> Result<()> {
+    use embray::bench::convergence;
+    anyhow::ensure!(!args.spps.is_empty(), "--spps needs at least one value");
+    anyhow::ensure!(args.spps.iter().all(|&s| s > 0), "--spps values must be at least 1");
+    anyhow::ensure!(args.threads != Some(0), "--threads must be at least 1");
+    if let Some(t) = args.target_rmse {
+        anyhow::ensure!(t.is_finite() && t > 0.0, "--target-rmse must be a positive number");
+    }
+    let scene = load_scene(Some(&args.scene))?;
+    let reference = convergence::read_reference(&args.reference)?;
+    let mut options = embray::render::RenderOptions::for_scene(&scene);
+    options.seed = args.seed;
+    options.sampler = args.sampler;
+    options.threads = args.threads;
+    if let Some(backend) = args.backend {
+        options.backend = backend;
+    }
+    let rows = convergence::measure(&scene, &options, &reference, &args.spps, &args.reference)?;
+    out(convergence::markdown(&rows))?;
+    let needed = args.target_rmse.and_then(|t| Some((t, convergence::spp_for_rmse(&rows, t)?)));
+    if let Some((target, spp)) = needed {
+        out(format!("RMSE {target} needs about {spp:.0} spp\n"))?;
+    }
+    if let Some(csv) = &args.csv {
+        std::fs::write(csv, convergence::csv(&rows))
             .with_context(|| format!("cannot write '{}'", csv.display()))?;
     }
     Ok(())

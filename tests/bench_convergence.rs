@@ -1,0 +1,34 @@
+//! `embray bench convergence`: the reference round-trips through EXR, the error falls with
+//! spp, and a reference of the wrong size is refused.
+
+mod common;
+
+use common::*;
+use embray::bench::convergence::{ConvergenceError, measure, read_reference, spp_for_rmse};
+use embray::output::write_exr;
+
+#[test]
+fn error_falls_with_spp_against_an_exr_reference() {
+    let scene = cornell(12, 12);
+    let backend = backends()[0];
+    let mut reference_options = options(&scene, backend, 1024);
+    reference_options.seed = 99;
+    let reference = render_ok(&scene, &reference_options).film;
+    let dir = std::env::temp_dir().join(format!("embray-convergence-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("reference.exr");
+    write_exr(&reference, &path).unwrap();
+    let read = read_reference(&path).unwrap();
+    assert_eq!(read.color, reference.color, "the EXR keeps the linear colour exactly");
+    let rows = measure(&scene, &options(&scene, backend, 1), &read, &[4, 64], &path).unwrap();
+    println!("{}", embray::bench::convergence::markdown(&rows));
+    assert_eq!(rows.iter().map(|r| r.spp).collect::<Vec<_>>(), [4, 64]);
+    assert!(rows[1].rmse < 0.5 * rows[0].rmse, "{rows:?}");
+    assert!(rows.iter().all(|r| r.seconds > 0.0 && r.mse_seconds > 0.0), "{rows:?}");
+    let needed = spp_for_rmse(&rows, rows[1].rmse / 2.0).unwrap();
+    assert!((needed - 256.0).abs() < 1e-6, "{needed}");
+    let wrong = cornell(10, 12);
+    let refused = measure(&wrong, &options(&wrong, backend, 1), &read, &[4], &path);
+    assert!(matches!(refused, Err(ConvergenceError::Size { .. })), "{refused:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
