@@ -28,6 +28,33 @@ pub fn next_float_down(v: f32) -> f32 {
     f32::from_bits(if v > 0.0 { bits - 1 } else { bits + 1 })
 }
 
+/// A triangle's edges from vertex 0, its unit normal (zero if degenerate) and how far
+/// (radians) rounding can tilt that normal, computed once per hit or light sample for both
+/// hit-point bounds.
+#[derive(Clone, Copy, Debug)]
+pub struct TrianglePlane {
+    pub e1: Vec3,
+    pub e2: Vec3,
+    pub normal: Vec3,
+    /// Each component of e1 × e2 is off by γ(3)·|e1||e2|, which is large against |e1 × e2|
+    /// for a sliver; normalising adds γ(3). 0 for a degenerate triangle (no plane).
+    pub tilt: f32,
+}
+
+impl TrianglePlane {
+    pub fn new(tri: &[Vec3; 3]) -> Self {
+        let (e1, e2) = (tri[1] - tri[0], tri[2] - tri[0]);
+        let cross = e1.cross(e2);
+        let area2 = cross.length();
+        let tilt = if area2 > 0.0 {
+            gamma(3) * (e1.length() * e2.length()) / area2 + gamma(3)
+        } else {
+            0.0
+        };
+        TrianglePlane { e1, e2, normal: cross.normalize_or_zero(), tilt }
+    }
+}
+
 /// Hit point on a triangle from barycentrics, with its error bound.
 ///
 /// Two terms: pbrt-v4's bound on evaluating the barycentric sum (eq. 6.24), which grows with
@@ -37,26 +64,16 @@ pub fn next_float_down(v: f32) -> f32 {
 /// first term is tiny, but an intersector re-testing the same plane can still report a small
 /// positive t unless the origin is pushed past its own rounding error.
 ///
-/// A third term covers slivers: where the edges are nearly parallel, the plane the
-/// intersector works with is tilted by `plane_tilt`, which moves it by up to an edge length
-/// times that angle.
-pub fn triangle_point(tri: &[Vec3; 3], b1: f32, b2: f32) -> (Vec3, Vec3) {
+/// A third term covers slivers: the plane the intersector works with is tilted by up to
+/// `plane.tilt`, which moves it by up to an edge length times that angle.
+pub fn triangle_point(tri: &[Vec3; 3], plane: &TrianglePlane, b1: f32, b2: f32) -> (Vec3, Vec3) {
     let b0 = 1.0 - b1 - b2;
     let terms = [tri[0] * b0, tri[1] * b1, tri[2] * b2];
     let point = terms[0] + terms[1] + terms[2];
     let abs_sum = terms[0].abs() + terms[1].abs() + terms[2].abs();
-    let (e1, e2) = (tri[1] - tri[0], tri[2] - tri[0]);
-    let edges = e1.abs() + e2.abs();
-    let tilted = e1.length().max(e2.length()) * plane_tilt(e1, e2);
+    let edges = plane.e1.abs() + plane.e2.abs();
+    let tilted = plane.e1.length().max(plane.e2.length()) * plane.tilt;
     (point, abs_sum * gamma(7) + edges * gamma(8) + Vec3::splat(tilted + MIN_OFFSET))
-}
-
-/// How far (radians) the plane computed from edges `e1`, `e2` can be tilted by rounding:
-/// each component of e1 × e2 is off by γ(3)·|e1||e2|, which is large against |e1 × e2|
-/// for a sliver, and normalising adds γ(3). 0 for a degenerate triangle (no plane).
-fn plane_tilt(e1: Vec3, e2: Vec3) -> f32 {
-    let cross = e1.cross(e2).length();
-    if cross > 0.0 { gamma(3) * (e1.length() * e2.length()) / cross + gamma(3) } else { 0.0 }
 }
 
 /// Hit point on a triangle from the ray (`origin + t·dir`) projected onto the triangle's
@@ -68,13 +85,12 @@ fn plane_tilt(e1: Vec3, e2: Vec3) -> f32 {
 /// `surface.rs` keeps whichever of the two has the smaller bound across the surface.
 pub fn triangle_point_from_ray(
     tri: &[Vec3; 3],
+    plane: &TrianglePlane,
     origin: Vec3,
     dir: Vec3,
     t: f32,
 ) -> Option<(Vec3, Vec3)> {
-    let (e1, e2) = (tri[1] - tri[0], tri[2] - tri[0]);
-    let cross = e1.cross(e2);
-    let normal = cross.normalize_or_zero();
+    let normal = plane.normal;
     if normal == Vec3::ZERO {
         return None;
     }
@@ -82,13 +98,11 @@ pub fn triangle_point_from_ray(
     let from_vertex = on_ray - tri[0];
     let distance = from_vertex.dot(normal);
     let point = on_ray - normal * distance;
-    // The rounded normal tilts the plane through tri[0]: at `from_vertex` that moves it by
-    // |from_vertex| · tilt.
-    let tilt = plane_tilt(e1, e2);
-    // Then the plane distance's own rounding, and the projection's.
+    // The rounded normal tilts the plane through tri[0] (by |from_vertex| · tilt here), then
+    // the plane distance's own rounding, and the projection's.
     let across = gamma(4) * from_vertex.abs().dot(normal.abs())
         + gamma(2) * distance.abs()
-        + from_vertex.length() * tilt;
+        + from_vertex.length() * plane.tilt;
     let error = Vec3::splat(across) + point.abs() * gamma(2) + Vec3::splat(MIN_OFFSET);
     Some((point, error))
 }

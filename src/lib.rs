@@ -23,7 +23,6 @@ pub mod info;
 pub mod integrator;
 pub mod intersect;
 pub mod output;
-pub mod process_memory;
 pub mod ray;
 pub mod render;
 pub mod render_scene;

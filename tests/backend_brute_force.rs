@@ -7,7 +7,7 @@ use common::backends;
 use embray::accel::{AccelOptions, BackendKind, BuildQuality, build};
 use embray::camera::Camera;
 use embray::choice::Choice;
-use embray::float_error::triangle_point;
+use embray::float_error::{TrianglePlane, triangle_point};
 use embray::intersect::{intersect_sphere, intersect_triangle};
 use embray::ray::{Hit, Ray};
 use embray::render_scene::{Geometry, RenderScene, Sphere, TriangleMesh};
@@ -131,7 +131,7 @@ fn random_rays(scene: &RenderScene, rng: &mut Rng, count: usize) -> Vec<(RayKind
                 let prim_id = (rng.f() * 299.0) as u32;
                 let tri = mesh.triangle(prim_id);
                 let (b1, b2) = (rng.f() * 0.5, rng.f() * 0.5);
-                let (point, error) = triangle_point(&tri, b1, b2);
+                let (point, error) = triangle_point(&tri, &TrianglePlane::new(&tri), b1, b2);
                 let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize();
                 let surface = SurfacePoint { point, error, normal };
                 let ray = surface.spawn_ray(rng.in_box(10.0) - point, 0.0);

@@ -93,13 +93,7 @@ fn tilted_plane_scene(kind: &str) -> embray::scene::SceneDesc {
 
 #[test]
 fn rays_leaving_a_large_tilted_triangle_far_away_never_hit_it_again() {
-    use embray::accel::{AccelOptions, build};
     use embray::render::prepare_scene;
-    use embray::shading::spawn::SpawnMode;
-    use embray::shading::surface::interaction;
-    use embray::splitmix::SplitMix64;
-    use embray::stats::TraversalCounters;
-    use glam::{Vec2, Vec3};
     for kind in ["baked", "instanced", "moving"] {
         let desc = tilted_plane_scene(kind);
         for backend in backends() {
@@ -114,30 +108,7 @@ fn rays_leaving_a_large_tilted_triangle_far_away_never_hit_it_again() {
                     kind == "baked",
                     "{kind}"
                 );
-                let accel = build(backend, &scene, &AccelOptions::default()).unwrap();
-                let mut counters = TraversalCounters::default();
-                let mut rng = SplitMix64(17);
-                let (mut spawned, mut self_hits) = (0, 0);
-                for _ in 0..400 {
-                    let raster = Vec2::new(rng.range(0.0, 8.0), rng.range(0.0, 8.0));
-                    let mut ray = scene.camera.generate_ray(raster, None);
-                    ray.time = rng.unit();
-                    let Some(hit) = accel.intersect(&ray, &mut counters) else { continue };
-                    let si = interaction(&scene, &ray, &hit);
-                    for _ in 0..8 {
-                        // Any direction, on either side of the surface (reflected or
-                        // transmitted), grazing ones included.
-                        let dir = rng.vec3(-1.0, 1.0).normalize_or_zero();
-                        if dir == Vec3::ZERO || dir.dot(si.surface.normal) == 0.0 {
-                            continue;
-                        }
-                        let next = SpawnMode::Robust.ray(&si.surface, dir, ray.time);
-                        spawned += 1;
-                        if let Some(again) = accel.intersect(&next, &mut counters) {
-                            self_hits += (again.geom_id == hit.geom_id) as usize;
-                        }
-                    }
-                }
+                let (spawned, self_hits) = spawn_from_camera_hits(&scene, backend, 400, 17);
                 println!(
                     "{kind} {} {}: {spawned} rays spawned, {self_hits} self-hits",
                     backend.name(),
@@ -155,14 +126,9 @@ fn rays_leaving_a_large_tilted_triangle_far_away_never_hit_it_again() {
 #[test]
 fn rays_leaving_sliver_triangles_never_hit_them_again() {
     use common::build::*;
-    use embray::accel::{AccelOptions, build};
     use embray::render::prepare_scene;
     use embray::scene::{MeshData, ShapeDesc};
-    use embray::shading::spawn::SpawnMode;
-    use embray::shading::surface::interaction;
-    use embray::splitmix::SplitMix64;
-    use embray::stats::TraversalCounters;
-    use glam::{DAffine3, Vec2, Vec3};
+    use glam::DAffine3;
     use std::sync::Arc;
     let mut positions = Vec::new();
     let mut indices = Vec::new();
@@ -188,27 +154,7 @@ fn rays_leaving_sliver_triangles_never_hit_them_again() {
             let mut o = options(&s, backend, 1);
             o.render_space = space;
             let scene = prepare_scene(&s, &o).unwrap();
-            let accel = build(backend, &scene, &AccelOptions::default()).unwrap();
-            let mut counters = TraversalCounters::default();
-            let mut rng = SplitMix64(3);
-            let (mut spawned, mut self_hits) = (0, 0);
-            for _ in 0..2000 {
-                let raster = Vec2::new(rng.range(0.0, 16.0), rng.range(0.0, 16.0));
-                let ray = scene.camera.generate_ray(raster, None);
-                let Some(hit) = accel.intersect(&ray, &mut counters) else { continue };
-                let si = interaction(&scene, &ray, &hit);
-                for _ in 0..8 {
-                    let dir = rng.vec3(-1.0, 1.0).normalize_or_zero();
-                    if dir == Vec3::ZERO {
-                        continue;
-                    }
-                    let next = SpawnMode::Robust.ray(&si.surface, dir, 0.0);
-                    spawned += 1;
-                    if let Some(again) = accel.intersect(&next, &mut counters) {
-                        self_hits += (again.prim_id == hit.prim_id) as usize;
-                    }
-                }
-            }
+            let (spawned, self_hits) = spawn_from_camera_hits(&scene, backend, 2000, 3);
             println!(
                 "{} {}: {spawned} rays spawned, {self_hits} self-hits",
                 backend.name(),
@@ -219,4 +165,46 @@ fn rays_leaving_sliver_triangles_never_hit_them_again() {
         }
     }
     assert_eq!(total_self_hits, 0);
+}
+
+/// Traces `camera_rays` random camera rays (at random shutter times) into `scene`; from each
+/// hit, spawns 8 rays in random directions on either side of the surface, grazing ones
+/// included, and counts those that hit the same object again. The scenes passed here are
+/// single planes, so every such hit is a self-intersection. Returns (spawned, self-hits).
+fn spawn_from_camera_hits(
+    scene: &embray::render_scene::RenderScene,
+    backend: embray::accel::BackendKind,
+    camera_rays: usize,
+    seed: u64,
+) -> (usize, usize) {
+    use embray::accel::{AccelOptions, build};
+    use embray::shading::spawn::SpawnMode;
+    use embray::shading::surface::interaction;
+    use embray::splitmix::SplitMix64;
+    use embray::stats::TraversalCounters;
+    use glam::{Vec2, Vec3};
+    let accel = build(backend, scene, &AccelOptions::default()).unwrap();
+    let (w, h) = (scene.camera.width as f32, scene.camera.height as f32);
+    let mut counters = TraversalCounters::default();
+    let mut rng = SplitMix64(seed);
+    let (mut spawned, mut self_hits) = (0, 0);
+    for _ in 0..camera_rays {
+        let raster = Vec2::new(rng.range(0.0, w), rng.range(0.0, h));
+        let mut ray = scene.camera.generate_ray(raster, None);
+        ray.time = rng.unit();
+        let Some(hit) = accel.intersect(&ray, &mut counters) else { continue };
+        let si = interaction(scene, &ray, &hit);
+        for _ in 0..8 {
+            let dir = rng.vec3(-1.0, 1.0).normalize_or_zero();
+            if dir == Vec3::ZERO || dir.dot(si.surface.normal) == 0.0 {
+                continue;
+            }
+            let next = SpawnMode::Robust.ray(&si.surface, dir, ray.time);
+            spawned += 1;
+            if let Some(again) = accel.intersect(&next, &mut counters) {
+                self_hits += (again.geom_id == hit.geom_id) as usize;
+            }
+        }
+    }
+    (spawned, self_hits)
 }

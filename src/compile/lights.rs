@@ -3,7 +3,9 @@
 
 use crate::render_scene::{Geometry, Instance, Placement, Prototype};
 use crate::scene::LightDesc;
-use crate::shading::light::{DirectionalLight, Emitter, EmitterShape, LightSet, PointLight};
+use crate::shading::light::{
+    DirectionalLight, Emitter, EmitterShape, LightSet, NO_GEOMETRY, PointLight,
+};
 use crate::shading::material::Material;
 use crate::transform::course_square_axes;
 use glam::{DAffine3, DVec3, Vec3};
@@ -86,15 +88,18 @@ pub(super) fn compile_lights(
                 let (u, v) = course_square_axes(*normal);
                 let half = 0.5 * size;
                 let edge = |e: DVec3| render_from_world.transform_vector3(e * half).as_vec3();
-                squares.push((
-                    EmitterShape::Square {
+                let (edge_u, edge_v) = (edge(u), edge(v));
+                squares.push(Emitter {
+                    geom_id: NO_GEOMETRY,
+                    shape: EmitterShape::Square {
                         center: render_from_world.transform_point3(*center).as_vec3(),
-                        edge_u: edge(u),
-                        edge_v: edge(v),
+                        edge_u,
+                        edge_v,
                         normal: render_from_world.transform_vector3(*normal).normalize().as_vec3(),
                     },
-                    *radiance,
-                ));
+                    emission: *radiance,
+                    area: 4.0 * edge_u.length() * edge_v.length(),
+                });
             }
         }
     }
@@ -112,8 +117,9 @@ pub(super) fn compile_lights(
             emitters.extend(mine);
         }
     }
+    // The course's squares come last: they are no instance's, so `first_emitter` skips them.
+    emitters.extend(squares);
     let mut lights = LightSet::new(points, directional, emitters, first_emitter);
-    lights.add_squares(squares);
     lights.ambient = ambient;
     lights
 }

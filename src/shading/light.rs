@@ -3,7 +3,7 @@
 //! without geometry (the course's area lights) are sampled the same way but never hit.
 
 use crate::color::luminance;
-use crate::float_error::{gamma, triangle_point};
+use crate::float_error::{TrianglePlane, gamma, triangle_point};
 use crate::sampling::alias::AliasTable;
 use crate::sampling::uniform_triangle;
 use glam::{Vec2, Vec3};
@@ -116,21 +116,6 @@ impl LightSet {
         set
     }
 
-    /// Adds geometry-less square emitters (`geom_id` `NO_GEOMETRY`), sampled like the others
-    /// in proportion to their power.
-    pub fn add_squares(&mut self, squares: impl IntoIterator<Item = (EmitterShape, Vec3)>) {
-        for (shape, emission) in squares {
-            let area = match shape {
-                EmitterShape::Square { edge_u, edge_v, .. } => {
-                    4.0 * edge_u.length() * edge_v.length()
-                }
-                _ => continue,
-            };
-            self.emitters.push(Emitter { geom_id: NO_GEOMETRY, shape, emission, area });
-        }
-        self.build_selection();
-    }
-
     /// The table that picks emitters by power; drops them all if none emits.
     fn build_selection(&mut self) {
         let powers = self.emitters.iter().map(|e| {
@@ -179,8 +164,9 @@ impl LightSet {
         let (point, error, normal) = match emitter.shape {
             EmitterShape::Triangle(tri) => {
                 let b = uniform_triangle(on_surface);
-                let (point, error) = triangle_point(&tri, b.x, b.y);
-                (point, error, (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize())
+                let plane = TrianglePlane::new(&tri);
+                let (point, error) = triangle_point(&tri, &plane, b.x, b.y);
+                (point, error, plane.normal)
             }
             EmitterShape::Sphere { center, radius } => {
                 let z = 1.0 - 2.0 * on_surface.x;

@@ -131,7 +131,7 @@ impl SpawnMode {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::float_error::triangle_point;
+    use crate::float_error::{TrianglePlane, triangle_point};
 
     #[test]
     fn exact_points_on_axis_aligned_planes_still_leave_the_plane() {
@@ -152,7 +152,7 @@ mod tests {
         for i in 0..100 {
             let b1 = (i as f32 * 0.37).fract() * 0.5;
             let b2 = (i as f32 * 0.61).fract() * 0.5;
-            let (point, error) = triangle_point(&tri, b1, b2);
+            let (point, error) = triangle_point(&tri, &TrianglePlane::new(&tri), b1, b2);
             let sp = SurfacePoint { point, error, normal };
             assert!(sp.offset_origin(Vec3::Y).y > base.y);
             assert!(sp.offset_origin(-Vec3::Y).y < base.y);

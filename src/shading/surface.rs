@@ -2,7 +2,9 @@
 //! incoming ray, material and texture coordinates. Computed from the backend's `Hit` the same
 //! way for every backend.
 
-use crate::float_error::{gamma, sphere_point, triangle_point, triangle_point_from_ray};
+use crate::float_error::{
+    TrianglePlane, gamma, sphere_point, triangle_point, triangle_point_from_ray,
+};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{Geometry, RenderScene};
 use crate::shading::spawn::SurfacePoint;
@@ -45,9 +47,10 @@ fn local_hit(geometry: &Geometry, hit: &Hit, origin: Vec3, dir: Vec3) -> LocalHi
     match geometry {
         Geometry::Triangles(mesh) => {
             let tri = mesh.triangle(hit.prim_id);
-            let geometric = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
-            let (mut point, mut error) = triangle_point(&tri, hit.u, hit.v);
-            if let Some((p, e)) = triangle_point_from_ray(&tri, origin, dir, hit.t) {
+            let plane = TrianglePlane::new(&tri);
+            let geometric = plane.normal;
+            let (mut point, mut error) = triangle_point(&tri, &plane, hit.u, hit.v);
+            if let Some((p, e)) = triangle_point_from_ray(&tri, &plane, origin, dir, hit.t) {
                 let across = |e: Vec3| geometric.abs().dot(e);
                 if across(e) < across(error) && p.is_finite() {
                     (point, error) = (p, e);
