@@ -66,40 +66,51 @@ impl SampleStream {
         SampleStream { kind, seed, pixel, sample, dimension: 0 }
     }
 
-    /// Dimension `d`, component `axis` (0 or 1) of a 2-D draw.
-    fn value(&self, d: u64, axis: u32) -> f32 {
+    /// The first `N` (at most 4) values of the draw that starts at dimension `d`. A Sobol
+    /// draw is one padded 4-D set: its first two values form a (0, 2)-sequence, so a draw's
+    /// most important pair goes first.
+    fn draw<const N: usize>(&self, d: u64) -> [f32; N] {
         if self.kind == SamplerKind::Sobol && self.sample < SOBOL_SAMPLES {
-            // One scrambled sequence per (seed, pixel, dimension pair): the pair's two
-            // components are its Sobol dimensions 0 and 1.
+            // One scrambled sequence per (seed, pixel, draw).
             let scramble = hash4(self.seed, self.pixel, u64::MAX, d) as u32;
-            sobol_burley::sample(self.sample as u32, axis, scramble)
+            let values = sobol_burley::sample_4d(self.sample as u32, 0, scramble);
+            std::array::from_fn(|k| values[k])
         } else {
-            to_unit_f32(hash4(self.seed, self.pixel, self.sample, d + axis as u64))
+            std::array::from_fn(|k| {
+                to_unit_f32(hash4(self.seed, self.pixel, self.sample, d + k as u64))
+            })
         }
     }
 
+    fn next<const N: usize>(&mut self) -> [f32; N] {
+        let values = self.draw::<N>(self.dimension);
+        self.dimension += N as u64;
+        values
+    }
+
     pub fn next_1d(&mut self) -> f32 {
-        let x = self.value(self.dimension, 0);
-        self.dimension += 1;
-        x
+        self.next::<1>()[0]
     }
 
     pub fn next_2d(&mut self) -> Vec2 {
-        let v = Vec2::new(self.value(self.dimension, 0), self.value(self.dimension, 1));
-        self.dimension += 2;
-        v
+        Vec2::from_array(self.next::<2>())
+    }
+
+    /// Four values drawn together (with Sobol, one 4-D set: the first two are the best
+    /// stratified pair).
+    pub fn next_4d(&mut self) -> [f32; 4] {
+        self.next::<4>()
     }
 
     /// A value from a reserved dimension `slot`, outside the sequential stream: effects that
     /// only some scenes use (lens, time) draw from here, so turning them on or off does not
     /// shift the numbers every other decision sees.
     pub fn reserved_1d(&self, slot: u64) -> f32 {
-        self.value(RESERVED_BASE + slot, 0)
+        self.draw::<1>(RESERVED_BASE + slot)[0]
     }
 
     pub fn reserved_2d(&self, slot: u64) -> Vec2 {
-        let d = RESERVED_BASE + slot;
-        Vec2::new(self.value(d, 0), self.value(d, 1))
+        Vec2::from_array(self.draw::<2>(RESERVED_BASE + slot))
     }
 
     /// The sample's position inside its pixel (`jitter`: else stratum centres).
