@@ -1,33 +1,52 @@
 //! Lights into render space: point, directional, ambient and the course's square lights from
-//! the description, and one emitter per primitive of every emissive instance.
+//! the description, and the emitters of every emissive instance (a quad per pair of
+//! triangles that form a parallelogram, else one per primitive).
 
 use crate::render_scene::{Geometry, Instance, Placement, Prototype};
 use crate::scene::LightDesc;
 use crate::shading::light::{
-    DirectionalLight, Emitter, EmitterShape, LightSet, NO_GEOMETRY, PointLight,
+    DirectionalLight, Emitter, EmitterShape, InstanceEmitters, LightSet, NO_GEOMETRY, PointLight,
 };
 use crate::shading::material::Material;
 use crate::transform::course_square_axes;
-use glam::{DAffine3, DVec3, Vec3};
+use glam::{DAffine3, Vec3};
 
-/// The emitters of one emissive instance: a triangle per mesh primitive, or its sphere.
-fn instance_emitters(
+/// The two triangles as the quad v0 v1 v2 v3 of `EmitterShape::Quad` ((v0, v1, v3) and
+/// (v2, v3, v1)), if they share an edge, have the same winding and form a parallelogram.
+fn as_quad(a: &[Vec3; 3], b: &[Vec3; 3]) -> Option<EmitterShape> {
+    let rotate = |t: &[Vec3; 3], r: usize| [t[r], t[(r + 1) % 3], t[(r + 2) % 3]];
+    for ra in 0..3 {
+        let [x, y, z] = rotate(a, ra);
+        for rb in 0..3 {
+            let [w, z2, y2] = rotate(b, rb);
+            if z2 == z && y2 == y {
+                return EmitterShape::quad([x, y, w, z]);
+            }
+        }
+    }
+    None
+}
+
+/// The emitters of one emissive instance (a triangle per mesh primitive, one quad per pair
+/// of consecutive triangles that form a parallelogram, or its sphere) and each primitive's
+/// emitter among them; `None` if the instance is not sampled.
+fn emitters_of_instance(
     geom_id: u32,
     prototype: &Prototype,
     instance: &Instance,
     emission: Vec3,
-) -> Vec<Emitter> {
+) -> Option<(Vec<Emitter>, Vec<u32>)> {
     // Emitters that really move are not sampled: their emission is counted where rays hit
     // them (an emitter "moving" from a pose to the same pose is static).
     let transform = match &instance.placement {
         Placement::Baked { .. } => None,
         Placement::Static { render_from_object, .. } => Some(*render_from_object),
         Placement::Moving { start, end } if start == end => Some(start.to_affine()),
-        Placement::Moving { .. } => return Vec::new(),
+        Placement::Moving { .. } => return None,
     };
     match &prototype.geometry {
-        Geometry::Triangles(mesh) => (0..mesh.indices.len() as u32)
-            .map(|prim| {
+        Geometry::Triangles(mesh) => {
+            let triangle = |prim: u32| {
                 let mut tri = mesh.triangle(prim);
                 if let Some(m) = transform {
                     tri = tri.map(|p| m.transform_point3(p));
@@ -36,22 +55,39 @@ fn instance_emitters(
                         tri.swap(1, 2);
                     }
                 }
-                let area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
-                Emitter { geom_id, shape: EmitterShape::Triangle(tri), emission, area }
-            })
-            .collect(),
+                tri
+            };
+            let count = mesh.indices.len() as u32;
+            let mut emitters = Vec::new();
+            let mut of_prim = Vec::with_capacity(count as usize);
+            let mut prim = 0;
+            while prim < count {
+                let tri = triangle(prim);
+                let index = emitters.len() as u32;
+                let quad = (prim + 1 < count).then(|| as_quad(&tri, &triangle(prim + 1))).flatten();
+                let shape = match quad {
+                    Some(quad) => {
+                        of_prim.extend([index, index]);
+                        prim += 2;
+                        quad
+                    }
+                    None => {
+                        of_prim.push(index);
+                        prim += 1;
+                        EmitterShape::triangle(tri)
+                    }
+                };
+                emitters.push(Emitter::new(geom_id, shape, emission, false));
+            }
+            Some((emitters, of_prim))
+        }
         Geometry::Sphere(s) => {
             if transform.is_some() {
                 // Ellipsoids are not sampled either (no closed-form area sampling).
-                return Vec::new();
+                return None;
             }
-            let area = 4.0 * std::f32::consts::PI * s.radius * s.radius;
-            vec![Emitter {
-                geom_id,
-                shape: EmitterShape::Sphere { center: s.center, radius: s.radius },
-                emission,
-                area,
-            }]
+            let shape = EmitterShape::Sphere { center: s.center, radius: s.radius };
+            Some((vec![Emitter::new(geom_id, shape, emission, false)], vec![0]))
         }
     }
 }
@@ -87,39 +123,45 @@ pub(super) fn compile_lights(
             LightDesc::Area { center, normal, size, radiance } => {
                 let (u, v) = course_square_axes(*normal);
                 let half = 0.5 * size;
-                let edge = |e: DVec3| render_from_world.transform_vector3(e * half).as_vec3();
-                let (edge_u, edge_v) = (edge(u), edge(v));
-                squares.push(Emitter {
-                    geom_id: NO_GEOMETRY,
-                    shape: EmitterShape::Square {
-                        center: render_from_world.transform_point3(*center).as_vec3(),
-                        edge_u,
-                        edge_v,
-                        normal: render_from_world.transform_vector3(*normal).normalize().as_vec3(),
-                    },
-                    emission: *radiance,
-                    area: 4.0 * edge_u.length() * edge_v.length(),
-                });
+                let corner = |a: f64, b: f64| {
+                    let world = *center + (a * u + b * v) * half;
+                    render_from_world.transform_point3(world).as_vec3()
+                };
+                let vertices =
+                    [corner(-1.0, -1.0), corner(1.0, -1.0), corner(1.0, 1.0), corner(-1.0, 1.0)];
+                // A square whose corners round to a non-parallelogram (far from the origin)
+                // is sampled as two triangles.
+                match EmitterShape::quad(vertices) {
+                    Some(shape) => squares.push(Emitter::new(NO_GEOMETRY, shape, *radiance, true)),
+                    None => {
+                        let [v0, v1, v2, v3] = vertices;
+                        for tri in [[v0, v1, v3], [v2, v3, v1]] {
+                            let shape = EmitterShape::triangle(tri);
+                            squares.push(Emitter::new(NO_GEOMETRY, shape, *radiance, true));
+                        }
+                    }
+                }
             }
         }
     }
-    let mut emitters = Vec::new();
-    let mut first_emitter = vec![None; instances.len()];
+    let mut instance_emitters = InstanceEmitters::default();
     for (geom_id, instance) in instances.iter().enumerate() {
         let material = &materials[instance.material as usize];
-        if !material.is_emissive() {
-            continue;
-        }
-        let prototype = &prototypes[instance.prototype as usize];
-        let mine = instance_emitters(geom_id as u32, prototype, instance, material.emission);
-        if !mine.is_empty() {
-            first_emitter[geom_id] = Some(emitters.len() as u32);
-            emitters.extend(mine);
-        }
+        let sampled = material
+            .is_emissive()
+            .then(|| {
+                let prototype = &prototypes[instance.prototype as usize];
+                emitters_of_instance(geom_id as u32, prototype, instance, material.emission)
+            })
+            .flatten()
+            .map(|(emitters, of_prim)| {
+                let first = instance_emitters.emitters.len() as u32;
+                instance_emitters.emitters.extend(emitters);
+                of_prim.into_iter().map(|i| first + i).collect()
+            });
+        instance_emitters.by_instance.push(sampled);
     }
-    // The course's squares come last: they are no instance's, so `first_emitter` skips them.
-    emitters.extend(squares);
-    let mut lights = LightSet::new(points, directional, emitters, first_emitter);
+    let mut lights = LightSet::new(points, directional, instance_emitters, squares);
     lights.ambient = ambient;
     lights
 }

@@ -8,13 +8,13 @@ use super::trace::SceneTracer;
 use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
-use crate::sampling::SampleStream;
+use crate::sampling::{SampleStream, frame_from_normal};
 use crate::shading::bsdf::Bsdf;
 use crate::shading::material::Material;
 use crate::shading::spawn::SurfacePoint;
 use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
-use glam::{Mat3, Quat, Vec3};
+use glam::{Mat3, Quat, Vec2, Vec3};
 
 pub struct PathTracer<'a> {
     tracer: SceneTracer<'a>,
@@ -24,18 +24,6 @@ pub struct PathTracer<'a> {
     light_samples: u32,
     /// Rotation into the space where directions are sampled (see `sampling_from_world`).
     sampling_from_render: Mat3,
-}
-
-/// Orthonormal basis whose Z axis is `n` (Duff et al. 2017, branchless).
-fn frame_from_normal(n: Vec3) -> Mat3 {
-    let sign = 1.0f32.copysign(n.z);
-    let a = -1.0 / (sign + n.z);
-    let b = n.x * n.y * a;
-    Mat3::from_cols(
-        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-        Vec3::new(b, sign + n.y * n.y * a, -n.y),
-        n,
-    )
 }
 
 /// A fixed rotation of world space in which no common surface normal lies on the
@@ -140,11 +128,15 @@ impl<'a> PathTracer<'a> {
         if lights.has_emitters() {
             let n = self.light_samples as f32;
             for _ in 0..self.light_samples {
-                let pick = stream.next_2d();
-                let on_surface = stream.next_2d();
+                // The light point takes the draw's best stratified pair, the light choice
+                // the other two.
+                let [u0, u1, u2, u3] = stream.next_4d();
                 // A point on the shading point's own emitter is a sample like any other: a
                 // concave emitter lights itself, and its BSDF hits are MIS-weighted against it.
-                let Some(sample) = lights.sample_emitter(pick, on_surface) else { continue };
+                let Some(sample) = lights.sample_emitter(p, Vec2::new(u2, u3), Vec2::new(u0, u1))
+                else {
+                    continue;
+                };
                 let to_light = sample.point - p;
                 let dist2 = to_light.length_squared();
                 let wi = to_light / dist2.sqrt();
@@ -164,7 +156,7 @@ impl<'a> PathTracer<'a> {
                 if self.occluded(&self.tracer.spawn.ray_to(&si.surface, &target, time), stats) {
                     continue;
                 }
-                let pdf_light = sample.pdf_area * dist2 / cos_light;
+                let pdf_light = sample.pdf;
                 // Without a following BSDF sample (last bounce) light sampling is the only
                 // strategy and gets full weight.
                 // An invisible emitter (the course's area light) can never be found by the
@@ -180,17 +172,15 @@ impl<'a> PathTracer<'a> {
         sum
     }
 
-    /// MIS weight of emission found by BSDF sampling with density `pdf_bsdf`.
-    fn emission_weight(&self, ray: &Ray, si: &SurfaceInteraction, t: f32, pdf_bsdf: f32) -> f32 {
-        let Some(pdf_area) = self.tracer.scene.lights.pdf_area(si.geom_id, si.prim_id) else {
+    /// MIS weight of emission found at `si` by BSDF sampling with density `pdf_bsdf` from
+    /// the shading point `from`.
+    fn emission_weight(&self, from: Vec3, si: &SurfaceInteraction, pdf_bsdf: f32) -> f32 {
+        let lights = &self.tracer.scene.lights;
+        let point = si.surface.point;
+        let Some(pdf_light) = lights.pdf(from, si.geom_id, si.prim_id, point, si.surface.normal)
+        else {
             return 1.0; // not sampled by next-event estimation
         };
-        let distance = t * ray.dir.length();
-        let cos_light = si.surface.normal.dot(ray.dir.normalize()).abs();
-        if cos_light <= 0.0 {
-            return 0.0;
-        }
-        let pdf_light = pdf_area * distance * distance / cos_light;
         power_heuristic(pdf_bsdf, self.light_samples as f32 * pdf_light)
     }
 
@@ -216,6 +206,8 @@ impl<'a> PathTracer<'a> {
         // Camera rays and specular bounces see emission in full (nothing else sampled it).
         let mut specular_bounce = true;
         let mut pdf_bsdf = 0.0;
+        // The shading point the current ray left from (for the light-sampling density).
+        let mut from = Vec3::ZERO;
         // Beer's-law absorption of the medium the ray travels through.
         let mut absorption = Vec3::ZERO;
         for depth in 0..self.max_depth.max(1) {
@@ -239,11 +231,8 @@ impl<'a> PathTracer<'a> {
                     Some(self.tracer.scene.camera.world_from_render_rotation * si.shading_normal);
             }
             if material.is_emissive() && si.front_face {
-                let weight = if specular_bounce {
-                    1.0
-                } else {
-                    self.emission_weight(&ray, &si, hit.t, pdf_bsdf)
-                };
+                let weight =
+                    if specular_bounce { 1.0 } else { self.emission_weight(from, &si, pdf_bsdf) };
                 result.radiance += throughput * material.emission * weight;
             }
             if self.max_depth == 0 {
@@ -261,8 +250,9 @@ impl<'a> PathTracer<'a> {
             if last {
                 break;
             }
-            let u_lobe = stream.next_1d();
-            let u = stream.next_2d();
+            // Direction first (the best stratified pair), then lobe and roulette.
+            let [u0, u1, u_lobe, u_survive] = stream.next_4d();
+            let u = Vec2::new(u0, u1);
             let Some(sample) = bsdf.sample(wo, u_lobe, u) else { break };
             // The geometric surface must agree with the shading normal about the side.
             let below = sample.wi.dot(si.surface.normal) < 0.0;
@@ -280,11 +270,12 @@ impl<'a> PathTracer<'a> {
             }
             if depth >= 3 {
                 let survive = throughput.max_element().min(0.95);
-                if stream.next_1d() >= survive {
+                if u_survive >= survive {
                     break;
                 }
                 throughput /= survive;
             }
+            from = si.surface.point;
             ray = self.tracer.spawn.ray(&si.surface, sample.wi, ray.time);
         }
         result

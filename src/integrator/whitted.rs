@@ -109,21 +109,22 @@ impl<'a> WhittedTracer<'a> {
             }
         }
         if lights.has_emitters() {
-            if let Some(sample) = lights.sample_emitter(stream.next_2d(), stream.next_2d()) {
-                let to_light = sample.point - si.surface.point;
-                let dist2 = to_light.length_squared();
-                let wi = to_light / dist2.sqrt();
-                let cos_light = sample.emitted_cosine(-wi).max(0.0);
+            let [u0, u1, u2, u3] = stream.next_4d();
+            let (pick, on_surface) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
+            if let Some(sample) = lights.sample_emitter(si.surface.point, pick, on_surface) {
+                let wi = (sample.point - si.surface.point).normalize();
+                let lit = sample.emitted_cosine(-wi) > 0.0;
                 let target = SurfacePoint {
                     point: sample.point,
                     error: sample.error,
                     normal: sample.normal,
                 };
                 if faces(wi)
+                    && lit
                     && sample.geom_id != si.geom_id
                     && !self.occluded(&self.tracer.spawn.ray_to(&si.surface, &target, time), stats)
                 {
-                    color += shade(wi, sample.emission * cos_light / (dist2 * sample.pdf_area));
+                    color += shade(wi, sample.emission / sample.pdf);
                 }
             }
         }

@@ -3,13 +3,19 @@
 //! see exactly the same rays.
 
 pub mod alias;
+#[cfg(test)]
+pub(crate) mod chi_square;
 mod pixel;
+pub mod spherical_rectangle;
+#[cfg(test)]
+mod spherical_tests;
+pub mod spherical_triangle;
 mod warps;
 
 use crate::splitmix::mix64;
 use glam::Vec2;
 pub use pixel::pixel_sample;
-pub use warps::{concentric_disk, cosine_hemisphere, uniform_triangle};
+pub use warps::{concentric_disk, cosine_hemisphere, frame_from_normal, uniform_triangle};
 
 /// Hash of the four counters.
 pub fn hash4(seed: u64, pixel: u64, sample: u64, dimension: u64) -> u64 {

@@ -1,6 +1,6 @@
 //! Warps from the unit square to the domains lights and BSDFs sample.
 
-use glam::{Vec2, Vec3};
+use glam::{Mat3, Vec2, Vec3};
 
 /// Cosine-weighted direction about +Z (Malley's method); pdf = cos θ / π.
 pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
@@ -33,4 +33,16 @@ pub fn uniform_triangle(u: Vec2) -> Vec2 {
         let b1 = u.y / 2.0;
         Vec2::new(u.x - b1, b1)
     }
+}
+
+/// Orthonormal basis whose Z axis is `n` (Duff et al. 2017, branchless).
+pub fn frame_from_normal(n: Vec3) -> Mat3 {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    Mat3::from_cols(
+        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        Vec3::new(b, sign + n.y * n.y * a, -n.y),
+        n,
+    )
 }

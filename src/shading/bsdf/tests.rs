@@ -43,13 +43,6 @@ fn expected_fractions(bsdf: &Bsdf, wo: Vec3) -> Vec<f64> {
         .collect()
 }
 
-/// Wilson–Hilferty: the χ² value exceeded with probability 1e-4 at `dof` degrees of freedom.
-fn chi_square_limit(dof: usize) -> f64 {
-    let k = dof as f64;
-    let z = 3.719; // the normal quantile of 1 − 1e-4
-    k * (1.0 - 2.0 / (9.0 * k) + z * (2.0 / (9.0 * k)).sqrt()).powi(3)
-}
-
 /// Samples `bsdf` for `wo` and tests the directions against `pdf` (plus the rejected mass:
 /// samples the sampler refuses must be exactly what the density does not cover).
 fn chi_square_test(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u64) {
@@ -82,29 +75,12 @@ fn chi_square_test(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u64) {
     let mut expected = expected_fractions(bsdf, wo);
     let covered: f64 = expected.iter().sum();
     expected.push((1.0 - covered).max(0.0));
-    // Pool cells expecting fewer than 5 samples into one (the usual chi-square rule).
-    let (mut statistic, mut dof) = (0.0f64, 0usize);
-    let (mut pooled_count, mut pooled_expected) = (0u64, 0.0f64);
-    for (&count, &p) in counts.iter().zip(&expected) {
-        let e = p * samples as f64;
-        if e < 5.0 {
-            pooled_count += count;
-            pooled_expected += e;
-        } else {
-            statistic += (count as f64 - e).powi(2) / e;
-            dof += 1;
-        }
-    }
-    if pooled_expected > 0.0 {
-        statistic += (pooled_count as f64 - pooled_expected).powi(2) / pooled_expected.max(1.0);
-        dof += 1;
-    }
-    let limit = chi_square_limit(dof - 1);
-    println!(
-        "{name}: χ² {statistic:.1} over {} dof (limit {limit:.1}); ∫pdf {covered:.4}",
-        dof - 1
+    crate::sampling::chi_square::assert_fits(
+        &format!("{name} (∫pdf {covered:.4})"),
+        &counts,
+        &expected,
+        samples,
     );
-    assert!(statistic < limit, "{name}: χ² {statistic} ≥ {limit}");
 }
 
 fn conductor(roughness: f32, reflectance: Vec3) -> Material {

@@ -1,0 +1,248 @@
+//! One emitting primitive, and how a point on it is sampled from a shading point: uniformly
+//! by solid angle where that is numerically stable (spherical triangles and rectangles, the
+//! cone a sphere subtends), else uniformly by area. Far-away lights gain nothing from solid
+//! angle sampling and lose accuracy to it; near ones gain the most, since area sampling
+//! wastes samples on the parts seen at grazing angles. Densities are per unit solid angle at
+//! the shading point, so both strategies enter MIS alike.
+
+use crate::float_error::{TrianglePlane, gamma, triangle_point};
+use crate::sampling::{frame_from_normal, spherical_rectangle::SphericalRectangle};
+use crate::sampling::{spherical_triangle, uniform_triangle};
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// Below this solid angle (sr) a light is sampled by area: the spherical excess loses
+/// precision and the light is far enough that area sampling is as good (pbrt-v4's bound).
+const MIN_SOLID_ANGLE: f64 = 3e-4;
+/// Above it, by area too: a triangle covering nearly a hemisphere makes Arvo's construction
+/// unstable.
+const MAX_SOLID_ANGLE: f64 = 6.22;
+
+/// One emitting primitive, in render space.
+#[derive(Clone, Debug)]
+pub enum EmitterShape {
+    Triangle {
+        vertices: [Vec3; 3],
+        plane: TrianglePlane,
+    },
+    /// A parallelogram made of two triangles, (v0, v1, v3) and (v2, v3, v1), with v2
+    /// opposite v0: the point with parameters (s, t) is v0 + s·(v1 − v0) + t·(v3 − v0), and
+    /// it is computed on the mesh triangle that holds it. One emitter for both keeps the
+    /// sampler's stratification over the whole quad.
+    Quad {
+        vertices: [Vec3; 4],
+        planes: [TrianglePlane; 2],
+        rectangle: bool,
+    },
+    Sphere {
+        center: Vec3,
+        radius: f32,
+    },
+}
+
+impl EmitterShape {
+    pub fn triangle(vertices: [Vec3; 3]) -> Self {
+        EmitterShape::Triangle { vertices, plane: TrianglePlane::new(&vertices) }
+    }
+
+    /// The quad v0 v1 v2 v3 (in order around it); `None` unless it is a parallelogram
+    /// (within rounding of its coordinates).
+    pub fn quad(vertices: [Vec3; 4]) -> Option<Self> {
+        let [v0, v1, v2, v3] = vertices;
+        let scale = vertices.iter().map(|v| v.abs().max_element()).fold(0.0, f32::max);
+        if (v0 + v2 - v1 - v3).abs().max_element() > 1e-5 * scale {
+            return None;
+        }
+        let planes = [TrianglePlane::new(&[v0, v1, v3]), TrianglePlane::new(&[v2, v3, v1])];
+        let (edge_u, edge_v) = (v1 - v0, v3 - v0);
+        if planes[0].normal == Vec3::ZERO || planes[0].normal.dot(planes[1].normal) < 0.999_999 {
+            return None;
+        }
+        let rectangle = edge_u.dot(edge_v).abs() <= 1e-5 * edge_u.length() * edge_v.length();
+        Some(EmitterShape::Quad { vertices, planes, rectangle })
+    }
+
+    pub fn area(&self) -> f32 {
+        match self {
+            EmitterShape::Triangle { vertices: v, .. } => {
+                0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length()
+            }
+            EmitterShape::Quad { vertices: v, .. } => (v[1] - v[0]).cross(v[3] - v[0]).length(),
+            EmitterShape::Sphere { radius, .. } => 4.0 * PI * radius * radius,
+        }
+    }
+}
+
+/// A point sampled on an emitter's surface, and its density per unit solid angle at the
+/// shading point it was sampled from.
+#[derive(Clone, Copy, Debug)]
+pub struct ShapeSample {
+    pub point: Vec3,
+    /// Rounding-error bound of `point`.
+    pub error: Vec3,
+    /// Unit normal at `point`.
+    pub normal: Vec3,
+    pub pdf: f32,
+}
+
+/// Density per unit solid angle at `reference` of a density per unit area `pdf_area` at
+/// `point` (normal `normal`).
+fn solid_angle_density(pdf_area: f32, reference: Vec3, point: Vec3, normal: Vec3) -> f32 {
+    let to_point = point - reference;
+    let dist2 = to_point.length_squared();
+    let cos = normal.dot(to_point).abs() / dist2.sqrt();
+    if cos > 0.0 && dist2 > 0.0 { pdf_area * dist2 / cos } else { 0.0 }
+}
+
+/// Whether solid-angle sampling is stable for this solid angle.
+fn by_solid_angle(omega: f64) -> bool {
+    (MIN_SOLID_ANGLE..=MAX_SOLID_ANGLE).contains(&omega)
+}
+
+/// 1 − cos θ for the cone of half-angle θ, without cancellation for tiny cones.
+fn one_minus_cos(sin2: f32) -> f32 {
+    sin2 / (1.0 + (1.0 - sin2).sqrt())
+}
+
+/// How a shape is sampled by solid angle from one shading point.
+#[derive(Clone, Copy, Debug)]
+enum Spherical {
+    Triangle {
+        solid_angle: f64,
+    },
+    Rectangle(SphericalRectangle),
+    /// The cone of a sphere, by the sine² of its half-angle.
+    Cone {
+        sin2_max: f32,
+    },
+}
+
+impl Spherical {
+    fn pdf(&self) -> f32 {
+        match self {
+            Spherical::Triangle { solid_angle } => (1.0 / solid_angle) as f32,
+            Spherical::Rectangle(r) => (1.0 / r.solid_angle()) as f32,
+            Spherical::Cone { sin2_max } => 1.0 / (2.0 * PI * one_minus_cos(*sin2_max)),
+        }
+    }
+}
+
+impl EmitterShape {
+    /// The solid-angle strategy for shading point `reference`, or `None` where sampling by
+    /// area is the stable choice (tiny or huge solid angles, non-rectangular quads, inside a
+    /// sphere). Sampling and density both ask here, so they always agree.
+    fn spherical(&self, reference: Vec3) -> Option<Spherical> {
+        match self {
+            EmitterShape::Triangle { vertices, .. } => {
+                let solid_angle = spherical_triangle::solid_angle(vertices, reference);
+                by_solid_angle(solid_angle).then_some(Spherical::Triangle { solid_angle })
+            }
+            EmitterShape::Quad { vertices: [v0, v1, _, v3], rectangle: true, .. } => {
+                SphericalRectangle::new(reference, *v0, *v1 - *v0, *v3 - *v0)
+                    .filter(|r| by_solid_angle(r.solid_angle()))
+                    .map(Spherical::Rectangle)
+            }
+            EmitterShape::Quad { .. } => None,
+            EmitterShape::Sphere { center, radius } => {
+                let sin2_max = radius * radius / (*center - reference).length_squared();
+                (sin2_max < 0.9999).then_some(Spherical::Cone { sin2_max })
+            }
+        }
+    }
+
+    /// A point sampled from `reference` with `u`; `None` where nothing can be sampled (a
+    /// degenerate shape, or one seen exactly edge-on).
+    pub fn sample_from(&self, reference: Vec3, u: Vec2) -> Option<ShapeSample> {
+        let Some(spherical) = self.spherical(reference) else {
+            return self.sample_by_area(reference, u);
+        };
+        let pdf = spherical.pdf();
+        match (self, spherical) {
+            (EmitterShape::Triangle { vertices, plane }, Spherical::Triangle { .. }) => {
+                let b = spherical_triangle::sample(vertices, reference, u)?;
+                let (point, error) = triangle_point(vertices, plane, b.x, b.y);
+                Some(ShapeSample { point, error, normal: plane.normal, pdf })
+            }
+            (EmitterShape::Quad { .. }, Spherical::Rectangle(r)) => {
+                let (point, error, normal) = self.quad_point(r.sample(u));
+                Some(ShapeSample { point, error, normal, pdf })
+            }
+            (EmitterShape::Sphere { center, radius }, Spherical::Cone { sin2_max }) => {
+                let normal = cone_normal(*center, reference, sin2_max, u);
+                let (point, error) = sphere_point(*center, *radius, normal);
+                Some(ShapeSample { point, error, normal, pdf })
+            }
+            _ => unreachable!("`spherical` matches the shape"),
+        }
+    }
+
+    /// A point sampled uniformly by area with `u` (its density still per unit solid angle
+    /// at `reference`).
+    pub(super) fn sample_by_area(&self, reference: Vec3, u: Vec2) -> Option<ShapeSample> {
+        let (point, error, normal) = match self {
+            EmitterShape::Triangle { vertices, plane } => {
+                let b = uniform_triangle(u);
+                let (point, error) = triangle_point(vertices, plane, b.x, b.y);
+                (point, error, plane.normal)
+            }
+            EmitterShape::Quad { .. } => self.quad_point(u),
+            EmitterShape::Sphere { center, radius } => {
+                let z = 1.0 - 2.0 * u.x;
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let (sin_phi, cos_phi) = (2.0 * PI * u.y).sin_cos();
+                let normal = Vec3::new(r * cos_phi, r * sin_phi, z);
+                let (point, error) = sphere_point(*center, *radius, normal);
+                (point, error, normal)
+            }
+        };
+        let pdf = solid_angle_density(1.0 / self.area(), reference, point, normal);
+        (pdf > 0.0).then_some(ShapeSample { point, error, normal, pdf })
+    }
+
+    /// The point of a quad at parameters `st`, computed on the mesh triangle that holds it.
+    fn quad_point(&self, st: Vec2) -> (Vec3, Vec3, Vec3) {
+        let EmitterShape::Quad { vertices: [v0, v1, v2, v3], planes, .. } = self else {
+            unreachable!("only quads have quad points")
+        };
+        let (point, error) = if st.x + st.y <= 1.0 {
+            triangle_point(&[*v0, *v1, *v3], &planes[0], st.x, st.y)
+        } else {
+            triangle_point(&[*v2, *v3, *v1], &planes[1], 1.0 - st.x, 1.0 - st.y)
+        };
+        (point, error, planes[0].normal)
+    }
+
+    /// The density per unit solid angle with which `sample_from(reference, ..)` picks
+    /// `point` (normal `normal`), a point on this shape.
+    pub fn pdf_from(&self, reference: Vec3, point: Vec3, normal: Vec3) -> f32 {
+        match self.spherical(reference) {
+            Some(spherical) => spherical.pdf(),
+            None => solid_angle_density(1.0 / self.area(), reference, point, normal),
+        }
+    }
+}
+
+/// The point at unit normal `normal` of a sphere, with its rounding-error bound.
+fn sphere_point(center: Vec3, radius: f32, normal: Vec3) -> (Vec3, Vec3) {
+    let local = radius * normal;
+    let error = local.abs() * gamma(5)
+        + (center.abs() + local.abs()) * gamma(1)
+        + Vec3::splat(radius * gamma(8));
+    (center + local, error)
+}
+
+/// Uniform direction in the cone a sphere subtends from `reference`, returned as the
+/// sphere's unit normal at the visible point it reaches (the angle at the centre follows
+/// from the angle at the shading point, as in pbrt-v4).
+fn cone_normal(center: Vec3, reference: Vec3, sin2_max: f32, u: Vec2) -> Vec3 {
+    let sin_max = sin2_max.sqrt();
+    let one_minus_cos_theta = u.x * one_minus_cos(sin2_max);
+    let cos_theta = 1.0 - one_minus_cos_theta;
+    let sin2_theta = one_minus_cos_theta * (2.0 - one_minus_cos_theta);
+    let cos_alpha =
+        sin2_theta / sin_max + cos_theta * (1.0 - sin2_theta / sin2_max).max(0.0).sqrt();
+    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
+    let (sin_phi, cos_phi) = (2.0 * PI * u.y).sin_cos();
+    let frame = frame_from_normal((center - reference).normalize());
+    (frame * Vec3::new(sin_alpha * cos_phi, sin_alpha * sin_phi, -cos_alpha)).normalize()
+}
