@@ -68,6 +68,20 @@ impl EmitterShape {
         Some(EmitterShape::Quad { vertices, planes, rectangle })
     }
 
+    /// Whether `reference` lies on the side a flat shape's normal points to (always, for a
+    /// sphere).
+    pub fn faces(&self, reference: Vec3) -> bool {
+        match self {
+            EmitterShape::Triangle { vertices: [v0, ..], plane } => {
+                (reference - *v0).dot(plane.normal) > 0.0
+            }
+            EmitterShape::Quad { vertices: [v0, ..], planes, .. } => {
+                (reference - *v0).dot(planes[0].normal) > 0.0
+            }
+            EmitterShape::Sphere { .. } => true,
+        }
+    }
+
     pub fn area(&self) -> f32 {
         match self {
             EmitterShape::Triangle { vertices: v, .. } => {

@@ -204,6 +204,10 @@ impl LightSet {
         if probability <= 0.0 || emitter.area <= 0.0 {
             return None;
         }
+        // Behind a one-sided emitter nothing arrives: skip the sampling work.
+        if !emitter.two_sided && !emitter.shape.faces(reference) {
+            return None;
+        }
         let sample = emitter.shape.sample_from(reference, on_surface)?;
         let pdf = probability * sample.pdf;
         if !(pdf > 0.0) || !pdf.is_finite() {
