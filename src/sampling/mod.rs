@@ -56,8 +56,12 @@ crate::choice::named_choices!(SamplerKind, "sampler", {
 const SOBOL_SAMPLES: u64 = 1 << 16;
 
 /// The random stream of one camera sample of one pixel. Each call consumes the next
-/// dimension (two for a 2-D draw); the integrator asks for dimensions only for effects the
-/// scene uses.
+/// dimensions; the integrator asks for dimensions only for effects the scene uses.
+///
+/// The path tracer's layout: the pixel position, lens point and time come from reserved
+/// slots; then per bounce one 4-D draw per light sample (light point 2-D, light choice 2-D)
+/// and one for the BSDF (direction 2-D, lobe, Russian roulette). With Sobol each draw is a
+/// separately scrambled ("padded") 4-D set whose first two values form a (0, 2)-sequence.
 #[derive(Clone, Debug)]
 pub struct SampleStream {
     kind: SamplerKind,
