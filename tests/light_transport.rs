@@ -7,6 +7,7 @@ use common::build::*;
 use common::*;
 use embray::choice::Choice;
 use embray::film::Film;
+use embray::sampling::SamplerKind;
 use embray::scene::{MeshData, SceneDesc, ShapeDesc};
 use glam::{DAffine3, DVec3, Vec3};
 use std::sync::Arc;
@@ -68,14 +69,22 @@ fn a_closed_emitter_seen_from_inside_is_a_furnace() {
     let wall = add_material(&mut s, wall);
     s.objects.push(object("box", ShapeDesc::Mesh(inward_cube()), wall, DAffine3::IDENTITY));
     let expected = emission * (1.0 - albedo.powi(depth as i32 + 1)) / (1.0 - albedo);
-    for backend in backends() {
-        let film = render_ok(&s, &options(&s, backend, 64)).film;
-        let m = mean(&film);
-        println!("{}: mean {m}, expected {expected}", backend.name());
+    // Every backend with the default sampler, and every sampler on the first backend.
+    let runs = backends().into_iter().map(|b| (b, SamplerKind::default())).chain(
+        SamplerKind::ALL
+            .iter()
+            .filter(|&&k| k != SamplerKind::default())
+            .map(|&k| (backends()[0], k)),
+    );
+    for (backend, sampler) in runs {
+        let mut o = options(&s, backend, 64);
+        o.sampler = sampler;
+        let m = mean(&render_ok(&s, &o).film);
+        println!("{} {sampler}: mean {m}, expected {expected}", backend.name());
         for c in m.to_array() {
             assert!(
                 (c - expected).abs() < 0.01 * expected,
-                "{}: {m} vs {expected}",
+                "{} {sampler}: {m} vs {expected}",
                 backend.name()
             );
         }
