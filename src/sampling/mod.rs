@@ -19,10 +19,17 @@ pub use warps::{concentric_disk, cosine_hemisphere, frame_from_normal, uniform_t
 
 /// Hash of the four counters.
 pub fn hash4(seed: u64, pixel: u64, sample: u64, dimension: u64) -> u64 {
-    let mut h = mix64(seed ^ 0x9e37_79b9_7f4a_7c15);
-    h = mix64(h ^ pixel);
-    h = mix64(h ^ sample.wrapping_mul(0x632b_e59b_d9b4_e019));
-    mix64(h ^ dimension.wrapping_mul(0xd6e8_feb8_6659_fd93))
+    hash_dimension(hash_prefix(seed, pixel, sample), dimension)
+}
+
+/// The part of `hash4` that does not depend on the dimension (computed once per stream).
+fn hash_prefix(seed: u64, pixel: u64, sample: u64) -> u64 {
+    let h = mix64(mix64(seed ^ 0x9e37_79b9_7f4a_7c15) ^ pixel);
+    mix64(h ^ sample.wrapping_mul(0x632b_e59b_d9b4_e019))
+}
+
+fn hash_dimension(prefix: u64, dimension: u64) -> u64 {
+    mix64(prefix ^ dimension.wrapping_mul(0xd6e8_feb8_6659_fd93))
 }
 
 /// Uniform float in [0, 1) from the top 24 bits of a hash.
@@ -69,11 +76,23 @@ pub struct SampleStream {
     pixel: u64,
     sample: u64,
     dimension: u64,
+    /// `hash_prefix` of this sample's counters, and of the per-pixel Sobol scrambles (whose
+    /// "sample" counter is u64::MAX): each draw then costs one mix.
+    sample_prefix: u64,
+    scramble_prefix: u64,
 }
 
 impl SampleStream {
     pub fn new(kind: SamplerKind, seed: u64, pixel: u64, sample: u64) -> Self {
-        SampleStream { kind, seed, pixel, sample, dimension: 0 }
+        SampleStream {
+            kind,
+            seed,
+            pixel,
+            sample,
+            dimension: 0,
+            sample_prefix: hash_prefix(seed, pixel, sample),
+            scramble_prefix: hash_prefix(seed, pixel, u64::MAX),
+        }
     }
 
     /// The first `N` (at most 4) values of the draw that starts at dimension `d`. A Sobol
@@ -82,13 +101,11 @@ impl SampleStream {
     fn draw<const N: usize>(&self, d: u64) -> [f32; N] {
         if self.kind == SamplerKind::Sobol && self.sample < SOBOL_SAMPLES {
             // One scrambled sequence per (seed, pixel, draw).
-            let scramble = hash4(self.seed, self.pixel, u64::MAX, d) as u32;
+            let scramble = hash_dimension(self.scramble_prefix, d) as u32;
             let values = sobol_burley::sample_4d(self.sample as u32, 0, scramble);
             std::array::from_fn(|k| values[k])
         } else {
-            std::array::from_fn(|k| {
-                to_unit_f32(hash4(self.seed, self.pixel, self.sample, d + k as u64))
-            })
+            std::array::from_fn(|k| to_unit_f32(hash_dimension(self.sample_prefix, d + k as u64)))
         }
     }
 
