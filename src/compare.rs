@@ -111,12 +111,14 @@ pub fn compare_images(
     })
 }
 
-/// Writes the comparison's heat map as PNG.
+/// Writes the comparison's heat map as PNG (through the output module: checked writes, a
+/// temporary file renamed into place).
 pub fn write_heatmap(comparison: &PngComparison, path: &Path) -> Result<(), CompareError> {
-    comparison
-        .heatmap()
-        .save_with_format(path, image::ImageFormat::Png)
-        .map_err(|e| CompareError::Write { path: path.to_path_buf(), message: e.to_string() })
+    let image = comparison.heatmap();
+    crate::output::write_one(path, |w| {
+        crate::output::encode_rgb8(image.as_raw(), image.width(), image.height(), w)
+    })
+    .map_err(|e| CompareError::Write { path: path.to_path_buf(), message: e.to_string() })
 }
 
 /// `image` shrunk by `factor` in each direction, each output pixel the mean of its

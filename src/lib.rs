@@ -16,6 +16,7 @@ pub mod choice;
 pub mod color;
 pub mod compare;
 pub mod compile;
+pub mod excerpt;
 pub mod film;
 pub mod float_error;
 pub mod image_error;

@@ -260,7 +260,7 @@ impl<'a> WhittedTracer<'a> {
         let cos_o = n.dot(wo).clamp(0.0, 1.0);
         let mut children = Vec::new();
         // A reflected ray stays in the medium the incoming ray came through.
-        let mut reflected = |tint: Vec3, stream: &mut SampleStream, children: &mut Vec<Node>| {
+        let reflected = |tint: Vec3, stream: &mut SampleStream, children: &mut Vec<Node>| {
             if tint == Vec3::ZERO {
                 return None;
             }

@@ -76,6 +76,9 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
     if image_name.is_empty() {
         return Err(x.error(name_node, "the image name is empty"));
     }
+    if let Some(problem) = crate::output::image_name_problem(&image_name) {
+        return Err(x.error(name_node, problem));
+    }
     let spp = match x.child(node, "NumSamples")? {
         Some(n) => {
             let spp = x.count(n)?;

@@ -128,10 +128,24 @@ pub fn load_str_with_warnings(
     let objects = objects::objects(&x, &refs, all("Objects"), &mut warnings)?;
 
     let mut cameras = Vec::new();
+    // Two cameras writing one file would silently overwrite each other's image.
+    let mut outputs = std::collections::HashMap::new();
     for list in all("Cameras") {
         x.check_children(list, &["Camera"])?;
         for node in list.children().filter(Node::is_element) {
-            cameras.push(camera::camera(&x, node)?);
+            let camera = camera::camera(&x, node)?;
+            let key = crate::output::image_name_key(&camera.image_name);
+            if let Some(first) = outputs.insert(key, x.line(node)) {
+                return Err(x.error(
+                    node,
+                    format!(
+                        "ImageName '{}' names the same output files as the camera{first}; \
+                         every camera needs its own ImageName",
+                        crate::excerpt::excerpt(&camera.image_name)
+                    ),
+                ));
+            }
+            cameras.push(camera);
         }
     }
     if cameras.is_empty() {
