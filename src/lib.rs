@@ -23,6 +23,7 @@ pub mod image_error;
 pub mod info;
 pub mod integrator;
 pub mod intersect;
+pub mod limits;
 pub mod output;
 pub mod ray;
 pub mod render;

@@ -9,6 +9,7 @@ use clap::Args;
 use embray::accel::{BackendKind, BatchMode, BuildQuality};
 use embray::compile::EffectsMode;
 use embray::excerpt::excerpt;
+use embray::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SPP, MAX_THREADS};
 use embray::output::stats::{StatsReport, stats_table};
 use embray::output::{OutputPlan, OutputSet, Target, camera_outputs, encode_exr, encode_png};
 use embray::render::{RenderOptions, RenderOutput, render};
@@ -131,17 +132,20 @@ impl RenderArgs {
     pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {
         let mut options = RenderOptions::for_scene(scene);
         if let Some(spp) = self.spp {
-            if spp == 0 {
-                bail!("--spp must be at least 1");
+            if !(1..=MAX_SPP).contains(&spp) {
+                bail!("--spp is {spp}, but must be between 1 and {MAX_SPP}");
             }
             options.spp = spp;
         }
         if let Some(depth) = self.max_depth {
+            if depth > MAX_DEPTH {
+                bail!("--max-depth is {depth}, but must be at most {MAX_DEPTH}");
+            }
             options.max_depth = depth;
         }
         if let Some(threads) = self.threads {
-            if threads == 0 {
-                bail!("--threads must be at least 1");
+            if !(1..=MAX_THREADS).contains(&threads) {
+                bail!("--threads is {threads}, but must be between 1 and {MAX_THREADS}");
             }
             options.threads = Some(threads);
         }
@@ -160,8 +164,8 @@ impl RenderArgs {
         options.accel.compact = self.compact;
         options.accel.batch = self.batch;
         if let Some(n) = self.light_samples {
-            if n == 0 {
-                bail!("--light-samples must be at least 1");
+            if !(1..=MAX_LIGHT_SAMPLES).contains(&n) {
+                bail!("--light-samples is {n}, but must be between 1 and {MAX_LIGHT_SAMPLES}");
             }
             options.light_samples = n;
         }

@@ -103,8 +103,11 @@ pub fn load_str_with_warnings(
     }
     if let Some(node) = x.child(root, "MaxRecursionDepth")? {
         let depth = x.count(node)?;
-        settings.max_depth =
-            u32::try_from(depth).map_err(|_| x.out_of_range(node, depth, "at most 4294967295"))?;
+        let max = crate::limits::MAX_DEPTH;
+        if depth > u64::from(max) {
+            return Err(x.out_of_range(node, depth, &format!("at most {max}")));
+        }
+        settings.max_depth = depth as u32;
     }
     for name in ["ShadowRayEpsilon", "IntersectionTestEpsilon"] {
         if let Some(node) = x.child(root, name)? {

@@ -24,8 +24,8 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// The most copies one `repeat` may make.
-pub const MAX_REPEAT_COPIES: u64 = 10_000_000;
+/// The most copies one `repeat` may make (each costs about `limits::BYTES_PER_OBJECT`).
+pub const MAX_REPEAT_COPIES: u64 = 1_000_000;
 
 /// Copies of a `repeat` grid up to this many are named `... copy (i,j,k)`; those of larger
 /// grids are all named `... copy`.
