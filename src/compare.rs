@@ -60,10 +60,11 @@ impl PngComparison {
 }
 
 /// Reads an image file as 8-bit RGB.
+/// Only regular files, size-capped like every input (a FIFO would block forever).
 pub fn read_rgb(path: &Path) -> Result<RgbImage, CompareError> {
-    image::open(path)
-        .map(|i| i.to_rgb8())
-        .map_err(|e| CompareError::Read { path: path.to_path_buf(), message: e.to_string() })
+    let error = |message: String| CompareError::Read { path: path.to_path_buf(), message };
+    let bytes = crate::scene::read_input_bytes(path).map_err(|e| error(e.to_string()))?;
+    image::load_from_memory(&bytes).map(|i| i.to_rgb8()).map_err(|e| error(e.to_string()))
 }
 
 /// Compares the two image files (`DEFAULT_TOLERANCE`).

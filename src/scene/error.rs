@@ -1,6 +1,7 @@
 //! `SceneError`: everything that can go wrong while loading a scene. Each message names the
 //! file (scene, OBJ or MTL), the field and value, and ends with the line when it is known.
 
+use crate::excerpt::excerpt;
 use std::fmt;
 use std::path::PathBuf;
 
@@ -30,11 +31,11 @@ pub enum SceneError {
     Toml { file: PathBuf, message: String },
 
     /// A NaN or infinite float (TOML accepts `nan` and `inf`).
-    #[error("{}: {field} is {value}{line}", .file.display())]
+    #[error("{}: {field} is {}{line}", .file.display(), excerpt(.value))]
     NonFinite { file: PathBuf, field: String, value: String, line: Line },
 
     /// A number outside its allowed range.
-    #[error("{}: {field} is {value}, but must be {requirement}{line}", .file.display())]
+    #[error("{}: {field} is {}, but must be {requirement}{line}", .file.display(), excerpt(.value))]
     OutOfRange { file: PathBuf, field: String, value: String, requirement: String, line: Line },
 
     /// A field that the object, light or material type needs is absent.
@@ -50,7 +51,10 @@ pub enum SceneError {
     #[error("{}: degenerate camera: {reason}{line}", .file.display())]
     DegenerateCamera { file: PathBuf, reason: String, line: Line },
 
-    #[error("{}: {field} '{name}' is not defined; defined: {defined}{line}", .file.display())]
+    #[error(
+        "{}: {field} '{}' is not defined; defined: {}{line}",
+        .file.display(), excerpt(.name), excerpt(.defined)
+    )]
     UnknownMaterial { file: PathBuf, field: String, name: String, defined: String, line: Line },
 
     /// A singular transform entry, a matrix whose last row is not 0 0 0 1, a zero rotation

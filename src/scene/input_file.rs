@@ -10,7 +10,7 @@ use std::path::Path;
 pub const MAX_INPUT_BYTES: u64 = 2 << 30;
 
 /// The bytes of `path`.
-pub(crate) fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
+pub fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
     if let Some(bytes) = crate::bundled::file(path) {
         return Ok(bytes.to_vec());
     }

@@ -81,6 +81,13 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         let mtl = obj_dir.join(mtl_name);
         let mtl_text = match super::input_file::read_text(&mtl) {
             Ok(text) => text,
+            // A missing library is a warning (exporters often name one they do not ship);
+            // one that exists but cannot be read (a device, too large) is an error.
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                let problem = format!("the material library cannot be read: {e}");
+                *mtl_error.borrow_mut() = Some(obj_ref.error(&mtl, problem, Line(None)));
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
             Err(e) => {
                 missing_mtl.borrow_mut().push(format!(
                     "{}: material library '{}' cannot be read ({e}); its materials fall back \
