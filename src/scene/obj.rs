@@ -84,8 +84,8 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
             // A missing library is a warning (exporters often name one they do not ship);
             // one that exists but cannot be read (a device, too large) is an error.
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                let problem = format!("the material library cannot be read: {e}");
-                *mtl_error.borrow_mut() = Some(obj_ref.error(&mtl, problem, Line(None)));
+                let problem = format!("material library '{}' cannot be read: {e}", mtl.display());
+                *mtl_error.borrow_mut() = Some(obj_ref.error(obj, problem, Line(None)));
                 return Err(tobj::LoadError::OpenFileFailed);
             }
             Err(e) => {

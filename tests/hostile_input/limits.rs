@@ -61,7 +61,7 @@ fn an_mtl_on_dev_zero_is_refused() {
     scratch.write("s.toml", with_mesh("m.obj"));
     scratch.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     link(&scratch, "m.mtl", "/dev/zero");
-    refused_in(&scratch, &["render", "s.toml"], &["m.mtl", "a device"]);
+    refused_in(&scratch, &["render", "s.toml"], &["m.obj", "m.mtl", "a device"]);
 }
 
 #[test]
