@@ -168,7 +168,7 @@ fn a_full_disk_is_an_error_and_keeps_the_earlier_images() {
 fn a_full_disk_while_writing_a_heat_map_is_an_error() {
     let scratch = Scratch::new();
     let noise = image::RgbImage::from_fn(64, 64, |x, y| {
-        image::Rgb([(x * 37 ^ y * 91) as u8, (x * y) as u8, 7])
+        image::Rgb([((x * 37) ^ (y * 91)) as u8, (x * y) as u8, 7])
     });
     noise.save(scratch.path("a.png")).unwrap();
     image::RgbImage::new(64, 64).save(scratch.path("b.png")).unwrap();
