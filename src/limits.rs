@@ -12,7 +12,7 @@ pub const MAX_SPP: u32 = 1 << 20;
 /// 2-core machine's two million samples per second (4096² at 4096 spp).
 pub const MAX_SAMPLES: u64 = 1 << 36;
 /// Shadow rays per shading point.
-pub const MAX_LIGHT_SAMPLES: u32 = 1024;
+pub const MAX_LIGHT_SAMPLES: u32 = 65_536;
 /// Bounces (path tracer) or recursion depth (Whitted); the Whitted integrator keeps its
 /// pending rays on the heap, so this bounds time, not stack.
 pub const MAX_DEPTH: u32 = 100_000;
@@ -87,9 +87,15 @@ pub fn memory_needed(desc: &SceneDesc) -> (u64, usize, u64) {
     (bytes, desc.objects.len(), triangles)
 }
 
-/// The memory this process may still use: the smaller of the kernel's MemAvailable and the
-/// cgroup's limit (in a container), or `None` when neither can be read.
+/// The memory this process may still use: the smallest of the kernel's MemAvailable, the
+/// cgroup's limit (in a container) and `EMBRAY_MAX_MEMORY` (bytes: a budget for a shared
+/// machine), or `None` when none is known.
 pub fn memory_available() -> Option<u64> {
+    let budget = std::env::var("EMBRAY_MAX_MEMORY").ok().and_then(|v| v.trim().parse::<u64>().ok());
+    [detected_memory(), budget].into_iter().flatten().min()
+}
+
+fn detected_memory() -> Option<u64> {
     let meminfo = std::fs::read_to_string("/proc/meminfo").ok().and_then(|text| {
         let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
         let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;

@@ -103,7 +103,7 @@ refused_cases! {
     spp_absurd_in_the_scene: ["s.toml" => scene("").replace("spp = 1", "spp = 2000000")], ["render", "s.toml"]
         => ["s.toml", "render.spp", "between 1 and 1048576", "(line 8)"];
     light_samples_four_billion: ["s.toml" => scene("").replace("spp = 1", "spp = 1\nlight_samples = 4000000000")], ["render", "s.toml"]
-        => ["s.toml", "render.light_samples", "between 1 and 1024", "(line 9)"];
+        => ["s.toml", "render.light_samples", "between 1 and 65536", "(line 9)"];
     max_depth_absurd_in_the_scene: ["s.toml" => scene("").replace("spp = 1", "spp = 1\nmax_depth = 4000000000")], ["render", "s.toml"]
         => ["s.toml", "render.max_depth", "at most 100000", "(line 9)"];
     f_number_infinitely_fast: ["s.toml" => scene("").replace("resolution = [8, 8]", "resolution = [8, 8]\nf_number = 1e-300\nfocal_length = 50.0")], ["render", "s.toml"]
