@@ -1,7 +1,13 @@
 //! `SceneError`: everything that can go wrong while loading a scene. Each message names the
 //! file (scene, OBJ or MTL), the field and value, and ends with the line when it is known.
 
-use crate::excerpt::excerpt;
+use crate::excerpt::{excerpt, shorten_message};
+
+/// A message part that may quote input (another library's message, a token, an element's
+/// attributes): lines beyond 300 characters are cut.
+fn brief(text: &str) -> String {
+    shorten_message(text, 300)
+}
 use std::fmt;
 use std::path::PathBuf;
 
@@ -59,11 +65,11 @@ pub enum SceneError {
 
     /// A singular transform entry, a matrix whose last row is not 0 0 0 1, a zero rotation
     /// axis, or a composed transform that is singular or overflows.
-    #[error("{}: {field}: {problem}{line}", .file.display())]
+    #[error("{}: {field}: {}{line}", .file.display(), brief(.problem))]
     Transform { file: PathBuf, field: String, problem: String, line: Line },
 
     /// A quad without area or a box with min >= max.
-    #[error("{}: {item}: {problem}{line}", .file.display())]
+    #[error("{}: {item}: {}{line}", .file.display(), brief(.problem))]
     DegenerateShape { file: PathBuf, item: String, problem: String, line: Line },
 
     /// The OBJ file named by a mesh object is missing or unreadable.
@@ -76,7 +82,7 @@ pub enum SceneError {
     /// The OBJ or MTL data is invalid: parse error (tobj's message), out-of-range vertex
     /// index, non-finite coordinate, no triangles, bad MTL colour. `file` is the OBJ file, or
     /// the MTL file for a bad material; `line` is in that file.
-    #[error("{}: {problem}{line}; named by {item} in '{}'", .file.display(), .scene.display())]
+    #[error("{}: {}{line}; named by {item} in '{}'", .file.display(), brief(.problem), .scene.display())]
     ObjData { file: PathBuf, scene: PathBuf, item: String, problem: String, line: Line },
 
     /// The PLY file named by a mesh object or light is missing or unreadable.
@@ -90,8 +96,8 @@ pub enum SceneError {
     /// data, out-of-range index, non-finite number, no faces. `ply_line` is the line in an
     /// ASCII PLY file (or its header).
     #[error(
-        "PLY file '{}'{ply_line}: {problem}; named by {item}.file in '{}'",
-        .ply.display(), .scene.display()
+        "PLY file '{}'{ply_line}: {}; named by {item}.file in '{}'",
+        .ply.display(), brief(.problem), .scene.display()
     )]
     PlyData { ply: PathBuf, ply_line: Line, scene: PathBuf, item: String, problem: String },
 
@@ -103,7 +109,7 @@ pub enum SceneError {
     /// A CENG795 XML scene: malformed XML, an unsupported element, a value that cannot be
     /// read or a reference to something undefined. `element` is the element's path below
     /// `<Scene>` (`<Objects > Mesh id="3" > Faces>`).
-    #[error("{}: {element}: {problem}{line}", .file.display())]
+    #[error("{}: {}: {}{line}", .file.display(), brief(.element), brief(.problem))]
     Xml { file: PathBuf, element: String, problem: String, line: Line },
 
     /// A transform list entry without exactly one of scale, rotate, translate, matrix.

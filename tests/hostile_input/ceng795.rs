@@ -42,3 +42,10 @@ fn deep_recursion_between_mirrors_does_not_overflow_the_stack() {
     accepted_in(&scratch, &["render", "mirrors.xml", "-q", "--threads", "2"]);
     assert!(scratch.path("mirrors.png").is_file());
 }
+
+refused_cases! {
+    num_samples_a_megabyte_long: ["s.xml" => xml_scene(&["a.png"], "").replace("<ImageName>", &format!("<NumSamples>{}</NumSamples><ImageName>", "9".repeat(1_000_000)))], ["render", "s.xml"]
+        => ["s.xml", "NumSamples", "characters cut", "(line 12)"];
+    undefined_transformation_a_megabyte_long: ["s.xml" => xml_scene(&["a.png"], "").replace("<Radius>1</Radius>", &format!("<Radius>1</Radius><Transformations>t{}</Transformations>", "1".repeat(1_000_000)))], ["render", "s.xml"]
+        => ["s.xml", "characters cut"];
+}
