@@ -36,6 +36,16 @@ impl OutputPlan {
         });
     }
 
+    /// Records every file the process has read so far (the scene's meshes and material
+    /// libraries): none may be overwritten either.
+    pub fn inputs_read(&mut self) {
+        for path in crate::scene::files_read() {
+            if !self.inputs.iter().any(|i| i.path == path) {
+                self.input("a file the scene reads,", &path);
+            }
+        }
+    }
+
     /// Checks the output `path` named by `what`; with `new_folders`, its folder may be
     /// created. Devices may be named more than once (`-o /dev/null --png /dev/null`).
     pub fn output(

@@ -3,7 +3,17 @@
 //! would block forever and `/dev/zero` never ends), and at most `MAX_INPUT_BYTES` of them.
 
 use std::io::{self, Read};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::{Mutex, PoisonError};
+
+/// Every file read from disk so far, so that a command can refuse to overwrite any input of
+/// its run (a mesh or MTL file the scene names, not only the scene).
+static FILES_READ: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// The files this process has read from disk (scenes, meshes, MTL files, images).
+pub fn files_read() -> Vec<PathBuf> {
+    FILES_READ.lock().unwrap_or_else(PoisonError::into_inner).clone()
+}
 
 /// The largest input file embray reads: 2 GiB (an OBJ of about 30 million triangles).
 /// Larger files are refused before memory runs out.
@@ -40,6 +50,7 @@ pub(crate) fn read_capped(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
         ));
     }
     let file = std::fs::File::open(path)?;
+    FILES_READ.lock().unwrap_or_else(PoisonError::into_inner).push(path.to_path_buf());
     let mut bytes = Vec::new();
     // One byte more than the cap tells a file at the cap from a longer one (it may grow).
     file.take(cap + 1).read_to_end(&mut bytes)?;
