@@ -2,7 +2,7 @@
 //! the checks made before a render allocates anything: sample counts, the coordinate range,
 //! and the memory the render will need against the memory the machine has.
 
-use crate::scene::{LightDesc, SceneDesc, ShapeDesc};
+use crate::scene::{LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use glam::DVec3;
 use std::collections::HashSet;
 
@@ -127,6 +127,41 @@ pub fn check_memory(desc: &SceneDesc) -> Result<(), LimitError> {
     }
 }
 
+/// Object-space bounds of the meshes seen so far, by `Arc` identity (the scene holds the
+/// `Arc`s, so an address is not reused while the map lives).
+#[derive(Default)]
+pub struct MeshBounds(std::collections::HashMap<*const crate::scene::MeshData, (DVec3, DVec3)>);
+
+/// The largest world-space coordinate `object` reaches: its bounds' corners at both
+/// shutter ends (NaN or inf if they overflow).
+/// `bounds` keeps each shared mesh's object-space bounds, so a mesh placed a million times
+/// is scanned once.
+pub fn object_reach(object: &ObjectDesc, bounds: &mut MeshBounds) -> f64 {
+    let (lo, hi) = match &object.shape {
+        ShapeDesc::Sphere { center, radius } => (*center - *radius, *center + *radius),
+        ShapeDesc::Mesh(mesh) => {
+            *bounds.0.entry(std::sync::Arc::as_ptr(mesh)).or_insert_with(|| {
+                mesh.positions.iter().fold(
+                    (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+                )
+            })
+        }
+    };
+    let mut reach = 0.0f64;
+    for placement in std::iter::once(object.world_from_object).chain(object.world_from_object_end) {
+        for corner in 0..8 {
+            let pick = |bit: usize, lo: f64, hi: f64| if corner & bit != 0 { hi } else { lo };
+            let local = DVec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
+            let far = placement.transform_point3(local).abs().max_element();
+            if !(far <= reach) {
+                reach = far; // NaN propagates: it is never <= anything
+            }
+        }
+    }
+    reach
+}
+
 /// Refuses a scene (already moved by any offset) that reaches beyond `MAX_COORDINATE`:
 /// the camera, the lights, and each object's world-space bounds at both shutter ends.
 pub fn check_coordinates(desc: &SceneDesc) -> Result<(), LimitError> {
@@ -154,31 +189,11 @@ pub fn check_coordinates(desc: &SceneDesc) -> Result<(), LimitError> {
             return Err(refuse(format!("lights[{i}]"), far(p)));
         }
     }
-    let mut mesh_bounds = std::collections::HashMap::new();
+    let mut bounds = MeshBounds::default();
     for object in &desc.objects {
-        let (lo, hi) = match &object.shape {
-            ShapeDesc::Sphere { center, radius } => (*center - *radius, *center + *radius),
-            ShapeDesc::Mesh(mesh) => {
-                *mesh_bounds.entry(std::sync::Arc::as_ptr(mesh)).or_insert_with(|| {
-                    mesh.positions.iter().fold(
-                        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-                        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-                    )
-                })
-            }
-        };
-        for placement in
-            std::iter::once(object.world_from_object).chain(object.world_from_object_end)
-        {
-            for corner in 0..8 {
-                let pick = |bit: usize, lo: f64, hi: f64| if corner & bit != 0 { hi } else { lo };
-                let local =
-                    DVec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
-                let p = placement.transform_point3(local);
-                if too_far(p) {
-                    return Err(refuse(object.name.clone(), far(p)));
-                }
-            }
+        let reach = object_reach(object, &mut bounds);
+        if !(reach <= MAX_COORDINATE) {
+            return Err(refuse(object.name.clone(), reach));
         }
     }
     Ok(())

@@ -110,6 +110,8 @@ refused_cases! {
         => ["s.toml", "camera.f_number", "at least 0.01", "(line 6)"];
     repeat_ten_million_copies: ["s.toml" => scene("").replace("v = [2.0, 0.0, 0.0]", "v = [2.0, 0.0, 0.0]\nrepeat = { count = [1000, 1000, 10], spacing = [3.0, 3.0, 3.0] }")], ["render", "s.toml"]
         => ["s.toml", "objects[0].repeat.count", "at most 1000000 copies"];
+    repeat_copies_beyond_the_coordinate_range: ["s.toml" => scene("").replace("v = [2.0, 0.0, 0.0]", "v = [2.0, 0.0, 0.0]\nrepeat = { count = [20, 1, 1], spacing = [1e7, 0.0, 0.0] }")], ["render", "s.toml"]
+        => ["s.toml", "objects[0] is 1.", "copy", "coordinate range ±1e8", "(line 13)"];
     unknown_material_named: ["s.toml" => scene("").replace("material = \"grey\"", "material = \"gold\"")], ["render", "s.toml"]
         => ["s.toml", "gold", "not defined"];
     scene_missing: [], ["render", "nothing.toml"]

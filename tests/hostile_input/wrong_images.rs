@@ -36,7 +36,11 @@ fn a_floor_of_ten_billion_units_is_refused_on_both_backends() {
         "[[objects]]\ntype = \"quad\"\nmaterial = \"grey\"\ncorner = [-1e10, -1.0, -1e10]\n\
          u = [0.0, 0.0, 2e10]\nv = [2e10, 0.0, 0.0]\n",
     );
-    refused_on_both_backends(&text, &[], &["s.toml", "objects[1]", "supported range ±1e8"]);
+    refused_on_both_backends(
+        &text,
+        &[],
+        &["s.toml", "objects[1] is 1e10", "coordinate range ±1e8", "(line 24)"],
+    );
 }
 
 #[test]
@@ -45,7 +49,11 @@ fn an_instance_at_1e36_is_refused_on_both_backends() {
         "v = [2.0, 0.0, 0.0]",
         "v = [2.0, 0.0, 0.0]\ntransform = [{ translate = [1e36, 0.0, 0.0] }]",
     );
-    refused_on_both_backends(&text, &[], &["s.toml", "objects[0]", "1e36", "supported range"]);
+    refused_on_both_backends(
+        &text,
+        &[],
+        &["s.toml", "objects[0] is 1e36", "coordinate range", "(line 13)"],
+    );
 }
 
 #[test]
@@ -53,7 +61,7 @@ fn an_offset_of_1e19_is_refused_on_both_backends() {
     refused_on_both_backends(
         &scene(""),
         &["--offset", "1e19,0,0"],
-        &["after --offset", "supported range"],
+        &["s.toml", "after --offset", "supported range"],
     );
 }
 

@@ -58,8 +58,24 @@ pub(crate) fn scene_desc(
         let index = builder.add_material(material);
         builder.named.insert(name.clone(), index);
     }
+    let mut bounds = crate::limits::MeshBounds::default();
     for (i, object) in file.objects.iter().enumerate() {
+        let first = builder.objects.len();
         builder.object(i, object)?;
+        // Beyond the supported range now, with the line (the render checks again after
+        // any --offset).
+        let path = FieldPath::root("objects").index(i);
+        for placed in &builder.objects[first..] {
+            let reach = crate::limits::object_reach(placed, &mut bounds);
+            let max = crate::limits::MAX_COORDINATE;
+            let requirement = format!("within the supported coordinate range ±{max:e}");
+            // A `repeat` copy is named by its grid index; the object itself by `path`.
+            let value = match placed.name.contains("copy") {
+                true => format!("{reach:e} at the farthest corner of {}", placed.name),
+                false => format!("{reach:e} at its farthest corner"),
+            };
+            ctx.require(reach <= max, &path, value, &requirement)?;
+        }
     }
     for (i, light) in file.lights.iter().enumerate() {
         builder.light(i, light)?;
