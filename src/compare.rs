@@ -60,10 +60,11 @@ impl PngComparison {
 }
 
 /// Reads an image file as 8-bit RGB.
+/// Only regular files, size-capped like every input (a FIFO would block forever).
 pub fn read_rgb(path: &Path) -> Result<RgbImage, CompareError> {
-    image::open(path)
-        .map(|i| i.to_rgb8())
-        .map_err(|e| CompareError::Read { path: path.to_path_buf(), message: e.to_string() })
+    let error = |message: String| CompareError::Read { path: path.to_path_buf(), message };
+    let bytes = crate::scene::read_input_bytes(path).map_err(|e| error(e.to_string()))?;
+    image::load_from_memory(&bytes).map(|i| i.to_rgb8()).map_err(|e| error(e.to_string()))
 }
 
 /// Compares the two image files (`DEFAULT_TOLERANCE`).
@@ -111,12 +112,14 @@ pub fn compare_images(
     })
 }
 
-/// Writes the comparison's heat map as PNG.
+/// Writes the comparison's heat map as PNG (through the output module: checked writes, a
+/// temporary file renamed into place).
 pub fn write_heatmap(comparison: &PngComparison, path: &Path) -> Result<(), CompareError> {
-    comparison
-        .heatmap()
-        .save_with_format(path, image::ImageFormat::Png)
-        .map_err(|e| CompareError::Write { path: path.to_path_buf(), message: e.to_string() })
+    let image = comparison.heatmap();
+    crate::output::write_one(path, |w| {
+        crate::output::encode_rgb8(image.as_raw(), image.width(), image.height(), w)
+    })
+    .map_err(|e| CompareError::Write { path: path.to_path_buf(), message: e.to_string() })
 }
 
 /// `image` shrunk by `factor` in each direction, each output pixel the mean of its

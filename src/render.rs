@@ -90,6 +90,10 @@ pub enum RenderError {
     Compile(#[from] CompileError),
     #[error(transparent)]
     Accel(#[from] AccelError),
+    #[error(transparent)]
+    Limit(#[from] crate::limits::LimitError),
+    #[error("{what} is {value}, but must be at most {max}")]
+    Option { what: &'static str, value: u64, max: u64 },
     #[error("could not start {threads} worker threads: {source}")]
     Threads { threads: usize, source: rayon::ThreadPoolBuildError },
 }
@@ -114,11 +118,21 @@ pub fn prepare_scene(
     if options.offset != DVec3::ZERO {
         desc.translate(options.offset);
     }
+    // Checked here, before either backend sees the scene, so both refuse the same scenes.
+    crate::limits::check_coordinates(&desc)?;
     Ok(to_render_scene(&desc, options.render_space, options.effects_mode)?)
 }
 
 /// Renders `desc` from start to finish.
 pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput, RenderError> {
+    check_options(options)?;
+    let samples =
+        u64::from(desc.camera.width) * u64::from(desc.camera.height) * u64::from(options.spp);
+    if samples > crate::limits::MAX_SAMPLES {
+        let max = crate::limits::MAX_SAMPLES;
+        return Err(RenderError::Option { what: "pixels × spp", value: samples, max });
+    }
+    crate::limits::check_memory(desc)?;
     let run = || -> Result<RenderOutput, RenderError> {
         let scene = prepare_scene(desc, options)?;
         let build_start = Instant::now();
@@ -145,6 +159,24 @@ pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput,
             .install(run),
         None => run(),
     }
+}
+
+/// Counts beyond the documented limits (`crate::limits`) are refused, whoever built the
+/// options.
+fn check_options(options: &RenderOptions) -> Result<(), RenderError> {
+    use crate::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SPP, MAX_THREADS};
+    let checks = [
+        ("spp", u64::from(options.spp), u64::from(MAX_SPP)),
+        ("max_depth", u64::from(options.max_depth), u64::from(MAX_DEPTH)),
+        ("light_samples", u64::from(options.light_samples), u64::from(MAX_LIGHT_SAMPLES)),
+        ("the thread count", options.threads.unwrap_or(1) as u64, MAX_THREADS as u64),
+    ];
+    for (what, value, max) in checks {
+        if value > max {
+            return Err(RenderError::Option { what, value, max });
+        }
+    }
+    Ok(())
 }
 
 struct TileResult {

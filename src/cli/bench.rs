@@ -3,7 +3,7 @@
 use super::choices::choice;
 use super::console::{note, out};
 use super::load_scene;
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
 use embray::accel::{BackendKind, BuildQuality};
 use embray::bundled;
@@ -134,6 +134,28 @@ pub struct BenchArgs {
     pub csv: Option<PathBuf>,
 }
 
+/// `--runs` and `--threads` within 1..=their limits (a run count of 0 has no median).
+fn check_counts(runs: usize, threads: Option<usize>) -> Result<()> {
+    use embray::limits::{MAX_RUNS, MAX_THREADS};
+    let max_runs = MAX_RUNS as usize;
+    anyhow::ensure!(
+        (1..=max_runs).contains(&runs),
+        "--runs is {runs}, but must be between 1 and {max_runs}"
+    );
+    if let Some(threads) = threads {
+        anyhow::ensure!(
+            (1..=MAX_THREADS).contains(&threads),
+            "--threads is {threads}, but must be between 1 and {MAX_THREADS}"
+        );
+    }
+    Ok(())
+}
+
+/// Writes a CSV report through the output module (checked, committed whole).
+fn write_csv(path: &std::path::Path, text: &str) -> Result<()> {
+    Ok(embray::output::write_one(path, |w| w.write_all(text.as_bytes()))?)
+}
+
 /// Runs one bench command.
 pub fn run(command: BenchCommand) -> Result<()> {
     match command {
@@ -148,6 +170,7 @@ pub fn run(command: BenchCommand) -> Result<()> {
 fn bench_effects(args: &EffectsArgs) -> Result<()> {
     use embray::bench::effects_cost;
     anyhow::ensure!(args.spp > 0, "--spp must be at least 1");
+    check_counts(args.runs, None)?;
     let scene = load_scene(args.scene.as_deref())?;
     let mut base = embray::render::RenderOptions::for_scene(&scene);
     base.spp = args.spp;
@@ -159,7 +182,10 @@ fn bench_effects(args: &EffectsArgs) -> Result<()> {
 
 fn bench_speed(args: &SpeedArgs) -> Result<()> {
     use embray::bench::{procedural, speed};
-    anyhow::ensure!(args.spp > 0 && args.size > 0 && args.large > 0, "sizes must be positive");
+    anyhow::ensure!(args.spp > 0, "--spp must be at least 1");
+    anyhow::ensure!(args.size > 0, "--size must be at least 1");
+    anyhow::ensure!(args.large > 0, "--large must be at least 1 (triangles)");
+    check_counts(args.runs, None)?;
     const NAMES: [&str; 4] = ["cornell", "city_block", "instances", "large"];
     if let Some(unknown) = args.only.iter().find(|n| !NAMES.contains(&n.as_str())) {
         bail!("--only: unknown scene '{unknown}' (expected some of {})", NAMES.join(", "));
@@ -204,6 +230,7 @@ fn bench_accuracy(args: &AccuracyArgs) -> Result<()> {
     use embray::bench::{accuracy, table};
     anyhow::ensure!(args.spp > 0, "--spp must be at least 1");
     anyhow::ensure!(args.max_size > 0, "--max-size must be at least 1");
+    check_counts(args.runs, args.threads)?;
     anyhow::ensure!(!args.offsets.is_empty(), "--offsets needs at least one value");
     anyhow::ensure!(args.offsets.iter().all(|o| o.is_finite()), "--offsets must be finite numbers");
     let scenes =
@@ -246,6 +273,7 @@ fn bench_spaces(args: &BenchArgs) -> Result<()> {
     use embray::bench::{grid, table};
     let path = args.scene.clone().unwrap_or_else(|| bundled::path("scenes/city_block.toml"));
     let scene = load_scene(Some(&path))?;
+    check_counts(args.runs, args.threads)?;
     let mut options = embray::render::RenderOptions::for_scene(&scene);
     if let Some(spp) = args.spp {
         anyhow::ensure!(spp > 0, "--spp must be at least 1");
@@ -266,8 +294,7 @@ fn bench_spaces(args: &BenchArgs) -> Result<()> {
     bar.finish_and_clear();
     out(table::markdown(&rows))?;
     if let Some(csv) = &args.csv {
-        std::fs::write(csv, table::csv(&rows))
-            .with_context(|| format!("cannot write '{}'", csv.display()))?;
+        write_csv(csv, &table::csv(&rows))?;
     }
     Ok(())
 }
@@ -276,7 +303,7 @@ fn bench_convergence(args: &ConvergenceArgs) -> Result<()> {
     use embray::bench::convergence;
     anyhow::ensure!(!args.spps.is_empty(), "--spps needs at least one value");
     anyhow::ensure!(args.spps.iter().all(|&s| s > 0), "--spps values must be at least 1");
-    anyhow::ensure!(args.threads != Some(0), "--threads must be at least 1");
+    check_counts(1, args.threads)?;
     if let Some(t) = args.target_rmse {
         anyhow::ensure!(t.is_finite() && t > 0.0, "--target-rmse must be a positive number");
     }
@@ -296,8 +323,7 @@ fn bench_convergence(args: &ConvergenceArgs) -> Result<()> {
         out(format!("RMSE {target} needs about {spp:.0} spp\n"))?;
     }
     if let Some(csv) = &args.csv {
-        std::fs::write(csv, convergence::csv(&rows))
-            .with_context(|| format!("cannot write '{}'", csv.display()))?;
+        write_csv(csv, &convergence::csv(&rows))?;
     }
     Ok(())
 }

@@ -2,7 +2,8 @@
 
 use anyhow::Result;
 use clap::Args;
-use embray::compare::{compare_images, read_rgb, write_heatmap};
+use embray::compare::{compare_images, read_rgb};
+use embray::output::{OutputPlan, OutputSet, encode_rgb8};
 use std::path::PathBuf;
 
 use super::console::{note, out};
@@ -23,6 +24,12 @@ pub struct CompareArgs {
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
+    // The heat map may overwrite neither image: checked before anything is read.
+    let mut plan = OutputPlan::new();
+    plan.input("the first image", &args.a);
+    plan.input("the second image", &args.b);
+    let heatmap =
+        args.heatmap.as_deref().map(|p| plan.output("--heatmap", p, false)).transpose()?;
     let c = compare_images(&read_rgb(&args.a)?, &read_rgb(&args.b)?, args.tolerance)?;
     out(format!(
         "{}x{}: mean abs error {:.4}/255, max {}/255; {:.4} % of pixels off by more than {}/255 \
@@ -35,9 +42,12 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         c.tolerance,
         100.0 * c.fraction_within()
     ))?;
-    if let Some(path) = &args.heatmap {
-        write_heatmap(&c, path)?;
-        note(format!("wrote {}", path.display()));
+    if let Some(target) = &heatmap {
+        let image = c.heatmap();
+        let mut files = OutputSet::new();
+        files.write(target, |w| encode_rgb8(image.as_raw(), image.width(), image.height(), w))?;
+        files.commit()?;
+        note(format!("wrote {}", target.path.display()));
     }
     Ok(())
 }

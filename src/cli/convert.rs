@@ -2,6 +2,7 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
+use embray::output::{OutputPlan, OutputSet};
 use embray::scene::ceng795;
 use embray::scene::toml_writer::TomlWriter;
 use std::path::{Path, PathBuf};
@@ -21,6 +22,10 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
     if !ceng795::is_ceng795_path(&args.input) {
         bail!("convert reads CENG795 scenes (.xml); '{}' is not one", args.input.display());
     }
+    let mut plan = OutputPlan::new();
+    plan.input("the input scene", &args.input);
+    // Checked before the scene is read: a wrong -o costs nothing.
+    plan.output("-o", &args.output, true)?;
     let cameras = ceng795::load(&args.input)?;
     let stem = args.output.file_stem().map(|s| s.to_string_lossy().into_owned());
     let Some(stem) = stem.filter(|s| !s.is_empty()) else {
@@ -29,6 +34,8 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
     let dir = args.output.parent().map(Path::to_path_buf).unwrap_or_default();
     let mesh_dir = dir.join(format!("{stem}_meshes"));
     let mut writer = TomlWriter::new(mesh_dir);
+    // Every TOML and OBJ text is produced first, then all are checked and committed together.
+    let mut texts = Vec::new();
     for camera in &cameras {
         let path: PathBuf = if cameras.len() == 1 {
             args.output.clone()
@@ -41,7 +48,22 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
             args.input.display(),
             camera.image_name
         );
-        writer.write(&camera.scene, &path, &provenance)?;
+        let text = writer.toml(&camera.scene, &path, &provenance)?;
+        texts.push(("a TOML file".to_owned(), path, text));
+    }
+    for (mesh, text) in writer.take_pending_meshes() {
+        texts.push(("an OBJ file".to_owned(), mesh, text));
+    }
+    let mut plan = OutputPlan::new();
+    plan.input("the input scene", &args.input);
+    plan.inputs_read();
+    let mut files = OutputSet::new();
+    for (what, path, text) in &texts {
+        let target = plan.output(what, path, true)?;
+        files.write(&target, |w| w.write_all(text.as_bytes()))?;
+    }
+    files.commit()?;
+    for (_, path, _) in texts.iter().filter(|(what, ..)| what == "a TOML file") {
         note(format!("wrote {}", path.display()));
     }
     let meshes = writer.mesh_files();

@@ -4,12 +4,14 @@
 use super::choices::{TonemapArg, choice, tonemap};
 use super::console::{note, out};
 use super::load_scene;
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Args;
 use embray::accel::{BackendKind, BatchMode, BuildQuality};
 use embray::compile::EffectsMode;
+use embray::excerpt::excerpt;
+use embray::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SPP, MAX_THREADS};
 use embray::output::stats::{StatsReport, stats_table};
-use embray::output::{camera_outputs, write_exr, write_png};
+use embray::output::{OutputPlan, OutputSet, Target, camera_outputs, encode_exr, encode_png};
 use embray::render::{RenderOptions, RenderOutput, render};
 use embray::render_space::RenderSpace;
 use embray::sampling::SamplerKind;
@@ -130,17 +132,20 @@ impl RenderArgs {
     pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {
         let mut options = RenderOptions::for_scene(scene);
         if let Some(spp) = self.spp {
-            if spp == 0 {
-                bail!("--spp must be at least 1");
+            if !(1..=MAX_SPP).contains(&spp) {
+                bail!("--spp is {spp}, but must be between 1 and {MAX_SPP}");
             }
             options.spp = spp;
         }
         if let Some(depth) = self.max_depth {
+            if depth > MAX_DEPTH {
+                bail!("--max-depth is {depth}, but must be at most {MAX_DEPTH}");
+            }
             options.max_depth = depth;
         }
         if let Some(threads) = self.threads {
-            if threads == 0 {
-                bail!("--threads must be at least 1");
+            if !(1..=MAX_THREADS).contains(&threads) {
+                bail!("--threads is {threads}, but must be between 1 and {MAX_THREADS}");
             }
             options.threads = Some(threads);
         }
@@ -159,8 +164,8 @@ impl RenderArgs {
         options.accel.compact = self.compact;
         options.accel.batch = self.batch;
         if let Some(n) = self.light_samples {
-            if n == 0 {
-                bail!("--light-samples must be at least 1");
+            if !(1..=MAX_LIGHT_SAMPLES).contains(&n) {
+                bail!("--light-samples is {n}, but must be between 1 and {MAX_LIGHT_SAMPLES}");
             }
             options.light_samples = n;
         }
@@ -174,18 +179,98 @@ impl RenderArgs {
     }
 }
 
-pub fn run(args: &RenderArgs) -> Result<()> {
-    if let Some(path) = args.scene.as_deref().filter(|p| ceng795::is_ceng795_path(p)) {
-        return render_ceng795(args, path);
-    }
-    let scene = load_scene(args.scene.as_deref())?;
-    render_one(args, &scene, &args.output_path(), &args.png_path())
+/// One image of the run: the scene as its camera sees it and where its files go.
+struct Job {
+    scene: SceneDesc,
+    exr: Target,
+    png: Target,
 }
 
-/// Renders every camera of a CENG795 file: each to its ImageName (PNG) in --out-dir and an
-/// EXR of the same stem, or, for a one-camera file, to -o/--png when given.
-fn render_ceng795(args: &RenderArgs, path: &Path) -> Result<()> {
+/// Renders the scene (every camera of a CENG795 file), then commits all the files together:
+/// every output path is checked first (usable, not an input, not another output), and
+/// nothing is replaced unless every image was rendered and written.
+pub fn run(args: &RenderArgs) -> Result<()> {
+    let mut plan = OutputPlan::new();
+    if let Some(path) = &args.scene {
+        plan.input("the scene", path);
+    }
+    let jobs = match args.scene.as_deref().filter(|p| ceng795::is_ceng795_path(p)) {
+        Some(path) => ceng795_jobs(args, path, &mut plan)?,
+        None => {
+            if args.out_dir != Path::new(".") {
+                note(
+                    "warning: --out-dir is used for CENG795 .xml scenes only; this scene's \
+                      files are named by -o and --png",
+                );
+            }
+            let scene = load_scene(args.scene.as_deref())?;
+            plan.inputs_read();
+            let exr_what = if args.output.is_some() { "-o" } else { "the EXR (default)" };
+            let exr = plan.output(exr_what, &args.output_path(), false)?;
+            let png = png_target(args, &exr, &args.png_path(), false, &mut plan)?;
+            vec![Job { scene, exr, png }]
+        }
+    };
+    let stats_json =
+        args.stats_json.as_deref().map(|p| plan.output("--stats-json", p, false)).transpose()?;
+    for job in &jobs {
+        args.to_options(&job.scene)?;
+    }
+    let mut files = OutputSet::new();
+    let mut reports = Vec::new();
+    for job in &jobs {
+        let options = args.to_options(&job.scene)?;
+        let output = render(&job.scene, &options)?;
+        files.write(&job.exr, |w| encode_exr(&output.film, w))?;
+        let curve = args.tonemap.resolve(job.scene.settings.integrator);
+        files.write(&job.png, |w| encode_png(&output.film, curve, args.exposure, w))?;
+        if let Some(target) = &stats_json {
+            let report = StatsReport::new(&output, &options);
+            files.write(target, |w| report.encode(w))?;
+        }
+        let line = summary(&output, &options, &job.exr.path, &job.png.path);
+        reports.push((line, stats_table(&output.stats, output.observes)));
+    }
+    files.commit()?;
+    for (line, table) in reports {
+        if !args.quiet {
+            note(line);
+        }
+        if args.stats {
+            out(table)?;
+        }
+    }
+    Ok(())
+}
+
+/// The PNG target. A PNG named after a device EXR (`-o /dev/null` → `/dev/null.png`) would
+/// create a file among the devices, so it must be named.
+fn png_target(
+    args: &RenderArgs,
+    exr: &Target,
+    png: &Path,
+    new_folders: bool,
+    plan: &mut OutputPlan,
+) -> Result<Target> {
+    if args.png.is_some() {
+        return Ok(plan.output("--png", png, new_folders)?);
+    }
+    if exr.is_stream() && args.output.is_some() {
+        bail!(
+            "-o '{}' is a device or FIFO, so the PNG's default name '{}' (the EXR's with .png) \
+             is not used: name the PNG with --png (e.g. --png /dev/null)",
+            exr.path.display(),
+            png.display()
+        );
+    }
+    Ok(plan.output("the PNG (named after the EXR)", png, new_folders)?)
+}
+
+/// The jobs of a CENG795 file: each camera to its ImageName (PNG) in --out-dir and an EXR of
+/// the same stem, or, for a one-camera file, to -o/--png when given.
+fn ceng795_jobs(args: &RenderArgs, path: &Path, plan: &mut OutputPlan) -> Result<Vec<Job>> {
     let cameras = ceng795::load(path)?;
+    plan.inputs_read();
     if cameras.len() > 1 {
         for (flag, given) in [
             ("-o", args.output.is_some()),
@@ -202,42 +287,29 @@ fn render_ceng795(args: &RenderArgs, path: &Path) -> Result<()> {
             }
         }
     }
-    for camera in &cameras {
-        args.to_options(&camera.scene)?;
-    }
-    if args.output.is_none() {
-        std::fs::create_dir_all(&args.out_dir)
-            .with_context(|| format!("cannot create '{}'", args.out_dir.display()))?;
-    }
-    for camera in &cameras {
+    let new_folders = args.output.is_none();
+    let mut jobs = Vec::new();
+    for camera in cameras {
         let (exr, png) = camera_outputs(
             &camera.image_name,
             &args.out_dir,
             args.output.as_deref(),
             args.png.as_deref(),
         );
-        render_one(args, &camera.scene, &exr, &png)?;
+        let exr_what = match &args.output {
+            Some(_) => "-o".to_owned(),
+            None => format!("the EXR of camera '{}'", excerpt(&camera.image_name)),
+        };
+        let exr = plan.output(&exr_what, &exr, new_folders)?;
+        let png = if args.png.is_none() && args.output.is_none() {
+            let what = format!("the PNG of camera '{}'", excerpt(&camera.image_name));
+            plan.output(&what, &png, new_folders)?
+        } else {
+            png_target(args, &exr, &png, new_folders, plan)?
+        };
+        jobs.push(Job { scene: camera.scene, exr, png });
     }
-    Ok(())
-}
-
-/// Renders `scene`; writes the EXR and the PNG, prints the summary and the statistics.
-fn render_one(args: &RenderArgs, scene: &SceneDesc, exr: &Path, png: &Path) -> Result<()> {
-    let options = args.to_options(scene)?;
-    let output = render(scene, &options)?;
-    write_exr(&output.film, exr)?;
-    let curve = args.tonemap.resolve(scene.settings.integrator);
-    write_png(&output.film, png, curve, args.exposure)?;
-    if !args.quiet {
-        note(summary(&output, &options, exr, png));
-    }
-    if args.stats {
-        out(stats_table(&output.stats, output.observes))?;
-    }
-    if let Some(path) = &args.stats_json {
-        StatsReport::new(&output, &options).write(path)?;
-    }
-    Ok(())
+    Ok(jobs)
 }
 
 fn summary(output: &RenderOutput, options: &RenderOptions, exr: &Path, png: &Path) -> String {

@@ -131,30 +131,73 @@ impl<'a> WhittedTracer<'a> {
         color
     }
 
-    /// Radiance along `ray`, recursing `depth_left` more times through specular surfaces.
-    /// `medium` is the Beer absorption of the dielectric the ray travels through (`None`
-    /// outside): everything found along the ray is attenuated by exp(−medium · distance).
-    #[allow(clippy::too_many_arguments)]
+    /// Radiance along `camera_ray`, evaluated with an explicit stack instead of recursion so
+    /// that the thread's stack depth does not depend on `max_depth` (a scene's
+    /// MaxRecursionDepth of 2000 between two mirrors must not overflow it). The stack machine
+    /// performs exactly the operations of the recursive definition, in the same order: a
+    /// node's local shading and its reflection's perturbation are drawn before its
+    /// reflection subtree, which is finished before its refraction subtree, and the children
+    /// are combined as `(emission + local + (tint·reflected + (1 − F)·refracted)) ·
+    /// absorption`, so images are bit-identical to the recursive version's.
     fn radiance(
         &self,
-        ray: &Ray,
-        depth_left: u32,
-        camera_ray: bool,
-        medium: Option<Vec3>,
+        camera_ray: &Ray,
         stream: &mut SampleStream,
         stats: &mut RenderStats,
         first: &mut PathSample,
     ) -> Vec3 {
-        if !ray.is_valid() {
-            return Vec3::ZERO;
+        let mut tasks = vec![Task::Trace(Node {
+            ray: *camera_ray,
+            depth_left: self.max_depth,
+            camera_ray: true,
+            medium: None,
+        })];
+        let mut values: Vec<Vec3> = Vec::new();
+        while let Some(task) = tasks.pop() {
+            match task {
+                Task::Trace(node) => {
+                    self.visit(node, &mut tasks, &mut values, stream, stats, first)
+                }
+                Task::Culled { t } => {
+                    // The continued ray starts at the culled triangle.
+                    if let Some(depth) = &mut first.depth {
+                        *depth += t;
+                    }
+                }
+                Task::Combine(combine) => {
+                    let refracted = combine.refract.map(|_| values.pop().unwrap_or(Vec3::ZERO));
+                    let reflected = combine.reflect.map(|_| values.pop().unwrap_or(Vec3::ZERO));
+                    values.push(combine.finish(reflected, refracted));
+                }
+            }
         }
-        let Some(hit) = self.tracer.closest_hit(ray, camera_ray, None, stats) else {
-            return self.tracer.scene.background;
+        values.pop().unwrap_or(Vec3::ZERO)
+    }
+
+    /// One ray of the recursion: pushes its value when it needs no child, else the tasks
+    /// that trace its children and then combine them.
+    fn visit(
+        &self,
+        node: Node,
+        tasks: &mut Vec<Task>,
+        values: &mut Vec<Vec3>,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+        first: &mut PathSample,
+    ) {
+        let Node { ray, depth_left, camera_ray, medium } = node;
+        if !ray.is_valid() {
+            values.push(Vec3::ZERO);
+            return;
+        }
+        let Some(hit) = self.tracer.closest_hit(&ray, camera_ray, None, stats) else {
+            values.push(self.tracer.scene.background);
+            return;
         };
-        let si = interaction(self.tracer.scene, ray, &hit);
+        let si = interaction(self.tracer.scene, &ray, &hit);
         // The course culls triangles seen from behind by camera rays, and its scenes rely
         // on it: cornellbox_boxes_dynamic's front wall faces into the box, away from the
-        // camera. The ray continues past the culled triangle.
+        // camera. The ray continues past the culled triangle with the same value.
         let culled = camera_ray
             && !si.front_face
             && matches!(
@@ -163,11 +206,9 @@ impl<'a> WhittedTracer<'a> {
             );
         if culled {
             let next = self.tracer.spawn.ray(&si.surface, ray.dir, ray.time);
-            let color = self.radiance(&next, depth_left, camera_ray, medium, stream, stats, first);
-            if let Some(depth) = &mut first.depth {
-                *depth += hit.t; // the continued ray starts at the culled triangle
-            }
-            return color;
+            tasks.push(Task::Culled { t: hit.t });
+            tasks.push(Task::Trace(Node { ray: next, ..node }));
+            return;
         }
         if camera_ray {
             first.depth = Some(hit.t);
@@ -179,25 +220,33 @@ impl<'a> WhittedTracer<'a> {
         // The course shades every surface but the inside of a dielectric, dielectrics too
         // (their ambient, diffuse and specular terms are usually zero, but not always:
         // scienceTree's glass has them).
-        let mut color = if si.front_face { material.emission } else { Vec3::ZERO };
+        let mut base = if si.front_face { material.emission } else { Vec3::ZERO };
         if si.front_face || !material.is_dielectric() {
-            color += self.local_shading(&si, wo, ray.time, stream, stats);
+            base += self.local_shading(&si, wo, ray.time, stream, stats);
         }
-        if depth_left > 0 {
-            color += self.specular(&si, ray, wo, depth_left - 1, medium, stream, stats, first);
-        }
-        match medium {
+        let absorption = match medium {
             Some(absorption) if absorption != Vec3::ZERO => {
-                color * (-absorption * hit.t * ray.dir.length()).exp()
+                Some((-absorption * hit.t * ray.dir.length()).exp())
             }
-            _ => color,
+            _ => None,
+        };
+        let mut combine =
+            Combine { base, specular: depth_left > 0, reflect: None, refract: None, absorption };
+        let mut children = Vec::new();
+        if depth_left > 0 {
+            children =
+                self.specular_children(&si, &ray, wo, depth_left - 1, medium, stream, &mut combine);
         }
+        tasks.push(Task::Combine(combine));
+        // The reflection is traced first: it is pushed last.
+        tasks.extend(children.into_iter().rev().map(Task::Trace));
     }
 
-    /// Light reflected (and refracted) by the specular part of the material at `si`, traced
-    /// with `depth_left` more bounces; `medium` is the medium `ray` travelled through.
+    /// The rays the specular part of the material at `si` continues with (reflection first,
+    /// then refraction), `depth_left` bounces left; records their weights in `combine`.
+    /// `medium` is the medium `ray` travelled through.
     #[allow(clippy::too_many_arguments)]
-    fn specular(
+    fn specular_children(
         &self,
         si: &SurfaceInteraction,
         ray: &Ray,
@@ -205,51 +254,59 @@ impl<'a> WhittedTracer<'a> {
         depth_left: u32,
         medium: Option<Vec3>,
         stream: &mut SampleStream,
-        stats: &mut RenderStats,
-        first: &mut PathSample,
-    ) -> Vec3 {
+        combine: &mut Combine,
+    ) -> Vec<Node> {
         let material = &self.tracer.scene.materials[si.material as usize];
         let n = si.shading_normal;
         let cos_o = n.dot(wo).clamp(0.0, 1.0);
+        let mut children = Vec::new();
         // A reflected ray stays in the medium the incoming ray came through.
-        let mut reflected = |tint: Vec3, stream: &mut SampleStream, stats: &mut RenderStats| {
+        let reflected = |tint: Vec3, stream: &mut SampleStream, children: &mut Vec<Node>| {
             if tint == Vec3::ZERO {
-                return Vec3::ZERO;
+                return None;
             }
             let mut dir = reflect(-wo, n);
             if material.perturbation > 0.0 {
                 dir = perturb(dir, material.perturbation, stream.next_2d());
             }
             if dir.dot(si.surface.normal) <= 0.0 {
-                return Vec3::ZERO;
+                return None;
             }
             let next = self.tracer.spawn.ray(&si.surface, dir, ray.time);
-            tint * self.radiance(&next, depth_left, false, medium, stream, stats, first)
+            children.push(Node { ray: next, depth_left, camera_ray: false, medium });
+            Some(tint)
         };
         match material.specular {
-            Specular::None => Vec3::ZERO,
-            Specular::Mirror { reflectance } => reflected(reflectance, stream, stats),
+            Specular::None => {}
+            Specular::Mirror { reflectance } => {
+                combine.reflect = reflected(reflectance, stream, &mut children);
+            }
             Specular::Conductor { eta, k, reflectance } => {
-                reflected(fresnel_conductor(cos_o, eta, k) * reflectance, stream, stats)
+                let tint = fresnel_conductor(cos_o, eta, k) * reflectance;
+                combine.reflect = reflected(tint, stream, &mut children);
             }
             Specular::Dielectric { ior, absorption } => {
                 // Entering (front face): from air into the glass; else leaving it.
                 let eta = if si.front_face { ior } else { 1.0 / ior };
                 let fr = fresnel_dielectric(cos_o, eta);
-                let mut color = reflected(Vec3::splat(fr), stream, stats);
+                combine.reflect = reflected(Vec3::splat(fr), stream, &mut children);
                 if fr < 1.0 {
                     let sin2_t = (1.0 - cos_o * cos_o) / (eta * eta);
                     let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
                     let dir = (-wo / eta + (cos_o / eta - cos_t) * n).normalize();
                     let next = self.tracer.spawn.ray(&si.surface, dir, ray.time);
                     let beyond = if si.front_face { Some(absorption) } else { None };
-                    let inside =
-                        self.radiance(&next, depth_left, false, beyond, stream, stats, first);
-                    color += (1.0 - fr) * inside;
+                    children.push(Node {
+                        ray: next,
+                        depth_left,
+                        camera_ray: false,
+                        medium: beyond,
+                    });
+                    combine.refract = Some(1.0 - fr);
                 }
-                color
             }
         }
+        children
     }
 
     /// Traces one camera ray.
@@ -260,8 +317,65 @@ impl<'a> WhittedTracer<'a> {
         stats: &mut RenderStats,
     ) -> PathSample {
         let mut result = PathSample::default();
-        result.radiance =
-            self.radiance(&camera_ray, self.max_depth, true, None, stream, stats, &mut result);
+        result.radiance = self.radiance(&camera_ray, stream, stats, &mut result);
         result
     }
+}
+
+/// A ray of the Whitted recursion still to be traced.
+#[derive(Clone, Copy)]
+struct Node {
+    ray: Ray,
+    /// Reflection/refraction bounces left after this ray.
+    depth_left: u32,
+    /// Camera rays cull back faces and set the sample's depth and normal.
+    camera_ray: bool,
+    /// The Beer absorption of the dielectric the ray travels through (`None` outside).
+    medium: Option<Vec3>,
+}
+
+/// What a hit's value is made of, once its children's values are known.
+struct Combine {
+    /// Emission plus local shading.
+    base: Vec3,
+    /// Whether bounces were left (the specular sum is then added, even when it is zero).
+    specular: bool,
+    /// The reflected child's tint, when it was traced.
+    reflect: Option<Vec3>,
+    /// The refracted child's weight 1 − F, when it was traced.
+    refract: Option<f32>,
+    /// exp(−absorption · distance) of the medium the ray crossed, if it absorbs.
+    absorption: Option<Vec3>,
+}
+
+impl Combine {
+    /// The hit's value, in the recursive definition's order of operations.
+    fn finish(&self, reflected: Option<Vec3>, refracted: Option<Vec3>) -> Vec3 {
+        let mut color = self.base;
+        if self.specular {
+            let mut specular = match (self.reflect, reflected) {
+                (Some(tint), Some(value)) => tint * value,
+                _ => Vec3::ZERO,
+            };
+            if let (Some(weight), Some(value)) = (self.refract, refracted) {
+                specular += weight * value;
+            }
+            color += specular;
+        }
+        match self.absorption {
+            Some(factor) => color * factor,
+            None => color,
+        }
+    }
+}
+
+/// The explicit stack's entries.
+enum Task {
+    /// Trace a ray and push its value (or the tasks that compute it).
+    Trace(Node),
+    /// A camera ray passed a culled triangle at distance `t`: the sample's depth grows by it
+    /// once the continued ray's depth is known.
+    Culled { t: f32 },
+    /// Pop the children's values (refraction on top) and push the hit's value.
+    Combine(Combine),
 }

@@ -1,10 +1,16 @@
 //! The linear EXR: float RGB plus depth `Z` and world-space normals `N.X N.Y N.Z`.
 
-use super::{OutputError, write_atomically};
+use super::{OutputError, WriteSeek, write_one};
 use crate::film::Film;
 use std::path::Path;
 
+/// Writes `film` as EXR to `path` on its own (see `OutputSet` for a run's several outputs).
 pub fn write_exr(film: &Film, path: &Path) -> Result<(), OutputError> {
+    write_one(path, |w| encode_exr(film, w))
+}
+
+/// Encodes `film` as EXR into `sink`; every write error is returned.
+pub fn encode_exr(film: &Film, sink: &mut dyn WriteSeek) -> std::io::Result<()> {
     use exr::prelude::*;
     let size = Vec2(film.width as usize, film.height as usize);
     let channel = |name: &str, values: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(values));
@@ -27,5 +33,8 @@ pub fn write_exr(film: &Film, path: &Path) -> Result<(), OutputError> {
         AnyChannels::sort(channels),
     );
     let image = Image::from_layer(layer);
-    write_atomically(path, |temp| image.write().to_file(temp).map_err(|e| e.to_string()))
+    image.write().to_buffered(sink).map_err(|e| match e {
+        exr::error::Error::Io(io) => io,
+        other => std::io::Error::other(other.to_string()),
+    })
 }

@@ -1,47 +1,64 @@
 //! The one place that writes files: EXR (linear float RGB plus depth `Z` and normal
-//! `N.X/N.Y/N.Z` channels), tone-mapped sRGB PNG, and the statistics report. Every file is
-//! written to a temporary name in the same folder and renamed into place, so a failure never
-//! leaves a half-written image behind.
+//! `N.X/N.Y/N.Z` channels), tone-mapped sRGB PNG, the statistics report, and any other file a
+//! command writes. A run first checks every output path (`plan`: usable, not an input, not
+//! another output), then writes each output under a temporary name beside its target and
+//! commits them all together (`transaction`), so a failure never leaves a half-written,
+//! mismatched or destroyed file behind. Interrupted runs remove their temporary files
+//! (`cleanup`).
 
+mod cleanup;
 mod exr;
 mod naming;
+mod plan;
 mod png;
 pub mod stats;
+mod target;
 pub mod tonemap;
+mod transaction;
 
-pub use exr::write_exr;
-pub use naming::camera_outputs;
-pub use png::{to_srgb8, write_png};
+pub use cleanup::remove_temp_files_on_signals;
+pub use exr::{encode_exr, write_exr};
+pub use naming::{camera_outputs, image_name_key, image_name_problem};
+pub use plan::OutputPlan;
+pub use png::{encode_png, encode_rgb8, to_srgb8, write_png};
+pub use target::{NAME_MAX, Target};
 pub use tonemap::ToneMap;
+pub use transaction::{OutputSet, WriteSeek};
 
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, thiserror::Error)]
 pub enum OutputError {
-    #[error("cannot write '{path}': {message}")]
+    #[error("cannot write '{}': {message}", .path.display())]
     Write { path: PathBuf, message: String },
+    #[error("{what} '{}' {reason}", .path.display())]
+    Refused { what: String, path: PathBuf, reason: String },
+    #[error(
+        "{first_what} '{}' and {what} '{}' are the same file; every output of a run needs its own file",
+        .first_path.display(), .path.display()
+    )]
+    Collision { first_what: String, first_path: PathBuf, what: String, path: PathBuf },
+    #[error(
+        "{what} '{}' is {input_what} '{}', an input of this run; embray never overwrites its inputs",
+        .path.display(), .input_path.display()
+    )]
+    IsInput { what: String, path: PathBuf, input_what: String, input_path: PathBuf },
 }
 
 pub(crate) fn write_error(path: &Path, message: impl ToString) -> OutputError {
     OutputError::Write { path: path.to_path_buf(), message: message.to_string() }
 }
 
-/// Runs `write` against a temporary path beside `path`, then renames it into place.
-pub(crate) fn write_atomically(
+/// Writes one file on its own (checked, through a temporary file, committed): for callers
+/// with a single output and no inputs to protect.
+pub fn write_one(
     path: &Path,
-    write: impl FnOnce(&Path) -> Result<(), String>,
+    encode: impl FnOnce(&mut dyn WriteSeek) -> std::io::Result<()>,
 ) -> Result<(), OutputError> {
-    let file_name =
-        path.file_name().ok_or_else(|| write_error(path, "not a file name"))?.to_string_lossy();
-    let temp = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
-    if let Err(message) = write(&temp) {
-        let _ = std::fs::remove_file(&temp);
-        return Err(write_error(path, message));
-    }
-    std::fs::rename(&temp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        write_error(path, e)
-    })
+    let target = OutputPlan::new().output("the output", path, false)?;
+    let mut set = OutputSet::new();
+    set.write(&target, encode)?;
+    set.commit()
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! The display PNG: exposure, a tone curve and sRGB encoding, 8 bits per channel.
 
 use super::tonemap::{ToneMap, srgb_encode, tone_map};
-use super::{OutputError, write_atomically, write_error};
+use super::{OutputError, WriteSeek, write_one};
 use crate::film::Film;
 use glam::Vec3;
 use std::path::Path;
@@ -35,18 +35,40 @@ pub fn to_srgb8(film: &Film, curve: ToneMap, exposure: f32) -> Vec<u8> {
         .collect()
 }
 
+/// Writes `film` as PNG to `path` on its own (see `OutputSet` for a run's several outputs).
 pub fn write_png(
     film: &Film,
     path: &Path,
     curve: ToneMap,
     exposure: f32,
 ) -> Result<(), OutputError> {
-    let pixels = to_srgb8(film, curve, exposure);
-    let image = image::RgbImage::from_raw(film.width, film.height, pixels)
-        .ok_or_else(|| write_error(path, "image buffer has the wrong size"))?;
-    write_atomically(path, |temp| {
-        image.save_with_format(temp, image::ImageFormat::Png).map_err(|e| e.to_string())
-    })
+    write_one(path, |w| encode_png(film, curve, exposure, w))
+}
+
+/// Encodes `film` as an 8-bit sRGB PNG into `sink`; every write error is returned.
+pub fn encode_png(
+    film: &Film,
+    curve: ToneMap,
+    exposure: f32,
+    sink: &mut dyn WriteSeek,
+) -> std::io::Result<()> {
+    encode_rgb8(&to_srgb8(film, curve, exposure), film.width, film.height, sink)
+}
+
+/// Encodes 8-bit RGB pixels as PNG into `sink`.
+pub fn encode_rgb8(
+    pixels: &[u8],
+    width: u32,
+    height: u32,
+    sink: &mut dyn WriteSeek,
+) -> std::io::Result<()> {
+    use image::ImageEncoder;
+    image::codecs::png::PngEncoder::new(sink)
+        .write_image(pixels, width, height, image::ExtendedColorType::Rgb8)
+        .map_err(|e| match e {
+            image::ImageError::IoError(io) => io,
+            other => std::io::Error::other(other.to_string()),
+        })
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! A render's counters: as a plain-text table for the terminal, and as the JSON report of
 //! `--stats-json` (its schema is the `StatsReport` type).
 
-use super::{OutputError, write_atomically};
+use super::{OutputError, WriteSeek, write_one};
 use crate::accel::{BatchMode, BuildQuality, Observes};
 use crate::render::{RenderOptions, RenderOutput};
 use crate::stats::RenderStats;
@@ -40,12 +40,15 @@ impl StatsReport {
         }
     }
 
-    /// Writes the report as pretty JSON, atomically.
+    /// Writes the report as pretty JSON to `path` on its own.
     pub fn write(&self, path: &Path) -> Result<(), OutputError> {
-        let text = serde_json::to_string_pretty(self).map_err(|e| e.to_string());
-        write_atomically(path, |temp| {
-            std::fs::write(temp, text.clone()? + "\n").map_err(|e| e.to_string())
-        })
+        write_one(path, |w| self.encode(w))
+    }
+
+    /// Encodes the report as pretty JSON (and a newline) into `sink`.
+    pub fn encode(&self, sink: &mut dyn WriteSeek) -> std::io::Result<()> {
+        serde_json::to_writer_pretty(&mut *sink, self)?;
+        sink.write_all(b"\n")
     }
 }
 

@@ -38,11 +38,20 @@ impl ToneMap {
     }
 }
 
+/// Both curves are flat (white) long before their inputs overflow f32, so inputs are
+/// clamped to `SATURATED` first: without it a pixel of 1e20 (or inf) computes inf / inf = NaN
+/// and turns black instead of white.
+const SATURATED: f32 = 1e4;
+
 pub(super) fn tone_map(c: Vec3, curve: ToneMap) -> Vec3 {
     match curve {
         ToneMap::None | ToneMap::Clamp255 => c,
-        ToneMap::Reinhard => c / (Vec3::ONE + c),
+        ToneMap::Reinhard => {
+            let c = c.min(Vec3::splat(SATURATED));
+            c / (Vec3::ONE + c)
+        }
         ToneMap::Aces => {
+            let c = c.min(Vec3::splat(SATURATED));
             let (a, b, cc, d, e) = (2.51, 0.03, 2.43, 0.59, 0.14);
             (c * (a * c + b)) / (c * (cc * c + d) + e)
         }
@@ -56,6 +65,16 @@ pub(super) fn srgb_encode(linear: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn very_bright_pixels_are_white_not_black() {
+        for curve in [ToneMap::Aces, ToneMap::Reinhard] {
+            for value in [1e4, 1e20, 3e38, f32::INFINITY] {
+                let mapped = tone_map(Vec3::splat(value), curve);
+                assert!(mapped.min_element() >= 0.99, "{curve:?} {value}: {mapped}");
+            }
+        }
+    }
 
     #[test]
     fn srgb_encoding_hits_known_points() {

@@ -83,7 +83,9 @@ fn aperture(cam: &CameraToml, ctx: &Ctx) -> Result<f64, SceneError> {
         (Some(_), None, Some(_)) => Err(ctx.conflict(&path, "camera", "aperture", "focal_length")),
         (Some(aperture), None, None) => ctx.non_negative(&path.key("aperture"), aperture),
         (None, Some(f_number), focal_length) => {
-            let f_number = ctx.positive(&path.key("f_number"), f_number)?;
+            let min = crate::limits::MIN_F_NUMBER;
+            let requirement = format!("at least {min} (a faster lens is an infinite aperture)");
+            ctx.require(f_number >= min, &path.key("f_number"), f_number, &requirement)?;
             let item = "camera (with f_number)";
             let focal_length =
                 ctx.required(&path.key("f_number"), item, "focal_length", focal_length)?;
@@ -114,17 +116,33 @@ pub(crate) fn settings(
     };
     let path = FieldPath::root("render");
     if let Some(spp) = render.spp {
-        ctx.require(spp >= 1, &path.key("spp"), spp, ">= 1")?;
+        let max = crate::limits::MAX_SPP;
+        ctx.require(
+            (1..=max).contains(&spp),
+            &path.key("spp"),
+            spp,
+            &format!("between 1 and {max}"),
+        )?;
         settings.spp = spp;
     }
     if let Some(max_depth) = render.max_depth {
+        let max = crate::limits::MAX_DEPTH;
+        ctx.require(
+            max_depth <= max,
+            &path.key("max_depth"),
+            max_depth,
+            &format!("at most {max}"),
+        )?;
         settings.max_depth = max_depth;
     }
     if let Some(background) = render.background {
         settings.background = ctx.color(&path.key("background"), background, false)?;
     }
     if let Some(light_samples) = render.light_samples {
-        ctx.require(light_samples >= 1, &path.key("light_samples"), light_samples, ">= 1")?;
+        let max = crate::limits::MAX_LIGHT_SAMPLES;
+        let requirement = format!("between 1 and {max}");
+        let ok = (1..=max).contains(&light_samples);
+        ctx.require(ok, &path.key("light_samples"), light_samples, &requirement)?;
         settings.light_samples = light_samples;
     }
     if let Some(integrator) = render.integrator {

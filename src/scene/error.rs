@@ -1,6 +1,13 @@
 //! `SceneError`: everything that can go wrong while loading a scene. Each message names the
 //! file (scene, OBJ or MTL), the field and value, and ends with the line when it is known.
 
+use crate::excerpt::{excerpt, shorten_message};
+
+/// A message part that may quote input (another library's message, a token, an element's
+/// attributes): lines beyond 300 characters are cut.
+fn brief(text: &str) -> String {
+    shorten_message(text, 300)
+}
 use std::fmt;
 use std::path::PathBuf;
 
@@ -30,11 +37,11 @@ pub enum SceneError {
     Toml { file: PathBuf, message: String },
 
     /// A NaN or infinite float (TOML accepts `nan` and `inf`).
-    #[error("{}: {field} is {value}{line}", .file.display())]
+    #[error("{}: {field} is {}{line}", .file.display(), excerpt(.value))]
     NonFinite { file: PathBuf, field: String, value: String, line: Line },
 
     /// A number outside its allowed range.
-    #[error("{}: {field} is {value}, but must be {requirement}{line}", .file.display())]
+    #[error("{}: {field} is {}, but must be {requirement}{line}", .file.display(), excerpt(.value))]
     OutOfRange { file: PathBuf, field: String, value: String, requirement: String, line: Line },
 
     /// A field that the object, light or material type needs is absent.
@@ -50,16 +57,19 @@ pub enum SceneError {
     #[error("{}: degenerate camera: {reason}{line}", .file.display())]
     DegenerateCamera { file: PathBuf, reason: String, line: Line },
 
-    #[error("{}: {field} '{name}' is not defined; defined: {defined}{line}", .file.display())]
+    #[error(
+        "{}: {field} '{}' is not defined; defined: {}{line}",
+        .file.display(), excerpt(.name), excerpt(.defined)
+    )]
     UnknownMaterial { file: PathBuf, field: String, name: String, defined: String, line: Line },
 
     /// A singular transform entry, a matrix whose last row is not 0 0 0 1, a zero rotation
     /// axis, or a composed transform that is singular or overflows.
-    #[error("{}: {field}: {problem}{line}", .file.display())]
+    #[error("{}: {field}: {}{line}", .file.display(), brief(.problem))]
     Transform { file: PathBuf, field: String, problem: String, line: Line },
 
     /// A quad without area or a box with min >= max.
-    #[error("{}: {item}: {problem}{line}", .file.display())]
+    #[error("{}: {item}: {}{line}", .file.display(), brief(.problem))]
     DegenerateShape { file: PathBuf, item: String, problem: String, line: Line },
 
     /// The OBJ file named by a mesh object is missing or unreadable.
@@ -72,7 +82,7 @@ pub enum SceneError {
     /// The OBJ or MTL data is invalid: parse error (tobj's message), out-of-range vertex
     /// index, non-finite coordinate, no triangles, bad MTL colour. `file` is the OBJ file, or
     /// the MTL file for a bad material; `line` is in that file.
-    #[error("{}: {problem}{line}; named by {item} in '{}'", .file.display(), .scene.display())]
+    #[error("{}: {}{line}; named by {item} in '{}'", .file.display(), brief(.problem), .scene.display())]
     ObjData { file: PathBuf, scene: PathBuf, item: String, problem: String, line: Line },
 
     /// The PLY file named by a mesh object or light is missing or unreadable.
@@ -86,8 +96,8 @@ pub enum SceneError {
     /// data, out-of-range index, non-finite number, no faces. `ply_line` is the line in an
     /// ASCII PLY file (or its header).
     #[error(
-        "PLY file '{}'{ply_line}: {problem}; named by {item}.file in '{}'",
-        .ply.display(), .scene.display()
+        "PLY file '{}'{ply_line}: {}; named by {item}.file in '{}'",
+        .ply.display(), brief(.problem), .scene.display()
     )]
     PlyData { ply: PathBuf, ply_line: Line, scene: PathBuf, item: String, problem: String },
 
@@ -99,7 +109,7 @@ pub enum SceneError {
     /// A CENG795 XML scene: malformed XML, an unsupported element, a value that cannot be
     /// read or a reference to something undefined. `element` is the element's path below
     /// `<Scene>` (`<Objects > Mesh id="3" > Faces>`).
-    #[error("{}: {element}: {problem}{line}", .file.display())]
+    #[error("{}: {}: {}{line}", .file.display(), brief(.element), brief(.problem))]
     Xml { file: PathBuf, element: String, problem: String, line: Line },
 
     /// A transform list entry without exactly one of scale, rotate, translate, matrix.

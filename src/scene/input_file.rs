@@ -1,15 +1,66 @@
-//! Reading scene inputs (scene files, meshes, material libraries): from disk, or from the
-//! binary for the bundled scenes.
+//! Reading scene inputs (scene files, meshes, material libraries, images to compare): from
+//! disk, or from the binary for the bundled scenes. Only regular files are read (a FIFO
+//! would block forever and `/dev/zero` never ends), and at most `MAX_INPUT_BYTES` of them.
 
-use std::io;
-use std::path::Path;
+use std::io::{self, Read};
+use std::path::{Path, PathBuf};
+use std::sync::{Mutex, PoisonError};
+
+/// Every file read from disk so far, so that a command can refuse to overwrite any input of
+/// its run (a mesh or MTL file the scene names, not only the scene).
+static FILES_READ: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// The files this process has read from disk (scenes, meshes, MTL files, images).
+pub fn files_read() -> Vec<PathBuf> {
+    FILES_READ.lock().unwrap_or_else(PoisonError::into_inner).clone()
+}
+
+/// The largest input file embray reads: 2 GiB (an OBJ of about 30 million triangles).
+/// Larger files are refused before memory runs out.
+pub const MAX_INPUT_BYTES: u64 = 2 << 30;
 
 /// The bytes of `path`.
-pub(crate) fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
-    match crate::bundled::file(path) {
-        Some(bytes) => Ok(bytes.to_vec()),
-        None => std::fs::read(path),
+pub fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
+    if let Some(bytes) = crate::bundled::file(path) {
+        return Ok(bytes.to_vec());
     }
+    read_capped(path, MAX_INPUT_BYTES)
+}
+
+/// The bytes of the regular file `path`, refused when longer than `cap`.
+pub(crate) fn read_capped(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
+    use std::os::unix::fs::FileTypeExt;
+    // Checked before opening: opening a FIFO blocks until someone writes to it.
+    let kind = std::fs::metadata(path)?.file_type();
+    let what = if kind.is_dir() {
+        Some("a directory")
+    } else if kind.is_fifo() {
+        Some("a FIFO")
+    } else if kind.is_char_device() || kind.is_block_device() {
+        Some("a device")
+    } else if !kind.is_file() {
+        Some("a socket")
+    } else {
+        None
+    };
+    if let Some(what) = what {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("is {what}, not a regular file; embray reads its inputs from regular files"),
+        ));
+    }
+    let file = std::fs::File::open(path)?;
+    FILES_READ.lock().unwrap_or_else(PoisonError::into_inner).push(path.to_path_buf());
+    let mut bytes = Vec::new();
+    // One byte more than the cap tells a file at the cap from a longer one (it may grow).
+    file.take(cap + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > cap {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("is larger than {} MiB, the most embray reads from one file", cap >> 20),
+        ));
+    }
+    Ok(bytes)
 }
 
 /// The text of `path` (UTF-8).
@@ -17,4 +68,21 @@ pub(crate) fn read_text(path: &Path) -> io::Result<String> {
     String::from_utf8(read_bytes(path)?).map_err(|_| {
         io::Error::new(io::ErrorKind::InvalidData, "stream did not contain valid UTF-8")
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn devices_and_oversized_files_are_refused() {
+        let err = read_bytes(Path::new("/dev/zero")).unwrap_err().to_string();
+        assert!(err.contains("not a regular file"), "{err}");
+        let path = std::env::temp_dir().join(format!("embray-cap-{}", std::process::id()));
+        std::fs::write(&path, [0u8; 11]).unwrap();
+        assert!(read_capped(&path, 11).is_ok());
+        let err = read_capped(&path, 10).unwrap_err().to_string();
+        assert!(err.contains("larger than"), "{err}");
+        std::fs::remove_file(&path).unwrap();
+    }
 }

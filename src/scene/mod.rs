@@ -15,6 +15,7 @@ mod camera_settings;
 mod error;
 mod from_toml;
 pub(crate) mod input_file;
+pub use input_file::{MAX_INPUT_BYTES, files_read, read_bytes as read_input_bytes};
 mod materials;
 mod mesh_file;
 mod obj;

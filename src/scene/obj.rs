@@ -68,7 +68,10 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         error,
         line: obj_ref.line,
     })?;
-    scan_obj(&text).map_err(|p| obj_ref.scan_error(obj, p))?;
+    let scan = scan_obj(&text).map_err(|p| obj_ref.scan_error(obj, p))?;
+    for warning in &scan.warnings {
+        warnings.push(format!("{}: {} (line {})", obj.display(), warning.message, warning.line));
+    }
 
     let obj_dir = obj.parent().unwrap_or(Path::new("")).to_path_buf();
     let mtl_error: RefCell<Option<SceneError>> = RefCell::new(None);
@@ -78,6 +81,13 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         let mtl = obj_dir.join(mtl_name);
         let mtl_text = match super::input_file::read_text(&mtl) {
             Ok(text) => text,
+            // A missing library is a warning (exporters often name one they do not ship);
+            // one that exists but cannot be read (a device, too large) is an error.
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                let problem = format!("material library '{}' cannot be read: {e}", mtl.display());
+                *mtl_error.borrow_mut() = Some(obj_ref.error(obj, problem, Line(None)));
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
             Err(e) => {
                 missing_mtl.borrow_mut().push(format!(
                     "{}: material library '{}' cannot be read ({e}); its materials fall back \
@@ -124,6 +134,20 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         Err(tobj::LoadError::OpenFileFailed) if !missing_mtl.is_empty() => Vec::new(),
         Err(e) => return Err(obj_ref.error(obj, format!("invalid MTL file: {e}"), Line(None))),
     };
+    // An undefined material would silently fall back to the default; say so (unless the
+    // whole library is missing, which is already said).
+    if missing_mtl.is_empty() {
+        for (name, line) in &scan.usemtl {
+            if !materials.iter().any(|m| &m.name == name) {
+                warnings.push(format!(
+                    "{}: usemtl '{}' names no material of the MTL file; the default is used \
+                     (line {line})",
+                    obj.display(),
+                    crate::excerpt::excerpt(name)
+                ));
+            }
+        }
+    }
     warnings.extend(missing_mtl);
 
     let mtl_of_material = mtl_of_material.into_inner();

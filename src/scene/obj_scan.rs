@@ -15,8 +15,22 @@ const KINDS: [(&str, &str, &str); 3] = [
     ("vn", "normal", "normals"),
 ];
 
-/// Checks every `v`/`vt`/`vn` number (as tobj parses them, in f32) and every face index.
-pub(crate) fn scan_obj(text: &str) -> Result<(), ScanProblem> {
+/// What the scan found that is not an error: warnings, and the `usemtl` names (with their
+/// lines) so that the loader can warn about the undefined ones.
+#[derive(Debug, Default)]
+pub(crate) struct ObjScan {
+    pub warnings: Vec<ScanProblem>,
+    pub usemtl: Vec<(String, usize)>,
+}
+
+/// How many numbers each vertex statement takes (tobj's rules): `v` x y z [w | r g b],
+/// `vt` u v [w], `vn` x y z.
+const COUNTS: [&[usize]; 3] = [&[3, 4, 6], &[2, 3], &[3]];
+
+/// Checks every `v`/`vt`/`vn` statement (the count and every number, as tobj parses them,
+/// in f32) and every face index, so that each problem gets its line (tobj reports none);
+/// faces of fewer than 3 vertices are warned about (they are dropped).
+pub(crate) fn scan_obj(text: &str) -> Result<ObjScan, ScanProblem> {
     let mut totals = [0usize; 3];
     for line in text.lines() {
         if let Some(kind) = line.split_whitespace().next().and_then(kind_of) {
@@ -24,13 +38,28 @@ pub(crate) fn scan_obj(text: &str) -> Result<(), ScanProblem> {
         }
     }
     let mut seen = [0usize; 3];
+    let mut scan = ObjScan::default();
     for (n, line) in text.lines().enumerate() {
         let problem = |message: String| ScanProblem { line: n + 1, message };
         let mut words = line.split_whitespace();
         match words.next() {
             Some("f") => {
-                for word in words {
+                let vertices: Vec<&str> = words.collect();
+                for word in &vertices {
                     check_face_vertex(word, &seen, &totals).map_err(problem)?;
+                }
+                if vertices.len() < 3 {
+                    scan.warnings.push(problem(format!(
+                        "a face with {} vertices is ignored (a face needs at least 3)",
+                        vertices.len()
+                    )));
+                }
+            }
+            Some("usemtl") => {
+                let name = line.trim().split_once(char::is_whitespace).map(|(_, n)| n.trim());
+                match name.filter(|n| !n.is_empty()) {
+                    Some(name) => scan.usemtl.push((name.to_owned(), n + 1)),
+                    None => return Err(problem("usemtl needs a material name".to_owned())),
                 }
             }
             Some(keyword) => {
@@ -38,18 +67,45 @@ pub(crate) fn scan_obj(text: &str) -> Result<(), ScanProblem> {
                     continue;
                 };
                 seen[kind] += 1;
-                for word in words {
-                    if word.parse::<f32>().is_ok_and(|x| !x.is_finite()) {
-                        let (_, name, _) = KINDS[kind];
-                        let index = seen[kind];
-                        return Err(problem(format!(
-                            "{name} {index} has a non-finite coordinate '{word}'"
-                        )));
-                    }
-                }
+                check_vertex(kind, seen[kind], words.collect()).map_err(problem)?;
             }
             None => {}
         }
+    }
+    Ok(scan)
+}
+
+/// One `v`/`vt`/`vn` statement's numbers (`index` counts that kind from 1).
+fn check_vertex(kind: usize, index: usize, words: Vec<&str>) -> Result<(), String> {
+    let (keyword, name, _) = KINDS[kind];
+    for word in &words {
+        match word.parse::<f32>() {
+            Err(_) => {
+                return Err(format!(
+                    "{name} {index}: '{}' is not a number",
+                    crate::excerpt::excerpt(word)
+                ));
+            }
+            Ok(x) if !x.is_finite() => {
+                return Err(format!(
+                    "{name} {index} has a non-finite coordinate '{}'",
+                    crate::excerpt::excerpt(word)
+                ));
+            }
+            Ok(_) => {}
+        }
+    }
+    let allowed = COUNTS[kind];
+    if !allowed.contains(&words.len()) {
+        let allowed: Vec<String> = allowed.iter().map(|c| c.to_string()).collect();
+        return Err(format!(
+            "{name} {index}: `{keyword}` takes {} numbers, this one has {}",
+            allowed.join(" or "),
+            words.len()
+        ));
+    }
+    if kind == 0 && words.len() == 4 && words[3].parse::<f32>() == Ok(0.0) {
+        return Err(format!("{name} {index} has the weight w = 0"));
     }
     Ok(())
 }
@@ -62,10 +118,16 @@ fn kind_of(keyword: &str) -> Option<usize> {
 /// count back from the last element defined so far.
 fn check_face_vertex(word: &str, seen: &[usize; 3], totals: &[usize; 3]) -> Result<(), String> {
     for (kind, part) in word.split('/').enumerate().take(3) {
-        let Ok(index) = part.parse::<i64>() else {
-            continue;
-        }; // empty or malformed: tobj reports it
         let (_, name, plural) = KINDS[kind];
+        if part.is_empty() && kind > 0 {
+            continue; // `v//vn` and `v/vt`: the element is absent
+        }
+        let Ok(index) = part.parse::<i64>() else {
+            return Err(format!(
+                "a face's {name} index '{}' is not a whole number (or is too large)",
+                crate::excerpt::excerpt(part)
+            ));
+        };
         if index == 0 {
             return Err(format!("a face refers to {name} 0, but OBJ indices start at 1"));
         }
@@ -110,6 +172,34 @@ mod tests {
         let err = scan_obj("v 0 0 0\n# c\nv 1 nan 0\nf 1 2 1\n").unwrap_err();
         assert_eq!(err.line, 3);
         assert_eq!(err.message, "vertex 2 has a non-finite coordinate 'nan'");
+    }
+
+    #[test]
+    fn malformed_statements_get_their_line() {
+        let cases = [
+            ("v 0 0\n", "takes 3 or 4 or 6 numbers, this one has 2"),
+            ("v 0 abc 0\n", "'abc' is not a number"),
+            ("v 0 0 0 1 junk\n", "'junk' is not a number"),
+            ("v 0 0 0 1 2\n", "has 5"),
+            ("v 0 0 0 0\n", "w = 0"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n", "too large"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", "'x' is not a whole number"),
+            ("usemtl\n", "usemtl needs"),
+        ];
+        for (text, expected) in cases {
+            let err = scan_obj(text).unwrap_err();
+            assert!(err.message.contains(expected), "{text:?}: {}", err.message);
+            assert_eq!(err.line, text.lines().count(), "{text:?}");
+        }
+        let huge = format!("v 0 {} 0\n", "9".repeat(100_000));
+        assert!(scan_obj(&huge).unwrap_err().message.len() < 300);
+    }
+
+    #[test]
+    fn short_faces_and_materials_are_noted() {
+        let scan = scan_obj("v 0 0 0\nv 1 0 0\nusemtl red paint\nf 1 2\n").unwrap();
+        assert_eq!(scan.warnings[0].line, 4);
+        assert_eq!(scan.usemtl, [("red paint".to_owned(), 3)]);
     }
 
     #[test]

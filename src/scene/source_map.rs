@@ -172,7 +172,9 @@ fn non_finite_name(literal: &str) -> Option<&'static str> {
 
 /// toml's error report (line, column, quoted text, message) prefixed by the file name.
 pub(crate) fn toml_error(file: &Path, error: &toml::de::Error) -> SceneError {
-    SceneError::Toml { file: file.to_path_buf(), message: error.to_string().trim_end().to_owned() }
+    // toml quotes the offending line, which may be megabytes long.
+    let message = crate::excerpt::shorten_message(error.to_string().trim_end(), 200);
+    SceneError::Toml { file: file.to_path_buf(), message }
 }
 
 #[cfg(test)]

@@ -21,8 +21,8 @@ use std::sync::Arc;
 
 #[derive(Debug, thiserror::Error)]
 pub enum TomlWriteError {
-    #[error("cannot write '{}': {error}", .path.display())]
-    Io { path: PathBuf, error: std::io::Error },
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
     #[error("{item}: {problem}, which the TOML format cannot express")]
     Unsupported { item: String, problem: String },
 }
@@ -34,10 +34,8 @@ pub struct TomlWriter {
     /// address cannot be reused by another mesh).
     meshes: HashMap<*const MeshData, (Arc<MeshData>, PathBuf)>,
     mesh_files: Vec<PathBuf>,
-}
-
-fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> TomlWriteError + '_ {
-    move |error| TomlWriteError::Io { path: path.to_path_buf(), error }
+    /// OBJ texts named by the TOML produced so far and not yet written.
+    pending_meshes: Vec<(PathBuf, String)>,
 }
 
 /// A TOML float: `Debug` always writes a decimal point or an exponent, and round-trips.
@@ -80,24 +78,44 @@ fn matrix(m: &DAffine3) -> String {
 impl TomlWriter {
     /// Meshes go to `mesh_dir` (created on first use).
     pub fn new(mesh_dir: PathBuf) -> Self {
-        TomlWriter { mesh_dir, meshes: HashMap::new(), mesh_files: Vec::new() }
+        TomlWriter {
+            mesh_dir,
+            meshes: HashMap::new(),
+            mesh_files: Vec::new(),
+            pending_meshes: Vec::new(),
+        }
     }
 
-    /// The OBJ files written so far.
+    /// The OBJ files named so far.
     pub fn mesh_files(&self) -> &[PathBuf] {
         &self.mesh_files
     }
 
-    /// Writes `scene` to `path` (with `note` as a comment at the top), and any mesh not yet
-    /// written.
+    /// The OBJ files (path, text) that the TOML produced since the last call names and
+    /// that are still to be written.
+    pub fn take_pending_meshes(&mut self) -> Vec<(PathBuf, String)> {
+        std::mem::take(&mut self.pending_meshes)
+    }
+
+    /// Writes `scene` to `path` (with `note` as a comment at the top) and any mesh not yet
+    /// written, all committed together (`embray convert` checks its paths first instead).
     pub fn write(
         &mut self,
         scene: &SceneDesc,
         path: &Path,
         note: &str,
     ) -> Result<(), TomlWriteError> {
+        use crate::output::{OutputPlan, OutputSet};
         let text = self.toml(scene, path, note)?;
-        std::fs::write(path, text).map_err(io_error(path))
+        let mut plan = OutputPlan::new();
+        let mut files = OutputSet::new();
+        let target = plan.output("the TOML file", path, false)?;
+        files.write(&target, |w| w.write_all(text.as_bytes()))?;
+        for (mesh, obj) in self.take_pending_meshes() {
+            let target = plan.output("the OBJ file", &mesh, true)?;
+            files.write(&target, |w| w.write_all(obj.as_bytes()))?;
+        }
+        Ok(files.commit()?)
     }
 
     /// The TOML text for `scene`, to be written at `path` (mesh paths are relative to it).
@@ -179,9 +197,8 @@ impl TomlWriter {
         if let Some((_, file)) = self.meshes.get(&Arc::as_ptr(mesh)) {
             return Ok(file.clone());
         }
-        std::fs::create_dir_all(&self.mesh_dir).map_err(io_error(&self.mesh_dir))?;
         let file = self.mesh_dir.join(format!("mesh_{}.obj", self.mesh_files.len()));
-        std::fs::write(&file, obj_text(mesh)).map_err(io_error(&file))?;
+        self.pending_meshes.push((file.clone(), obj_text(mesh)));
         self.meshes.insert(Arc::as_ptr(mesh), (Arc::clone(mesh), file.clone()));
         self.mesh_files.push(file.clone());
         Ok(file)

@@ -120,12 +120,12 @@ fn repeat_counts_are_checked() {
         &["scene.toml: objects[0].repeat.count[1] is 0, but must be >= 1 (line 13)"],
     );
     let err = load_err(&scene_with(&format!(
-        "{BOX}repeat = {{ count = [1000, 1000, 11], spacing = [1, 1, 1] }}\n"
+        "{BOX}repeat = {{ count = [1000, 1000, 2], spacing = [1, 1, 1] }}\n"
     )));
     assert_contains(
         &err,
-        &["objects[0].repeat.count is 1000 × 1000 × 11 = 11000000 copies, but must be at most \
-             10000000 copies (line 13)"],
+        &["objects[0].repeat.count is 1000 × 1000 × 2 = 2000000 copies, but must be at most \
+             1000000 copies (line 13)"],
     );
     let err = load_err(&scene_with(&format!(
         "{BOX}repeat = {{ count = [-1, 1, 1], spacing = [1, 1, 1] }}\n"

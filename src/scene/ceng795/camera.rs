@@ -76,11 +76,15 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
     if image_name.is_empty() {
         return Err(x.error(name_node, "the image name is empty"));
     }
+    if let Some(problem) = crate::output::image_name_problem(&image_name) {
+        return Err(x.error(name_node, problem));
+    }
     let spp = match x.child(node, "NumSamples")? {
         Some(n) => {
             let spp = x.count(n)?;
-            if !(1..=u32::MAX as u64).contains(&spp) {
-                return Err(x.out_of_range(n, spp, ">= 1"));
+            let max = crate::limits::MAX_SPP;
+            if !(1..=u64::from(max)).contains(&spp) {
+                return Err(x.out_of_range(n, spp, &format!("between 1 and {max}")));
             }
             spp as u32
         }

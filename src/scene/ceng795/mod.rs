@@ -103,8 +103,11 @@ pub fn load_str_with_warnings(
     }
     if let Some(node) = x.child(root, "MaxRecursionDepth")? {
         let depth = x.count(node)?;
-        settings.max_depth =
-            u32::try_from(depth).map_err(|_| x.out_of_range(node, depth, "at most 4294967295"))?;
+        let max = crate::limits::MAX_DEPTH;
+        if depth > u64::from(max) {
+            return Err(x.out_of_range(node, depth, &format!("at most {max}")));
+        }
+        settings.max_depth = depth as u32;
     }
     for name in ["ShadowRayEpsilon", "IntersectionTestEpsilon"] {
         if let Some(node) = x.child(root, name)? {
@@ -128,10 +131,24 @@ pub fn load_str_with_warnings(
     let objects = objects::objects(&x, &refs, all("Objects"), &mut warnings)?;
 
     let mut cameras = Vec::new();
+    // Two cameras writing one file would silently overwrite each other's image.
+    let mut outputs = std::collections::HashMap::new();
     for list in all("Cameras") {
         x.check_children(list, &["Camera"])?;
         for node in list.children().filter(Node::is_element) {
-            cameras.push(camera::camera(&x, node)?);
+            let camera = camera::camera(&x, node)?;
+            let key = crate::output::image_name_key(&camera.image_name);
+            if let Some(first) = outputs.insert(key, x.line(node)) {
+                return Err(x.error(
+                    node,
+                    format!(
+                        "ImageName '{}' names the same output files as the camera{first}; \
+                         every camera needs its own ImageName",
+                        crate::excerpt::excerpt(&camera.image_name)
+                    ),
+                ));
+            }
+            cameras.push(camera);
         }
     }
     if cameras.is_empty() {

@@ -24,8 +24,8 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// The most copies one `repeat` may make.
-pub const MAX_REPEAT_COPIES: u64 = 10_000_000;
+/// The most copies one `repeat` may make (each costs about `limits::BYTES_PER_OBJECT`).
+pub const MAX_REPEAT_COPIES: u64 = 1_000_000;
 
 /// Copies of a `repeat` grid up to this many are named `... copy (i,j,k)`; those of larger
 /// grids are all named `... copy`.
@@ -58,8 +58,24 @@ pub(crate) fn scene_desc(
         let index = builder.add_material(material);
         builder.named.insert(name.clone(), index);
     }
+    let mut bounds = crate::limits::MeshBounds::default();
     for (i, object) in file.objects.iter().enumerate() {
+        let first = builder.objects.len();
         builder.object(i, object)?;
+        // Beyond the supported range now, with the line (the render checks again after
+        // any --offset).
+        let path = FieldPath::root("objects").index(i);
+        for placed in &builder.objects[first..] {
+            let reach = crate::limits::object_reach(placed, &mut bounds);
+            let max = crate::limits::MAX_COORDINATE;
+            let requirement = format!("within the supported coordinate range ±{max:e}");
+            // A `repeat` copy is named by its grid index; the object itself by `path`.
+            let value = match placed.name.contains("copy") {
+                true => format!("{reach:e} at the farthest corner of {}", placed.name),
+                false => format!("{reach:e} at its farthest corner"),
+            };
+            ctx.require(reach <= max, &path, value, &requirement)?;
+        }
     }
     for (i, light) in file.lights.iter().enumerate() {
         builder.light(i, light)?;

@@ -43,6 +43,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<MeshData, PlyProblem> {
                 words: "".split_whitespace(),
                 line: header.lines,
                 remaining: text.len(),
+                in_record: false,
             };
             read_body(&header.elements, &mut values)
         }
@@ -208,6 +209,9 @@ fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, 
                     }
                 }
             }
+            values
+                .end_record()
+                .map_err(|m| problem(values.line(), format!("{m} ({} {number})", element.name)))?;
             if is_vertex {
                 let [x, y, z] = layout.position.map(|i| row[i]);
                 let position = DVec3::new(x, y, z);
@@ -242,6 +246,7 @@ fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, 
             }
         }
     }
+    values.finish().map_err(|(line, m)| problem(Some(line), m))?;
     if mesh.indices.is_empty() {
         let message = if has_face_element {
             "the PLY file has no faces (no polygon with 3 or more vertices)"

@@ -48,16 +48,37 @@ fn errors_name_the_problem_and_line() {
     assert_eq!((err.line, err.message.as_str()), (Some(6), "unsupported property type 'half'"));
 
     let err = parse(cube().replace("4 3 7 4 0\n", "4 3 7\n").as_bytes()).unwrap_err();
+    assert!(err.message.contains("line ends before"), "{err:?}");
+    let err = parse(cube().replace("4 3 7 4 0\n", "").as_bytes()).unwrap_err();
     assert!(err.message.contains("ends in face 5 of 6"), "{err:?}");
 
     let err = parse(cube().replace("4 3 7 4 0", "4 3 7 x 0").as_bytes()).unwrap_err();
     assert_eq!(err.message, "'x' is not a valid int (face 5, property 'vertex_indices')");
 
-    let no_faces = cube().replace("element face 6", "element face 0");
+    let no_faces =
+        format!("{}{}", CUBE_HEADER.replace("element face 6", "element face 0"), &CUBE_BODY[..48]);
     let err = parse(no_faces.as_bytes()).unwrap_err();
     assert!(err.message.contains("no faces"), "{err:?}");
 
     assert!(parse(b"solid stl\n").unwrap_err().message.contains("not a PLY file"));
     let err = parse(cube().replace("end_header\n", "").as_bytes()).unwrap_err();
     assert!(err.message.contains("unexpected header line '0 0 0'"), "{err:?}");
+}
+
+#[test]
+fn ascii_values_that_shift_between_lines_are_errors() {
+    // Header says 8 vertices, the data has 7: the first face line is read as a vertex.
+    let short = CUBE_HEADER.replace("element vertex 8", "element vertex 9");
+    let err = parse(format!("{short}{CUBE_BODY}").as_bytes()).unwrap_err();
+    assert!(err.message.contains("more values than"), "{}", err.message);
+    assert_eq!(err.line, Some(19));
+    // A vertex split over two lines.
+    let split = CUBE_BODY.replacen("0 0 1\n", "0 0\n1\n", 1);
+    let err = parse(format!("{CUBE_HEADER}{split}").as_bytes()).unwrap_err();
+    assert!(err.message.contains("line ends before"), "{}", err.message);
+    // Fewer faces declared than given.
+    let few = CUBE_HEADER.replace("element face 6", "element face 5");
+    let err = parse(format!("{few}{CUBE_BODY}").as_bytes()).unwrap_err();
+    assert!(err.message.contains("goes on after the last element"), "{}", err.message);
+    assert_eq!(err.line, Some(24));
 }

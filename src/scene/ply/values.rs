@@ -17,6 +17,15 @@ pub(super) trait Values {
     fn line(&self) -> Option<usize>;
     /// Bytes left, to bound allocations by what the file can hold.
     fn remaining(&self) -> usize;
+    /// Ends one element's record: an ASCII record is exactly one line, so values left on
+    /// it mean the header and the data disagree.
+    fn end_record(&mut self) -> Result<(), String> {
+        Ok(())
+    }
+    /// After the last element: ASCII data left over means the header's counts are wrong.
+    fn finish(&mut self) -> Result<(), (usize, String)> {
+        Ok(())
+    }
 }
 
 pub(super) struct Binary<'a> {
@@ -67,6 +76,8 @@ pub(super) struct Ascii<'a> {
     /// Line of the current `words`.
     pub(super) line: usize,
     pub(super) remaining: usize,
+    /// A value of the current record was read (its line may not end before the record).
+    pub(super) in_record: bool,
 }
 
 impl Values for Ascii<'_> {
@@ -75,12 +86,23 @@ impl Values for Ascii<'_> {
             if let Some(word) = self.words.next() {
                 break word;
             }
+            if self.in_record {
+                return Err(ReadError::Bad(
+                    "the line ends before the element's properties do (the header declares \
+                     more properties than the line has values)"
+                        .to_owned(),
+                ));
+            }
             let line = self.lines.next().ok_or(ReadError::End)?;
             self.remaining = self.remaining.saturating_sub(line.len() + 1);
             self.words = line.split_whitespace();
             self.line += 1;
         };
-        let bad = || ReadError::Bad(format!("'{word}' is not a valid {}", type_name(ty)));
+        self.in_record = true;
+        let bad = || {
+            let shown = crate::excerpt::excerpt(word);
+            ReadError::Bad(format!("'{shown}' is not a valid {}", type_name(ty)))
+        };
         // Rust parses "nan" and "inf" too: those are caught as non-finite values later.
         let value: f64 = word.parse().map_err(|_| bad())?;
         if ty.is_integer() {
@@ -98,5 +120,32 @@ impl Values for Ascii<'_> {
 
     fn remaining(&self) -> usize {
         self.remaining
+    }
+
+    fn end_record(&mut self) -> Result<(), String> {
+        self.in_record = false;
+        match self.words.next() {
+            Some(word) => Err(format!(
+                "the line has more values than the element's properties ('{}' is left over); \
+                 each element of an ASCII PLY file takes one line",
+                crate::excerpt::excerpt(word)
+            )),
+            None => Ok(()),
+        }
+    }
+
+    fn finish(&mut self) -> Result<(), (usize, String)> {
+        for line in self.lines.by_ref() {
+            self.line += 1;
+            if !line.trim().is_empty() {
+                return Err((
+                    self.line,
+                    "the data goes on after the last element the header declares (do the \
+                     header's element counts match the data?)"
+                        .to_owned(),
+                ));
+            }
+        }
+        Ok(())
     }
 }

@@ -1,0 +1,223 @@
+//! What embray accepts, in one place (the README's "Limits" lists the same numbers), and
+//! the checks made before a render allocates anything: sample counts, the coordinate range,
+//! and the memory the render will need against the memory the machine has.
+
+use crate::scene::{LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
+use glam::DVec3;
+use std::collections::HashSet;
+
+/// Samples per pixel (a million samples of one pixel is a convergence test).
+pub const MAX_SPP: u32 = 1 << 20;
+/// Camera samples of one render, pixels × spp: 2³⁶ ≈ 6.9·10¹⁰, about ten hours at the
+/// 2-core machine's two million samples per second (4096² at 4096 spp).
+pub const MAX_SAMPLES: u64 = 1 << 36;
+/// Shadow rays per shading point.
+pub const MAX_LIGHT_SAMPLES: u32 = 65_536;
+/// Bounces (path tracer) or recursion depth (Whitted); the Whitted integrator keeps its
+/// pending rays on the heap, so this bounds time, not stack.
+pub const MAX_DEPTH: u32 = 100_000;
+/// Worker threads.
+pub const MAX_THREADS: usize = 1024;
+/// Repetitions of a measurement (`bench --runs`).
+pub const MAX_RUNS: u32 = 1000;
+/// The largest world-space coordinate a scene may reach (geometry, camera, lights, after
+/// `--offset`). Render space is f32 and camera-relative: beyond this the camera-relative
+/// coordinates of nearby geometry lose precision faster than the spawn bounds assume, and
+/// rays crossing the scene approach Embree's ~1.8e18 limit.
+pub const MAX_COORDINATE: f64 = 1e8;
+/// The smallest `f_number`: a lens faster than f/0.01 is an infinite aperture in all but name.
+pub const MIN_F_NUMBER: f64 = 0.01;
+
+/// Bytes per pixel a render holds at its peak: the film (colour, depth, normal: 28), the
+/// tiles' buffers (28), and the EXR channels and PNG pixels while encoding (31), rounded up.
+/// Measured: 79 bytes per pixel at 4096².
+pub const BYTES_PER_PIXEL: u64 = 96;
+/// Bytes per object placement: the scene description, its render-space instance and its
+/// share of the top-level BVH (measured: 540 per `repeat` copy).
+pub const BYTES_PER_OBJECT: u64 = 640;
+/// Bytes per mesh triangle: f64 positions and indices, the render-space copy and the BVH
+/// (Embree 67, obvhs 93 bytes per triangle).
+pub const BYTES_PER_TRIANGLE: u64 = 200;
+
+#[derive(Debug, thiserror::Error)]
+pub enum LimitError {
+    #[error(
+        "{}: rendering it needs about {:.1} GiB of memory ({width}x{height} pixels at \
+         {BYTES_PER_PIXEL} bytes each, {objects} object placements, {triangles} mesh \
+         triangles), but only {:.1} GiB are available; lower camera.resolution (or the \
+         CENG795 ImageResolution), or the number of objects and repeat copies",
+        .file.display(), gib(*.needed), gib(*.available)
+    )]
+    Memory {
+        file: std::path::PathBuf,
+        needed: u64,
+        available: u64,
+        width: u32,
+        height: u32,
+        objects: usize,
+        triangles: u64,
+    },
+    #[error(
+        "{}: {what} reaches the coordinate {value:e}, beyond the supported range ±{MAX_COORDINATE:e} \
+         (world space, after --offset); move the scene nearer the origin or scale it down",
+        .file.display()
+    )]
+    Coordinate { file: std::path::PathBuf, what: String, value: f64 },
+}
+
+fn gib(bytes: u64) -> f64 {
+    bytes as f64 / (1u64 << 30) as f64
+}
+
+/// The memory a render of `desc` needs, in bytes (an estimate from the counts above).
+pub fn memory_needed(desc: &SceneDesc) -> (u64, usize, u64) {
+    let pixels = u64::from(desc.camera.width) * u64::from(desc.camera.height);
+    let mut meshes = HashSet::new();
+    let mut triangles = 0u64;
+    for object in &desc.objects {
+        if let ShapeDesc::Mesh(mesh) = &object.shape {
+            if meshes.insert(std::sync::Arc::as_ptr(mesh)) {
+                triangles += mesh.indices.len() as u64;
+            }
+        }
+    }
+    let bytes = pixels * BYTES_PER_PIXEL
+        + desc.objects.len() as u64 * BYTES_PER_OBJECT
+        + triangles * BYTES_PER_TRIANGLE;
+    (bytes, desc.objects.len(), triangles)
+}
+
+/// The memory this process may still use: the smallest of the kernel's MemAvailable, the
+/// cgroup's limit (in a container) and `EMBRAY_MAX_MEMORY` (bytes: a budget for a shared
+/// machine), or `None` when none is known.
+pub fn memory_available() -> Option<u64> {
+    let budget = std::env::var("EMBRAY_MAX_MEMORY").ok().and_then(|v| v.trim().parse::<u64>().ok());
+    [detected_memory(), budget].into_iter().flatten().min()
+}
+
+fn detected_memory() -> Option<u64> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok().and_then(|text| {
+        let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+        let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+        Some(kib * 1024)
+    });
+    let cgroup = std::fs::read_to_string("/sys/fs/cgroup/memory.max")
+        .ok()
+        .and_then(|t| t.trim().parse::<u64>().ok());
+    match (meminfo, cgroup) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// Refuses a render whose estimated memory exceeds what the machine has.
+pub fn check_memory(desc: &SceneDesc) -> Result<(), LimitError> {
+    let (needed, objects, triangles) = memory_needed(desc);
+    match memory_available() {
+        Some(available) if needed > available => Err(LimitError::Memory {
+            file: desc.source.clone(),
+            needed,
+            available,
+            width: desc.camera.width,
+            height: desc.camera.height,
+            objects,
+            triangles,
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Object-space bounds of the meshes seen so far, by `Arc` identity (the scene holds the
+/// `Arc`s, so an address is not reused while the map lives).
+#[derive(Default)]
+pub struct MeshBounds(std::collections::HashMap<*const crate::scene::MeshData, (DVec3, DVec3)>);
+
+/// The largest world-space coordinate `object` reaches: its bounds' corners at both
+/// shutter ends (NaN or inf if they overflow).
+/// `bounds` keeps each shared mesh's object-space bounds, so a mesh placed a million times
+/// is scanned once.
+pub fn object_reach(object: &ObjectDesc, bounds: &mut MeshBounds) -> f64 {
+    let (lo, hi) = match &object.shape {
+        ShapeDesc::Sphere { center, radius } => (*center - *radius, *center + *radius),
+        ShapeDesc::Mesh(mesh) => {
+            *bounds.0.entry(std::sync::Arc::as_ptr(mesh)).or_insert_with(|| {
+                mesh.positions.iter().fold(
+                    (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+                )
+            })
+        }
+    };
+    let mut reach = 0.0f64;
+    for placement in std::iter::once(object.world_from_object).chain(object.world_from_object_end) {
+        for corner in 0..8 {
+            let pick = |bit: usize, lo: f64, hi: f64| if corner & bit != 0 { hi } else { lo };
+            let local = DVec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
+            let far = placement.transform_point3(local).abs().max_element();
+            if !(far <= reach) {
+                reach = far; // NaN propagates: it is never <= anything
+            }
+        }
+    }
+    reach
+}
+
+/// Refuses a scene (already moved by any offset) that reaches beyond `MAX_COORDINATE`:
+/// the camera, the lights, and each object's world-space bounds at both shutter ends.
+pub fn check_coordinates(desc: &SceneDesc) -> Result<(), LimitError> {
+    let refuse = |what: String, value: f64| LimitError::Coordinate {
+        file: desc.source.clone(),
+        what,
+        value,
+    };
+    let far = |p: DVec3| p.abs().max_element();
+    let too_far = |p: DVec3| !(far(p) <= MAX_COORDINATE);
+    for (what, p) in
+        [("camera.lookfrom", desc.camera.lookfrom), ("camera.lookat", desc.camera.lookat)]
+    {
+        if too_far(p) {
+            return Err(refuse(what.to_owned(), far(p)));
+        }
+    }
+    for (i, light) in desc.lights.iter().enumerate() {
+        let p = match light {
+            LightDesc::Point { position, .. } => *position,
+            LightDesc::Area { center, size, .. } => center.abs() + DVec3::splat(*size),
+            _ => DVec3::ZERO,
+        };
+        if too_far(p) {
+            return Err(refuse(format!("lights[{i}]"), far(p)));
+        }
+    }
+    let mut bounds = MeshBounds::default();
+    for object in &desc.objects {
+        let reach = object_reach(object, &mut bounds);
+        if !(reach <= MAX_COORDINATE) {
+            return Err(refuse(object.name.clone(), reach));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_bundled_scene_fits_and_far_scenes_do_not() {
+        let mut scene = crate::scene::load(&crate::bundled::default_scene()).unwrap();
+        check_coordinates(&scene).unwrap();
+        check_memory(&scene).unwrap();
+        scene.translate(DVec3::new(1e9, 0.0, 0.0));
+        let err = check_coordinates(&scene).unwrap_err().to_string();
+        assert!(err.contains("cornell.toml") && err.contains("supported range"), "{err}");
+    }
+
+    #[test]
+    fn the_largest_resolution_needs_more_than_this_machine_has() {
+        let mut scene = crate::scene::load(&crate::bundled::default_scene()).unwrap();
+        (scene.camera.width, scene.camera.height) = (16384, 16384);
+        let (needed, _, _) = memory_needed(&scene);
+        assert!(needed > 24 << 30, "{needed}");
+    }
+}

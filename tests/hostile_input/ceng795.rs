@@ -1,0 +1,51 @@
+//! CENG795 scenes name their own output files: an ImageName may not leave --out-dir, and two
+//! cameras may not write the same file.
+
+use crate::harness::{Scratch, accepted_in, refused_cases, xml_scene};
+
+refused_cases! {
+    image_name_climbing_out: ["s.xml" => xml_scene(&["../../x.png"], "")], ["render", "s.xml", "--out-dir", "out"]
+        => ["s.xml", "ImageName", "'..'", "(line 12)"];
+    image_name_absolute: ["s.xml" => xml_scene(&["/tmp/embray-hostile-abs.png"], "")], ["render", "s.xml"]
+        => ["s.xml", "absolute path", "(line 12)"];
+    two_cameras_one_image_name: ["s.xml" => xml_scene(&["a.png", "a.png"], "")], ["render", "s.xml"]
+        => ["s.xml", "Camera id=\"2\"", "same output files", "line 5"];
+    two_cameras_one_stem: ["s.xml" => xml_scene(&["a.png", "./a.jpg"], "")], ["render", "s.xml"]
+        => ["same output files"];
+    num_samples_absurd: ["s.xml" => xml_scene(&["a.png"], "").replace("<ImageName>", "<NumSamples>1000000000</NumSamples><ImageName>")], ["render", "s.xml"]
+        => ["s.xml", "NumSamples", "1000000000", "between 1 and 1048576"];
+    recursion_depth_absurd: ["s.xml" => xml_scene(&["a.png"], "<MaxRecursionDepth>1000000</MaxRecursionDepth>")], ["render", "s.xml"]
+        => ["s.xml", "MaxRecursionDepth", "at most 100000", "(line 3)"];
+    image_name_huge: ["s.xml" => xml_scene(&[&format!("{}.png", "n".repeat(100_000))], "")], ["render", "s.xml"]
+        => ["s.xml", "characters)"];
+    several_cameras_with_one_output_name: ["s.xml" => xml_scene(&["a.png", "b.png"], "")], ["render", "s.xml", "-o", "x.exr"]
+        => ["-o names one file", "2 cameras"];
+}
+
+#[test]
+fn image_names_in_subfolders_stay_inside_out_dir() {
+    let scratch = Scratch::new();
+    scratch.write("s.xml", xml_scene(&["sub/a.png", "b.png"], ""));
+    accepted_in(&scratch, &["render", "s.xml", "--out-dir", "out", "-q"]);
+    for file in ["out/sub/a.png", "out/sub/a.exr", "out/b.png", "out/b.exr"] {
+        assert!(scratch.path(file).is_file(), "{file} missing");
+    }
+}
+
+/// Two facing mirrors and a MaxRecursionDepth of 2000: a recursive integrator overflowed
+/// its thread's stack here (SIGABRT).
+#[test]
+fn deep_recursion_between_mirrors_does_not_overflow_the_stack() {
+    let scratch = Scratch::new();
+    let text = crate::scenes::mirror_box_xml(2000);
+    scratch.write("mirrors.xml", text);
+    accepted_in(&scratch, &["render", "mirrors.xml", "-q", "--threads", "2"]);
+    assert!(scratch.path("mirrors.png").is_file());
+}
+
+refused_cases! {
+    num_samples_a_megabyte_long: ["s.xml" => xml_scene(&["a.png"], "").replace("<ImageName>", &format!("<NumSamples>{}</NumSamples><ImageName>", "9".repeat(1_000_000)))], ["render", "s.xml"]
+        => ["s.xml", "NumSamples", "characters cut", "(line 12)"];
+    undefined_transformation_a_megabyte_long: ["s.xml" => xml_scene(&["a.png"], "").replace("<Radius>1</Radius>", &format!("<Radius>1</Radius><Transformations>t{}</Transformations>", "1".repeat(1_000_000)))], ["render", "s.xml"]
+        => ["s.xml", "characters cut"];
+}

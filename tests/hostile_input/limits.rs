@@ -1,0 +1,94 @@
+//! Counts, memory and inputs with documented limits: refused with the limit and the option
+//! or field, before anything large is allocated or anything blocks.
+
+use crate::harness::{Scratch, refused_cases, refused_in, scene};
+
+refused_cases! {
+    spp_zero: ["s.toml" => scene("")], ["render", "s.toml", "--spp", "0"] => ["--spp is 0", "between 1 and"];
+    spp_absurd: ["s.toml" => scene("")], ["render", "s.toml", "--spp", "2000000"] => ["--spp is 2000000", "1048576"];
+    light_samples_absurd: ["s.toml" => scene("")], ["render", "s.toml", "--light-samples", "100000"] => ["--light-samples is 100000", "65536"];
+    threads_a_hundred_thousand: ["s.toml" => scene("")], ["render", "s.toml", "--threads", "100000"] => ["--threads is 100000", "1024"];
+    threads_zero: ["s.toml" => scene("")], ["render", "s.toml", "--threads", "0"] => ["--threads is 0"];
+    max_depth_absurd: ["s.toml" => scene("")], ["render", "s.toml", "--max-depth", "1000000"] => ["--max-depth is 1000000", "100000"];
+    pixels_times_spp_too_many: ["s.toml" => scene("").replace("[8, 8]", "[4096, 4096]")], ["render", "s.toml", "--spp", "8192"]
+        => ["pixels × spp", "68719476736"];
+    bench_runs_zero: [], ["bench", "speed", "--runs", "0"] => ["--runs is 0", "between 1 and 1000"];
+    bench_spaces_threads_zero: [], ["bench", "spaces", "--threads", "0"] => ["--threads is 0"];
+    bench_speed_large_zero: [], ["bench", "speed", "--large", "0"] => ["--large must be at least 1"];
+    bench_speed_spp_zero: [], ["bench", "speed", "--spp", "0"] => ["--spp must be at least 1"];
+    bench_effects_runs_zero: [], ["bench", "effects", "--runs", "0"] => ["--runs is 0"];
+    scene_on_dev_zero: [], ["render", "/dev/zero"] => ["/dev/zero", "a device, not a regular file"];
+}
+
+/// The estimate is checked against the machine's memory; a budget makes the case the same
+/// on any machine (16384² needs 24 GiB, more than the 2-core reference machine has).
+#[test]
+fn a_render_needing_more_memory_than_there_is_is_refused() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene("").replace("[8, 8]", "[8192, 8192]"));
+    let before = scratch.snapshot();
+    let mut command = scratch.command(&["render", "s.toml"]);
+    let run =
+        crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "1073741824").output().unwrap());
+    run.assert_no_panic();
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    run.assert_says(&[
+        "s.toml",
+        "6.0 GiB of memory",
+        "8192x8192",
+        "only 1.0 GiB",
+        "lower camera.resolution",
+    ]);
+    assert_eq!(scratch.snapshot(), before);
+}
+
+/// A symbolic link in the scratch folder to a special file.
+fn link(scratch: &Scratch, name: &str, to: &str) {
+    std::os::unix::fs::symlink(to, scratch.path(name)).unwrap();
+}
+
+fn with_mesh(file: &str) -> String {
+    scene(&format!("[[objects]]\ntype = \"mesh\"\nfile = \"{file}\"\nmaterial = \"grey\"\n"))
+}
+
+#[test]
+fn a_scene_that_is_a_fifo_is_refused_without_blocking() {
+    let scratch = Scratch::new();
+    let status = std::process::Command::new("mkfifo").arg(scratch.path("s.toml")).status().unwrap();
+    assert!(status.success());
+    refused_in(&scratch, &["render", "s.toml"], &["s.toml", "a FIFO, not a regular file"]);
+}
+
+#[test]
+fn an_obj_on_dev_zero_is_refused() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", with_mesh("m.obj"));
+    link(&scratch, "m.obj", "/dev/zero");
+    refused_in(&scratch, &["render", "s.toml"], &["m.obj", "a device", "objects[1].file"]);
+}
+
+#[test]
+fn a_ply_on_dev_zero_is_refused() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", with_mesh("m.ply"));
+    link(&scratch, "m.ply", "/dev/zero");
+    refused_in(&scratch, &["render", "s.toml"], &["m.ply", "a device"]);
+}
+
+#[test]
+fn an_mtl_on_dev_zero_is_refused() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", with_mesh("m.obj"));
+    scratch.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    link(&scratch, "m.mtl", "/dev/zero");
+    refused_in(&scratch, &["render", "s.toml"], &["m.obj", "m.mtl", "a device"]);
+}
+
+#[test]
+fn an_image_to_compare_on_a_fifo_is_refused() {
+    let scratch = Scratch::new();
+    let status = std::process::Command::new("mkfifo").arg(scratch.path("a.png")).status().unwrap();
+    assert!(status.success());
+    image::RgbImage::new(2, 2).save(scratch.path("b.png")).unwrap();
+    refused_in(&scratch, &["compare", "a.png", "b.png"], &["a.png", "a FIFO"]);
+}

@@ -1,0 +1,80 @@
+//! Inputs that used to give a wrong image with exit 0: very bright pixels, coordinates
+//! beyond the supported range (on both backends alike), huge offsets.
+
+use crate::harness::{Scratch, accepted_in, refused_in, scene};
+
+#[test]
+fn a_blinding_emitter_is_white_not_black() {
+    let scratch = Scratch::new();
+    // The quad fills the view and emits 3e38: ACES used to compute inf / inf = NaN → black.
+    let text = scene("").replace(
+        "albedo = [0.5, 0.5, 0.5]",
+        "albedo = [0.5, 0.5, 0.5]\nemission = [3e38, 3e38, 3e38]",
+    );
+    scratch.write("s.toml", text);
+    accepted_in(&scratch, &["render", "s.toml", "-q"]);
+    let png = image::open(scratch.path("render.png")).unwrap().to_rgb8();
+    let centre = png.get_pixel(4, 4).0;
+    assert_eq!(centre, [255, 255, 255], "the emitter's pixel");
+}
+
+fn refused_on_both_backends(text: &str, extra: &[&str], expected: &[&str]) {
+    // Every backend this build has (both by default; obvhs alone without C libraries).
+    for backend in embray::accel::BackendKind::compiled() {
+        let backend = embray::choice::Choice::name(backend);
+        let scratch = Scratch::new();
+        scratch.write("s.toml", text);
+        let mut args = vec!["render", "s.toml", "--backend", backend];
+        args.extend_from_slice(extra);
+        refused_in(&scratch, &args, expected);
+    }
+}
+
+#[test]
+fn a_floor_of_ten_billion_units_is_refused_on_both_backends() {
+    let text = scene(
+        "[[objects]]\ntype = \"quad\"\nmaterial = \"grey\"\ncorner = [-1e10, -1.0, -1e10]\n\
+         u = [0.0, 0.0, 2e10]\nv = [2e10, 0.0, 0.0]\n",
+    );
+    refused_on_both_backends(
+        &text,
+        &[],
+        &["s.toml", "objects[1] is 1e10", "coordinate range ±1e8", "(line 24)"],
+    );
+}
+
+#[test]
+fn an_instance_at_1e36_is_refused_on_both_backends() {
+    let text = scene("").replace(
+        "v = [2.0, 0.0, 0.0]",
+        "v = [2.0, 0.0, 0.0]\ntransform = [{ translate = [1e36, 0.0, 0.0] }]",
+    );
+    refused_on_both_backends(
+        &text,
+        &[],
+        &["s.toml", "objects[0] is 1e36", "coordinate range", "(line 13)"],
+    );
+}
+
+#[test]
+fn an_offset_of_1e19_is_refused_on_both_backends() {
+    refused_on_both_backends(
+        &scene(""),
+        &["--offset", "1e19,0,0"],
+        &["s.toml", "after --offset", "supported range"],
+    );
+}
+
+#[test]
+fn an_offset_of_1e300_is_refused() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    refused_in(&scratch, &["render", "s.toml", "--offset", "0,1e300,0"], &["supported range"]);
+}
+
+#[test]
+fn an_offset_of_1e7_still_renders() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    accepted_in(&scratch, &["render", "s.toml", "--offset", "1e7,1e7,1e7", "-q"]);
+}
