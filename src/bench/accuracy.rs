@@ -66,7 +66,7 @@ fn shrink(scene: &mut SceneDesc, max_size: u32) {
 }
 
 fn write(path: PathBuf, text: &str, files: &mut Vec<PathBuf>) -> Result<(), AccuracyError> {
-    std::fs::write(&path, text)
+    crate::output::write_one(&path, |sink| sink.write_all(text.as_bytes()))
         .map_err(|e| AccuracyError::Write { path: path.clone(), message: e.to_string() })?;
     files.push(path);
     Ok(())

@@ -35,7 +35,17 @@ pub fn read_reference(path: &Path) -> Result<Film, ConvergenceError> {
     use exr::prelude::*;
     let error =
         |message: String| ConvergenceError::Reference { path: path.display().to_string(), message };
-    let image = read_first_flat_layer_from_file(path).map_err(|e| error(e.to_string()))?;
+    // Through the capped reader: only a regular file, of bounded size, recorded as an input
+    // so that no output of the run may overwrite it.
+    let bytes = crate::scene::input_file::read_bytes(path).map_err(|e| error(e.to_string()))?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(std::io::Cursor::new(bytes))
+        .map_err(|e| error(e.to_string()))?;
     let layer = image.layer_data;
     let (w, h) = (layer.size.width() as u32, layer.size.height() as u32);
     let channel = |name: &str| {

@@ -7,6 +7,7 @@ use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
 use embray::accel::{BackendKind, BuildQuality};
 use embray::bundled;
+use embray::output::{OutputPlan, OutputSet, Target};
 use embray::render_space::RenderSpace;
 use embray::sampling::SamplerKind;
 use embray::shading::spawn::SpawnMode;
@@ -152,8 +153,21 @@ fn check_counts(runs: usize, threads: Option<usize>) -> Result<()> {
 }
 
 /// Writes a CSV report through the output module (checked, committed whole).
-fn write_csv(path: &std::path::Path, text: &str) -> Result<()> {
-    Ok(embray::output::write_one(path, |w| w.write_all(text.as_bytes()))?)
+/// Checks a `--csv` path before it is written: it may overwrite no file this run has read
+/// (scenes, meshes, a reference image). Called once those inputs are read, before the work.
+fn plan_csv(path: &std::path::Path, named_inputs: &[(&str, &std::path::Path)]) -> Result<Target> {
+    let mut plan = OutputPlan::new();
+    for (what, input) in named_inputs {
+        plan.input(what, input);
+    }
+    plan.inputs_read();
+    Ok(plan.output("--csv", path, false)?)
+}
+
+fn write_csv(target: &Target, text: &str) -> Result<()> {
+    let mut files = OutputSet::new();
+    files.write(target, |w| w.write_all(text.as_bytes()))?;
+    Ok(files.commit()?)
 }
 
 /// Runs one bench command.
@@ -294,7 +308,7 @@ fn bench_spaces(args: &BenchArgs) -> Result<()> {
     bar.finish_and_clear();
     out(table::markdown(&rows))?;
     if let Some(csv) = &args.csv {
-        write_csv(csv, &table::csv(&rows))?;
+        write_csv(&plan_csv(csv, &[])?, &table::csv(&rows))?;
     }
     Ok(())
 }
@@ -309,6 +323,8 @@ fn bench_convergence(args: &ConvergenceArgs) -> Result<()> {
     }
     let scene = load_scene(Some(&args.scene))?;
     let reference = convergence::read_reference(&args.reference)?;
+    let inputs = [("the scene", args.scene.as_path()), ("the reference", args.reference.as_path())];
+    let csv = args.csv.as_deref().map(|csv| plan_csv(csv, &inputs)).transpose()?;
     let mut options = embray::render::RenderOptions::for_scene(&scene);
     options.seed = args.seed;
     options.sampler = args.sampler;
@@ -322,7 +338,7 @@ fn bench_convergence(args: &ConvergenceArgs) -> Result<()> {
     if let Some((target, spp)) = needed {
         out(format!("RMSE {target} needs about {spp:.0} spp\n"))?;
     }
-    if let Some(csv) = &args.csv {
+    if let Some(csv) = &csv {
         write_csv(csv, &convergence::csv(&rows))?;
     }
     Ok(())

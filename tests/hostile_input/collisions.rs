@@ -71,3 +71,26 @@ refused_cases! {
     stats_json_over_an_mtl_the_scene_reads: ["s.toml" => with_mesh(), "m.obj" => OBJ, "m.mtl" => "newmtl red\nKd 1 0 0\n"], ["render", "s.toml", "--stats-json", "./m.mtl"]
         => ["--stats-json './m.mtl'", "an input of this run"];
 }
+
+#[test]
+fn convergence_csv_over_its_reference_is_refused() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    crate::harness::accepted_in(&scratch, &["render", "s.toml", "-o", "ref.exr"]);
+    let args = [
+        "bench",
+        "convergence",
+        "s.toml",
+        "--reference",
+        "ref.exr",
+        "--spps",
+        "1",
+        "--csv",
+        "ref.exr",
+    ];
+    refused_in(
+        &scratch,
+        &args,
+        &["--csv 'ref.exr'", "the reference 'ref.exr'", "never overwrites"],
+    );
+}

@@ -92,3 +92,14 @@ fn an_image_to_compare_on_a_fifo_is_refused() {
     image::RgbImage::new(2, 2).save(scratch.path("b.png")).unwrap();
     refused_in(&scratch, &["compare", "a.png", "b.png"], &["a.png", "a FIFO"]);
 }
+
+#[test]
+fn a_convergence_reference_on_a_fifo_is_refused() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    let status =
+        std::process::Command::new("mkfifo").arg(scratch.path("ref.exr")).status().unwrap();
+    assert!(status.success());
+    let args = ["bench", "convergence", "s.toml", "--reference", "ref.exr", "--spps", "1"];
+    refused_in(&scratch, &args, &["ref.exr", "a FIFO"]);
+}
