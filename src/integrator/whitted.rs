@@ -232,18 +232,18 @@ impl<'a> WhittedTracer<'a> {
         };
         let mut combine =
             Combine { base, specular: depth_left > 0, reflect: None, refract: None, absorption };
-        let mut children = Vec::new();
-        if depth_left > 0 {
-            children =
-                self.specular_children(&si, &ray, wo, depth_left - 1, medium, stream, &mut combine);
-        }
+        let (reflection, refraction) = if depth_left > 0 {
+            self.specular_children(&si, &ray, wo, depth_left - 1, medium, stream, &mut combine)
+        } else {
+            (None, None)
+        };
         tasks.push(Task::Combine(combine));
         // The reflection is traced first: it is pushed last.
-        tasks.extend(children.into_iter().rev().map(Task::Trace));
+        tasks.extend(refraction.into_iter().chain(reflection).map(Task::Trace));
     }
 
-    /// The rays the specular part of the material at `si` continues with (reflection first,
-    /// then refraction), `depth_left` bounces left; records their weights in `combine`.
+    /// The rays the specular part of the material at `si` continues with (reflection,
+    /// refraction), `depth_left` bounces left; records their weights in `combine`.
     /// `medium` is the medium `ray` travelled through.
     #[allow(clippy::too_many_arguments)]
     fn specular_children(
@@ -255,13 +255,13 @@ impl<'a> WhittedTracer<'a> {
         medium: Option<Vec3>,
         stream: &mut SampleStream,
         combine: &mut Combine,
-    ) -> Vec<Node> {
+    ) -> (Option<Node>, Option<Node>) {
         let material = &self.tracer.scene.materials[si.material as usize];
         let n = si.shading_normal;
         let cos_o = n.dot(wo).clamp(0.0, 1.0);
-        let mut children = Vec::new();
+        let (mut reflection, mut refraction) = (None, None);
         // A reflected ray stays in the medium the incoming ray came through.
-        let reflected = |tint: Vec3, stream: &mut SampleStream, children: &mut Vec<Node>| {
+        let reflected = |tint: Vec3, stream: &mut SampleStream, child: &mut Option<Node>| {
             if tint == Vec3::ZERO {
                 return None;
             }
@@ -273,40 +273,36 @@ impl<'a> WhittedTracer<'a> {
                 return None;
             }
             let next = self.tracer.spawn.ray(&si.surface, dir, ray.time);
-            children.push(Node { ray: next, depth_left, camera_ray: false, medium });
+            *child = Some(Node { ray: next, depth_left, camera_ray: false, medium });
             Some(tint)
         };
         match material.specular {
             Specular::None => {}
             Specular::Mirror { reflectance } => {
-                combine.reflect = reflected(reflectance, stream, &mut children);
+                combine.reflect = reflected(reflectance, stream, &mut reflection);
             }
             Specular::Conductor { eta, k, reflectance } => {
                 let tint = fresnel_conductor(cos_o, eta, k) * reflectance;
-                combine.reflect = reflected(tint, stream, &mut children);
+                combine.reflect = reflected(tint, stream, &mut reflection);
             }
             Specular::Dielectric { ior, absorption } => {
                 // Entering (front face): from air into the glass; else leaving it.
                 let eta = if si.front_face { ior } else { 1.0 / ior };
                 let fr = fresnel_dielectric(cos_o, eta);
-                combine.reflect = reflected(Vec3::splat(fr), stream, &mut children);
+                combine.reflect = reflected(Vec3::splat(fr), stream, &mut reflection);
                 if fr < 1.0 {
                     let sin2_t = (1.0 - cos_o * cos_o) / (eta * eta);
                     let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
                     let dir = (-wo / eta + (cos_o / eta - cos_t) * n).normalize();
                     let next = self.tracer.spawn.ray(&si.surface, dir, ray.time);
                     let beyond = if si.front_face { Some(absorption) } else { None };
-                    children.push(Node {
-                        ray: next,
-                        depth_left,
-                        camera_ray: false,
-                        medium: beyond,
-                    });
+                    refraction =
+                        Some(Node { ray: next, depth_left, camera_ray: false, medium: beyond });
                     combine.refract = Some(1.0 - fr);
                 }
             }
         }
-        children
+        (reflection, refraction)
     }
 
     /// Traces one camera ray.
