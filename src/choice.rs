@@ -14,7 +14,7 @@ pub trait Choice: Sized + Copy + 'static {
     fn from_name(text: &str) -> Result<Self, UnknownChoice> {
         Self::ALL.iter().copied().find(|c| c.name() == text).ok_or_else(|| UnknownChoice {
             what: Self::WHAT,
-            given: text.chars().take(40).collect(),
+            given: crate::excerpt::excerpt(text),
             expected: Self::ALL.iter().map(|c| c.name()).collect(),
         })
     }

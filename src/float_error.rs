@@ -118,6 +118,12 @@ pub fn sphere_point(center: Vec3, radius: f32, origin: Vec3, dir: Vec3, t: f32) 
     if len > 0.0 {
         local *= radius / len;
     }
+    sphere_point_from_local(center, radius, local)
+}
+
+/// The point `center + local` on a sphere (`local` of length `radius`, as reprojected or
+/// as `radius` times a unit normal), with its bound.
+pub fn sphere_point_from_local(center: Vec3, radius: f32, local: Vec3) -> (Vec3, Vec3) {
     let point = center + local;
     // Reprojection (pbrt: γ5·|p|) plus the final addition of the centre.
     let error = local.abs() * gamma(5)

@@ -5,7 +5,7 @@
 //! wastes samples on the parts seen at grazing angles. Densities are per unit solid angle at
 //! the shading point, so both strategies enter MIS alike.
 
-use crate::float_error::{TrianglePlane, gamma, triangle_point};
+use crate::float_error::{TrianglePlane, sphere_point_from_local, triangle_point};
 use crate::sampling::{frame_from_normal, spherical_rectangle::SphericalRectangle};
 use crate::sampling::{spherical_triangle, uniform_triangle};
 use glam::{Vec2, Vec3};
@@ -264,11 +264,7 @@ impl EmitterShape {
 
 /// The point at unit normal `normal` of a sphere, with its rounding-error bound.
 fn sphere_point(center: Vec3, radius: f32, normal: Vec3) -> (Vec3, Vec3) {
-    let local = radius * normal;
-    let error = local.abs() * gamma(5)
-        + (center.abs() + local.abs()) * gamma(1)
-        + Vec3::splat(radius * gamma(8));
-    (center + local, error)
+    sphere_point_from_local(center, radius, radius * normal)
 }
 
 /// Uniform direction in the cone a sphere subtends from `reference`, returned as the
