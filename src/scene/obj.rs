@@ -190,7 +190,7 @@ fn mesh_data(mesh: &tobj::Mesh) -> Result<Option<MeshData>, String> {
         return Ok(None);
     }
     let count = mesh.positions.len() / 3;
-    if mesh.indices.len() % 3 != 0 {
+    if !mesh.indices.len().is_multiple_of(3) {
         return Err(format!("{} indices is not a whole number of triangles", mesh.indices.len()));
     }
     if let Some(&bad) = mesh.indices.iter().find(|&&i| i as usize >= count) {

@@ -21,13 +21,16 @@ fn info_into_a_full_disk_is_an_error_not_a_panic() {
 fn info_into_a_closed_pipe_is_an_error_not_a_panic() {
     let scratch = Scratch::new();
     scratch.write("s.toml", scene(""));
-    let mut child = scratch
+    // The pipe's reader is gone before the child starts (as with `| true` once `true` has
+    // exited), so its first write fails whatever the timing.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let child = scratch
         .command(&["info", "s.toml"])
-        .stdout(Stdio::piped())
+        .stdout(Stdio::from(writer))
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    drop(child.stdout.take()); // the reader goes away, as with `| true`
     let run = Run::from(child.wait_with_output().unwrap());
     run.assert_no_panic();
     assert_eq!(run.code, Some(1), "{}", run.stderr);
