@@ -2,7 +2,9 @@
 //!
 //! Search order: `EMBREE_DIR`, then `pkg-config embree4|embree3` (Debian ships no .pc for
 //! Embree 3, so this mostly helps custom installs), then `/usr/include/embree4|embree3`.
-//! With `embree4-sys` the bindings and the link come from that crate; we only set the cfg.
+//! With `embree4-sys` the bindings and the `-lembree4` come from that crate; we set the cfg
+//! and, when `EMBREE_DIR` names a prefix (e.g. the one `scripts/embree4-runtime.sh` makes),
+//! its library path and rpath.
 
 fn main() {
     // Declared unconditionally so `cfg(embree4)` never warns, whatever the features.
@@ -22,6 +24,7 @@ fn main() {
     #[cfg(feature = "embree")]
     if std::env::var_os("CARGO_FEATURE_EMBREE4_SYS").is_some() {
         println!("cargo:rustc-cfg=embree4");
+        embree::link_embree_dir();
     } else {
         embree::generate();
     }
@@ -67,14 +70,7 @@ mod embree {
         if install.major == 4 {
             println!("cargo:rustc-cfg=embree4");
         }
-        for dir in &install.lib_dirs {
-            println!("cargo:rustc-link-search=native={}", dir.display());
-            // Custom installs are not on the loader path; without this the binary and the
-            // tests would build and then fail to start.
-            if cfg!(unix) {
-                println!("cargo:rustc-link-arg=-Wl,-rpath,{}", dir.display());
-            }
-        }
+        link_search(&install.lib_dirs);
         println!("cargo:rustc-link-lib=embree{}", install.major);
 
         let source = bindings(&install);
@@ -82,6 +78,30 @@ mod embree {
         let path = out.join("embree_bindings.rs");
         std::fs::write(&path, source)
             .unwrap_or_else(|e| fail(&format!("cannot write {}: {e}", path.display())));
+    }
+
+    /// For `embree4-sys`, which links `embree4` from the default paths: `EMBREE_DIR`'s
+    /// libraries go first when it is set.
+    pub fn link_embree_dir() {
+        println!("cargo:rerun-if-env-changed=EMBREE_DIR");
+        if let Some(dir) = env::var_os("EMBREE_DIR") {
+            link_search(&lib_dirs(Path::new(&dir)));
+        }
+    }
+
+    fn lib_dirs(prefix: &Path) -> Vec<PathBuf> {
+        ["lib", "lib64"].iter().map(|l| prefix.join(l)).filter(|d| d.is_dir()).collect()
+    }
+
+    fn link_search(dirs: &[PathBuf]) {
+        for dir in dirs {
+            println!("cargo:rustc-link-search=native={}", dir.display());
+            // Custom installs are not on the loader path; without this the binary and the
+            // tests would build and then fail to start.
+            if cfg!(unix) {
+                println!("cargo:rustc-link-arg=-Wl,-rpath,{}", dir.display());
+            }
+        }
     }
 
     /// Stops the build with `msg` as cargo's one top-level error. A panic (or a nonzero
@@ -97,8 +117,7 @@ mod embree {
         if let Some(dir) = env::var_os("EMBREE_DIR") {
             let dir = PathBuf::from(dir);
             let include_dir = dir.join("include");
-            let lib_dirs: Vec<PathBuf> =
-                ["lib", "lib64"].iter().map(|l| dir.join(l)).filter(|d| d.is_dir()).collect();
+            let lib_dirs = lib_dirs(&dir);
             for major in [4, 3] {
                 let install =
                     Install { major, include_dir: include_dir.clone(), lib_dirs: lib_dirs.clone() };

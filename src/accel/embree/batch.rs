@@ -33,9 +33,15 @@ impl CommittedScene {
                     *hit = self.intersect(ray, None);
                 }
             }
-            BatchKind::Packet4 => self.intersect_packets::<ffi::RTCRayHit4>(rays, hits),
-            BatchKind::Packet8 => self.intersect_packets::<ffi::RTCRayHit8>(rays, hits),
-            BatchKind::Packet16 => self.intersect_packets::<ffi::RTCRayHit16>(rays, hits),
+            BatchKind::Packet4 => {
+                self.intersect_packets::<compat::Padded<ffi::RTCRayHit4, 4>>(rays, hits)
+            }
+            BatchKind::Packet8 => {
+                self.intersect_packets::<compat::Padded<ffi::RTCRayHit8, 8>>(rays, hits)
+            }
+            BatchKind::Packet16 => {
+                self.intersect_packets::<compat::Padded<ffi::RTCRayHit16, 16>>(rays, hits)
+            }
             BatchKind::StreamCoherent => self.intersect_stream(rays, hits, true),
             BatchKind::StreamIncoherent => self.intersect_stream(rays, hits, false),
         }
@@ -69,7 +75,7 @@ impl CommittedScene {
         for (slot, ray) in rays.iter().enumerate() {
             hits[slot] = None;
             if embree_accepts(ray) {
-                stream.push(ray::to_rtc_ray_hit(ray));
+                stream.push(ray::to_rtc_ray_hit(ray).inner);
                 slots.push(slot);
             }
         }
@@ -82,7 +88,7 @@ impl CommittedScene {
 
     #[cfg(embree4)]
     fn intersect_stream(&self, rays: &[Ray], hits: &mut [Option<Hit>], _coherent: bool) {
-        self.intersect_packets::<ffi::RTCRayHit8>(rays, hits);
+        self.intersect_packets::<compat::Padded<ffi::RTCRayHit8, 8>>(rays, hits);
     }
 
     /// A bare `rtcIntersect1` loop over `rays` (one query context for all, no `Hit`

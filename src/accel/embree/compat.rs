@@ -10,6 +10,53 @@
 use super::ffi;
 use crate::stats::TraversalCounters;
 
+/// Instance levels in the bindings' hit and context structs (1 in every Embree we build with).
+const LEVELS: usize = ffi::RTC_MAX_INSTANCE_LEVEL_COUNT as usize;
+
+/// `T` followed by room for `instPrimID[LEVELS][LANES]`, the instance-primitive ids Embree
+/// 4.3 and later append to every hit (`RTCHit`, `RTCHitN`) and query context when built with
+/// instance arrays, which is their default (Debian 13's and the embreex wheel's are).
+///
+/// The Embree 4.2 headers `embree4-sys` vendors do not declare that field, so with those
+/// bindings a 4.3+ library writes it past the end of our structs: that corrupted the stack
+/// and returned wrong geometry ids on Embree 4.4 before this existed. Embree writes exactly
+/// there, since each of these structs ends on a multiple of its alignment. We never read
+/// the ids (we build no instance arrays). For Embree 3, and for bindings generated from a
+/// header that declares the field, the room is simply unused.
+#[repr(C)]
+pub struct Padded<T, const LANES: usize> {
+    pub inner: T,
+    instance_prim_ids: [[u32; LANES]; LEVELS],
+}
+
+impl<T, const LANES: usize> Padded<T, LANES> {
+    pub fn new(inner: T) -> Self {
+        Padded { inner, instance_prim_ids: [[ffi::RTC_INVALID_GEOMETRY_ID; LANES]; LEVELS] }
+    }
+
+    /// The pointer to hand Embree: derived from the whole struct, so that Embree's writes to
+    /// the padding stay within what the pointer may access.
+    pub fn as_mut_ptr(&mut self) -> *mut T {
+        std::ptr::from_mut(self).cast()
+    }
+}
+
+impl<T, const LANES: usize> std::ops::Deref for Padded<T, LANES> {
+    type Target = T;
+    fn deref(&self) -> &T {
+        &self.inner
+    }
+}
+
+impl<T, const LANES: usize> std::ops::DerefMut for Padded<T, LANES> {
+    fn deref_mut(&mut self) -> &mut T {
+        &mut self.inner
+    }
+}
+
+/// A single-ray hit record with room for Embree 4.3+'s `instPrimID` (see [`Padded`]).
+pub type RayHit = Padded<ffi::RTCRayHit, 1>;
+
 /// Ray mask that hits every geometry: Embree 4's default geometry mask is 0x1 (Embree 3's is
 /// all ones), so a mask of 0 would hit nothing there.
 pub const RAY_MASK: u32 = u32::MAX;
@@ -28,7 +75,9 @@ pub type QueryContext = ffi::RTCRayQueryContext;
 /// `#[repr(C)]` (the context at offset 0) a callback can cast it back and reach `counters`.
 #[repr(C)]
 struct CountingContext {
-    base: QueryContext,
+    /// Embree's context, and room for the instance-primitive id stack that Embree 4.3+
+    /// keeps in it (see [`Padded`]), before our field.
+    base: Padded<QueryContext, 1>,
     /// Null when the query does not count (normal mode); otherwise the caller's counters,
     /// exclusively ours for the duration of the query.
     counters: *mut TraversalCounters,
@@ -38,7 +87,7 @@ impl CountingContext {
     #[inline]
     fn new(counters: Option<&mut TraversalCounters>) -> Self {
         CountingContext {
-            base: query_context(),
+            base: Padded::new(query_context()),
             counters: counters.map_or(std::ptr::null_mut(), std::ptr::from_mut),
         }
     }
@@ -82,12 +131,12 @@ pub unsafe fn count_prim_tests(context: *const QueryContext, tests: u64) {
 #[inline]
 pub unsafe fn intersect1(
     scene: ffi::RTCScene,
-    rayhit: &mut ffi::RTCRayHit,
+    rayhit: &mut RayHit,
     counters: Option<&mut TraversalCounters>,
 ) {
     let mut context = CountingContext::new(counters);
     // SAFETY: the caller guarantees `scene`; `context` and `rayhit` are valid for the call.
-    unsafe { ffi::rtcIntersect1(scene, context.as_query_context(), rayhit) }
+    unsafe { ffi::rtcIntersect1(scene, context.as_query_context(), rayhit.as_mut_ptr()) }
 }
 
 /// Occlusion test for one ray; Embree sets `ray.tfar = -inf` if anything is hit. With
@@ -122,19 +171,21 @@ pub struct ValidMask(pub [i32; 16]);
 /// `scene` must be a live, committed scene, and every lane `valid` marks -1 must hold a ray
 /// `Ray::is_valid` and Embree accept (Debian's Embree aborts the process otherwise).
 macro_rules! packet_intersect {
-    ($($name:ident: $packet:ident, $ffi:ident;)*) => {$(
+    ($($name:ident: $packet:ident, $width:literal, $ffi:ident;)*) => {$(
         /// Closest hits for the lanes of `rayhit` that `valid` marks -1, in place.
         ///
         /// # Safety
         /// See `packet_intersect!`.
         #[cfg(not(embree4))]
-        pub unsafe fn $name(scene: ffi::RTCScene, valid: &ValidMask, rayhit: &mut ffi::$packet) {
+        pub unsafe fn $name(scene: ffi::RTCScene, valid: &ValidMask, rayhit: &mut Padded<ffi::$packet, $width>) {
             let mut context = CountingContext::new(None);
-            context.base.flags = ffi::RTCIntersectContextFlags::RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            context.base.inner.flags = ffi::RTCIntersectContextFlags::RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
             // SAFETY: per the caller; `valid` is 64-byte aligned and at least as wide as
             // the packet, `rayhit` is aligned by its type, and both and the context are
             // valid for the call.
-            unsafe { ffi::$ffi(valid.0.as_ptr(), scene, context.as_query_context(), rayhit) }
+            unsafe {
+                ffi::$ffi(valid.0.as_ptr(), scene, context.as_query_context(), rayhit.as_mut_ptr())
+            }
         }
 
         /// Closest hits for the lanes of `rayhit` that `valid` marks -1, in place.
@@ -142,19 +193,19 @@ macro_rules! packet_intersect {
         /// # Safety
         /// See `packet_intersect!`.
         #[cfg(embree4)]
-        pub unsafe fn $name(scene: ffi::RTCScene, valid: &ValidMask, rayhit: &mut ffi::$packet) {
+        pub unsafe fn $name(scene: ffi::RTCScene, valid: &ValidMask, rayhit: &mut Padded<ffi::$packet, $width>) {
             let mut context = CountingContext::new(None);
             let mut args = intersect_arguments(&mut context, ffi::RTCRayQueryFlags::COHERENT);
             // SAFETY: as in the Embree 3 version; `args` points to `context`, both live.
-            unsafe { ffi::$ffi(valid.0.as_ptr(), scene, rayhit, &mut args) }
+            unsafe { ffi::$ffi(valid.0.as_ptr(), scene, rayhit.as_mut_ptr(), &mut args) }
         }
     )*};
 }
 
 packet_intersect! {
-    intersect4: RTCRayHit4, rtcIntersect4;
-    intersect8: RTCRayHit8, rtcIntersect8;
-    intersect16: RTCRayHit16, rtcIntersect16;
+    intersect4: RTCRayHit4, 4, rtcIntersect4;
+    intersect8: RTCRayHit8, 8, rtcIntersect8;
+    intersect16: RTCRayHit16, 16, rtcIntersect16;
 }
 
 /// Closest hits for a stream of rays (`rtcIntersect1M`, Embree 3 only), in place; never
@@ -172,7 +223,8 @@ pub unsafe fn intersect_stream(
 ) {
     let mut context = CountingContext::new(None);
     if coherent {
-        context.base.flags = ffi::RTCIntersectContextFlags::RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        context.base.inner.flags =
+            ffi::RTCIntersectContextFlags::RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     }
     let Ok(count) = u32::try_from(rayhits.len()) else {
         for chunk in rayhits.chunks_mut(u32::MAX as usize) {
@@ -227,17 +279,17 @@ impl SingleRayLoop {
     /// # Safety
     /// As for [`intersect1`].
     #[inline]
-    pub unsafe fn intersect1(&mut self, scene: ffi::RTCScene, rayhit: &mut ffi::RTCRayHit) {
+    pub unsafe fn intersect1(&mut self, scene: ffi::RTCScene, rayhit: &mut RayHit) {
         // SAFETY: per the caller; the context (and Embree 4's arguments pointing to it) live
         // in `self`, which does not move during the call.
         #[cfg(not(embree4))]
         unsafe {
-            ffi::rtcIntersect1(scene, self.context.as_query_context(), rayhit)
+            ffi::rtcIntersect1(scene, self.context.as_query_context(), rayhit.as_mut_ptr())
         }
         // SAFETY: as above.
         #[cfg(embree4)]
         unsafe {
-            ffi::rtcIntersect1(scene, rayhit, &mut self.args)
+            ffi::rtcIntersect1(scene, rayhit.as_mut_ptr(), &mut self.args)
         }
     }
 }
@@ -290,7 +342,7 @@ fn query_context() -> ffi::RTCRayQueryContext {
 #[cfg(embree4)]
 pub unsafe fn intersect1(
     scene: ffi::RTCScene,
-    rayhit: &mut ffi::RTCRayHit,
+    rayhit: &mut RayHit,
     counters: Option<&mut TraversalCounters>,
 ) {
     let mut context = CountingContext::new(counters);
@@ -303,7 +355,7 @@ pub unsafe fn intersect1(
     args.context = context.as_query_context();
     // SAFETY: the caller guarantees `scene`; `rayhit`, `args` and the context it points to
     // are valid for the call.
-    unsafe { ffi::rtcIntersect1(scene, rayhit, &mut args) }
+    unsafe { ffi::rtcIntersect1(scene, rayhit.as_mut_ptr(), &mut args) }
 }
 
 /// Occlusion test for one ray; Embree sets `ray.tfar = -inf` if anything is hit. With

@@ -23,7 +23,7 @@ pub fn to_rtc_ray(ray: &Ray) -> ffi::RTCRay {
 
 /// Embree's ray-and-hit record for `ray`, with no hit yet.
 #[inline]
-pub fn to_rtc_ray_hit(ray: &Ray) -> ffi::RTCRayHit {
+pub fn to_rtc_ray_hit(ray: &Ray) -> compat::RayHit {
     // SAFETY: `RTCRayHit` holds only f32/u32 fields and arrays of them, for which all-zero
     // bytes are valid. Zeroing (rather than a struct literal) also covers hit fields that
     // only some Embree versions have.
@@ -31,7 +31,7 @@ pub fn to_rtc_ray_hit(ray: &Ray) -> ffi::RTCRayHit {
     rh.ray = to_rtc_ray(ray);
     rh.hit.geomID = ffi::RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID = [ffi::RTC_INVALID_GEOMETRY_ID; ffi::RTC_MAX_INSTANCE_LEVEL_COUNT as usize];
-    rh
+    compat::RayHit::new(rh)
 }
 
 /// The hit Embree recorded, if any.
@@ -76,7 +76,7 @@ pub trait RayHitPacket {
 
 macro_rules! ray_hit_packet {
     ($($packet:ident: $width:literal, $intersect:ident;)*) => {$(
-        impl RayHitPacket for ffi::$packet {
+        impl RayHitPacket for compat::Padded<ffi::$packet, $width> {
             const WIDTH: usize = $width;
 
             fn empty() -> Self {
@@ -88,7 +88,7 @@ macro_rules! ray_hit_packet {
                 p.hit.geomID = [ffi::RTC_INVALID_GEOMETRY_ID; $width];
                 p.hit.instID = [[ffi::RTC_INVALID_GEOMETRY_ID; $width];
                     ffi::RTC_MAX_INSTANCE_LEVEL_COUNT as usize];
-                p
+                compat::Padded::new(p)
             }
 
             #[inline]
