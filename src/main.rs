@@ -2,11 +2,25 @@
 
 mod cli;
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches};
 use std::io::Write;
 
 fn main() -> std::process::ExitCode {
-    let args = cli::Cli::parse();
+    let mut command = cli::Cli::command();
+    // The version names the Embree library found at run time (not the header built
+    // against), which starts an Embree device: only when the version is asked for.
+    if std::env::args_os().skip(1).any(|a| a == "--version" || a == "-V") {
+        let line = format!(
+            "{}; backends: {}",
+            env!("CARGO_PKG_VERSION"),
+            embray::accel::backends_description()
+        );
+        command = command.version(&*Box::leak(line.into_boxed_str()));
+    }
+    let args = match cli::Cli::from_arg_matches(&command.get_matches()) {
+        Ok(args) => args,
+        Err(error) => error.exit(),
+    };
     // An interrupted run removes its temporary files; without the handler it still
     // works, only an interrupt may then leave one behind.
     if let Err(error) = embray::output::remove_temp_files_on_signals() {

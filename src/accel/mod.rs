@@ -11,6 +11,8 @@ pub mod embree;
 pub mod obvhs;
 mod options;
 
+mod library;
+pub use library::{EmbreeLibrary, backends_description, embree_library};
 pub use options::{AccelOptions, BackendKind, BatchMode, BuildQuality};
 
 /// Which traversal counters a backend can observe.

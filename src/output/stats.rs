@@ -15,6 +15,10 @@ pub struct StatsReport {
     pub build_quality: BuildQuality,
     pub build_seconds: f64,
     pub compact: bool,
+    /// The Embree library and kernels that traced the rays (absent for obvhs): different
+    /// versions and ISAs may return different hits for the same ray.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub embree: Option<crate::accel::EmbreeLibrary>,
     pub observes: Observes,
     pub render_seconds: f64,
     pub render_space: &'static str,
@@ -31,6 +35,7 @@ impl StatsReport {
             build_quality: options.accel.build_quality,
             build_seconds: output.build_time.as_secs_f64(),
             compact: options.accel.compact,
+            embree: (output.backend == "embree").then(crate::accel::embree_library).flatten(),
             observes: output.observes,
             render_seconds: output.render_time.as_secs_f64(),
             render_space: crate::choice::Choice::name(options.render_space),

@@ -72,6 +72,13 @@ impl Device {
         self.handle
     }
 
+    /// `rtcGetDeviceProperty`: one of the device's read-only properties.
+    pub fn property(&self, property: ffi::RTCDeviceProperty) -> isize {
+        // SAFETY: `handle` is a live device and `property` one of the header's values;
+        // Embree reports an unknown property through the error callback, not by UB.
+        unsafe { ffi::rtcGetDeviceProperty(self.handle, property) as isize }
+    }
+
     /// Bytes Embree currently holds for this device, as its memory monitor reports them.
     pub fn allocated_bytes(&self) -> usize {
         self.allocated.get().load(Ordering::Relaxed).max(0) as usize

@@ -22,6 +22,7 @@ mod geometry_handle;
 mod instance;
 #[cfg(test)]
 mod instance_tests;
+mod library;
 mod ray;
 mod rayn;
 mod scene;
@@ -34,3 +35,4 @@ mod user_triangles;
 
 pub use backend::EmbreeAccel;
 pub use batch::BatchKind;
+pub use library::library;
