@@ -76,7 +76,7 @@ impl Device {
     pub fn property(&self, property: ffi::RTCDeviceProperty) -> isize {
         // SAFETY: `handle` is a live device and `property` one of the header's values;
         // Embree reports an unknown property through the error callback, not by UB.
-        unsafe { ffi::rtcGetDeviceProperty(self.handle, property) as isize }
+        unsafe { ffi::rtcGetDeviceProperty(self.handle, property) }
     }
 
     /// Bytes Embree currently holds for this device, as its memory monitor reports them.
