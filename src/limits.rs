@@ -2,6 +2,7 @@
 //! the checks made before a render allocates anything: sample counts, the coordinate range,
 //! and the memory the render will need against the memory the machine has.
 
+use crate::render_space::RenderSpace;
 use crate::scene::{LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use glam::DVec3;
 use std::collections::HashSet;
@@ -20,11 +21,15 @@ pub const MAX_DEPTH: u32 = 100_000;
 pub const MAX_THREADS: usize = 1024;
 /// Repetitions of a measurement (`bench --runs`).
 pub const MAX_RUNS: u32 = 1000;
-/// The largest world-space coordinate a scene may reach (geometry, camera, lights, after
-/// `--offset`). Render space is f32 and camera-relative: beyond this the camera-relative
-/// coordinates of nearby geometry lose precision faster than the spawn bounds assume, and
-/// rays crossing the scene approach Embree's ~1.8e18 limit.
+/// The largest coordinate a scene may reach in render space (f32): measured from the
+/// render-space origin, which is the camera in `cameraworld` and `camera`, the world origin
+/// in `world`. Also the largest half-extent of one object. Beyond it an f32 ulp exceeds 8
+/// units: the geometry itself loses its shape faster than the spawn bounds assume.
 pub const MAX_COORDINATE: f64 = 1e8;
+/// The largest world-space coordinate (geometry, camera, lights, after `--offset`). World
+/// space is f64 and only ever subtracted from: at 1e12 its ulp is 1.2e-4 units, so a scene
+/// far out renders in `cameraworld` as it does at the origin.
+pub const MAX_WORLD_COORDINATE: f64 = 1e12;
 /// The smallest `f_number`: a lens faster than f/0.01 is an infinite aperture in all but name.
 pub const MIN_F_NUMBER: f64 = 0.01;
 
@@ -58,11 +63,18 @@ pub enum LimitError {
         triangles: u64,
     },
     #[error(
-        "{}: {what} reaches the coordinate {value:e}, beyond the supported range ±{MAX_COORDINATE:e} \
-         (world space, after --offset); move the scene nearer the origin or scale it down",
+        "{}: {what} reaches the coordinate {value:e}, beyond the supported range ±{limit:e} \
+         ({frame}, after --offset); {advice}",
         .file.display()
     )]
-    Coordinate { file: std::path::PathBuf, what: String, value: f64 },
+    Coordinate {
+        file: std::path::PathBuf,
+        what: String,
+        value: f64,
+        limit: f64,
+        frame: &'static str,
+        advice: &'static str,
+    },
 }
 
 fn gib(bytes: u64) -> f64 {
@@ -137,6 +149,23 @@ pub struct MeshBounds(std::collections::HashMap<*const crate::scene::MeshData, (
 /// `bounds` keeps each shared mesh's object-space bounds, so a mesh placed a million times
 /// is scanned once.
 pub fn object_reach(object: &ObjectDesc, bounds: &mut MeshBounds) -> f64 {
+    object_reach_from(object, bounds, DVec3::ZERO)
+}
+
+/// As [`object_reach`], measured from `origin` (the render-space origin).
+pub fn object_reach_from(object: &ObjectDesc, bounds: &mut MeshBounds, origin: DVec3) -> f64 {
+    let mut reach = 0.0f64;
+    for (lo, hi) in world_bounds(object, bounds) {
+        let far = (lo - origin).abs().max_element().max((hi - origin).abs().max_element());
+        if !(far <= reach) || lo.is_nan() || hi.is_nan() {
+            reach = if far.is_nan() || lo.is_nan() || hi.is_nan() { f64::NAN } else { far };
+        }
+    }
+    reach
+}
+
+/// `object`'s world-space bounding box at each shutter end (NaN if a corner is NaN).
+fn world_bounds(object: &ObjectDesc, bounds: &mut MeshBounds) -> Vec<(DVec3, DVec3)> {
     let (lo, hi) = match &object.shape {
         ShapeDesc::Sphere { center, radius } => (*center - *radius, *center + *radius),
         ShapeDesc::Mesh(mesh) => {
@@ -148,52 +177,71 @@ pub fn object_reach(object: &ObjectDesc, bounds: &mut MeshBounds) -> f64 {
             })
         }
     };
-    let mut reach = 0.0f64;
-    for placement in std::iter::once(object.world_from_object).chain(object.world_from_object_end) {
-        for corner in 0..8 {
-            let pick = |bit: usize, lo: f64, hi: f64| if corner & bit != 0 { hi } else { lo };
-            let local = DVec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
-            let far = placement.transform_point3(local).abs().max_element();
-            if !(far <= reach) {
-                reach = far; // NaN propagates: it is never <= anything
+    let placements = std::iter::once(object.world_from_object).chain(object.world_from_object_end);
+    placements
+        .map(|placement| {
+            let mut box_lo = DVec3::splat(f64::INFINITY);
+            let mut box_hi = DVec3::splat(f64::NEG_INFINITY);
+            for corner in 0..8 {
+                let pick = |bit: usize, lo: f64, hi: f64| if corner & bit != 0 { hi } else { lo };
+                let local =
+                    DVec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
+                let world = placement.transform_point3(local);
+                if world.is_nan() {
+                    return (DVec3::NAN, DVec3::NAN);
+                }
+                (box_lo, box_hi) = (box_lo.min(world), box_hi.max(world));
             }
-        }
-    }
-    reach
+            (box_lo, box_hi)
+        })
+        .collect()
 }
 
-/// Refuses a scene (already moved by any offset) that reaches beyond `MAX_COORDINATE`:
-/// the camera, the lights, and each object's world-space bounds at both shutter ends.
-pub fn check_coordinates(desc: &SceneDesc) -> Result<(), LimitError> {
-    let refuse = |what: String, value: f64| LimitError::Coordinate {
-        file: desc.source.clone(),
-        what,
-        value,
+/// Refuses a scene (already moved by any offset) that reaches beyond `MAX_WORLD_COORDINATE`
+/// in world space, or beyond `MAX_COORDINATE` from the origin of `space`: the camera, the
+/// lights, and each object's bounds at both shutter ends.
+pub fn check_coordinates(desc: &SceneDesc, space: RenderSpace) -> Result<(), LimitError> {
+    let render_origin = match space {
+        RenderSpace::World => DVec3::ZERO,
+        RenderSpace::Cameraworld | RenderSpace::Camera => desc.camera.lookfrom,
     };
-    let far = |p: DVec3| p.abs().max_element();
-    let too_far = |p: DVec3| !(far(p) <= MAX_COORDINATE);
-    for (what, p) in
-        [("camera.lookfrom", desc.camera.lookfrom), ("camera.lookat", desc.camera.lookat)]
-    {
-        if too_far(p) {
-            return Err(refuse(what.to_owned(), far(p)));
-        }
-    }
-    for (i, light) in desc.lights.iter().enumerate() {
-        let p = match light {
-            LightDesc::Point { position, .. } => *position,
-            LightDesc::Area { center, size, .. } => center.abs() + DVec3::splat(*size),
-            _ => DVec3::ZERO,
+    let frames = [
+        (DVec3::ZERO, MAX_WORLD_COORDINATE, "world space", "move the scene nearer the origin"),
+        (render_origin, MAX_COORDINATE, space.frame(), space.advice()),
+    ];
+    for (origin, limit, frame, advice) in frames {
+        let refuse = |what: String, value: f64| LimitError::Coordinate {
+            file: desc.source.clone(),
+            what,
+            value,
+            limit,
+            frame,
+            advice,
         };
-        if too_far(p) {
-            return Err(refuse(format!("lights[{i}]"), far(p)));
+        let far = |p: DVec3| if p.is_nan() { f64::NAN } else { (p - origin).abs().max_element() };
+        for (what, p) in
+            [("camera.lookfrom", desc.camera.lookfrom), ("camera.lookat", desc.camera.lookat)]
+        {
+            if !(far(p) <= limit) {
+                return Err(refuse(what.to_owned(), far(p)));
+            }
         }
-    }
-    let mut bounds = MeshBounds::default();
-    for object in &desc.objects {
-        let reach = object_reach(object, &mut bounds);
-        if !(reach <= MAX_COORDINATE) {
-            return Err(refuse(object.name.clone(), reach));
+        for (i, light) in desc.lights.iter().enumerate() {
+            let reach = match light {
+                LightDesc::Point { position, .. } => far(*position),
+                LightDesc::Area { center, size, .. } => far(*center) + size,
+                _ => 0.0,
+            };
+            if !(reach <= limit) {
+                return Err(refuse(format!("lights[{i}]"), reach));
+            }
+        }
+        let mut bounds = MeshBounds::default();
+        for object in &desc.objects {
+            let reach = object_reach_from(object, &mut bounds, origin);
+            if !(reach <= limit) {
+                return Err(refuse(object.name.clone(), reach));
+            }
         }
     }
     Ok(())
@@ -206,11 +254,20 @@ mod tests {
     #[test]
     fn the_bundled_scene_fits_and_far_scenes_do_not() {
         let mut scene = crate::scene::load(&crate::bundled::default_scene()).unwrap();
-        check_coordinates(&scene).unwrap();
+        for space in [RenderSpace::World, RenderSpace::Cameraworld, RenderSpace::Camera] {
+            check_coordinates(&scene, space).unwrap();
+        }
         check_memory(&scene).unwrap();
         scene.translate(DVec3::new(1e9, 0.0, 0.0));
-        let err = check_coordinates(&scene).unwrap_err().to_string();
-        assert!(err.contains("cornell.toml") && err.contains("supported range"), "{err}");
+        // Far out, the camera-relative spaces still hold it; f32 world space cannot.
+        check_coordinates(&scene, RenderSpace::Cameraworld).unwrap();
+        check_coordinates(&scene, RenderSpace::Camera).unwrap();
+        let err = check_coordinates(&scene, RenderSpace::World).unwrap_err().to_string();
+        assert!(err.contains("cornell.toml") && err.contains("±1e8 (world render space"), "{err}");
+        // Past 1e12 not even f64 world space keeps the scene's detail.
+        scene.translate(DVec3::new(2e12, 0.0, 0.0));
+        let err = check_coordinates(&scene, RenderSpace::Cameraworld).unwrap_err().to_string();
+        assert!(err.contains("±1e12 (world space"), "{err}");
     }
 
     #[test]

@@ -119,7 +119,7 @@ pub fn prepare_scene(
         desc.translate(options.offset);
     }
     // Checked here, before either backend sees the scene, so both refuse the same scenes.
-    crate::limits::check_coordinates(&desc)?;
+    crate::limits::check_coordinates(&desc, options.render_space)?;
     Ok(to_render_scene(&desc, options.render_space, options.effects_mode)?)
 }
 

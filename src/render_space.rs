@@ -29,6 +29,31 @@ named_choices!(RenderSpace, "render space", {
     World => "world",
 });
 
+impl RenderSpace {
+    /// How a coordinate limit of this space is measured, for messages.
+    pub fn frame(self) -> &'static str {
+        match self {
+            RenderSpace::World => "world render space, from the world origin",
+            RenderSpace::Cameraworld => "cameraworld render space, from the camera",
+            RenderSpace::Camera => "camera render space, from the camera",
+        }
+    }
+
+    /// What to do about a scene beyond this space's coordinate limit.
+    pub fn advice(self) -> &'static str {
+        match self {
+            RenderSpace::World => {
+                "render in cameraworld (the default), which subtracts the camera position in \
+                 f64 first, or move the scene nearer the origin"
+            }
+            RenderSpace::Cameraworld | RenderSpace::Camera => {
+                "the camera cannot see that far in f32 without losing the geometry's shape: \
+                 scale the scene down or split it"
+            }
+        }
+    }
+}
+
 /// Where render space sits relative to the world and to the camera.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CameraTransform {

@@ -39,7 +39,7 @@ fn a_floor_of_ten_billion_units_is_refused_on_both_backends() {
     refused_on_both_backends(
         &text,
         &[],
-        &["s.toml", "objects[1] is 1e10", "coordinate range ±1e8", "(line 24)"],
+        &["s.toml", "objects[1] is 1.0", "from the camera", "coordinate range ±1e8", "(line 24)"],
     );
 }
 
@@ -77,4 +77,16 @@ fn an_offset_of_1e7_still_renders() {
     let scratch = Scratch::new();
     scratch.write("s.toml", scene(""));
     accepted_in(&scratch, &["render", "s.toml", "--offset", "1e7,1e7,1e7", "-q"]);
+}
+
+#[test]
+fn an_offset_of_1e11_renders_in_cameraworld_and_is_refused_in_world() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    accepted_in(&scratch, &["render", "s.toml", "--offset", "1e11,0,-1e11", "-q"]);
+    refused_in(
+        &scratch,
+        &["render", "s.toml", "--offset", "1e11,0,-1e11", "--render-space", "world", "-q"],
+        &["s.toml", "±1e8 (world render space", "render in cameraworld"],
+    );
 }

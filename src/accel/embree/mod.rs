@@ -22,6 +22,8 @@ mod geometry_handle;
 mod instance;
 #[cfg(test)]
 mod instance_tests;
+#[cfg(test)]
+mod large_coordinate_tests;
 mod library;
 mod ray;
 mod rayn;

@@ -62,19 +62,28 @@ pub(crate) fn scene_desc(
     for (i, object) in file.objects.iter().enumerate() {
         let first = builder.objects.len();
         builder.object(i, object)?;
-        // Beyond the supported range now, with the line (the render checks again after
-        // any --offset).
+        // Beyond the supported range now, with the line: measured from the camera, as the
+        // default render space (cameraworld) measures it, which no --offset changes. The
+        // render checks again in its render space (world space measures from the origin).
         let path = FieldPath::root("objects").index(i);
         for placed in &builder.objects[first..] {
+            let from_camera =
+                crate::limits::object_reach_from(placed, &mut bounds, camera.lookfrom);
             let reach = crate::limits::object_reach(placed, &mut bounds);
-            let max = crate::limits::MAX_COORDINATE;
-            let requirement = format!("within the supported coordinate range ±{max:e}");
+            let (max, world_max) =
+                (crate::limits::MAX_COORDINATE, crate::limits::MAX_WORLD_COORDINATE);
             // A `repeat` copy is named by its grid index; the object itself by `path`.
-            let value = match placed.name.contains("copy") {
-                true => format!("{reach:e} at the farthest corner of {}", placed.name),
-                false => format!("{reach:e} at its farthest corner"),
+            let which = match placed.name.contains("copy") {
+                true => format!(" of {}", placed.name),
+                false => String::new(),
             };
-            ctx.require(reach <= max, &path, value, &requirement)?;
+            let requirement =
+                format!("within the supported coordinate range ±{max:e} of the camera");
+            let value = format!("{from_camera:e} from the camera at the farthest corner{which}");
+            ctx.require(from_camera <= max, &path, value, &requirement)?;
+            let requirement = format!("within the supported world coordinate range ±{world_max:e}");
+            let value = format!("{reach:e} at the farthest corner{which}");
+            ctx.require(reach <= world_max, &path, value, &requirement)?;
         }
     }
     for (i, light) in file.lights.iter().enumerate() {
