@@ -20,8 +20,9 @@ use super::trace::SceneTracer;
 use crate::ray::Ray;
 use crate::render_scene::{Geometry, RenderScene};
 use crate::sampling::SampleStream;
-use crate::scene::Specular;
+use crate::scene::{CourseBrdf, Specular};
 use crate::shading::bsdf::{fresnel_conductor, fresnel_dielectric};
+use crate::shading::course_brdf::{CourseTerms, cos_weighted};
 use crate::shading::spawn::SurfacePoint;
 use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
@@ -69,24 +70,21 @@ impl<'a> WhittedTracer<'a> {
     ) -> Vec3 {
         let material = &self.tracer.scene.materials[si.material as usize];
         let lights = &self.tracer.scene.lights;
-        let (ambient, specular, exponent) = match &material.phong {
-            Some(p) => (p.ambient, p.specular, p.exponent),
-            None => (Vec3::ZERO, Vec3::ZERO, 1.0),
+        let (ambient, specular, exponent, brdf) = match &material.phong {
+            Some(p) => (p.ambient, p.specular, p.exponent, p.brdf),
+            None => (Vec3::ZERO, Vec3::ZERO, 1.0, CourseBrdf::default()),
         };
+        let terms = CourseTerms { diffuse: material.albedo, specular, exponent };
         // The course lights a surface on the side its own normal points to, whichever side
         // the ray arrived on: the back of a one-sided triangle is lit only by lights behind
         // it (so a sail seen from the back is dark where a two-sided surface would be lit).
         let side = if si.front_face { 1.0 } else { -1.0 };
         let n = side * si.shading_normal;
         let geometric = side * si.surface.normal;
-        let shade = |wi: Vec3, irradiance: Vec3| {
-            let cos = n.dot(wi).max(0.0);
-            let h = (wi + wo).normalize_or_zero();
-            // As the course does: no highlight from a light below the shading normal's
-            // horizon (smooth shading otherwise lights the dark side of the terminator).
-            let highlight = if cos > 0.0 { n.dot(h).max(0.0).powf(exponent) } else { 0.0 };
-            (material.albedo * cos + specular * highlight) * irradiance
-        };
+        // As the course does: nothing from a light below the shading normal's horizon
+        // (smooth shading otherwise lights the dark side of the terminator).
+        let shade =
+            |wi: Vec3, irradiance: Vec3| cos_weighted(&brdf, &terms, n, wi, wo) * irradiance;
         let mut color = ambient * lights.ambient;
         let faces = |wi: Vec3| geometric.dot(wi) > 0.0;
         for light in &lights.points {

@@ -105,12 +105,37 @@ pub enum Specular {
     },
 }
 
-/// The course's shading terms (CENG795): ambient reflectance and a Blinn-Phong highlight.
+/// The course's shading terms (CENG795): ambient reflectance and a highlight, by default the
+/// Blinn-Phong one of the earlier homeworks, or one of hw6's `<BRDFs>`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PhongDesc {
     pub ambient: Vec3,
     pub specular: Vec3,
     pub exponent: f32,
+    pub brdf: CourseBrdf,
+}
+
+/// The course's reflectance models (hw6 `<BRDFs>`); `shading::course_brdf` defines each.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum CourseBrdf {
+    /// The shading model of the earlier homeworks.
+    #[default]
+    OriginalBlinnPhong,
+    OriginalPhong,
+    ModifiedBlinnPhong {
+        normalized: bool,
+    },
+    ModifiedPhong {
+        normalized: bool,
+    },
+    /// A Blinn distribution, Fresnel from a conductor's complex index `eta + i·k` (the
+    /// material's RefractionIndex and AbsorptionIndex) and the V-cavity shadowing term;
+    /// `kd_fresnel` scales the diffuse term by `1 − F`.
+    TorranceSparrow {
+        kd_fresnel: bool,
+        eta: Vec3,
+        k: Vec3,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]

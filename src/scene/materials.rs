@@ -166,7 +166,7 @@ fn phong(path: &FieldPath, p: &PhongToml, ctx: &Ctx) -> Result<PhongDesc, SceneE
     let field = path.key("exponent");
     let exponent = ctx.positive(&field, p.exponent.unwrap_or(1.0))?;
     let exponent = ctx.f32(&field, exponent)?;
-    Ok(PhongDesc { ambient, specular, exponent })
+    Ok(PhongDesc { ambient, specular, exponent, brdf: Default::default() })
 }
 
 #[cfg(test)]

@@ -325,6 +325,12 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
         );
     }
     if let Some(p) = &m.phong {
+        if p.brdf != crate::scene::CourseBrdf::default() {
+            return Err(unsupported(format!(
+                "its BRDF ({:?}, from <BRDFs>) has no TOML form yet",
+                p.brdf
+            )));
+        }
         let exponent = if p.exponent > 0.0 {
             format!(", exponent = {:?}", p.exponent)
         } else if p.specular == Vec3::ZERO {

@@ -2,6 +2,7 @@
 //! surface interaction at a hit, and how rays leave it.
 
 pub mod bsdf;
+pub mod course_brdf;
 pub mod light;
 pub mod material;
 pub mod spawn;

@@ -404,3 +404,72 @@ fn hw3_scenes_match_the_references_in_8x8_block_means() {
     }
     assert!(failures.is_empty(), "hw3 scenes off in block means:\n{}", failures.join("\n"));
 }
+
+/// hw6's BRDF scenes (`2022/hw6/brdf`): one gold sphere lit by two point lights under each of
+/// the course's reflectance models. Some references are kept aside from the data set (see
+/// SOURCES-2022.md); those scenes still render on every backend and their images must agree.
+#[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
+fn hw6_brdf_scenes_match_the_course_images() {
+    let data = data_dir();
+    let outputs = data.join("2022/hw6/brdf/outputs");
+    let (mut rows, mut failures, mut compared) = (Vec::new(), Vec::new(), 0);
+    for xml in xml_files(&data.join("2022/hw6/brdf/inputs")) {
+        let name = relative(&data, &xml);
+        let cameras = ceng795::load(&xml).unwrap_or_else(|e| panic!("{name}: {e}"));
+        for camera in &cameras {
+            let tag = format!("{name} → {}", camera.image_name);
+            let scene = &camera.scene;
+            let images: Vec<(BackendKind, RgbImage, f64)> = BackendKind::compiled()
+                .into_iter()
+                .map(|backend| {
+                    let (image, seconds) = render_rgb(scene, &course_options(scene, backend));
+                    (backend, image, seconds)
+                })
+                .collect();
+            // The backends agree whether or not there is a reference.
+            for (backend, image, _) in &images[1..] {
+                let c = compare_images(image, &images[0].1, 3).unwrap();
+                assert!(
+                    c.fraction_within() >= 0.999,
+                    "{tag}: {} vs {}: {c:?}",
+                    backend.name(),
+                    images[0].0.name()
+                );
+            }
+            let Ok(reference) = read_rgb(&outputs.join(&camera.image_name)) else {
+                println!(
+                    "{tag}: reference kept aside from the data set; rendered on every backend"
+                );
+                continue;
+            };
+            compared += 1;
+            let mut row = Row {
+                name: tag.clone(),
+                resolution: (scene.camera.width, scene.camera.height),
+                spp: scene.settings.spp,
+                results: Vec::new(),
+                note: "",
+            };
+            for (backend, image, seconds) in images {
+                let c = compare_images(&image, &reference, 3).unwrap();
+                if c.fraction_within() < MIN_WITHIN {
+                    let kept = keep(&format!("{tag}_{}", backend.name()), &image, &c);
+                    failures.push(format!(
+                        "{tag} on {}: {:.3} % within 3/255, mean abs error {:.3}/255; render and \
+                         heat map in {}",
+                        backend.name(),
+                        100.0 * c.fraction_within(),
+                        c.mean_abs_error,
+                        kept.display()
+                    ));
+                }
+                row.results.push((backend, seconds, c));
+            }
+            rows.push(row);
+        }
+    }
+    print_table(&rows);
+    assert!(compared >= 5, "expected the five BRDF references, compared {compared}");
+    assert!(failures.is_empty(), "BRDF scenes below the threshold:\n{}", failures.join("\n"));
+}

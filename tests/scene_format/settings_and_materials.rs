@@ -143,11 +143,21 @@ fn textures_and_phong_terms() {
     );
     assert_eq!(
         solid.phong,
-        Some(PhongDesc { ambient: Vec3::splat(0.1), specular: Vec3::ONE, exponent: 50.0 })
+        Some(PhongDesc {
+            ambient: Vec3::splat(0.1),
+            specular: Vec3::ONE,
+            exponent: 50.0,
+            brdf: Default::default()
+        })
     );
     assert_eq!(
         material(&scene, "course").phong,
-        Some(PhongDesc { ambient: Vec3::ZERO, specular: Vec3::splat(0.5), exponent: 1.0 })
+        Some(PhongDesc {
+            ambient: Vec3::ZERO,
+            specular: Vec3::splat(0.5),
+            exponent: 1.0,
+            brdf: Default::default()
+        })
     );
     assert_eq!(material(&scene, "floor").phong, None);
 }

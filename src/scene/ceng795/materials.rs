@@ -6,10 +6,13 @@
 //! (Fresnel from RefractionIndex + i·AbsorptionIndex, times MirrorReflectance) or
 //! `dielectric` (RefractionIndex, Beer absorption AbsorptionCoefficient). MirrorReflectance
 //! of a material without a type is ignored, as in the course. `Roughness` is the side of the
-//! square in which the course perturbs reflected directions.
+//! square in which the course perturbs reflected directions. A `BRDF` attribute names one
+//! of hw6's `<BRDFs>`: its model and exponent replace the Blinn-Phong highlight and
+//! PhongExponent; Torrance-Sparrow's Fresnel takes RefractionIndex and AbsorptionIndex.
 
+use super::brdfs::{BrdfModel, BrdfSpec};
 use super::xml::Xml;
-use crate::scene::desc::{MaterialDesc, PhongDesc, Specular};
+use crate::scene::desc::{CourseBrdf, MaterialDesc, PhongDesc, Specular};
 use crate::scene::error::SceneError;
 use glam::Vec3;
 use roxmltree::Node;
@@ -54,6 +57,7 @@ impl Materials {
 pub(super) fn materials<'a, 'i: 'a>(
     x: &Xml,
     lists: impl Iterator<Item = Node<'a, 'i>>,
+    brdfs: &HashMap<String, BrdfSpec>,
 ) -> Result<Materials, SceneError> {
     let mut out = Materials { list: Vec::new(), ids: HashMap::new() };
     for list in lists {
@@ -66,7 +70,7 @@ pub(super) fn materials<'a, 'i: 'a>(
             if out.ids.contains_key(id) {
                 return Err(x.error(node, format!("material id \"{id}\" is defined twice")));
             }
-            let material = material(x, node, id)?;
+            let material = material(x, node, id, brdfs)?;
             out.ids.insert(id.to_owned(), out.list.len() as u32);
             out.list.push(material);
         }
@@ -74,7 +78,12 @@ pub(super) fn materials<'a, 'i: 'a>(
     Ok(out)
 }
 
-fn material(x: &Xml, node: Node, id: &str) -> Result<MaterialDesc, SceneError> {
+fn material(
+    x: &Xml,
+    node: Node,
+    id: &str,
+    brdfs: &HashMap<String, BrdfSpec>,
+) -> Result<MaterialDesc, SceneError> {
     x.check_children(node, &ALLOWED)?;
     let color = |name: &str| -> Result<Vec3, SceneError> {
         x.child(node, name)?.map_or(Ok(Vec3::ZERO), |n| x.color(n))
@@ -91,11 +100,47 @@ fn material(x: &Xml, node: Node, id: &str) -> Result<MaterialDesc, SceneError> {
             None => default.ok_or_else(|| x.missing(node, name)),
         }
     };
-    let phong = PhongDesc {
+    let mut phong = PhongDesc {
         ambient: color("AmbientReflectance")?,
         specular: color("SpecularReflectance")?,
         exponent: scalar("PhongExponent", Some(1.0))? as f32,
+        brdf: CourseBrdf::default(),
     };
+    if let Some(brdf_id) = node.attribute("BRDF").map(str::trim) {
+        let Some(spec) = brdfs.get(brdf_id) else {
+            let mut defined: Vec<&str> = brdfs.keys().map(String::as_str).collect();
+            defined.sort_unstable();
+            let defined = if defined.is_empty() { "(none)".to_owned() } else { defined.join(", ") };
+            return Err(x.error(
+                node,
+                format!(
+                    "BRDF=\"{}\" names no BRDF of <BRDFs> (defined: {defined})",
+                    crate::excerpt::excerpt(brdf_id)
+                ),
+            ));
+        };
+        phong.exponent = spec.exponent;
+        phong.brdf = match spec.model {
+            BrdfModel::OriginalBlinnPhong => CourseBrdf::OriginalBlinnPhong,
+            BrdfModel::OriginalPhong => CourseBrdf::OriginalPhong,
+            BrdfModel::ModifiedBlinnPhong { normalized } => {
+                CourseBrdf::ModifiedBlinnPhong { normalized }
+            }
+            BrdfModel::ModifiedPhong { normalized } => CourseBrdf::ModifiedPhong { normalized },
+            BrdfModel::TorranceSparrow { kd_fresnel } => {
+                let eta = scalar("RefractionIndex", None)?;
+                if !(eta > 0.0) {
+                    let n = x.required(node, "RefractionIndex")?;
+                    return Err(x.out_of_range(n, eta, "> 0"));
+                }
+                CourseBrdf::TorranceSparrow {
+                    kd_fresnel,
+                    eta: Vec3::splat(eta as f32),
+                    k: Vec3::splat(scalar("AbsorptionIndex", Some(0.0))? as f32),
+                }
+            }
+        };
+    }
     let kind = node.attribute("type").map(str::trim).unwrap_or("");
     let specular = match kind {
         "" => Specular::None,

@@ -10,6 +10,7 @@
 //! `ShadowRayEpsilon` and `IntersectionTestEpsilon` are read and ignored: embray spawns
 //! secondary rays with error bounds instead of a fixed offset.
 
+mod brdfs;
 mod camera;
 mod lights;
 mod materials;
@@ -37,13 +38,14 @@ pub struct CameraScene {
 /// default: no reflection or refraction).
 pub const DEFAULT_MAX_RECURSION_DEPTH: u32 = 0;
 
-const SCENE_CHILDREN: [&str; 11] = [
+const SCENE_CHILDREN: [&str; 12] = [
     "BackgroundColor",
     "ShadowRayEpsilon",
     "IntersectionTestEpsilon",
     "MaxRecursionDepth",
     "Cameras",
     "Lights",
+    "BRDFs",
     "Materials",
     "Transformations",
     "VertexData",
@@ -115,7 +117,8 @@ pub fn load_str_with_warnings(
         }
     }
 
-    let materials = materials::materials(&x, all("Materials"))?;
+    let brdfs = brdfs::brdfs(&x, all("BRDFs"))?;
+    let materials = materials::materials(&x, all("Materials"), &brdfs)?;
     let transforms = transforms::transforms(&x, all("Transformations"))?;
     let vertices = objects::vertex_data(&x, all("VertexData"))?;
     let texcoords = objects::texcoord_data(&x, all("TexCoordData"))?;
