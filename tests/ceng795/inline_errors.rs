@@ -130,3 +130,52 @@ fn cli_renders_every_camera_to_its_image_name() {
     assert_contains(&stdout, &["mean abs error 0.0000/255", "0.0000 % of pixels"]);
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn hw6_elements_report_their_errors() {
+    let brdfs = r#"<BRDFs><ModifiedPhong id="1" normalized="true"><Exponent>20</Exponent></ModifiedPhong></BRDFs>
+    <Materials>"#;
+    let cases: &[(&str, &str, &[&str])] = &[
+        (
+            "<Material id=\"1\">",
+            "<Material id=\"1\" BRDF=\"4\">",
+            &["BRDF=\"4\"", "defined: (none)"],
+        ),
+        (
+            "<Camera id=\"1\">",
+            "<Camera id=\"1\" handedness=\"left\">",
+            &["handedness=\"left\"", "supported: right"],
+        ),
+        ("<Mesh id=\"1\">", "<LightMesh id=\"1\">", &["LightMesh", "Radiance"]),
+    ];
+    for (from, to, needles) in cases {
+        let text = scene_xml(TRIANGLE)
+            .replacen(from, to, 1)
+            .replace("</Mesh>", if to.contains("LightMesh") { "</LightMesh>" } else { "</Mesh>" });
+        assert_contains(&error_of(&text), needles);
+    }
+    // A BRDF element with a bad flag or exponent, and a material naming an undefined one.
+    for (brdf, needles) in [
+        (
+            r#"<ModifiedPhong id="1" normalized="yes"><Exponent>20</Exponent></ModifiedPhong>"#,
+            &["normalized=\"yes\"", "\"true\" or \"false\""][..],
+        ),
+        (
+            r#"<ModifiedPhong id="1"><Exponent>0</Exponent></ModifiedPhong>"#,
+            &["Exponent", "> 0"][..],
+        ),
+        (
+            r#"<BlinnPhong id="1"><Exponent>2</Exponent></BlinnPhong>"#,
+            &["unsupported element <BlinnPhong>", "TorranceSparrow"][..],
+        ),
+        (
+            r#"<TorranceSparrow id="1"><Exponent>2</Exponent></TorranceSparrow>"#,
+            &["RefractionIndex"][..],
+        ),
+    ] {
+        let text = scene_xml(TRIANGLE)
+            .replace("<Materials>", &brdfs.replace(r#"<ModifiedPhong id="1" normalized="true"><Exponent>20</Exponent></ModifiedPhong>"#, brdf))
+            .replace("<Material id=\"1\">", "<Material id=\"1\" BRDF=\"1\">");
+        assert_contains(&error_of(&text), needles);
+    }
+}

@@ -257,3 +257,82 @@ fn area_light(position: &str, normal: &str, size: u32, radiance: &str) -> String
          <Size>{size}</Size><Radiance>{radiance}</Radiance></AreaLight>"
     )
 }
+
+/// hw6: `<BRDFs>` set a material's model and exponent; a lookAt camera may give a `Gaze`
+/// direction; `LightMesh` and `LightSphere` emit their `Radiance` through their own copy of
+/// the material, so the material the plain mesh uses stays dark.
+#[test]
+fn hw6_brdfs_gaze_cameras_and_object_lights() {
+    use embray::scene::CourseBrdf;
+    let text = scene_xml(TRIANGLE)
+        .replace(
+            "<Materials>",
+            r#"<BRDFs>
+        <ModifiedBlinnPhong id="b" normalized="true"><Exponent>40</Exponent></ModifiedBlinnPhong>
+        <TorranceSparrow id="t" kdfresnel="true"><Exponent>50</Exponent></TorranceSparrow>
+    </BRDFs>
+    <Materials>"#,
+        )
+        .replace("<Material id=\"1\">", "<Material id=\"1\" BRDF=\"b\">")
+        .replace(
+            "    </Materials>",
+            r#"    <Material id="2" BRDF="t">
+            <DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>
+            <RefractionIndex>0.37</RefractionIndex>
+            <AbsorptionIndex>2.82</AbsorptionIndex>
+        </Material>
+    </Materials>"#,
+        )
+        .replace(
+            "    </Objects>",
+            r#"        <LightMesh id="1">
+            <Material>2</Material>
+            <Radiance>3 4 5</Radiance>
+            <Faces vertexOffset="1">0 1 2</Faces>
+        </LightMesh>
+        <LightSphere id="1">
+            <Material>1</Material>
+            <Center>2</Center>
+            <Radius>0.25</Radius>
+            <Radiance>7 7 7</Radiance>
+        </LightSphere>
+    </Objects>"#,
+        )
+        .replace(
+            r#"<Camera id="1">
+            <Position>0 0 0</Position>
+            <Gaze>0 0 -1</Gaze>
+            <Up>0 1 0</Up>
+            <NearPlane>-1 1 -1 1</NearPlane>"#,
+            r#"<Camera id="1" type="lookAt" handedness="right">
+            <Position>0 0 0</Position>
+            <Gaze>0 0 -1</Gaze>
+            <Up>0 1 0</Up>
+            <FovY>90</FovY>"#,
+        );
+    let s = one(&text);
+    assert_eq!(s.camera.lookat, DVec3::new(0.0, 0.0, -1.0));
+    assert_eq!(s.camera.vfov_deg, 90.0);
+    let phong = |i: usize| s.materials[i].phong.clone().unwrap();
+    assert_eq!(phong(0).brdf, CourseBrdf::ModifiedBlinnPhong { normalized: true });
+    assert_eq!(phong(0).exponent, 40.0);
+    assert_eq!(
+        phong(1).brdf,
+        CourseBrdf::TorranceSparrow {
+            kd_fresnel: true,
+            eta: glam::Vec3::splat(0.37),
+            k: glam::Vec3::splat(2.82)
+        }
+    );
+    // The plain mesh, the light mesh and the light sphere, in file order.
+    assert_eq!(s.objects.len(), 3);
+    let material = |o: usize| &s.materials[s.objects[o].material as usize];
+    assert_eq!(material(0).emission, glam::Vec3::ZERO);
+    assert_eq!(material(1).emission, glam::Vec3::new(3.0, 4.0, 5.0));
+    assert_eq!(material(1).phong.clone().unwrap().brdf, phong(1).brdf);
+    assert_eq!(material(2).emission, glam::Vec3::splat(7.0));
+    assert!(matches!(s.objects[2].shape, ShapeDesc::Sphere { radius, .. } if radius == 0.25));
+    // `vertexOffset="1"` makes the light mesh's 0-based indices name vertices 1, 2, 3.
+    let ShapeDesc::Mesh(mesh) = &s.objects[1].shape else { panic!("a mesh") };
+    assert_eq!(mesh.positions.len(), 3);
+}

@@ -46,12 +46,25 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         }
     };
     let own: &[&str] = if look_at {
-        &["GazePoint", "FovY", "FocusDistance"]
+        &["GazePoint", "Gaze", "FovY", "FocusDistance", "Tonemap"]
     } else {
-        &["Gaze", "NearPlane", "FocusDistance"]
+        &["Gaze", "NearPlane", "FocusDistance", "Tonemap"]
     };
     let allowed: Vec<&str> = COMMON.iter().chain(own).copied().collect();
     x.check_children(node, &allowed)?;
+    // The course's frame is right-handed (u = up × w); a left-handed one would mirror it.
+    match node.attribute("handedness").map(str::trim) {
+        None | Some("right") => {}
+        Some(other) => {
+            return Err(x.error(
+                node,
+                format!(
+                    "handedness=\"{}\" is not supported (supported: right)",
+                    crate::excerpt::excerpt(other)
+                ),
+            ));
+        }
+    }
 
     let position = x.vec3(x.required(node, "Position")?)?;
     let up_node = x.required(node, "Up")?;
@@ -94,7 +107,15 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
 
     let mut notes = Vec::new();
     let (gaze, vfov_deg, shift) = if look_at {
-        let gaze_point = x.vec3(x.required(node, "GazePoint")?)?;
+        // A lookAt camera looks at a GazePoint or along a Gaze direction (hw6), not both.
+        let gaze_point = match (x.child(node, "GazePoint")?, x.child(node, "Gaze")?) {
+            (Some(point), None) => x.vec3(point)?,
+            (None, Some(direction)) => position + x.vec3(direction)?,
+            (Some(_), Some(direction)) => {
+                return Err(x.error(direction, "give either <GazePoint> or <Gaze>, not both"));
+            }
+            (None, None) => return Err(x.missing(node, "GazePoint")),
+        };
         let fov_node = x.required(node, "FovY")?;
         let fov = x.scalar(fov_node)?;
         if !(fov > 0.0 && fov < 180.0) {
@@ -142,6 +163,15 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         None if aperture > 0.0 => return Err(x.missing(node, "FocusDistance")),
         distance => distance,
     };
+    if let Some(tonemap) = x.child(node, "Tonemap")? {
+        x.check_children(tonemap, &["TMO", "TMOOptions", "Saturation", "Gamma"])?;
+        notes.push(
+            "its <Tonemap> is read but not applied yet: the EXR holds the linear radiance, and \
+             the PNG uses the course's clamp to 0–255 (render with --tonemap aces or reinhard \
+             for a viewable PNG)"
+                .to_owned(),
+        );
+    }
     for note in &mut notes {
         *note = format!("camera '{image_name}': {note}");
     }

@@ -131,7 +131,10 @@ pub fn load_str_with_warnings(
         vertices: &vertices,
         texcoords: &texcoords,
     };
-    let objects = objects::objects(&x, &refs, all("Objects"), &mut warnings)?;
+    let objects::Objects { objects, light_materials } =
+        objects::objects(&x, &refs, all("Objects"), &mut warnings)?;
+    let mut material_list = materials.list.clone();
+    material_list.extend(light_materials);
 
     let mut cameras = Vec::new();
     // Two cameras writing one file would silently overwrite each other's image.
@@ -167,7 +170,7 @@ pub fn load_str_with_warnings(
                     source: source.to_path_buf(),
                     camera: spec.camera,
                     settings: RenderSettings { spp: spec.spp, ..settings.clone() },
-                    materials: materials.list.clone(),
+                    materials: material_list.clone(),
                     objects: objects.clone(),
                     lights: lights.clone(),
                 },

@@ -7,11 +7,14 @@
 //! `Arc<MeshData>`, so the renderer instances it; with `resetTransform="true"` only its own
 //! transformations apply, otherwise they apply on top of the base mesh's. `MotionBlur` is a
 //! translation over the shutter: `world_from_object_end = translate(v) · world_from_object`.
+//! `LightMesh` and `LightSphere` (hw6) are a mesh and a sphere that also emit `Radiance`:
+//! each gets its own copy of its material with that emission, appended to the material
+//! list, so the renderer samples it like any emitter (one-sided, where its normal points).
 
 use super::materials::Materials;
 use super::transforms::Transforms;
 use super::xml::{Xml, describe, tokens};
-use crate::scene::desc::{MeshData, ObjectDesc, ShapeDesc};
+use crate::scene::desc::{MaterialDesc, MeshData, ObjectDesc, ShapeDesc};
 use crate::scene::error::SceneError;
 use crate::scene::mesh_file::{MeshCache, area_weighted_normals};
 use crate::scene::obj::ObjRef;
@@ -87,6 +90,14 @@ struct Builder<'a, 'x, 'i> {
     warnings: &'a mut Vec<String>,
     meshes: HashMap<String, BaseMesh>,
     objects: Vec<ObjectDesc>,
+    /// Materials made for object lights, numbered after the file's.
+    light_materials: Vec<MaterialDesc>,
+}
+
+/// The objects of a file and the materials its object lights added.
+pub(super) struct Objects {
+    pub objects: Vec<ObjectDesc>,
+    pub light_materials: Vec<MaterialDesc>,
 }
 
 pub(super) fn objects<'a, 'i: 'a>(
@@ -94,7 +105,7 @@ pub(super) fn objects<'a, 'i: 'a>(
     refs: &Refs,
     lists: impl Iterator<Item = Node<'a, 'i>> + Clone,
     warnings: &mut Vec<String>,
-) -> Result<Vec<ObjectDesc>, SceneError> {
+) -> Result<Objects, SceneError> {
     let mut b = Builder {
         x,
         refs,
@@ -102,15 +113,19 @@ pub(super) fn objects<'a, 'i: 'a>(
         warnings,
         meshes: HashMap::new(),
         objects: Vec::new(),
+        light_materials: Vec::new(),
     };
-    const KINDS: [&str; 4] = ["Mesh", "Triangle", "Sphere", "MeshInstance"];
+    const KINDS: [&str; 6] =
+        ["Mesh", "Triangle", "Sphere", "MeshInstance", "LightMesh", "LightSphere"];
     for list in lists.clone() {
         x.check_children(list, &KINDS)?;
         for node in list.children().filter(Node::is_element) {
             match node.tag_name().name() {
-                "Mesh" => b.mesh(node)?,
+                "Mesh" => b.mesh(node, false)?,
+                "LightMesh" => b.mesh(node, true)?,
                 "Triangle" => b.triangle(node)?,
-                "Sphere" => b.sphere(node)?,
+                "Sphere" => b.sphere(node, false)?,
+                "LightSphere" => b.sphere(node, true)?,
                 _ => {}
             }
         }
@@ -121,7 +136,7 @@ pub(super) fn objects<'a, 'i: 'a>(
             b.instance(node)?;
         }
     }
-    Ok(b.objects)
+    Ok(Objects { objects: b.objects, light_materials: b.light_materials })
 }
 
 impl Builder<'_, '_, '_> {
@@ -223,9 +238,31 @@ impl Builder<'_, '_, '_> {
         Ok(MeshData { positions, indices, normals, uvs })
     }
 
-    fn mesh(&mut self, node: Node) -> Result<(), SceneError> {
+    /// The material of `node`; for an object light, a copy of it emitting `<Radiance>`.
+    fn material_of(&mut self, node: Node, light: bool) -> Result<u32, SceneError> {
+        let material = self.material(node)?;
+        if !light {
+            return Ok(material);
+        }
         let x = self.x;
-        x.check_children(node, &["Material", "Faces", "Transformations", "MotionBlur"])?;
+        let radiance_node = x.required(node, "Radiance")?;
+        let radiance = x.color(radiance_node)?;
+        let mut emissive = self.refs.materials.list[material as usize].clone();
+        emissive.emission = radiance;
+        emissive.name = format!("{} emitting ({})", emissive.name, describe(node));
+        let index = self.refs.materials.list.len() + self.light_materials.len();
+        self.light_materials.push(emissive);
+        Ok(index as u32)
+    }
+
+    fn mesh(&mut self, node: Node, light: bool) -> Result<(), SceneError> {
+        let x = self.x;
+        let allowed: &[&str] = if light {
+            &["Material", "Faces", "Radiance", "Transformations", "MotionBlur"]
+        } else {
+            &["Material", "Faces", "Transformations", "MotionBlur"]
+        };
+        x.check_children(node, allowed)?;
         let id = node.attribute("id").map(str::trim).unwrap_or("").to_owned();
         let smooth = match node.attribute("shadingMode").map(str::trim) {
             None | Some("flat") => false,
@@ -237,7 +274,7 @@ impl Builder<'_, '_, '_> {
                 ));
             }
         };
-        let material = self.material(node)?;
+        let material = self.material_of(node, light)?;
         let faces = x.required(node, "Faces")?;
         let mesh = match faces.attribute("plyFile") {
             Some(file) => {
@@ -265,7 +302,8 @@ impl Builder<'_, '_, '_> {
             }
         };
         let place = self.placement(node, DAffine3::IDENTITY)?;
-        if !id.is_empty() {
+        // Light meshes number their ids apart from meshes, and no MeshInstance names them.
+        if !id.is_empty() && !light {
             let base = BaseMesh { mesh: Arc::clone(&mesh), world_from_object: place.0, material };
             if self.meshes.insert(id.clone(), base).is_some() {
                 return Err(x.error(node, format!("mesh id \"{id}\" is defined twice")));
@@ -289,10 +327,15 @@ impl Builder<'_, '_, '_> {
         Ok(())
     }
 
-    fn sphere(&mut self, node: Node) -> Result<(), SceneError> {
+    fn sphere(&mut self, node: Node, light: bool) -> Result<(), SceneError> {
         let x = self.x;
-        x.check_children(node, &["Material", "Center", "Radius", "Transformations", "MotionBlur"])?;
-        let material = self.material(node)?;
+        let allowed: &[&str] = if light {
+            &["Material", "Center", "Radius", "Radiance", "Transformations", "MotionBlur"]
+        } else {
+            &["Material", "Center", "Radius", "Transformations", "MotionBlur"]
+        };
+        x.check_children(node, allowed)?;
+        let material = self.material_of(node, light)?;
         let center_node = x.required(node, "Center")?;
         let mut all = tokens(center_node);
         let (Some((token, pos)), None) = (all.next(), all.next()) else {
