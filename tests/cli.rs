@@ -255,3 +255,34 @@ fn unwritable_terminal_streams_are_errors_not_panics() {
     assert!(dir.join("x.exr").exists() && dir.join("x.png").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `embray tonemap` maps a render's EXR to a PNG with the photographic operator; `render
+/// --tonemap photographic` writes the same PNG; bad parameters and a missing or same-path
+/// file are clear errors that write nothing.
+#[test]
+fn tonemap_maps_an_exr_like_render_does() {
+    let dir = temp_dir("tonemap");
+    std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
+    let args = ["render", "scene.toml", "-o", "a.exr", "--tonemap", "photographic", "--key", "0.3"];
+    let out = embray(&[&args[..], &["--quiet"]].concat(), &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = embray(&["tonemap", "a.exr", "-o", "b.png", "--key", "0.3"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let (a, b) =
+        (std::fs::read(dir.join("a.png")).unwrap(), std::fs::read(dir.join("b.png")).unwrap());
+    assert_eq!(a, b, "render's PNG and tonemap's differ");
+    for (args, needle) in [
+        (&["tonemap", "a.exr", "-o", "c.png", "--key", "0"][..], "the key must be > 0"),
+        (&["tonemap", "a.exr", "-o", "c.png", "--burn-out", "100"][..], "burn-out"),
+        (&["tonemap", "nothing.exr", "-o", "c.png"][..], "nothing.exr"),
+        (&["tonemap", "a.exr", "-o", "a.exr"][..], "a.exr"),
+    ] {
+        let out = embray(args, &dir);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && stderr.contains(needle), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        assert!(!dir.join("c.png").exists(), "{args:?} wrote c.png");
+    }
+    assert!(std::fs::metadata(dir.join("a.exr")).unwrap().len() > 0, "a.exr destroyed");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

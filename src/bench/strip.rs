@@ -10,7 +10,7 @@ fn crop(film: &Film, size: u32) -> (u32, u32, Vec<u8>) {
     let w = size.min(film.width);
     let h = size.min(film.height);
     let (x0, y0) = ((film.width - w) / 2, (film.height - h) / 2);
-    let rgb = to_srgb8(film, ToneMap::Aces, 0.0);
+    let rgb = to_srgb8(film, ToneMap::Aces, 0.0, &Default::default());
     let mut out = Vec::with_capacity((w * h * 3) as usize);
     for y in y0..y0 + h {
         let row = (y * film.width + x0) as usize * 3;

@@ -4,7 +4,7 @@
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use embray::choice::Choice;
 use embray::output::ToneMap;
-use embray::scene::IntegratorKind;
+use embray::scene::RenderSettings;
 
 /// A clap parser accepting exactly the names of `C`'s values.
 pub fn choice<C: Choice + Clone + Send + Sync>() -> impl TypedValueParser<Value = C> {
@@ -20,11 +20,52 @@ pub enum TonemapArg {
 }
 
 impl TonemapArg {
-    /// The curve for a scene rendered with `integrator`.
-    pub fn resolve(self, integrator: IntegratorKind) -> ToneMap {
+    /// The curve for a scene with `settings`: under `auto`, the photographic operator if
+    /// the scene asks for it (a CENG795 camera's `<Tonemap>`), else its integrator's curve.
+    pub fn resolve(self, settings: &RenderSettings) -> ToneMap {
         match self {
-            TonemapArg::Auto => ToneMap::for_integrator(integrator),
+            TonemapArg::Auto if settings.tonemap.is_some() => ToneMap::Photographic,
+            TonemapArg::Auto => ToneMap::for_integrator(settings.integrator),
             TonemapArg::Curve(curve) => curve,
+        }
+    }
+}
+
+/// The photographic operator's parameters on the command line; each overrides the scene's
+/// (a CENG795 `<Tonemap>`) or the default.
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct PhotographicArgs {
+    /// Photographic tone mapping: the key (the display value of the log-average luminance)
+    /// [default: the scene's, else 0.18].
+    #[arg(long)]
+    pub key: Option<f32>,
+    /// Photographic tone mapping: the percentage of pixels allowed to burn out to white
+    /// (0: none) [default: the scene's, else 1].
+    #[arg(long)]
+    pub burn_out: Option<f32>,
+    /// Photographic tone mapping: the colour saturation exponent (1 keeps colours, 0 is grey)
+    /// [default: the scene's, else 1].
+    #[arg(long)]
+    pub saturation: Option<f32>,
+    /// Photographic tone mapping: the display gamma [default: the scene's, else 2.2].
+    #[arg(long)]
+    pub gamma: Option<f32>,
+}
+
+impl PhotographicArgs {
+    /// `scene`'s parameters (or the defaults) with the flags given applied, checked.
+    pub fn resolve(
+        &self,
+        scene: Option<&embray::output::Photographic>,
+    ) -> anyhow::Result<embray::output::Photographic> {
+        let mut p = scene.copied().unwrap_or_default();
+        p.key = self.key.unwrap_or(p.key);
+        p.burn_out = self.burn_out.unwrap_or(p.burn_out);
+        p.saturation = self.saturation.unwrap_or(p.saturation);
+        p.gamma = self.gamma.unwrap_or(p.gamma);
+        match p.problem() {
+            Some(problem) => anyhow::bail!("photographic tone mapping: {problem}"),
+            None => Ok(p),
         }
     }
 }

@@ -8,6 +8,7 @@ mod console;
 mod convert;
 mod info;
 mod render;
+mod tonemap;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
@@ -18,6 +19,7 @@ pub use bench::BenchCommand;
 pub use compare::CompareArgs;
 pub use convert::ConvertArgs;
 pub use render::RenderArgs;
+pub use tonemap::TonemapArgs;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -51,6 +53,9 @@ pub enum Command {
     /// some channel off by more than the tolerance, and optionally a heat map of the
     /// per-pixel largest channel difference.
     Compare(CompareArgs),
+    /// Tone-map a linear EXR to PNG with the photographic operator (Reinhard et al. 2002, as
+    /// the CENG795 course specifies it), without rendering.
+    Tonemap(TonemapArgs),
 }
 
 /// Runs the command `cli` names.
@@ -61,6 +66,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Info { scene } => info::run(scene.as_deref()),
         Command::Convert(args) => convert::run(&args),
         Command::Compare(args) => compare::run(&args),
+        Command::Tonemap(args) => tonemap::run(&args),
     }
 }
 

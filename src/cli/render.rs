@@ -1,7 +1,7 @@
 //! `embray render`: one scene (or every camera of a CENG795 file) to EXR and PNG, with the
 //! summary line and the statistics.
 
-use super::choices::{TonemapArg, choice, tonemap};
+use super::choices::{PhotographicArgs, TonemapArg, choice, tonemap};
 use super::console::{note, out};
 use super::load_scene;
 use anyhow::{Result, bail};
@@ -69,11 +69,15 @@ pub struct RenderArgs {
     #[arg(long, value_parser = choice::<BatchMode>(), default_value_t = BatchMode::Packets8)]
     pub batch: BatchMode,
     /// PNG tone curve.
-    /// auto: clamp255 for Whitted (CENG795) scenes, aces otherwise; none: clamp to [0, 1];
-    /// reinhard: x / (1 + x); aces: Narkowicz's ACES fit (all sRGB encoded); clamp255:
-    /// values in 0–255 units clamped and truncated, no curve, no sRGB (the CENG795 output).
+    /// auto: photographic for a CENG795 camera with a <Tonemap>, clamp255 for other Whitted
+    /// (CENG795) scenes, aces otherwise; none: clamp to [0, 1]; reinhard: x / (1 + x); aces:
+    /// Narkowicz's ACES fit (all sRGB encoded); clamp255: values in 0–255 units clamped and
+    /// truncated, no curve, no sRGB (the CENG795 output); photographic: Reinhard et al.'s
+    /// global operator over the whole image (--key, --burn-out, --saturation, --gamma).
     #[arg(long, value_parser = tonemap(), default_value = "auto")]
     pub tonemap: TonemapArg,
+    #[command(flatten)]
+    pub photographic: PhotographicArgs,
     /// Exposure adjustment in stops, applied before tone mapping (PNG only).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
@@ -215,6 +219,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         args.stats_json.as_deref().map(|p| plan.output("--stats-json", p, false)).transpose()?;
     for job in &jobs {
         args.to_options(&job.scene)?;
+        args.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
     }
     let mut files = OutputSet::new();
     let mut reports = Vec::new();
@@ -222,8 +227,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let options = args.to_options(&job.scene)?;
         let output = render(&job.scene, &options)?;
         files.write(&job.exr, |w| encode_exr(&output.film, w))?;
-        let curve = args.tonemap.resolve(job.scene.settings.integrator);
-        files.write(&job.png, |w| encode_png(&output.film, curve, args.exposure, w))?;
+        let curve = args.tonemap.resolve(&job.scene.settings);
+        let photographic = args.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
+        files.write(&job.png, |w| {
+            encode_png(&output.film, curve, args.exposure, &photographic, w)
+        })?;
         if let Some(target) = &stats_json {
             let report = StatsReport::new(&output, &options);
             files.write(target, |w| report.encode(w))?;

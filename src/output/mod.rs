@@ -9,6 +9,7 @@
 mod cleanup;
 mod exr;
 mod naming;
+mod photographic;
 mod plan;
 mod png;
 pub mod stats;
@@ -19,6 +20,7 @@ mod transaction;
 pub use cleanup::remove_temp_files_on_signals;
 pub use exr::{encode_exr, write_exr};
 pub use naming::{camera_outputs, image_name_key, image_name_problem};
+pub use photographic::Photographic;
 pub use plan::OutputPlan;
 pub use png::{encode_png, encode_rgb8, to_srgb8, write_png};
 pub use target::{NAME_MAX, Target};
@@ -72,7 +74,7 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let target = dir.join("missing-folder").join("x.png");
         let film = Film::new(2, 2);
-        assert!(write_png(&film, &target, ToneMap::Aces, 0.0).is_err());
+        assert!(write_png(&film, &target, ToneMap::Aces, 0.0, &Default::default()).is_err());
         assert!(!target.exists());
         let ok = dir.join("ok.exr");
         write_exr(&film, &ok).unwrap();

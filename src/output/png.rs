@@ -1,5 +1,6 @@
 //! The display PNG: exposure, a tone curve and sRGB encoding, 8 bits per channel.
 
+use super::photographic::Photographic;
 use super::tonemap::{ToneMap, srgb_encode, tone_map};
 use super::{OutputError, WriteSeek, write_one};
 use crate::film::Film;
@@ -8,9 +9,19 @@ use std::path::Path;
 
 /// 8-bit sRGB pixels of `film` after exposure (in stops) and tone mapping. NaN becomes 0.
 /// With `ToneMap::Clamp255` the pixels are the values themselves, clamped to [0, 255] and
-/// truncated (no sRGB encoding).
-pub fn to_srgb8(film: &Film, curve: ToneMap, exposure: f32) -> Vec<u8> {
+/// truncated (no sRGB encoding). With `ToneMap::Photographic`, `photographic` maps the
+/// whole image (with its own gamma, no sRGB encoding).
+pub fn to_srgb8(
+    film: &Film,
+    curve: ToneMap,
+    exposure: f32,
+    photographic: &Photographic,
+) -> Vec<u8> {
     let scale = 2.0f32.powf(exposure);
+    if curve == ToneMap::Photographic {
+        let exposed: Vec<Vec3> = film.color.iter().map(|&c| c * scale).collect();
+        return photographic.to_rgb8(&exposed);
+    }
     if curve == ToneMap::Clamp255 {
         return film
             .color
@@ -41,8 +52,9 @@ pub fn write_png(
     path: &Path,
     curve: ToneMap,
     exposure: f32,
+    photographic: &Photographic,
 ) -> Result<(), OutputError> {
-    write_one(path, |w| encode_png(film, curve, exposure, w))
+    write_one(path, |w| encode_png(film, curve, exposure, photographic, w))
 }
 
 /// Encodes `film` as an 8-bit sRGB PNG into `sink`; every write error is returned.
@@ -50,9 +62,10 @@ pub fn encode_png(
     film: &Film,
     curve: ToneMap,
     exposure: f32,
+    photographic: &Photographic,
     sink: &mut dyn WriteSeek,
 ) -> std::io::Result<()> {
-    encode_rgb8(&to_srgb8(film, curve, exposure), film.width, film.height, sink)
+    encode_rgb8(&to_srgb8(film, curve, exposure, photographic), film.width, film.height, sink)
 }
 
 /// Encodes 8-bit RGB pixels as PNG into `sink`.
@@ -79,6 +92,7 @@ mod tests {
     fn clamp255_writes_values_clamped_and_truncated() {
         let mut film = Film::new(3, 1);
         film.color = vec![Vec3::new(0.0, 12.4, 12.99), Vec3::new(254.9, 300.0, -5.0), Vec3::NAN];
-        assert_eq!(to_srgb8(&film, ToneMap::Clamp255, 0.0), [0, 12, 12, 254, 255, 0, 0, 0, 0]);
+        let pixels = to_srgb8(&film, ToneMap::Clamp255, 0.0, &Default::default());
+        assert_eq!(pixels, [0, 12, 12, 254, 255, 0, 0, 0, 0]);
     }
 }

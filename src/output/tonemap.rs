@@ -18,6 +18,9 @@ pub enum ToneMap {
     /// are; rounding makes a quarter of their pixels one step brighter), with no tone curve
     /// and no sRGB encoding.
     Clamp255,
+    /// Reinhard et al.'s global photographic operator (`output::Photographic`), as the
+    /// CENG795 course specifies it: over the whole image, with its own gamma.
+    Photographic,
 }
 
 named_choices!(ToneMap, "tone curve", {
@@ -25,6 +28,7 @@ named_choices!(ToneMap, "tone curve", {
     Reinhard => "reinhard",
     Aces => "aces",
     Clamp255 => "clamp255",
+    Photographic => "photographic",
 });
 
 impl ToneMap {
@@ -45,7 +49,8 @@ const SATURATED: f32 = 1e4;
 
 pub(super) fn tone_map(c: Vec3, curve: ToneMap) -> Vec3 {
     match curve {
-        ToneMap::None | ToneMap::Clamp255 => c,
+        // Clamp255 and Photographic are applied to the whole image by `to_srgb8`.
+        ToneMap::None | ToneMap::Clamp255 | ToneMap::Photographic => c,
         ToneMap::Reinhard => {
             let c = c.min(Vec3::splat(SATURATED));
             c / (Vec3::ONE + c)

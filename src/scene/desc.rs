@@ -237,6 +237,9 @@ pub struct RenderSettings {
     /// Shadow rays towards area lights per shading point.
     pub light_samples: u32,
     pub integrator: IntegratorKind,
+    /// The photographic tone mapping the scene asks for its PNG (a CENG795 camera's
+    /// `<Tonemap>`); `None`: the integrator's default curve.
+    pub tonemap: Option<crate::output::Photographic>,
 }
 
 impl Default for RenderSettings {
@@ -247,6 +250,7 @@ impl Default for RenderSettings {
             background: Vec3::ZERO,
             light_samples: 1,
             integrator: IntegratorKind::Path,
+            tonemap: None,
         }
     }
 }

@@ -83,7 +83,7 @@ fn render_rgb(scene: &SceneDesc, options: &RenderOptions) -> (RgbImage, f64) {
         render(scene, options).unwrap_or_else(|e| panic!("{}: {e}", scene.source.display()));
     let seconds = start.elapsed().as_secs_f64();
     let film = &output.film;
-    let pixels = to_srgb8(film, ToneMap::Clamp255, 0.0);
+    let pixels = to_srgb8(film, ToneMap::Clamp255, 0.0, &Default::default());
     (RgbImage::from_raw(film.width, film.height, pixels).unwrap(), seconds)
 }
 
@@ -519,4 +519,88 @@ fn hw6_direct_lighting_means_match_the_course_exrs() {
         }
     }
     assert!(compared >= 4, "expected the direct-lighting references, compared {compared}");
+}
+
+/// Pairs of the 2022 packs whose PNG is not the photographic operator applied to its EXR
+/// with its XML's parameters, with the fraction within 2/255 measured and why.
+const TONEMAP_MISMATCH: &[(&str, f64, &str)] = &[
+    ("glass.exr", 0.13, "matches 100 % with δ = 1e-7 and no burn-out, not its XML's 0.18 1"),
+    ("glass_russian.exr", 0.85, "matches 100 % with δ = 3e-7, key 0.15, no burn-out"),
+    ("glass_importance_russian.exr", 0.94, "like glass_russian: other parameters than its XML's"),
+];
+
+/// The value of the first `<tag>` after `from` in `text`, before `</Camera>`.
+fn camera_field<'t>(text: &'t str, from: usize, tag: &str) -> Option<&'t str> {
+    let camera = &text[from..text[from..].find("</Camera>").map_or(text.len(), |e| from + e)];
+    let open = format!("<{tag}>");
+    let start = camera.find(&open)? + open.len();
+    Some(camera[start..].split('<').next()?.trim())
+}
+
+/// `embray tonemap`'s operator on every EXR/PNG pair of the 2022 packs, with each camera's
+/// `<Tonemap>` parameters from its XML: ≥ 99 % of pixels within 2/255.
+#[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
+fn photographic_tone_mapping_reproduces_the_course_pngs() {
+    use embray::output::Photographic;
+    let data = data_dir().join("2022");
+    let mut exrs: Vec<PathBuf> = Vec::new();
+    let mut stack = vec![data.clone()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap().flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "exr")
+                && path.with_extension("png").exists()
+            {
+                exrs.push(path);
+            }
+        }
+    }
+    exrs.sort();
+    let xml_texts: Vec<String> =
+        xml_files(&data).iter().map(|p| std::fs::read_to_string(p).unwrap()).collect();
+    let mut failures = Vec::new();
+    for exr in &exrs {
+        let name = exr.file_name().unwrap().to_string_lossy().into_owned();
+        let tag = format!("<ImageName>{name}</ImageName>");
+        let (text, at) = xml_texts
+            .iter()
+            .find_map(|t| t.find(&tag).map(|at| (t, at)))
+            .unwrap_or_else(|| panic!("{name}: no camera writes it"));
+        // The camera element starts before its ImageName; its Tonemap follows or precedes
+        // it, so search from the camera's start.
+        let start = text[..at].rfind("<Camera").unwrap();
+        let number = |tag| camera_field(text, start, tag).map(|v| v.parse::<f32>().unwrap());
+        let options: Vec<f32> = camera_field(text, start, "TMOOptions")
+            .unwrap()
+            .split_whitespace()
+            .map(|v| v.parse().unwrap())
+            .collect();
+        let p = Photographic {
+            key: options[0],
+            burn_out: options[1],
+            saturation: number("Saturation").unwrap_or(1.0),
+            gamma: number("Gamma").unwrap_or(2.2),
+        };
+        let film = embray::bench::convergence::read_reference(exr).unwrap();
+        let ours = RgbImage::from_raw(film.width, film.height, p.to_rgb8(&film.color)).unwrap();
+        let reference = read_rgb(&exr.with_extension("png")).unwrap();
+        let c = compare_images(&ours, &reference, 2).unwrap();
+        let within = c.fraction_within();
+        let allowed = TONEMAP_MISMATCH.iter().find(|(n, _, _)| *n == name);
+        println!(
+            "{name}: {:.3} % within 2/255, mean abs error {:.3}/255 ({p:?}){}",
+            100.0 * within,
+            c.mean_abs_error,
+            allowed.map_or(String::new(), |(_, _, why)| format!("; {why}"))
+        );
+        let required = allowed.map_or(0.99, |(_, floor, _)| *floor);
+        if within < required {
+            failures.push(format!("{name}: {:.3} % within 2/255", 100.0 * within));
+        }
+    }
+    assert!(exrs.len() >= 20, "expected the packs' EXR/PNG pairs, found {}", exrs.len());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

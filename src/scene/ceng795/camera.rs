@@ -9,6 +9,7 @@
 //! the resolution's is noted and the horizontal extent follows the resolution.
 
 use super::xml::Xml;
+use crate::output::Photographic;
 use crate::scene::MAX_RESOLUTION;
 use crate::scene::desc::{CameraDesc, LensShape};
 use crate::scene::error::SceneError;
@@ -20,6 +21,8 @@ pub(super) struct CameraSpec {
     pub image_name: String,
     pub camera: CameraDesc,
     pub spp: u32,
+    /// The `<Tonemap>` of a camera that writes HDR (photographic, the only operator).
+    pub tonemap: Option<Photographic>,
     /// Approximations made (off-centre or non-square window).
     pub notes: Vec<String>,
 }
@@ -163,15 +166,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         None if aperture > 0.0 => return Err(x.missing(node, "FocusDistance")),
         distance => distance,
     };
-    if let Some(tonemap) = x.child(node, "Tonemap")? {
-        x.check_children(tonemap, &["TMO", "TMOOptions", "Saturation", "Gamma"])?;
-        notes.push(
-            "its <Tonemap> is read but not applied yet: the EXR holds the linear radiance, and \
-             the PNG uses the course's clamp to 0–255 (render with --tonemap aces or reinhard \
-             for a viewable PNG)"
-                .to_owned(),
-        );
-    }
+    let tonemap = x.child(node, "Tonemap")?.map(|t| tonemap(x, t)).transpose()?;
     for note in &mut notes {
         *note = format!("camera '{image_name}': {note}");
     }
@@ -190,8 +185,40 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
             shift,
         },
         spp,
+        tonemap,
         notes,
     })
+}
+
+/// `<Tonemap>`: `<TMO>Photographic</TMO>`, `<TMOOptions>key burn-out-percent</TMOOptions>`,
+/// `<Saturation>` and `<Gamma>` (each optional, defaulting to 0.18 1, 1 and 2.2).
+fn tonemap(x: &Xml, node: Node) -> Result<Photographic, SceneError> {
+    x.check_children(node, &["TMO", "TMOOptions", "Saturation", "Gamma"])?;
+    let tmo = x.required(node, "TMO")?;
+    if x.text(tmo) != "Photographic" {
+        return Err(x.error(
+            tmo,
+            format!(
+                "unsupported tone mapping operator \"{}\" (supported: Photographic)",
+                crate::excerpt::excerpt(x.text(tmo))
+            ),
+        ));
+    }
+    let mut p = Photographic::default();
+    if let Some(options) = x.child(node, "TMOOptions")? {
+        let [key, burn_out] = x.numbers::<2>(options, false)?;
+        (p.key, p.burn_out) = (key as f32, burn_out as f32);
+    }
+    if let Some(s) = x.child(node, "Saturation")? {
+        p.saturation = x.scalar(s)? as f32;
+    }
+    if let Some(g) = x.child(node, "Gamma")? {
+        p.gamma = x.scalar(g)? as f32;
+    }
+    if let Some(problem) = p.problem() {
+        return Err(x.error(node, problem));
+    }
+    Ok(p)
 }
 
 /// The image window at distance `d`.

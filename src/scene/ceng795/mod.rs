@@ -99,6 +99,7 @@ pub fn load_str_with_warnings(
         background: Vec3::ZERO,
         light_samples: 1,
         integrator: IntegratorKind::Whitted,
+        tonemap: None,
     };
     if let Some(node) = x.child(root, "BackgroundColor")? {
         settings.background = x.color(node)?;
@@ -169,7 +170,11 @@ pub fn load_str_with_warnings(
                 scene: SceneDesc {
                     source: source.to_path_buf(),
                     camera: spec.camera,
-                    settings: RenderSettings { spp: spec.spp, ..settings.clone() },
+                    settings: RenderSettings {
+                        spp: spec.spp,
+                        tonemap: spec.tonemap,
+                        ..settings.clone()
+                    },
                     materials: material_list.clone(),
                     objects: objects.clone(),
                     lights: lights.clone(),

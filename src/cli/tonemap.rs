@@ -1,0 +1,40 @@
+//! `embray tonemap`: the photographic operator applied to an existing EXR, without rendering
+//! (how the course's EXR/PNG reference pairs check it).
+
+use super::choices::PhotographicArgs;
+use anyhow::Result;
+use clap::Args;
+use embray::output::{OutputPlan, OutputSet, ToneMap, encode_png};
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct TonemapArgs {
+    /// Linear EXR (its R, G, B channels; half or float, any compression).
+    pub input: PathBuf,
+    /// PNG to write.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub photographic: PhotographicArgs,
+    /// Exposure adjustment in stops, applied first.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub exposure: f32,
+}
+
+pub fn run(args: &TonemapArgs) -> Result<()> {
+    if !args.exposure.is_finite() {
+        anyhow::bail!("--exposure must be a finite number");
+    }
+    let photographic = args.photographic.resolve(None)?;
+    // The PNG may not overwrite the EXR: checked before anything is read.
+    let mut plan = OutputPlan::new();
+    plan.input("the EXR", &args.input);
+    let png = plan.output("-o", &args.output, false)?;
+    let film = embray::bench::convergence::read_reference(&args.input)?;
+    let mut files = OutputSet::new();
+    files.write(&png, |w| {
+        encode_png(&film, ToneMap::Photographic, args.exposure, &photographic, w)
+    })?;
+    files.commit()?;
+    Ok(())
+}
