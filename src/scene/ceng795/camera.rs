@@ -23,6 +23,8 @@ pub(super) struct CameraSpec {
     pub spp: u32,
     /// The `<Tonemap>` of a camera that writes HDR (photographic, the only operator).
     pub tonemap: Option<Photographic>,
+    /// `<Renderer>PathTracing</Renderer>` (hw6): this camera renders with the path tracer.
+    pub path_tracing: Option<PathTracing>,
     /// Approximations made (off-centre or non-square window).
     pub notes: Vec<String>,
 }
@@ -49,9 +51,9 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         }
     };
     let own: &[&str] = if look_at {
-        &["GazePoint", "Gaze", "FovY", "FocusDistance", "Tonemap"]
+        &["GazePoint", "Gaze", "FovY", "FocusDistance", "Tonemap", "Renderer", "RendererParams"]
     } else {
-        &["Gaze", "NearPlane", "FocusDistance", "Tonemap"]
+        &["Gaze", "NearPlane", "FocusDistance", "Tonemap", "Renderer", "RendererParams"]
     };
     let allowed: Vec<&str> = COMMON.iter().chain(own).copied().collect();
     x.check_children(node, &allowed)?;
@@ -167,6 +169,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         distance => distance,
     };
     let tonemap = x.child(node, "Tonemap")?.map(|t| tonemap(x, t)).transpose()?;
+    let path_tracing = renderer(x, node, &mut notes)?;
     for note in &mut notes {
         *note = format!("camera '{image_name}': {note}");
     }
@@ -186,8 +189,71 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         },
         spp,
         tonemap,
+        path_tracing,
         notes,
     })
+}
+
+/// What a path-tracing camera's `<RendererParams>` change about the image it converges to.
+/// ImportanceSampling only changes the noise (cosine instead of uniform directions), so it
+/// is not kept: embray always samples the BSDF and, with MIS, the emitters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct PathTracing {
+    /// NextEventEstimation: lights are sampled explicitly. Without it a path reaches only
+    /// what it can hit, so point and area lights (which no ray can hit) light nothing.
+    pub next_event: bool,
+    /// RussianRoulette: paths end by roulette alone, with no depth limit.
+    pub roulette: bool,
+}
+
+/// `<Renderer>` and `<RendererParams>`: whether and how the camera path-traces.
+fn renderer(
+    x: &Xml,
+    node: Node,
+    notes: &mut Vec<String>,
+) -> Result<Option<PathTracing>, SceneError> {
+    let params = x.child(node, "RendererParams")?;
+    let Some(renderer) = x.child(node, "Renderer")? else {
+        if let Some(params) = params {
+            return Err(x.error(params, "<RendererParams> without a <Renderer>"));
+        }
+        return Ok(None);
+    };
+    if x.text(renderer) != "PathTracing" {
+        return Err(x.error(
+            renderer,
+            format!(
+                "unsupported renderer \"{}\" (supported: PathTracing)",
+                crate::excerpt::excerpt(x.text(renderer))
+            ),
+        ));
+    }
+    let mut mode = PathTracing { next_event: false, roulette: false };
+    if let Some(params) = params {
+        for (token, pos) in super::xml::tokens(params) {
+            mode.next_event |= token == "NextEventEstimation";
+            mode.roulette |= token == "RussianRoulette";
+            if !["NextEventEstimation", "ImportanceSampling", "RussianRoulette"].contains(&token) {
+                return Err(x.token_error(
+                    params,
+                    pos,
+                    format!(
+                        "unsupported renderer parameter \"{}\" (supported: NextEventEstimation, \
+                         ImportanceSampling, RussianRoulette)",
+                        crate::excerpt::excerpt(token)
+                    ),
+                ));
+            }
+        }
+    }
+    if !mode.next_event {
+        notes.push(
+            "without NextEventEstimation no path can reach a point or area light, so those \
+             light nothing (as in the course's renderer); emissive objects still do"
+                .to_owned(),
+        );
+    }
+    Ok(Some(mode))
 }
 
 /// `<Tonemap>`: `<TMO>Photographic</TMO>`, `<TMOOptions>key burn-out-percent</TMOOptions>`,
