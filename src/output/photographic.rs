@@ -120,16 +120,20 @@ mod tests {
     }
 
     #[test]
-    fn burn_out_whitens_exactly_the_brightest_percent() {
-        // 1000 luminances 1..=1000: with 1 % burn-out the 10 brightest saturate to 255
-        // (L_white is the 991st value; L ≥ L_white maps to ≥ 1) and the others do not.
+    fn burn_out_whitens_the_brightest_percent() {
+        // 1000 luminances 1..=1000, 1 % burn-out: L_white is the 991st value, so the 10
+        // brightest map to 1 or more (255); a few just below round up to 255 too, and the
+        // operator without burn-out keeps every pixel below white.
         let colors: Vec<Vec3> = (1..=1000).map(|i| Vec3::splat(i as f32)).collect();
-        let p = Photographic { burn_out: 1.0, ..Photographic::default() };
-        let out = p.to_rgb8(&colors);
-        let white = out.chunks(3).filter(|c| c[0] == 255).count();
-        assert_eq!(white, 10, "{:?}", &out[out.len() - 40..]);
+        let burnt = Photographic { burn_out: 1.0, ..Photographic::default() }.to_rgb8(&colors);
+        let plain = Photographic { burn_out: 0.0, ..Photographic::default() }.to_rgb8(&colors);
+        let white = |out: &[u8]| out.chunks(3).filter(|c| c[0] == 255).count();
+        assert!(burnt.chunks(3).rev().take(10).all(|c| c[0] == 255), "{:?}", &burnt[2940..]);
+        assert!((10..=15).contains(&white(&burnt)), "{}", white(&burnt));
+        assert_eq!(white(&plain), 0);
+        assert!(burnt[3 * 899] < 250, "{}", burnt[3 * 899]);
         // Darker pixels stay in order.
-        assert!(out.chunks(3).zip(out.chunks(3).skip(1)).all(|(a, b)| a[0] <= b[0]));
+        assert!(burnt.chunks(3).zip(burnt.chunks(3).skip(1)).all(|(a, b)| a[0] <= b[0]));
     }
 
     #[test]
