@@ -151,5 +151,25 @@ pub(crate) fn settings(
             IntegratorToml::Whitted => IntegratorKind::Whitted,
         };
     }
+    if let Some(t) = &render.tonemap {
+        let path = path.key("tonemap");
+        // The one operator there is; the field makes the choice explicit in the file.
+        let super::toml_format::TonemapOperatorToml::Photographic = t.operator;
+        let mut p = crate::output::Photographic::default();
+        for (field, value, target) in [
+            ("key", t.key, &mut p.key),
+            ("burn_out", t.burn_out, &mut p.burn_out),
+            ("saturation", t.saturation, &mut p.saturation),
+            ("gamma", t.gamma, &mut p.gamma),
+        ] {
+            if let Some(v) = value {
+                *target = ctx.f32(&path.key(field), v)?;
+            }
+        }
+        if let Some(problem) = p.problem() {
+            return Err(ctx.out_of_range(&path, format!("{p:?}"), &problem));
+        }
+        settings.tonemap = Some(p);
+    }
     Ok(settings)
 }

@@ -2,16 +2,18 @@
 //! specular lobe chosen by `type`, emission, and the course's Phong terms. Each type takes
 //! only its own fields.
 
-use super::desc::{MaterialDesc, Pattern, PhongDesc, Specular, TextureDesc};
+use super::desc::{CourseBrdf, MaterialDesc, Pattern, PhongDesc, Specular, TextureDesc};
 use super::error::SceneError;
 use super::source_map::FieldPath;
-use super::toml_format::{MaterialKind, MaterialToml, MetalPreset, PhongToml, TextureKind};
+use super::toml_format::{
+    BrdfModelToml, BrdfToml, MaterialKind, MaterialToml, MetalPreset, PhongToml, TextureKind,
+};
 use super::toml_format::{TextureToml, Vec3};
 use super::validate::Ctx;
 use glam::DAffine3;
 
 /// Fields every material type takes.
-const COMMON: [&str; 5] = ["type", "albedo", "emission", "texture", "phong"];
+const COMMON: [&str; 6] = ["type", "albedo", "emission", "texture", "phong", "brdf"];
 
 /// Complex refractive index (eta, k) of the `preset` metals, per linear sRGB channel.
 ///
@@ -107,7 +109,17 @@ pub(crate) fn material(
         }
     };
     let texture = m.texture.as_ref().map(|t| texture(&path.key("texture"), t, ctx)).transpose()?;
-    let phong = m.phong.as_ref().map(|p| phong(&path.key("phong"), p, ctx)).transpose()?;
+    let mut phong = m.phong.as_ref().map(|p| phong(&path.key("phong"), p, ctx)).transpose()?;
+    if let Some(b) = &m.brdf {
+        // A BRDF without a `phong` table reflects only its diffuse part (no specular).
+        let p = phong.get_or_insert(PhongDesc {
+            ambient: glam::Vec3::ZERO,
+            specular: glam::Vec3::ZERO,
+            exponent: 1.0,
+            brdf: Default::default(),
+        });
+        (p.brdf, p.exponent) = brdf(&path.key("brdf"), b, p.exponent, ctx)?;
+    }
     Ok(MaterialDesc {
         name: name.to_owned(),
         albedo,
@@ -157,6 +169,53 @@ fn texture(path: &FieldPath, t: &TextureToml, ctx: &Ctx) -> Result<TextureDesc, 
     // A material from the table is attached to objects directly: its pattern lives in the
     // space of each object's own vertices.
     Ok(TextureDesc { pattern, texture_from_object: DAffine3::IDENTITY })
+}
+
+/// The model and exponent of a `brdf` table (`exponent` defaults to the `phong` one).
+fn brdf(
+    path: &FieldPath,
+    b: &BrdfToml,
+    exponent: f32,
+    ctx: &Ctx,
+) -> Result<(CourseBrdf, f32), SceneError> {
+    let modified =
+        matches!(b.model, BrdfModelToml::ModifiedBlinnPhong | BrdfModelToml::ModifiedPhong);
+    let torrance = b.model == BrdfModelToml::TorranceSparrow;
+    for (field, given, allowed, for_what) in [
+        ("normalized", b.normalized.is_some(), modified, "the modified Phong models"),
+        ("kd_fresnel", b.kd_fresnel.is_some(), torrance, "torrance_sparrow"),
+        ("eta", b.eta.is_some(), torrance, "torrance_sparrow"),
+        ("k", b.k.is_some(), torrance, "torrance_sparrow"),
+    ] {
+        let requirement = format!("only for {for_what}");
+        ctx.require(!given || allowed, &path.key(field), "given", &requirement)?;
+    }
+    let exponent = match b.exponent {
+        Some(e) => {
+            let field = path.key("exponent");
+            let e = ctx.positive(&field, e)?;
+            ctx.f32(&field, e)?
+        }
+        None => exponent,
+    };
+    let normalized = b.normalized.unwrap_or(false);
+    let model = match b.model {
+        BrdfModelToml::OriginalBlinnPhong => CourseBrdf::OriginalBlinnPhong,
+        BrdfModelToml::OriginalPhong => CourseBrdf::OriginalPhong,
+        BrdfModelToml::ModifiedBlinnPhong => CourseBrdf::ModifiedBlinnPhong { normalized },
+        BrdfModelToml::ModifiedPhong => CourseBrdf::ModifiedPhong { normalized },
+        BrdfModelToml::TorranceSparrow => {
+            let eta = ctx.required(path, &path.to_string(), "eta", b.eta)?;
+            let eta = ctx.positive(&path.key("eta"), eta)?;
+            let k = ctx.non_negative(&path.key("k"), b.k.unwrap_or(0.0))?;
+            CourseBrdf::TorranceSparrow {
+                kd_fresnel: b.kd_fresnel.unwrap_or(false),
+                eta: glam::Vec3::splat(ctx.f32(&path.key("eta"), eta)?),
+                k: glam::Vec3::splat(ctx.f32(&path.key("k"), k)?),
+            }
+        }
+    };
+    Ok((model, exponent))
 }
 
 fn phong(path: &FieldPath, p: &PhongToml, ctx: &Ctx) -> Result<PhongDesc, SceneError> {

@@ -64,6 +64,25 @@ pub(crate) struct RenderToml {
     pub background: Option<Vec3>,
     pub light_samples: Option<u32>,
     pub integrator: Option<IntegratorToml>,
+    pub tonemap: Option<TonemapToml>,
+}
+
+/// `tonemap = { operator = "photographic", key = 0.18, burn_out = 1, saturation = 1,
+/// gamma = 2.2 }`: how the scene wants its PNG (each number optional, those the defaults).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct TonemapToml {
+    pub operator: TonemapOperatorToml,
+    pub key: Option<f64>,
+    pub burn_out: Option<f64>,
+    pub saturation: Option<f64>,
+    pub gamma: Option<f64>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum TonemapOperatorToml {
+    Photographic,
 }
 
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
@@ -104,6 +123,32 @@ pub(crate) struct MaterialToml {
     pub absorption: Option<Vec3>,
     pub texture: Option<TextureToml>,
     pub phong: Option<PhongToml>,
+    pub brdf: Option<BrdfToml>,
+}
+
+/// The CENG795 hw6 reflectance models, for the Whitted (course) integrator.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum BrdfModelToml {
+    OriginalBlinnPhong,
+    OriginalPhong,
+    ModifiedBlinnPhong,
+    ModifiedPhong,
+    TorranceSparrow,
+}
+
+/// `brdf = { model = "torrance_sparrow", exponent = 50, kd_fresnel = true, eta = 0.37,
+/// k = 2.82 }`: the model, its exponent, `normalized` (the modified models) or
+/// `kd_fresnel`, `eta` and `k` (Torrance-Sparrow's conductor Fresnel).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BrdfToml {
+    pub model: BrdfModelToml,
+    pub exponent: Option<f64>,
+    pub normalized: Option<bool>,
+    pub kd_fresnel: Option<bool>,
+    pub eta: Option<f64>,
+    pub k: Option<f64>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]

@@ -9,7 +9,7 @@
 //! an albedo or mirror reflectance above 1, a Phong exponent of 0 with a non-zero specular
 //! colour, a texture mapped through a non-identity transform.
 
-use super::desc::IntegratorKind;
+use super::desc::{CourseBrdf, IntegratorKind};
 use super::desc::{
     LensShape, LightDesc, MaterialDesc, MeshData, Pattern, SceneDesc, ShapeDesc, Specular,
 };
@@ -242,6 +242,16 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) {
         c3(s.background),
         s.light_samples
     );
+    if let Some(t) = &s.tonemap {
+        let _ = writeln!(
+            out,
+            "tonemap = {{ operator = \"photographic\", key = {}, burn_out = {}, saturation = {}, gamma = {} }}",
+            f(f64::from(t.key)),
+            f(f64::from(t.burn_out)),
+            f(f64::from(t.saturation)),
+            f(f64::from(t.gamma))
+        );
+    }
 }
 
 /// A unique TOML key per material: its name, or with its index appended if taken.
@@ -325,12 +335,6 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
         );
     }
     if let Some(p) = &m.phong {
-        if p.brdf != crate::scene::CourseBrdf::default() {
-            return Err(unsupported(format!(
-                "its BRDF ({:?}, from <BRDFs>) has no TOML form yet",
-                p.brdf
-            )));
-        }
         let exponent = if p.exponent > 0.0 {
             format!(", exponent = {:?}", p.exponent)
         } else if p.specular == Vec3::ZERO {
@@ -345,6 +349,29 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
             c3(p.ambient),
             c3(p.specular)
         );
+        let brdf = match p.brdf {
+            CourseBrdf::OriginalBlinnPhong => None,
+            CourseBrdf::OriginalPhong => Some("model = \"original_phong\"".to_owned()),
+            CourseBrdf::ModifiedBlinnPhong { normalized } => {
+                Some(format!("model = \"modified_blinn_phong\", normalized = {normalized}"))
+            }
+            CourseBrdf::ModifiedPhong { normalized } => {
+                Some(format!("model = \"modified_phong\", normalized = {normalized}"))
+            }
+            CourseBrdf::TorranceSparrow { kd_fresnel, eta, k } => {
+                if eta != Vec3::splat(eta.x) || k != Vec3::splat(k.x) {
+                    return Err(unsupported("its Torrance-Sparrow index varies by channel".into()));
+                }
+                Some(format!(
+                    "model = \"torrance_sparrow\", kd_fresnel = {kd_fresnel}, eta = {}, k = {}",
+                    f(f64::from(eta.x)),
+                    f(f64::from(k.x))
+                ))
+            }
+        };
+        if let Some(brdf) = brdf {
+            let _ = writeln!(out, "brdf = {{ {brdf} }}");
+        }
     }
     Ok(())
 }

@@ -325,6 +325,10 @@ fn converted_toml_renders_like_the_xml() {
         "2021/hw3/ellipsoids.xml",
         "2021/hw3/metal_glass_plates.xml",
         "2021/hw3/spheres_dof.xml",
+        "2022/hw6/brdf/inputs/brdf_torrancesparrow.xml",
+        "2022/hw6/brdf/inputs/brdf_phong_modified_normalized.xml",
+        "2022/hw6/directLighting/inputs/cornellbox_jaroslav_glossy_area.xml",
+        "2022/hw6/pathTracing/inputs/cornellbox_jaroslav_path_glass.xml",
     ];
     let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
     for name in scenes {
@@ -348,8 +352,8 @@ fn converted_toml_renders_like_the_xml() {
             let (ma, mb) =
                 (&back.materials[a.material as usize], &scene.materials[b.material as usize]);
             assert_eq!(
-                (ma.albedo, &ma.specular, ma.roughness),
-                (mb.albedo, &mb.specular, mb.roughness)
+                (ma.albedo, &ma.specular, ma.roughness, ma.emission, &ma.phong),
+                (mb.albedo, &mb.specular, mb.roughness, mb.emission, &mb.phong)
             );
         }
         let backend = BackendKind::default_compiled();

@@ -178,3 +178,52 @@ fn with_texture_space_attaches_a_texture_to_an_instance() {
         DAffine3::IDENTITY
     );
 }
+
+/// hw6's BRDFs and the photographic tone mapping in TOML (what `embray convert` writes).
+#[test]
+fn course_brdfs_and_photographic_tonemap() {
+    use embray::scene::CourseBrdf;
+    let scene = load(&format!(
+        "{CAMERA}[render]\ntonemap = {{ operator = \"photographic\", key = 0.3, burn_out = 0 }}\n\
+         [materials.gold]\nalbedo = [0.5, 0.43, 0.285]\n\
+         phong = {{ specular = [1, 0.86, 0.57], exponent = 10 }}\n\
+         brdf = {{ model = \"torrance_sparrow\", exponent = 50, kd_fresnel = true, eta = 0.37, k = 2.82 }}\n\
+         [materials.lobe]\nbrdf = {{ model = \"modified_phong\", normalized = true }}\n"
+    ));
+    let tonemap = scene.settings.tonemap.unwrap();
+    assert_eq!((tonemap.key, tonemap.burn_out, tonemap.gamma), (0.3, 0.0, 2.2));
+    let gold = material(&scene, "gold").phong.clone().unwrap();
+    assert_eq!(gold.exponent, 50.0);
+    assert_eq!(
+        gold.brdf,
+        CourseBrdf::TorranceSparrow {
+            kd_fresnel: true,
+            eta: Vec3::splat(0.37),
+            k: Vec3::splat(2.82)
+        }
+    );
+    let lobe = material(&scene, "lobe").phong.clone().unwrap();
+    assert_eq!(
+        (lobe.brdf, lobe.specular),
+        (CourseBrdf::ModifiedPhong { normalized: true }, Vec3::ZERO)
+    );
+    for (text, needles) in [
+        (
+            "brdf = { model = \"torrance_sparrow\", normalized = true, eta = 1 }",
+            &["brdf.normalized", "only for the modified"][..],
+        ),
+        ("brdf = { model = \"torrance_sparrow\" }", &["eta"][..]),
+        ("brdf = { model = \"phong\" }", &["model"][..]),
+        ("brdf = { model = \"modified_phong\", exponent = 0 }", &["brdf.exponent", "> 0"][..]),
+    ] {
+        let toml = format!("{CAMERA}[materials.m]\n{text}\n");
+        let message = scene::load_str(&toml, &source()).unwrap_err().to_string();
+        for needle in needles {
+            assert!(message.contains(needle), "{text}: {message}");
+        }
+    }
+    let toml =
+        format!("{CAMERA}[render]\ntonemap = {{ operator = \"photographic\", gamma = 0 }}\n");
+    let message = scene::load_str(&toml, &source()).unwrap_err().to_string();
+    assert!(message.contains("render.tonemap") && message.contains("gamma"), "{message}");
+}
