@@ -487,16 +487,28 @@ fn hw6_brdf_scenes_match_the_course_images() {
 #[test]
 #[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn hw6_direct_lighting_means_match_the_course_exrs() {
+    let compared = exr_means_match("2022/hw6/directLighting", |_| false, |_| 0.01);
+    assert!(compared >= 4, "expected the direct-lighting references, compared {compared}");
+}
+
+/// Renders every camera of the XMLs in `pack`/inputs that has a reference EXR in
+/// `pack`/outputs (and that `skip` does not name) at 4 spp on every backend, and checks the
+/// mean of each channel within `tolerance(xml name)` of the reference's; returns how many
+/// references were compared.
+fn exr_means_match(pack: &str, skip: fn(&str) -> bool, tolerance: fn(&str) -> f64) -> usize {
     let data = data_dir();
-    let outputs = data.join("2022/hw6/directLighting/outputs");
+    let outputs = data.join(pack).join("outputs");
     let mut compared = 0;
-    for xml in xml_files(&data.join("2022/hw6/directLighting/inputs")) {
+    for xml in xml_files(&data.join(pack).join("inputs")) {
         let name = relative(&data, &xml);
         for camera in ceng795::load(&xml).unwrap_or_else(|e| panic!("{name}: {e}")) {
-            let Ok(reference) =
-                embray::bench::convergence::read_reference(&outputs.join(&camera.image_name))
-            else {
-                println!("{name}: reference kept aside from the data set");
+            let tag = format!("{name} → {}", camera.image_name);
+            if skip(&camera.image_name) {
+                continue;
+            }
+            let path = outputs.join(&camera.image_name);
+            let Ok(reference) = embray::bench::convergence::read_reference(&path) else {
+                println!("{tag}: reference kept aside from the data set");
                 continue;
             };
             compared += 1;
@@ -506,23 +518,19 @@ fn hw6_direct_lighting_means_match_the_course_exrs() {
             for backend in BackendKind::compiled() {
                 let mut options = course_options(&camera.scene, backend);
                 options.spp = 4;
-                let film = render(&camera.scene, &options).unwrap().film;
-                let got = mean(&film.color);
+                let got = mean(&render(&camera.scene, &options).unwrap().film.color);
                 let relative = (got - expected).abs() / expected;
                 println!(
-                    "{name} on {}: mean {got:.4} vs {expected:.4}, off by {:.2} %",
+                    "{tag} on {}: mean {got:.4} vs {expected:.4}, off by {:.2} %",
                     backend.name(),
                     100.0 * relative.max_element()
                 );
-                assert!(
-                    relative.max_element() <= 0.01,
-                    "{name} on {}: mean {got} vs reference {expected}",
-                    backend.name()
-                );
+                let limit = tolerance(&name);
+                assert!(relative.max_element() <= limit, "{tag} on {}", backend.name());
             }
         }
     }
-    assert!(compared >= 4, "expected the direct-lighting references, compared {compared}");
+    compared
 }
 
 /// Pairs of the 2022 packs whose PNG is not the photographic operator applied to its EXR
@@ -621,39 +629,10 @@ fn photographic_tone_mapping_reproduces_the_course_pngs() {
 #[test]
 #[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn hw6_path_tracing_means_match_the_course_exrs() {
-    let data = data_dir();
-    let outputs = data.join("2022/hw6/pathTracing/outputs");
-    let mut compared = 0;
-    for xml in xml_files(&data.join("2022/hw6/pathTracing/inputs")) {
-        let name = relative(&data, &xml);
-        for camera in ceng795::load(&xml).unwrap_or_else(|e| panic!("{name}: {e}")) {
-            let tag = format!("{name} → {}", camera.image_name);
-            if camera.image_name.contains("russian") {
-                continue;
-            }
-            let path = outputs.join(&camera.image_name);
-            let Ok(reference) = embray::bench::convergence::read_reference(&path) else {
-                println!("{tag}: reference kept aside from the data set");
-                continue;
-            };
-            compared += 1;
-            let mean =
-                |c: &[glam::Vec3]| c.iter().map(|v| v.as_dvec3()).sum::<DVec3>() / c.len() as f64;
-            let expected = mean(&reference.color);
-            for backend in BackendKind::compiled() {
-                let mut options = course_options(&camera.scene, backend);
-                options.spp = 4;
-                let got = mean(&render(&camera.scene, &options).unwrap().film.color);
-                let relative = (got - expected).abs() / expected;
-                println!(
-                    "{tag} on {}: mean {got:.4} vs {expected:.4}, off by {:.2} %",
-                    backend.name(),
-                    100.0 * relative.max_element()
-                );
-                let tolerance = if name.contains("glass") { 0.03 } else { 0.01 };
-                assert!(relative.max_element() <= tolerance, "{tag} on {}", backend.name());
-            }
-        }
-    }
+    let compared = exr_means_match(
+        "2022/hw6/pathTracing",
+        |image| image.contains("russian"),
+        |xml| if xml.contains("glass") { 0.03 } else { 0.01 },
+    );
     assert!(compared >= 4, "expected the path-tracing references, compared {compared}");
 }
