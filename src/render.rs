@@ -3,7 +3,9 @@
 
 use crate::accel::{self, Accel, AccelError, AccelOptions, BackendKind};
 use crate::compile::{CompileError, EffectsMode, to_render_scene};
+use crate::distributed::{Part, PartError};
 use crate::film::{Film, Tile, tiles};
+use crate::sample_sums::{FilmSums, PixelSums};
 use crate::integrator::{PathSample, Tracer};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
@@ -13,7 +15,7 @@ use crate::scene::IntegratorKind;
 use crate::scene::SceneDesc;
 use crate::shading::spawn::SpawnMode;
 use crate::stats::RenderStats;
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec2};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -22,7 +24,7 @@ use std::time::{Duration, Instant};
 /// buffers reused per worker). Measured on the Cornell box and the 1M-triangle sphere:
 /// 8, 16, 32 and 64 cost the same CPU time within 1 %; 16 gives 256 tasks for a 256×256
 /// image, plenty to balance two threads, so it stays.
-const TILE_SIZE: u32 = 16;
+pub const TILE_SIZE: u32 = 16;
 
 /// Validated options of one render (command line, or tests).
 #[derive(Clone, Debug)]
@@ -94,6 +96,8 @@ pub enum RenderError {
     Limit(#[from] crate::limits::LimitError),
     #[error("{what} is {value}, but must be at most {max}")]
     Option { what: &'static str, value: u64, max: u64 },
+    #[error(transparent)]
+    Part(#[from] PartError),
     #[error("could not start {threads} worker threads: {source}")]
     Threads { threads: usize, source: rayon::ThreadPoolBuildError },
 }
@@ -125,6 +129,34 @@ pub fn prepare_scene(
 
 /// Renders `desc` from start to finish.
 pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput, RenderError> {
+    let part = render_part(desc, options, Part::WHOLE)?;
+    Ok(RenderOutput {
+        film: part.sums.resolve(),
+        stats: part.stats,
+        backend: part.backend,
+        observes: part.observes,
+        build_time: part.build_time,
+        render_time: part.render_time,
+    })
+}
+
+/// What rendering one part gave: its sample sums, before they are resolved into an image.
+#[derive(Debug)]
+pub struct PartOutput {
+    pub sums: FilmSums,
+    pub stats: RenderStats,
+    pub backend: &'static str,
+    pub observes: crate::accel::Observes,
+    pub build_time: Duration,
+    pub render_time: Duration,
+}
+
+/// Renders `part` of `desc` (all of it for `Part::WHOLE`).
+pub fn render_part(
+    desc: &SceneDesc,
+    options: &RenderOptions,
+    part: Part,
+) -> Result<PartOutput, RenderError> {
     check_options(options)?;
     let samples =
         u64::from(desc.camera.width) * u64::from(desc.camera.height) * u64::from(options.spp);
@@ -132,8 +164,9 @@ pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput,
         let max = crate::limits::MAX_SAMPLES;
         return Err(RenderError::Option { what: "pixels × spp", value: samples, max });
     }
+    part.check((desc.camera.width, desc.camera.height), TILE_SIZE, options.spp.max(1))?;
     crate::limits::check_memory(desc)?;
-    let run = || -> Result<RenderOutput, RenderError> {
+    let run = || -> Result<PartOutput, RenderError> {
         let scene = prepare_scene(desc, options)?;
         let build_start = Instant::now();
         let accel_options =
@@ -141,9 +174,9 @@ pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput,
         let accel = accel::build(options.backend, &scene, &accel_options)?;
         let build_time = build_start.elapsed();
         let render_start = Instant::now();
-        let (film, stats) = render_film(&scene, accel.as_ref(), options);
-        Ok(RenderOutput {
-            film,
+        let (sums, stats) = render_sums(&scene, accel.as_ref(), options, part);
+        Ok(PartOutput {
+            sums,
             stats,
             backend: accel.name(),
             observes: accel.observes(),
@@ -181,15 +214,14 @@ fn check_options(options: &RenderOptions) -> Result<(), RenderError> {
 
 struct TileResult {
     tile: Tile,
-    color: Vec<Vec3>,
-    depth: Vec<f32>,
-    normal: Vec<Vec3>,
+    /// The tile's pixels, row-major.
+    sums: Vec<PixelSums>,
     stats: RenderStats,
 }
 
-/// How many camera rays are generated and intersected as one batch: a run of a tile's
-/// samples, which may end inside a pixel.
-pub const CAMERA_BATCH: usize = 1024;
+/// Most camera rays generated and intersected as one batch: one sample index of every pixel
+/// of a tile.
+pub const CAMERA_BATCH: usize = (TILE_SIZE * TILE_SIZE) as usize;
 
 /// Buffers one worker reuses from tile to tile, so tracing a tile allocates only its result.
 #[derive(Default)]
@@ -222,121 +254,83 @@ fn camera_sample(
     (ray, stream)
 }
 
-/// The samples of one pixel, summed in sample order.
-#[derive(Default)]
-struct PixelSum {
-    color: DVec3,
-    depth_sum: f64,
-    depth_count: u32,
-    normal: DVec3,
-}
-
-impl PixelSum {
-    fn add(&mut self, sample: &PathSample) {
-        self.color += sample.radiance.as_dvec3();
-        if let Some(d) = sample.depth {
-            self.depth_sum += d as f64;
-            self.depth_count += 1;
-        }
-        if let Some(nrm) = sample.normal {
-            self.normal += nrm.as_dvec3();
-        }
-    }
-}
-
-impl TileResult {
-    /// Appends the pixel's colour, depth and normal.
-    fn push(&mut self, sum: PixelSum, spp: u32) {
-        self.color.push((sum.color / spp as f64).as_vec3());
-        self.depth.push(if sum.depth_count > 0 {
-            (sum.depth_sum / sum.depth_count as f64) as f32
-        } else {
-            f32::INFINITY
-        });
-        self.normal.push(sum.normal.normalize_or_zero().as_vec3());
-    }
-}
-
-/// Renders one tile. With the path tracer on a backend that traces batches faster
-/// (`Accel::prefers_batches`: Embree packets), the camera rays of a chunk of pixels are
-/// generated first (same order, same random numbers as one at a time), intersected as one
-/// batch (`Accel::intersect_batch`, whose hits equal single-ray ones but for ties between
-/// coincident surfaces, see `BatchMode`), and each path then continues from its first hit:
-/// the image is the same as tracing sample by sample.
+/// Renders the samples `samples` of every pixel of one tile. With the path tracer on a
+/// backend that traces batches faster (`Accel::prefers_batches`: Embree packets), the camera
+/// rays of one sample index of every pixel of the tile are generated first (the same random
+/// numbers as one at a time), intersected as one batch (`Accel::intersect_batch`, whose hits
+/// equal single-ray ones but for ties between coincident surfaces, see `BatchMode`), and each
+/// path then continues from its first hit. A batch depends only on the tile and the sample
+/// index, never on the sample range, so a render split into sample ranges traces the same
+/// packets as the whole one and merges to the same image bit for bit.
 fn render_tile(
     tracer: &Tracer,
     tile: Tile,
+    samples: std::ops::Range<u32>,
     options: &RenderOptions,
     scratch: &mut TileScratch,
 ) -> TileResult {
     let scene = tracer.scene();
-    let n = ((tile.x1 - tile.x0) * (tile.y1 - tile.y0)) as usize;
-    let mut result = TileResult {
-        tile,
-        color: Vec::with_capacity(n),
-        depth: Vec::with_capacity(n),
-        normal: Vec::with_capacity(n),
-        stats: RenderStats::default(),
-    };
+    let width = (tile.x1 - tile.x0) as usize;
+    let n = width * (tile.y1 - tile.y0) as usize;
+    let mut result =
+        TileResult { tile, sums: vec![PixelSums::default(); n], stats: RenderStats::default() };
     let spp = options.spp.max(1);
+    let pixel = |i: usize| (tile.x0 + (i % width) as u32, tile.y0 + (i / width) as u32);
+    let add = |sums: &mut PixelSums, sample: PathSample| {
+        sums.add_sample(sample.radiance, sample.depth, sample.normal)
+    };
     let batched = match tracer {
         Tracer::Path(path) if path.accel().prefers_batches() => Some(path),
         _ => None,
     };
     let Some(path) = batched else {
-        for y in tile.y0..tile.y1 {
-            for x in tile.x0..tile.x1 {
-                let mut sum = PixelSum::default();
-                for s in 0..spp {
-                    let (ray, mut stream) = camera_sample(scene, options, (x, y), s, spp);
-                    sum.add(&tracer.trace(ray, &mut stream, &mut result.stats));
-                }
-                result.push(sum, spp);
+        for (i, sums) in result.sums.iter_mut().enumerate() {
+            for s in samples.clone() {
+                let (ray, mut stream) = camera_sample(scene, options, pixel(i), s, spp);
+                add(sums, tracer.trace(ray, &mut stream, &mut result.stats));
             }
         }
         return result;
     };
-    // The tile's samples as one stream, pixel by pixel and sample by sample, cut into
-    // batches of `CAMERA_BATCH`: memory stays bounded whatever the spp (a pixel's samples
-    // may span batches; its sum carries over).
-    let width = (tile.x1 - tile.x0) as usize;
-    let spp_n = spp as usize;
-    let total = n * spp_n;
-    let mut sum = PixelSum::default();
-    let mut first = 0;
-    while first < total {
-        let last = (first + CAMERA_BATCH).min(total);
-        let pixel = |i: usize| (tile.x0 + (i % width) as u32, tile.y0 + (i / width) as u32);
+    for s in samples {
         scratch.rays.clear();
         scratch.streams.clear();
-        for g in first..last {
-            let (ray, stream) =
-                camera_sample(scene, options, pixel(g / spp_n), (g % spp_n) as u32, spp);
+        for i in 0..n {
+            let (ray, stream) = camera_sample(scene, options, pixel(i), s, spp);
             scratch.rays.push(ray);
             scratch.streams.push(stream);
         }
         scratch.hits.clear();
-        scratch.hits.resize(scratch.rays.len(), None);
+        scratch.hits.resize(n, None);
         path.accel().intersect_batch(&scratch.rays, &mut scratch.hits, &mut result.stats.traversal);
-        let samples = scratch.rays.iter().zip(&scratch.hits).zip(&mut scratch.streams);
-        for (k, ((ray, hit), stream)) in samples.enumerate() {
-            sum.add(&path.trace(*ray, Some(*hit), stream, &mut result.stats));
-            if (first + k + 1) % spp_n == 0 {
-                result.push(std::mem::take(&mut sum), spp);
-            }
+        let traced = scratch.rays.iter().zip(&scratch.hits).zip(&mut scratch.streams);
+        for (sums, ((ray, hit), stream)) in result.sums.iter_mut().zip(traced) {
+            add(sums, path.trace(*ray, Some(*hit), stream, &mut result.stats));
         }
-        first = last;
     }
     result
 }
 
-/// Traces every pixel of `scene` with `accel`. Each pixel is computed by one task from
-/// counter-based random numbers, so the image is bit-identical for any thread count.
+/// Traces every pixel of `scene` with `accel` (see [`render_sums`]).
 pub fn render_film(
     scene: &RenderScene,
     accel: &dyn Accel,
     options: &RenderOptions,
 ) -> (Film, RenderStats) {
+    let (sums, stats) = render_sums(scene, accel, options, Part::WHOLE);
+    (sums.resolve(), stats)
+}
+
+/// Traces `part` of `scene` with `accel`: the sums of its samples of its pixels (zero
+/// elsewhere). Each tile is computed by one task from counter-based random numbers and
+/// summed exactly (`sample_sums`), so the sums are bit-identical for any thread count and
+/// any split.
+pub fn render_sums(
+    scene: &RenderScene,
+    accel: &dyn Accel,
+    options: &RenderOptions,
+    part: Part,
+) -> (FilmSums, RenderStats) {
     let tracer = Tracer::new(
         options.integrator,
         scene,
@@ -346,7 +340,8 @@ pub fn render_film(
         options.spawn,
     );
     let camera = &scene.camera;
-    let all_tiles = tiles(camera.width, camera.height, TILE_SIZE);
+    let all_tiles = part.tiles(&tiles(camera.width, camera.height, TILE_SIZE));
+    let samples = part.samples(options.spp.max(1));
     let progress = if options.progress {
         let bar = ProgressBar::with_draw_target(
             Some(all_tiles.len() as u64),
@@ -364,23 +359,20 @@ pub fn render_film(
     let results: Vec<TileResult> = all_tiles
         .par_iter()
         .map_init(TileScratch::default, |scratch, &tile| {
-            let r = render_tile(&tracer, tile, options, scratch);
+            let r = render_tile(&tracer, tile, samples.clone(), options, scratch);
             progress.inc(1);
             r
         })
         .collect();
     progress.finish_and_clear();
-    let mut film = Film::new(camera.width, camera.height);
+    let mut film = FilmSums::new(camera.width, camera.height);
     let mut stats = RenderStats::default();
     for r in results {
-        let mut i = 0;
+        let mut sums = r.sums.into_iter();
         for y in r.tile.y0..r.tile.y1 {
             for x in r.tile.x0..r.tile.x1 {
                 let idx = film.index(x, y);
-                film.color[idx] = r.color[i];
-                film.depth[idx] = r.depth[i];
-                film.normal[idx] = r.normal[i];
-                i += 1;
+                film.pixels[idx] = sums.next().unwrap_or_default();
             }
         }
         stats += r.stats;

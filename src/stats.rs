@@ -16,7 +16,7 @@ macro_rules! add_fields {
 }
 
 /// What a backend observed while traversing its acceleration structure.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct TraversalCounters {
     /// BVH nodes whose children were tested against the ray.
     pub node_visits: u64,
@@ -27,7 +27,7 @@ pub struct TraversalCounters {
 add_fields!(TraversalCounters { node_visits, prim_tests });
 
 /// Rays traced and hits found, for one kind of ray.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct RayKindCounts {
     pub rays: u64,
     pub hits: u64,
@@ -36,7 +36,7 @@ pub struct RayKindCounts {
 add_fields!(RayKindCounts { rays, hits });
 
 /// All counters of a render (or of one worker's share of it).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct RenderStats {
     pub camera: RayKindCounts,
     /// Shadow rays; a "hit" means the light was occluded.

@@ -7,7 +7,9 @@ mod compare;
 mod console;
 mod convert;
 mod info;
+mod merge;
 mod render;
+mod render_part;
 mod tonemap;
 
 use anyhow::{Context, Result};
@@ -18,6 +20,7 @@ use std::path::{Path, PathBuf};
 pub use bench::BenchCommand;
 pub use compare::CompareArgs;
 pub use convert::ConvertArgs;
+pub use merge::MergeArgs;
 pub use render::RenderArgs;
 pub use tonemap::TonemapArgs;
 
@@ -56,6 +59,10 @@ pub enum Command {
     /// Tone-map a linear EXR to PNG with the photographic operator (Reinhard et al. 2002, as
     /// the CENG795 course specifies it), without rendering.
     Tonemap(TonemapArgs),
+    /// Join the part files of a split render (`embray render --part I/N`) into its EXR (and
+    /// PNG): bit-identical to rendering it whole. Refuses parts of other renders, and missing
+    /// or duplicated parts.
+    Merge(MergeArgs),
 }
 
 /// Runs the command `cli` names.
@@ -67,6 +74,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Convert(args) => convert::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Tonemap(args) => tonemap::run(&args),
+        Command::Merge(args) => merge::run(&args),
     }
 }
 

@@ -8,6 +8,7 @@ use anyhow::{Result, bail};
 use clap::Args;
 use embray::accel::{BackendKind, BatchMode, BuildQuality};
 use embray::compile::EffectsMode;
+use embray::distributed::{Part, Split};
 use embray::excerpt::excerpt;
 use embray::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SPP, MAX_THREADS};
 use embray::output::stats::{StatsReport, stats_table};
@@ -102,6 +103,15 @@ pub struct RenderArgs {
     /// How rays leave surfaces: `robust` (error-bound offsets) or `epsilon=VALUE`.
     #[arg(long, value_parser = SpawnMode::parse, default_value = "robust")]
     pub spawn: SpawnMode,
+    /// Render only part I of N (counting from 0) into a part file of exact sample sums
+    /// (-o, default part-I-of-N.exr); `embray merge` joins the N parts into the image the
+    /// whole render would give, bit for bit.
+    #[arg(long, value_name = "I/N")]
+    pub part: Option<String>,
+    /// How --part divides the render: each part gets whole tiles (spread over the image), or
+    /// a range of every pixel's samples.
+    #[arg(long, value_parser = choice::<Split>(), default_value_t = Split::Tiles, requires = "part")]
+    pub split: Split,
     /// No progress bar or summary line.
     #[arg(short, long)]
     pub quiet: bool,
@@ -194,6 +204,9 @@ struct Job {
 /// every output path is checked first (usable, not an input, not another output), and
 /// nothing is replaced unless every image was rendered and written.
 pub fn run(args: &RenderArgs) -> Result<()> {
+    if let Some(text) = &args.part {
+        return super::render_part::run(args, Part::parse(text, args.split)?);
+    }
     let mut plan = OutputPlan::new();
     if let Some(path) = &args.scene {
         plan.input("the scene", path);

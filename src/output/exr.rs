@@ -29,7 +29,9 @@ pub fn encode_exr(film: &Film, sink: &mut dyn WriteSeek) -> std::io::Result<()> 
     let layer = Layer::new(
         size,
         LayerAttributes::named("embray"),
-        Encoding::FAST_LOSSLESS,
+        // Chunks in increasing order: with the default (unspecified) order they are written
+        // as the compressor threads finish, and the same image gives different files.
+        Encoding { line_order: LineOrder::Increasing, ..Encoding::FAST_LOSSLESS },
         AnyChannels::sort(channels),
     );
     let image = Image::from_layer(layer);

@@ -1,0 +1,60 @@
+//! `embray merge`: the part files of a split render → its EXR (and PNG).
+
+use super::console::note;
+use anyhow::{Context, Result};
+use clap::Args;
+use embray::distributed::merge_parts;
+use embray::output::{OutputPlan, OutputSet, Photographic, ToneMap, encode_exr, encode_png};
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct MergeArgs {
+    /// The part files, in any order: every part of one render, each once.
+    #[arg(required = true)]
+    pub parts: Vec<PathBuf>,
+    /// The merged EXR (linear RGB, Z, N.X/N.Y/N.Z), as `embray render` writes it.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Also write the tone-mapped PNG, with the settings the parts were rendered with.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+    /// No summary line.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+pub fn run(args: &MergeArgs) -> Result<()> {
+    let start = std::time::Instant::now();
+    let mut plan = OutputPlan::new();
+    for path in &args.parts {
+        plan.input("the part file", path);
+    }
+    let exr = plan.output("-o", &args.output, false)?;
+    let png = args.png.as_deref().map(|p| plan.output("--png", p, false)).transpose()?;
+    let (sums, meta, stats) = merge_parts(&args.parts)?;
+    let film = sums.resolve();
+    let mut files = OutputSet::new();
+    files.write(&exr, |w| encode_exr(&film, w))?;
+    if let Some(png) = &png {
+        let curve: ToneMap = meta.png.curve.parse().context("the parts' PNG settings")?;
+        let [key, burn_out, saturation, gamma] = meta.png.photographic;
+        let photographic = Photographic { key, burn_out, saturation, gamma };
+        files.write(png, |w| encode_png(&film, curve, meta.png.exposure, &photographic, w))?;
+    }
+    files.commit()?;
+    if !args.quiet {
+        note(format!(
+            "merged {} parts ({} split) of {}x{} @ {} spp, {} rays in all, in {:.3} s → {}{}",
+            meta.part.count,
+            meta.part.split,
+            meta.width,
+            meta.height,
+            meta.spp,
+            stats.total_rays(),
+            start.elapsed().as_secs_f64(),
+            args.output.display(),
+            args.png.as_ref().map(|p| format!(", {}", p.display())).unwrap_or_default(),
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,94 @@
+//! `embray render SCENE --part I/N`: one part of a split render, written as a part file for
+//! `embray merge`.
+
+use super::console::note;
+use super::render::RenderArgs;
+use anyhow::{Result, bail};
+use embray::distributed::{Part, PartMeta, PngSettings, encode_part, hash_files, options_fingerprint};
+use embray::output::{OutputPlan, OutputSet};
+use embray::render::{TILE_SIZE, render_part};
+use std::path::PathBuf;
+
+/// The part file's default name.
+pub fn default_part_path(part: Part) -> PathBuf {
+    PathBuf::from(format!("part-{}-of-{}.exr", part.index, part.count))
+}
+
+/// Renders `part` of the scene `args` names and commits its part file.
+pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
+    for (flag, given) in [("--png", args.png.is_some()), ("--stats-json", args.stats_json.is_some())] {
+        if given {
+            bail!(
+                "{flag} cannot be used with --part: a part holds sample sums, not an image; \
+                 `embray merge` writes the image (and its PNG) once every part is done"
+            );
+        }
+    }
+    let mut plan = OutputPlan::new();
+    if let Some(path) = &args.scene {
+        plan.input("the scene", path);
+    }
+    let scene = match args.scene.as_deref() {
+        Some(path) if embray::scene::ceng795::is_ceng795_path(path) => {
+            let mut cameras = embray::scene::ceng795::load(path)?;
+            if cameras.len() != 1 {
+                bail!(
+                    "'{}' has {} cameras; --part renders one image: convert it with `embray \
+                     convert` and split one camera's TOML",
+                    path.display(),
+                    cameras.len()
+                );
+            }
+            cameras.swap_remove(0).scene
+        }
+        path => super::load_scene(path)?,
+    };
+    plan.inputs_read();
+    let output = args.output.clone().unwrap_or_else(|| default_part_path(part));
+    let target = plan.output(if args.output.is_some() { "-o" } else { "the part file (default)" }, &output, false)?;
+    let options = args.to_options(&scene)?;
+    let photographic = args.photographic.resolve(scene.settings.tonemap.as_ref())?;
+    let files = embray::scene::files_read();
+    let scene_hash = hash_files(&files)?;
+    let rendered = render_part(&scene, &options, part)?;
+    let uses_embree = options.backend == embray::accel::BackendKind::Embree;
+    let meta = PartMeta {
+        format: embray::distributed::PART_FORMAT.to_owned(),
+        embray_version: env!("CARGO_PKG_VERSION").to_owned(),
+        embree: uses_embree.then(embray::accel::embree_library).flatten().map(|l| l.to_string()),
+        scene: args.scene.as_ref().map_or("(built-in Cornell box)".to_owned(), |p| p.display().to_string()),
+        scene_hash,
+        options: options_fingerprint(&options),
+        width: scene.camera.width,
+        height: scene.camera.height,
+        spp: options.spp,
+        tile_size: TILE_SIZE,
+        part,
+        png: PngSettings {
+            curve: args.tonemap.resolve(&scene.settings).to_string(),
+            exposure: args.exposure,
+            photographic: [photographic.key, photographic.burn_out, photographic.saturation, photographic.gamma],
+        },
+        stats: rendered.stats,
+    };
+    let mut set = OutputSet::new();
+    set.write(&target, |w| encode_part(&meta, &rendered.sums, w))?;
+    set.commit()?;
+    if !args.quiet {
+        let samples = part.samples(options.spp);
+        note(format!(
+            "part {part} ({} split; samples {}..{} of {}) of {}x{} on {}: render {:.3} s, {} rays → {}",
+            part.split,
+            samples.start,
+            samples.end,
+            options.spp,
+            meta.width,
+            meta.height,
+            rendered.backend,
+            rendered.render_time.as_secs_f64(),
+            rendered.stats.total_rays(),
+            output.display()
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,154 @@
+//! Merging parts: check that the files belong to one render and cover it exactly once, then
+//! add their exact sums, one part in memory at a time.
+
+use super::metadata::{PartMeta, options_difference};
+use super::part::{Part, Split};
+use super::part_file::{PartFileError, read_part_meta, read_part_sums};
+use crate::sample_sums::FilmSums;
+use crate::stats::RenderStats;
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum MergeError {
+    #[error(transparent)]
+    File(#[from] PartFileError),
+    #[error("no part files given")]
+    Empty,
+    #[error(
+        "'{}' does not belong with '{}': {what} differs ({theirs} vs {ours})",
+        .path.display(), .first.display()
+    )]
+    Mismatch { path: PathBuf, first: PathBuf, what: String, theirs: String, ours: String },
+    #[error("part {part} is given twice: '{}' and '{}'", .first.display(), .second.display())]
+    Duplicate { part: Part, first: PathBuf, second: PathBuf },
+    #[error(
+        "{} of {count} {} missing: {list} (parts count from 0; `embray slurm resume` or \
+         `embray render SCENE --part I/{count}` makes them)",
+        .missing.len(),
+        if .missing.len() == 1 { "part is" } else { "parts are" },
+        list = .missing.iter().map(|i| format!("{i}/{count}")).collect::<Vec<_>>().join(", ")
+    )]
+    Missing { missing: Vec<u32>, count: u32 },
+    #[error(
+        "part file '{}' is damaged: pixel ({x}, {y}) has {found} samples, but part {part} \
+         renders {expected} there", .path.display()
+    )]
+    Coverage { path: PathBuf, part: Part, x: u32, y: u32, found: u32, expected: u32 },
+    #[error("part file '{}' is damaged: a sum of pixel ({x}, {y}) overflows", .path.display())]
+    Overflow { path: PathBuf, x: u32, y: u32 },
+    #[error(
+        "merging a {width}x{height} image needs about {needed} MiB, more than the {available} \
+         MiB available"
+    )]
+    Memory { width: u32, height: u32, needed: u64, available: u64 },
+}
+
+/// Reads every part's metadata and checks that they are the parts of one render, each
+/// exactly once. Returns them in part order.
+pub fn check_parts(paths: &[PathBuf]) -> Result<Vec<(PathBuf, PartMeta)>, MergeError> {
+    let Some(first_path) = paths.first() else {
+        return Err(MergeError::Empty);
+    };
+    let first = read_part_meta(first_path)?;
+    let mut slots: Vec<Option<(PathBuf, PartMeta)>> = vec![None; first.part.count as usize];
+    for path in paths {
+        let meta = read_part_meta(path)?;
+        let mismatch = |what: &str, theirs: String, ours: String| MergeError::Mismatch {
+            path: path.clone(),
+            first: first_path.clone(),
+            what: what.to_owned(),
+            theirs,
+            ours,
+        };
+        for ((what, theirs), (_, ours)) in meta.shared_fields().into_iter().zip(first.shared_fields())
+        {
+            if theirs != ours {
+                return Err(mismatch(what, theirs, ours));
+            }
+        }
+        if meta.options != first.options {
+            let difference = options_difference(&meta.options, &first.options);
+            let (name, values) = difference.split_once(": ").unwrap_or(("the options", ""));
+            let (theirs, ours) = values.split_once(" vs ").unwrap_or((values, ""));
+            return Err(mismatch(&format!("render option {name}"), theirs.into(), ours.into()));
+        }
+        let slot = &mut slots[meta.part.index as usize];
+        if let Some((earlier, _)) = slot {
+            return Err(MergeError::Duplicate {
+                part: meta.part,
+                first: earlier.clone(),
+                second: path.clone(),
+            });
+        }
+        *slot = Some((path.clone(), meta));
+    }
+    let missing: Vec<u32> =
+        slots.iter().enumerate().filter(|(_, s)| s.is_none()).map(|(i, _)| i as u32).collect();
+    if !missing.is_empty() {
+        return Err(MergeError::Missing { missing, count: first.part.count });
+    }
+    Ok(slots.into_iter().flatten().collect())
+}
+
+/// The merged sums of the parts `paths` (checked by [`check_parts`] first), the first part's
+/// metadata, and the counters of all parts added.
+pub fn merge_parts(paths: &[PathBuf]) -> Result<(FilmSums, PartMeta, RenderStats), MergeError> {
+    let parts = check_parts(paths)?;
+    let (_, first) = &parts[0];
+    check_merge_memory(first.width, first.height)?;
+    let mut total = FilmSums::new(first.width, first.height);
+    let mut stats = RenderStats::default();
+    let all_tiles = crate::film::tiles(first.width, first.height, first.tile_size);
+    for (path, meta) in &parts {
+        let sums = read_part_sums(path, meta)?;
+        let samples = meta.part.samples(meta.spp).len() as u32;
+        for (t, tile) in all_tiles.iter().enumerate() {
+            let expected = if meta.part.owns_tile(t) { samples } else { 0 };
+            for y in tile.y0..tile.y1 {
+                for x in tile.x0..tile.x1 {
+                    let i = total.index(x, y);
+                    let found = sums.pixels[i].samples;
+                    if found != expected || sums.pixels[i].depth_samples > found {
+                        return Err(MergeError::Coverage {
+                            path: path.clone(),
+                            part: meta.part,
+                            x,
+                            y,
+                            found,
+                            expected,
+                        });
+                    }
+                    total.pixels[i] = total.pixels[i]
+                        .checked_add(&sums.pixels[i])
+                        .ok_or_else(|| MergeError::Overflow { path: path.clone(), x, y })?;
+                }
+            }
+        }
+        stats += meta.stats;
+    }
+    debug_assert!(
+        first.part.split != Split::Samples || total.pixels.iter().all(|p| p.samples == first.spp)
+    );
+    Ok((total, first.clone(), stats))
+}
+
+/// The merge holds the merged sums and one part's: refused before allocating when that
+/// would not fit.
+fn check_merge_memory(width: u32, height: u32) -> Result<(), MergeError> {
+    let pixels = width as u64 * height as u64;
+    let per_pixel = 2 * std::mem::size_of::<crate::sample_sums::PixelSums>() as u64
+        + super::part_file::BYTES_PER_PIXEL * 2
+        + crate::limits::BYTES_PER_PIXEL;
+    let needed = pixels * per_pixel;
+    if let Some(available) = crate::limits::memory_available()
+        && needed > available
+    {
+        return Err(MergeError::Memory {
+            width,
+            height,
+            needed: needed >> 20,
+            available: available >> 20,
+        });
+    }
+    Ok(())
+}

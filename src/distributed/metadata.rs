@@ -1,0 +1,118 @@
+//! What a part file says about itself: which render it belongs to (scene hash, options,
+//! versions), which part it is, how its PNG is to be made, and its counters. The merge
+//! compares these before reading any pixel.
+
+use super::part::Part;
+use crate::render::RenderOptions;
+use crate::stats::RenderStats;
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::path::PathBuf;
+
+/// The format of part files this build writes and reads.
+pub const PART_FORMAT: &str = "embray-part-1";
+
+/// How the final PNG is made (as the part's `embray render` command line said).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PngSettings {
+    /// A `ToneMap` name.
+    pub curve: String,
+    pub exposure: f32,
+    /// The photographic operator's key, burn-out, saturation and gamma.
+    pub photographic: [f32; 4],
+}
+
+/// The metadata of one part file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PartMeta {
+    pub format: String,
+    pub embray_version: String,
+    /// The Embree library and the kernels it ran (its results can differ between ISAs).
+    pub embree: Option<String>,
+    /// The scene as named on the command line (for messages only).
+    pub scene: String,
+    /// SHA-256 over the scene file and every file it read (meshes, material libraries).
+    pub scene_hash: String,
+    /// Every render option that can change the image, as text.
+    pub options: String,
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    pub tile_size: u32,
+    pub part: Part,
+    pub png: PngSettings,
+    pub stats: RenderStats,
+}
+
+impl PartMeta {
+    /// The fields two parts of one render must share, with their values, for messages:
+    /// everything but the part index and the counters.
+    pub fn shared_fields(&self) -> Vec<(&'static str, String)> {
+        vec![
+            ("format", self.format.clone()),
+            ("embray version", self.embray_version.clone()),
+            ("Embree library", format!("{:?}", self.embree)),
+            ("scene contents (SHA-256)", self.scene_hash.clone()),
+            ("image size", format!("{}x{}", self.width, self.height)),
+            ("spp", self.spp.to_string()),
+            ("split", format!("{} into {} parts", self.part.split, self.part.count)),
+            ("tile size", self.tile_size.to_string()),
+            ("PNG settings", format!("{:?}", self.png)),
+        ]
+    }
+}
+
+/// The render options that decide the image, as text: the options less the thread count and
+/// the progress bar, which do not change a pixel.
+pub fn options_fingerprint(options: &RenderOptions) -> String {
+    let canonical = RenderOptions { threads: None, progress: false, ..options.clone() };
+    format!("{canonical:?}")
+}
+
+/// The first option that differs between two fingerprints, as `name: a vs b`.
+pub fn options_difference(a: &str, b: &str) -> String {
+    let fields = |s: &str| -> Vec<String> {
+        let inner = s.split_once('{').map_or(s, |(_, rest)| rest);
+        inner.trim_end_matches('}').split(", ").map(|f| f.trim().to_owned()).collect()
+    };
+    let (fa, fb) = (fields(a), fields(b));
+    for (x, y) in fa.iter().zip(&fb) {
+        if x != y {
+            let value = |f: &str| f.split_once(": ").map_or(f.to_owned(), |(_, v)| v.to_owned());
+            let name = x.split_once(": ").map_or("options", |(n, _)| n).to_owned();
+            return format!("{name}: {} vs {}", value(x), value(y));
+        }
+    }
+    "the options".to_owned()
+}
+
+/// SHA-256 over `files` (their names and contents, in the order given), as hex.
+pub fn hash_files(files: &[PathBuf]) -> std::io::Result<String> {
+    let mut hasher = Sha256::new();
+    for path in files {
+        let bytes = crate::scene::read_input_bytes(path)?;
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        hasher.update((name.len() as u64).to_le_bytes());
+        hasher.update(name.as_bytes());
+        hasher.update((bytes.len() as u64).to_le_bytes());
+        hasher.update(&bytes);
+    }
+    Ok(hasher.finalize().iter().map(|b| format!("{b:02x}")).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn option_differences_are_named() {
+        let desc = crate::scene::load(&crate::bundled::default_scene()).unwrap();
+        let a = RenderOptions::for_scene(&desc);
+        let b = RenderOptions { spp: a.spp + 1, threads: Some(3), ..a.clone() };
+        let (fa, fb) = (options_fingerprint(&a), options_fingerprint(&b));
+        assert_ne!(fa, fb);
+        assert_eq!(options_difference(&fa, &fb), format!("spp: {} vs {}", a.spp, b.spp));
+        let c = RenderOptions { threads: Some(1), progress: true, ..a.clone() };
+        assert_eq!(options_fingerprint(&c), fa, "threads and progress do not change a pixel");
+    }
+}

@@ -1,0 +1,14 @@
+//! Renders that outgrow one machine: a render split into parts (tiles or sample ranges),
+//! each written as a part file of exact sample sums, merged bit-identically to the whole
+//! render; and the Slurm array jobs that run the parts.
+
+mod part;
+
+pub use part::{MAX_PARTS, Part, PartError, Split};
+mod merge;
+mod metadata;
+mod part_file;
+
+pub use metadata::{PART_FORMAT, PartMeta, PngSettings, hash_files, options_difference, options_fingerprint};
+pub use part_file::{PartFileError, encode_part, read_part_meta, read_part_sums};
+pub use merge::{MergeError, check_parts, merge_parts};

@@ -1,0 +1,188 @@
+//! Per-pixel sums of samples in fixed point, so that adding them is exact and associative.
+//!
+//! A render split into sample ranges (or tiles) must merge to the image of the whole render
+//! bit for bit. Floating-point sums depend on their order; integer sums do not. Every
+//! sample's colour, depth and normal is converted once to a fixed-point integer with
+//! `FRACTION_BITS` fractional bits (exact for any f32 of magnitude at least 2⁻³⁶, truncated
+//! below, clamped beyond `MAX_MAGNITUDE`), summed in `i128`, and turned back into a float
+//! only when the pixel is resolved. The whole render goes through the same path, so a
+//! split render and the whole one see the same integers whatever the grouping.
+
+use crate::film::Film;
+use glam::{DVec3, Vec3};
+
+/// Fractional bits of the fixed-point representation: a sample of 1.0 is 2⁶⁰.
+const FRACTION_BITS: i32 = 60;
+/// Largest magnitude one sample contributes (2⁶⁶ ≈ 7·10¹⁹): with at most 2²⁰ samples a pixel
+/// (`limits::MAX_SPP`), a sum stays below 2⁸⁷ + 2⁶⁰·2²⁰, far inside `i128`.
+const MAX_MAGNITUDE: f64 = (1u128 << 66) as f64;
+
+/// `value` in fixed point (NaN counts as 0; ±∞ and huge values are clamped).
+pub fn to_fixed(value: f32) -> i128 {
+    let v = value as f64;
+    if v.is_nan() {
+        return 0;
+    }
+    // Multiplying by a power of two is exact; the cast truncates toward zero.
+    (v.clamp(-MAX_MAGNITUDE, MAX_MAGNITUDE) * 2f64.powi(FRACTION_BITS)) as i128
+}
+
+/// The float value of a fixed-point sum (rounded once, then scaled exactly).
+pub fn from_fixed(sum: i128) -> f64 {
+    sum as f64 * 2f64.powi(-FRACTION_BITS)
+}
+
+/// The sums of one pixel's samples.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PixelSums {
+    pub color: [i128; 3],
+    /// Samples summed.
+    pub samples: u32,
+    /// Distances to the first hit, over the samples that hit something.
+    pub depth: i128,
+    pub depth_samples: u32,
+    /// World-space shading normals at the first hit.
+    pub normal: [i128; 3],
+}
+
+impl PixelSums {
+    /// Adds one sample: its radiance and, where it hit something, its depth and normal.
+    pub fn add_sample(&mut self, radiance: Vec3, depth: Option<f32>, normal: Option<Vec3>) {
+        for (sum, v) in self.color.iter_mut().zip(radiance.to_array()) {
+            *sum += to_fixed(v);
+        }
+        self.samples += 1;
+        if let Some(d) = depth {
+            self.depth += to_fixed(d);
+            self.depth_samples += 1;
+        }
+        if let Some(n) = normal {
+            for (sum, v) in self.normal.iter_mut().zip(n.to_array()) {
+                *sum += to_fixed(v);
+            }
+        }
+    }
+
+    /// Adds another set of sums of the same pixel; `None` if a sum overflows (only a
+    /// corrupted part file can do that).
+    pub fn checked_add(&self, other: &PixelSums) -> Option<PixelSums> {
+        let add3 = |a: [i128; 3], b: [i128; 3]| -> Option<[i128; 3]> {
+            Some([a[0].checked_add(b[0])?, a[1].checked_add(b[1])?, a[2].checked_add(b[2])?])
+        };
+        Some(PixelSums {
+            color: add3(self.color, other.color)?,
+            samples: self.samples.checked_add(other.samples)?,
+            depth: self.depth.checked_add(other.depth)?,
+            depth_samples: self.depth_samples.checked_add(other.depth_samples)?,
+            normal: add3(self.normal, other.normal)?,
+        })
+    }
+
+    /// The pixel's mean colour, mean depth (+∞ where no sample hit) and mean normal
+    /// direction (zero where none hit).
+    pub fn resolve(&self) -> (Vec3, f32, Vec3) {
+        let mean = |sum: i128, n: u32| from_fixed(sum) / n.max(1) as f64;
+        let color = DVec3::new(
+            mean(self.color[0], self.samples),
+            mean(self.color[1], self.samples),
+            mean(self.color[2], self.samples),
+        );
+        let depth = if self.depth_samples > 0 {
+            mean(self.depth, self.depth_samples) as f32
+        } else {
+            f32::INFINITY
+        };
+        let normal = DVec3::new(
+            from_fixed(self.normal[0]),
+            from_fixed(self.normal[1]),
+            from_fixed(self.normal[2]),
+        );
+        (color.as_vec3(), depth, normal.normalize_or_zero().as_vec3())
+    }
+}
+
+/// The sums of every pixel of an image (or of the part of it one task rendered).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FilmSums {
+    pub width: u32,
+    pub height: u32,
+    /// Row-major from the top-left pixel.
+    pub pixels: Vec<PixelSums>,
+}
+
+impl FilmSums {
+    pub fn new(width: u32, height: u32) -> Self {
+        let n = width as usize * height as usize;
+        FilmSums { width, height, pixels: vec![PixelSums::default(); n] }
+    }
+
+    pub fn index(&self, x: u32, y: u32) -> usize {
+        y as usize * self.width as usize + x as usize
+    }
+
+    /// The image: each pixel's means.
+    pub fn resolve(&self) -> Film {
+        let mut film = Film::new(self.width, self.height);
+        for (i, sums) in self.pixels.iter().enumerate() {
+            let (color, depth, normal) = sums.resolve();
+            film.color[i] = color;
+            film.depth[i] = depth;
+            film.normal[i] = normal;
+        }
+        film
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fixed_point_is_exact_for_ordinary_values() {
+        for v in [0.0f32, 1.0, -1.0, 0.1, 1e-10, 12345.678, 3.0e15, -7.25e-9] {
+            assert_eq!(from_fixed(to_fixed(v)) as f32, v, "{v}");
+        }
+    }
+
+    #[test]
+    fn fixed_point_clamps_what_would_overflow() {
+        assert_eq!(to_fixed(f32::NAN), 0);
+        assert_eq!(to_fixed(f32::INFINITY), to_fixed(1e30));
+        assert_eq!(to_fixed(f32::NEG_INFINITY), -to_fixed(1e30));
+        assert!(to_fixed(f32::MAX) < i128::MAX >> 30);
+    }
+
+    #[test]
+    fn sums_in_any_grouping_are_identical() {
+        let values: Vec<f32> = (0..97).map(|i| ((i * 7919) % 1000) as f32 * 0.37e-3 + 1e-7).collect();
+        let mut whole = PixelSums::default();
+        for v in &values {
+            whole.add_sample(Vec3::splat(*v), Some(*v), None);
+        }
+        for cut in [1usize, 13, 50, 96] {
+            let (mut a, mut b) = (PixelSums::default(), PixelSums::default());
+            for v in &values[cut..] {
+                b.add_sample(Vec3::splat(*v), Some(*v), None);
+            }
+            for v in &values[..cut] {
+                a.add_sample(Vec3::splat(*v), Some(*v), None);
+            }
+            assert_eq!(b.checked_add(&a), Some(whole), "cut at {cut}");
+        }
+    }
+
+    #[test]
+    fn resolve_gives_means_and_marks_pixels_nothing_hit() {
+        let mut sums = PixelSums::default();
+        sums.add_sample(Vec3::new(1.0, 2.0, 3.0), None, None);
+        sums.add_sample(Vec3::new(3.0, 2.0, 1.0), None, None);
+        let (color, depth, normal) = sums.resolve();
+        assert_eq!(color, Vec3::splat(2.0));
+        assert_eq!(depth, f32::INFINITY);
+        assert_eq!(normal, Vec3::ZERO);
+        sums.add_sample(Vec3::ZERO, Some(4.0), Some(Vec3::new(0.0, 0.0, 2.0)));
+        let (_, depth, normal) = sums.resolve();
+        assert_eq!(depth, 4.0);
+        assert_eq!(normal, Vec3::Z);
+    }
+}
