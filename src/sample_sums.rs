@@ -3,7 +3,7 @@
 //! A render split into sample ranges (or tiles) must merge to the image of the whole render
 //! bit for bit. Floating-point sums depend on their order; integer sums do not. Every
 //! sample's colour, depth and normal is converted once to a fixed-point integer with
-//! `FRACTION_BITS` fractional bits (exact for any f32 of magnitude at least 2⁻³⁶, truncated
+//! `FRACTION_BITS` fractional bits (exact for any f32 of magnitude at least 2⁻³², truncated
 //! below, clamped beyond `MAX_MAGNITUDE`), summed in `i128`, and turned back into a float
 //! only when the pixel is resolved. The whole render goes through the same path, so a
 //! split render and the whole one see the same integers whatever the grouping.
@@ -11,11 +11,12 @@
 use crate::film::Film;
 use glam::{DVec3, Vec3};
 
-/// Fractional bits of the fixed-point representation: a sample of 1.0 is 2⁶⁰.
-const FRACTION_BITS: i32 = 60;
-/// Largest magnitude one sample contributes (2⁶⁶ ≈ 7·10¹⁹): with at most 2²⁰ samples a pixel
-/// (`limits::MAX_SPP`), a sum stays below 2⁸⁷ + 2⁶⁰·2²⁰, far inside `i128`.
-const MAX_MAGNITUDE: f64 = (1u128 << 66) as f64;
+/// Fractional bits of the fixed-point representation: a sample of 1.0 is 2⁵⁶.
+const FRACTION_BITS: i32 = 56;
+/// Largest magnitude one sample contributes (2⁵⁰ ≈ 1.1·10¹⁵, beyond any radiance or depth a
+/// scene within the coordinate limits gives): one sample is at most 2¹⁰⁶ in fixed point, so
+/// the sum of `limits::MAX_SPP` = 2²⁰ samples stays below 2¹²⁶, inside `i128`.
+const MAX_MAGNITUDE: f64 = (1u64 << 50) as f64;
 
 /// `value` in fixed point (NaN counts as 0; ±∞ and huge values are clamped).
 pub fn to_fixed(value: f32) -> i128 {
@@ -139,7 +140,7 @@ mod tests {
 
     #[test]
     fn fixed_point_is_exact_for_ordinary_values() {
-        for v in [0.0f32, 1.0, -1.0, 0.1, 1e-10, 12345.678, 3.0e15, -7.25e-9] {
+        for v in [0.0f32, 1.0, -1.0, 0.1, 2e-10, 12345.678, 3.0e14, -7.25e-9] {
             assert_eq!(from_fixed(to_fixed(v)) as f32, v, "{v}");
         }
     }
@@ -149,7 +150,9 @@ mod tests {
         assert_eq!(to_fixed(f32::NAN), 0);
         assert_eq!(to_fixed(f32::INFINITY), to_fixed(1e30));
         assert_eq!(to_fixed(f32::NEG_INFINITY), -to_fixed(1e30));
-        assert!(to_fixed(f32::MAX) < i128::MAX >> 30);
+        let most = to_fixed(f32::MAX);
+        assert!(most.checked_mul(i128::from(crate::limits::MAX_SPP)).is_some());
+        assert!(most.checked_mul(i128::from(crate::limits::MAX_SPP) * 4).is_none(), "no slack wasted");
     }
 
     #[test]

@@ -10,6 +10,7 @@ mod info;
 mod merge;
 mod render;
 mod render_part;
+mod slurm;
 mod tonemap;
 
 use anyhow::{Context, Result};
@@ -63,6 +64,10 @@ pub enum Command {
     /// PNG): bit-identical to rendering it whole. Refuses parts of other renders, and missing
     /// or duplicated parts.
     Merge(MergeArgs),
+    /// Render a scene on a Slurm cluster: one array job of N parts and a merge that waits for
+    /// it (`embray slurm SCENE --parts N --out DIR [-- RENDER OPTIONS]`); `embray slurm
+    /// status DIR` and `embray slurm resume DIR` pick up a job folder later.
+    Slurm(slurm::SlurmArgs),
 }
 
 /// Runs the command `cli` names.
@@ -75,6 +80,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Compare(args) => compare::run(&args),
         Command::Tonemap(args) => tonemap::run(&args),
         Command::Merge(args) => merge::run(&args),
+        Command::Slurm(args) => slurm::run(&args),
     }
 }
 

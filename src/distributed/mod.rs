@@ -8,6 +8,7 @@ pub use part::{MAX_PARTS, Part, PartError, Split};
 mod merge;
 mod metadata;
 mod part_file;
+pub mod slurm;
 
 pub use metadata::{PART_FORMAT, PartMeta, PngSettings, hash_files, options_difference, options_fingerprint};
 pub use part_file::{PartFileError, encode_part, read_part_meta, read_part_sums};

@@ -1,0 +1,62 @@
+//! `DIR/job.json`: what `embray slurm` submitted, so that `status` and `resume` can pick it
+//! up from any login node later.
+
+use crate::distributed::Split;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+pub const JOB_FILE: &str = "job.json";
+
+/// The `sbatch` settings every job of the render gets.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SbatchOptions {
+    pub partition: Option<String>,
+    pub time: Option<String>,
+    pub cpus_per_task: u32,
+    /// At most this many array tasks at once (`--array=…%K`).
+    pub max_running: Option<u32>,
+    /// Passed to `sbatch` as they are.
+    pub extra: Vec<String>,
+}
+
+/// One `sbatch` of parts and the merge that waits for them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Submission {
+    /// The array job, if any part was submitted.
+    pub array_job: Option<String>,
+    pub parts: Vec<u32>,
+    pub merge_job: String,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct JobFile {
+    /// The `embray` binary every task runs (absolute).
+    pub embray: PathBuf,
+    /// The scene (absolute).
+    pub scene: PathBuf,
+    pub parts: u32,
+    pub split: Split,
+    /// `embray render` options given after `--`, passed to every part.
+    pub render_args: Vec<String>,
+    pub sbatch: SbatchOptions,
+    /// Oldest first.
+    pub submissions: Vec<Submission>,
+}
+
+impl JobFile {
+    pub fn read(dir: &Path) -> Result<JobFile, String> {
+        let path = dir.join(JOB_FILE);
+        let text = crate::scene::read_input_bytes(&path)
+            .map_err(|e| format!("cannot read '{}': {e} (is it a folder `embray slurm` made?)", path.display()))?;
+        serde_json::from_slice(&text).map_err(|e| format!("'{}' does not parse: {e}", path.display()))
+    }
+
+    pub fn encode(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_default() + "\n"
+    }
+}
+
+/// Where part `index` of `count` is written in the job folder `dir`.
+pub fn part_path(dir: &Path, index: u32, count: u32) -> PathBuf {
+    dir.join("parts").join(format!("part-{index}-of-{count}.exr"))
+}

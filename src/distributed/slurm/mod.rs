@@ -1,0 +1,11 @@
+//! Running a split render on Slurm: the job folder's record (`job_file`), the batch scripts
+//! (`scripts`), and the scheduler's commands (`scheduler`). The command line
+//! (`embray slurm`) drives them.
+
+mod job_file;
+mod scheduler;
+mod scripts;
+
+pub use job_file::{JOB_FILE, JobFile, SbatchOptions, Submission, part_path};
+pub use scheduler::{SchedulerError, TaskState, cancel, job_state, submit, task_states};
+pub use scripts::{merge_script, parts_script, shell_quote};

@@ -1,0 +1,132 @@
+//! Slurm's own commands (`sbatch`, `squeue`, `scontrol`, `scancel`), each run with a time
+//! limit and its answer parsed. No accounting database is assumed (`sacct` is often off on
+//! small clusters): job states come from `squeue -t all`, which keeps finished jobs for
+//! `MinJobAge`, and a job it no longer knows is judged by the files it was to write.
+
+use std::io::Read;
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// How long one scheduler command may take before it is given up.
+const COMMAND_TIMEOUT: Duration = Duration::from_secs(60);
+
+#[derive(Debug, thiserror::Error)]
+pub enum SchedulerError {
+    #[error("cannot run `{command}`: {message} (is Slurm installed here, and is this a login node?)")]
+    Spawn { command: String, message: String },
+    #[error("`{command}` failed: {message}")]
+    Failed { command: String, message: String },
+    #[error("`{command}` did not answer within {} s", COMMAND_TIMEOUT.as_secs())]
+    Timeout { command: String },
+    #[error("`{command}` answered '{answer}', not a job id")]
+    NoJobId { command: String, answer: String },
+}
+
+/// Runs `program args…`, returning its standard output.
+fn run(program: &str, args: &[String]) -> Result<String, SchedulerError> {
+    let command = std::iter::once(program.to_owned()).chain(args.iter().cloned()).collect::<Vec<_>>().join(" ");
+    let mut child = Command::new(program)
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| SchedulerError::Spawn { command: command.clone(), message: e.to_string() })?;
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().map_err(|e| SchedulerError::Failed {
+            command: command.clone(),
+            message: e.to_string(),
+        })? {
+            break status;
+        }
+        if start.elapsed() > COMMAND_TIMEOUT {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(SchedulerError::Timeout { command });
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let (mut out, mut err) = (String::new(), String::new());
+    if let Some(mut s) = child.stdout.take() {
+        let _ = s.read_to_string(&mut out);
+    }
+    if let Some(mut s) = child.stderr.take() {
+        let _ = s.read_to_string(&mut err);
+    }
+    if !status.success() {
+        let message = crate::excerpt::excerpt(err.trim());
+        return Err(SchedulerError::Failed { command, message });
+    }
+    Ok(out)
+}
+
+/// Submits `script` with `args` (`--array`, `--dependency`) and returns the job id.
+pub fn submit(script: &Path, args: &[String]) -> Result<String, SchedulerError> {
+    let mut all = vec!["--parsable".to_owned()];
+    all.extend(args.iter().cloned());
+    all.push(script.to_string_lossy().into_owned());
+    let answer = run("sbatch", &all)?;
+    // `--parsable` prints `id` or `id;cluster`.
+    let id = answer.trim().split(';').next().unwrap_or("").to_owned();
+    if id.is_empty() || !id.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(SchedulerError::NoJobId { command: format!("sbatch {}", all.join(" ")), answer: crate::excerpt::excerpt(answer.trim()) });
+    }
+    Ok(id)
+}
+
+/// A job's (or an array task's) state as Slurm reports it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TaskState {
+    /// `PENDING`, `RUNNING`, `COMPLETED`, `FAILED`, `CANCELLED`, `TIMEOUT`, …
+    pub state: String,
+    /// Why it is pending (`Dependency`, `DependencyNeverSatisfied`, …).
+    pub reason: String,
+    /// The task's own job id (an array task has one besides `array_task`).
+    pub job_id: String,
+}
+
+impl TaskState {
+    /// Pending or running: it may still write its file.
+    pub fn is_active(&self) -> bool {
+        let live = ["PENDING", "RUNNING", "CONFIGURING", "COMPLETING", "REQUEUED", "RESIZING", "SUSPENDED"];
+        live.contains(&self.state.as_str()) && self.reason != "DependencyNeverSatisfied"
+    }
+}
+
+fn squeue(jobs: &str) -> Result<Vec<(String, TaskState)>, SchedulerError> {
+    let args = ["-t", "all", "-r", "-h", "-j", jobs, "-o", "%K|%T|%r|%A"].map(String::from);
+    let out = match run("squeue", &args) {
+        Ok(out) => out,
+        // A job Slurm has forgotten (older than MinJobAge) is an error to squeue.
+        Err(SchedulerError::Failed { message, .. }) if message.contains("Invalid job id") => String::new(),
+        Err(e) => return Err(e),
+    };
+    Ok(out
+        .lines()
+        .filter_map(|line| {
+            let f: Vec<&str> = line.trim().split('|').collect();
+            (f.len() == 4).then(|| {
+                let state = TaskState { state: f[1].into(), reason: f[2].into(), job_id: f[3].into() };
+                (f[0].to_owned(), state)
+            })
+        })
+        .collect())
+}
+
+/// The state of each task of the array job `array` that Slurm still knows: (task index,
+/// state).
+pub fn task_states(array: &str) -> Result<Vec<(u32, TaskState)>, SchedulerError> {
+    Ok(squeue(array)?.into_iter().filter_map(|(task, state)| Some((task.parse().ok()?, state))).collect())
+}
+
+/// The state of the job `id`, if Slurm still knows it.
+pub fn job_state(id: &str) -> Result<Option<TaskState>, SchedulerError> {
+    Ok(squeue(id)?.into_iter().next().map(|(_, state)| state))
+}
+
+/// Cancels the job `id` (an array, one task `id_i`, or a plain job).
+pub fn cancel(id: &str) -> Result<(), SchedulerError> {
+    run("scancel", &[id.to_owned()]).map(|_| ())
+}

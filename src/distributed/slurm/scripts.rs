@@ -1,0 +1,154 @@
+//! The two batch scripts of a Slurm render: the array job whose task I renders part I, and
+//! the merge. Every path in them is absolute and must be visible on every node; each script
+//! checks that before it starts, so a node without the shared folder fails with a message
+//! rather than a missing part.
+
+use super::job_file::{JOB_FILE, JobFile, part_path};
+use std::fmt::Write;
+use std::path::Path;
+
+/// `text` quoted for a POSIX shell.
+pub fn shell_quote(text: &str) -> String {
+    if !text.is_empty() && text.bytes().all(|b| b.is_ascii_alphanumeric() || b"/._-=,:+%@".contains(&b)) {
+        return text.to_owned();
+    }
+    format!("'{}'", text.replace('\'', r"'\''"))
+}
+
+fn quote_path(path: &Path) -> String {
+    shell_quote(&path.to_string_lossy())
+}
+
+fn header(out: &mut String, job: &JobFile, dir: &Path, name: &str, log: &str, cpus: u32) {
+    let _ = writeln!(out, "#!/bin/bash");
+    let _ = writeln!(out, "#SBATCH --job-name={name}");
+    let _ = writeln!(out, "#SBATCH --output={}", quote_path(&dir.join("logs").join(log)));
+    let _ = writeln!(out, "#SBATCH --cpus-per-task={cpus}");
+    if let Some(p) = &job.sbatch.partition {
+        let _ = writeln!(out, "#SBATCH --partition={}", shell_quote(p));
+    }
+    if let Some(t) = &job.sbatch.time {
+        let _ = writeln!(out, "#SBATCH --time={}", shell_quote(t));
+    }
+    for arg in &job.sbatch.extra {
+        let _ = writeln!(out, "#SBATCH {}", shell_quote(arg));
+    }
+    let _ = writeln!(out, "set -euo pipefail");
+    // Written by the submitting node: a node that cannot read it does not share the folder.
+    let job_file = quote_path(&dir.join(JOB_FILE));
+    let _ = writeln!(
+        out,
+        "if [ ! -r {job_file} ] || [ ! -x {embray} ]; then\n  echo \"embray: node $(hostname) \
+         cannot see {job_file} or {embray}: the job folder and embray must be on storage every \
+         node mounts\" >&2\n  exit 2\nfi",
+        embray = quote_path(&job.embray),
+    );
+}
+
+/// The array job's script: task `$SLURM_ARRAY_TASK_ID` renders that part (the array range
+/// is given to `sbatch`, so a resume can submit only some parts).
+pub fn parts_script(job: &JobFile, dir: &Path) -> String {
+    let mut out = String::new();
+    header(&mut out, job, dir, "embray-parts", "part-%a.%A.out", job.sbatch.cpus_per_task);
+    let in_double_quotes = |text: &str| -> String {
+        text.chars()
+            .flat_map(|c| match c {
+                '\\' | '"' | '$' | '`' => vec!['\\', c],
+                c => vec![c],
+            })
+            .collect()
+    };
+    let parts_dir = in_double_quotes(&dir.join("parts").to_string_lossy());
+    let part_file = format!("\"{parts_dir}/part-${{i}}-of-{}.exr\"", job.parts);
+    let _ = writeln!(out, "i=$SLURM_ARRAY_TASK_ID");
+    let mut command = vec![
+        quote_path(&job.embray),
+        "render".to_owned(),
+        quote_path(&job.scene),
+        "--part".to_owned(),
+        format!("\"$i/{}\"", job.parts),
+        "--split".to_owned(),
+        job.split.to_string(),
+        "-o".to_owned(),
+        part_file,
+        "--threads".to_owned(),
+        "\"${SLURM_CPUS_PER_TASK:-1}\"".to_owned(),
+        "--quiet".to_owned(),
+    ];
+    command.extend(job.render_args.iter().map(|a| shell_quote(a)));
+    let _ = writeln!(out, "exec {}", command.join(" "));
+    out
+}
+
+/// The merge's script: every part into `DIR/render.exr` and `DIR/render.png`.
+pub fn merge_script(job: &JobFile, dir: &Path) -> String {
+    let mut out = String::new();
+    header(&mut out, job, dir, "embray-merge", "merge.%j.out", 1);
+    let mut command = vec![quote_path(&job.embray), "merge".to_owned()];
+    command.extend((0..job.parts).map(|i| quote_path(&part_path(dir, i, job.parts))));
+    command.extend([
+        "-o".to_owned(),
+        quote_path(&dir.join("render.exr")),
+        "--png".to_owned(),
+        quote_path(&dir.join("render.png")),
+    ]);
+    let _ = writeln!(out, "exec {}", command.join(" "));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::distributed::Split;
+    use crate::distributed::slurm::SbatchOptions;
+    use std::path::PathBuf;
+
+    fn job() -> JobFile {
+        JobFile {
+            embray: PathBuf::from("/opt/embray/bin/embray"),
+            scene: PathBuf::from("/shared/scenes/it's here.toml"),
+            parts: 4,
+            split: Split::Samples,
+            render_args: vec!["--spp".into(), "64".into()],
+            sbatch: SbatchOptions {
+                partition: Some("render".into()),
+                time: Some("01:00:00".into()),
+                cpus_per_task: 8,
+                max_running: None,
+                extra: vec!["--constraint=avx2".into()],
+            },
+            submissions: vec![],
+        }
+    }
+
+    #[test]
+    fn scripts_quote_paths_and_carry_every_setting() {
+        let dir = Path::new("/shared/out dir");
+        let parts = parts_script(&job(), dir);
+        assert!(parts.contains("#SBATCH --partition=render\n"), "{parts}");
+        assert!(parts.contains("#SBATCH --time=01:00:00\n"));
+        assert!(parts.contains("#SBATCH --cpus-per-task=8\n"));
+        assert!(parts.contains("#SBATCH --constraint=avx2\n"));
+        assert!(parts.contains("#SBATCH --output='/shared/out dir/logs/part-%a.%A.out'\n"));
+        assert!(parts.contains(
+            "exec /opt/embray/bin/embray render '/shared/scenes/it'\\''s here.toml' --part \"$i/4\" \
+             --split samples -o \"/shared/out dir/parts/part-${i}-of-4.exr\""
+        ), "{parts}");
+        assert!(parts.trim_end().ends_with("--spp 64"));
+        let merge = merge_script(&job(), dir);
+        assert!(merge.contains("'/shared/out dir/parts/part-3-of-4.exr' -o '/shared/out dir/render.exr'"));
+        assert!(!merge.contains("part-4-of-4"));
+    }
+
+    #[test]
+    fn shell_quote_survives_the_shell() {
+        for text in ["plain", "with space", "it's", "$HOME", "a\"b", "", "*"] {
+            let out = std::process::Command::new("sh")
+                .arg("-c")
+                .arg(format!("printf %s {}", shell_quote(text)))
+                .output()
+                .unwrap();
+            assert_eq!(String::from_utf8_lossy(&out.stdout), text);
+        }
+    }
+}
