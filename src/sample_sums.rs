@@ -152,12 +152,16 @@ mod tests {
         assert_eq!(to_fixed(f32::NEG_INFINITY), -to_fixed(1e30));
         let most = to_fixed(f32::MAX);
         assert!(most.checked_mul(i128::from(crate::limits::MAX_SPP)).is_some());
-        assert!(most.checked_mul(i128::from(crate::limits::MAX_SPP) * 4).is_none(), "no slack wasted");
+        assert!(
+            most.checked_mul(i128::from(crate::limits::MAX_SPP) * 4).is_none(),
+            "no slack wasted"
+        );
     }
 
     #[test]
     fn sums_in_any_grouping_are_identical() {
-        let values: Vec<f32> = (0..97).map(|i| ((i * 7919) % 1000) as f32 * 0.37e-3 + 1e-7).collect();
+        let values: Vec<f32> =
+            (0..97).map(|i| ((i * 7919) % 1000) as f32 * 0.37e-3 + 1e-7).collect();
         let mut whole = PixelSums::default();
         for v in &values {
             whole.add_sample(Vec3::splat(*v), Some(*v), None);

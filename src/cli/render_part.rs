@@ -4,7 +4,9 @@
 use super::console::note;
 use super::render::RenderArgs;
 use anyhow::{Result, bail};
-use embray::distributed::{Part, PartMeta, PngSettings, encode_part, hash_files, options_fingerprint};
+use embray::distributed::{
+    Part, PartMeta, PngSettings, encode_part, hash_files, options_fingerprint,
+};
 use embray::output::{OutputPlan, OutputSet};
 use embray::render::{TILE_SIZE, render_part};
 use std::path::PathBuf;
@@ -16,7 +18,9 @@ pub fn default_part_path(part: Part) -> PathBuf {
 
 /// Renders `part` of the scene `args` names and commits its part file.
 pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
-    for (flag, given) in [("--png", args.png.is_some()), ("--stats-json", args.stats_json.is_some())] {
+    for (flag, given) in
+        [("--png", args.png.is_some()), ("--stats-json", args.stats_json.is_some())]
+    {
         if given {
             bail!(
                 "{flag} cannot be used with --part: a part holds sample sums, not an image; \
@@ -45,7 +49,11 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
     };
     plan.inputs_read();
     let output = args.output.clone().unwrap_or_else(|| default_part_path(part));
-    let target = plan.output(if args.output.is_some() { "-o" } else { "the part file (default)" }, &output, false)?;
+    let target = plan.output(
+        if args.output.is_some() { "-o" } else { "the part file (default)" },
+        &output,
+        false,
+    )?;
     let options = args.to_options(&scene)?;
     let photographic = args.photographic.resolve(scene.settings.tonemap.as_ref())?;
     let files = embray::scene::files_read();
@@ -56,7 +64,10 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         format: embray::distributed::PART_FORMAT.to_owned(),
         embray_version: env!("CARGO_PKG_VERSION").to_owned(),
         embree: uses_embree.then(embray::accel::embree_library).flatten().map(|l| l.to_string()),
-        scene: args.scene.as_ref().map_or("(built-in Cornell box)".to_owned(), |p| p.display().to_string()),
+        scene: args
+            .scene
+            .as_ref()
+            .map_or("(built-in Cornell box)".to_owned(), |p| p.display().to_string()),
         scene_hash,
         options: options_fingerprint(&options),
         width: scene.camera.width,
@@ -67,7 +78,12 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         png: PngSettings {
             curve: args.tonemap.resolve(&scene.settings).to_string(),
             exposure: args.exposure,
-            photographic: [photographic.key, photographic.burn_out, photographic.saturation, photographic.gamma],
+            photographic: [
+                photographic.key,
+                photographic.burn_out,
+                photographic.saturation,
+                photographic.gamma,
+            ],
         },
         stats: rendered.stats,
     };

@@ -102,9 +102,11 @@ fn submit(args: &SubmitArgs) -> Result<()> {
     if args.max_running == Some(0) {
         bail!("--max-running must be at least 1");
     }
-    if let Some(own) = args.render_args.iter().find(|a| {
-        OWN_OPTIONS.iter().any(|o| a.as_str() == *o || a.starts_with(&format!("{o}=")))
-    }) {
+    if let Some(own) = args
+        .render_args
+        .iter()
+        .find(|a| OWN_OPTIONS.iter().any(|o| a.as_str() == *o || a.starts_with(&format!("{o}="))))
+    {
         bail!("'{own}' is set by embray slurm for every part; leave it out of the render options");
     }
     let scene = scene
@@ -174,7 +176,12 @@ fn write_text(path: &Path, text: &str) -> Result<()> {
 
 /// Submits `parts` as one array job and a merge that waits for it and for `also_wait_for`
 /// (jobs still running from earlier rounds); records the round in the job file.
-fn submit_round(dir: &Path, mut job: JobFile, parts: &[u32], also_wait_for: &[String]) -> Result<JobFile> {
+fn submit_round(
+    dir: &Path,
+    mut job: JobFile,
+    parts: &[u32],
+    also_wait_for: &[String],
+) -> Result<JobFile> {
     let mut dependencies = also_wait_for.to_vec();
     let array_job = if parts.is_empty() {
         None
@@ -197,7 +204,10 @@ fn submit_round(dir: &Path, mut job: JobFile, parts: &[u32], also_wait_for: &[St
         vec![format!("--dependency=afterok:{}", dependencies.join(":"))]
     };
     let merge_job = slurm::submit(&dir.join("merge.sbatch"), &merge_args)?;
-    note(format!("submitted the merge as job {merge_job} (after {})", if dependencies.is_empty() { "nothing".to_owned() } else { dependencies.join(", ") }));
+    note(format!(
+        "submitted the merge as job {merge_job} (after {})",
+        if dependencies.is_empty() { "nothing".to_owned() } else { dependencies.join(", ") }
+    ));
     job.submissions.push(Submission { array_job, parts: parts.to_vec(), merge_job });
     write_text(&dir.join(JOB_FILE), &job.encode())?;
     Ok(job)
@@ -241,7 +251,9 @@ fn status(dir: &Path) -> Result<Report> {
             let path = part_path(dir, i as u32, job.parts);
             if path.exists() {
                 return match read_part_meta(&path) {
-                    Ok(meta) if meta.part.index == i as u32 && meta.part.count == job.parts => PartStatus::Done,
+                    Ok(meta) if meta.part.index == i as u32 && meta.part.count == job.parts => {
+                        PartStatus::Done
+                    }
                     Ok(meta) => PartStatus::Damaged(format!("holds part {}", meta.part)),
                     Err(e) => PartStatus::Damaged(e.to_string()),
                 };
@@ -272,7 +284,11 @@ impl Report {
 
     fn text(&self, dir: &Path) -> String {
         let describe = |s: &TaskState| {
-            let reason = if s.reason.is_empty() || s.reason == "None" { String::new() } else { format!(" ({})", s.reason) };
+            let reason = if s.reason.is_empty() || s.reason == "None" {
+                String::new()
+            } else {
+                format!(" ({})", s.reason)
+            };
             format!("{}{reason}, job {}", s.state, s.job_id)
         };
         let mut text = format!(
@@ -300,7 +316,11 @@ impl Report {
         text += &format!("merge  {merge}\n");
         let missing = self.missing();
         if !missing.is_empty() {
-            let list = missing.iter().map(|i| format!("{i}/{}", self.job.parts)).collect::<Vec<_>>().join(", ");
+            let list = missing
+                .iter()
+                .map(|i| format!("{i}/{}", self.job.parts))
+                .collect::<Vec<_>>()
+                .join(", ");
             text += &format!(
                 "{} of {} parts done; missing: {list}. `embray slurm resume {}` renders them and merges.\n",
                 self.done(),
@@ -316,7 +336,10 @@ fn resume(dir: &Path, no_wait: bool) -> Result<()> {
     let dir = dir.canonicalize().with_context(|| format!("cannot find '{}'", dir.display()))?;
     let report = status(&dir)?;
     if report.merged {
-        note(format!("nothing to resume: the render is merged ({})", dir.join("render.exr").display()));
+        note(format!(
+            "nothing to resume: the render is merged ({})",
+            dir.join("render.exr").display()
+        ));
         return Ok(());
     }
     let missing = report.missing();
@@ -328,7 +351,10 @@ fn resume(dir: &Path, no_wait: bool) -> Result<()> {
             // A merge waiting on a failed task would wait for ever (or run on old parts).
             if report.merge.as_ref().is_some_and(|s| s.state == "PENDING") {
                 slurm::cancel(&round.merge_job)?;
-                note(format!("cancelled the merge job {} that waited for the lost parts", round.merge_job));
+                note(format!(
+                    "cancelled the merge job {} that waited for the lost parts",
+                    round.merge_job
+                ));
             }
         }
         let running: Vec<String> = report
@@ -344,7 +370,8 @@ fn resume(dir: &Path, no_wait: bool) -> Result<()> {
             // see it before.
             if matches!(report.parts[i as usize], PartStatus::Damaged(_)) {
                 let path = part_path(&dir, i, report.job.parts);
-                std::fs::remove_file(&path).with_context(|| format!("cannot remove '{}'", path.display()))?;
+                std::fs::remove_file(&path)
+                    .with_context(|| format!("cannot remove '{}'", path.display()))?;
             }
         }
         submit_round(&dir, report.job, &missing, &running)?;
@@ -357,7 +384,8 @@ fn resume(dir: &Path, no_wait: bool) -> Result<()> {
 
 /// Follows the last round of `job` until the merge has written its image.
 fn follow(dir: &Path, job: &JobFile) -> Result<()> {
-    let bar = ProgressBar::with_draw_target(Some(u64::from(job.parts) + 1), ProgressDrawTarget::stderr());
+    let bar =
+        ProgressBar::with_draw_target(Some(u64::from(job.parts) + 1), ProgressDrawTarget::stderr());
     if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {msg}") {
         bar.set_style(style);
     }
@@ -374,11 +402,16 @@ fn follow(dir: &Path, job: &JobFile) -> Result<()> {
         if finished {
             bar.finish_and_clear();
             if report.merged && merge.as_ref().is_none_or(|s| s.state == "COMPLETED") {
-                note(format!("merged: {} and {}", dir.join("render.exr").display(), dir.join("render.png").display()));
+                note(format!(
+                    "merged: {} and {}",
+                    dir.join("render.exr").display(),
+                    dir.join("render.png").display()
+                ));
                 return Ok(());
             }
             out(report.text(dir))?;
-            let log = merge.as_ref().map(|s| dir.join("logs").join(format!("merge.{}.out", s.job_id)));
+            let log =
+                merge.as_ref().map(|s| dir.join("logs").join(format!("merge.{}.out", s.job_id)));
             match merge {
                 Some(s) if s.reason == "DependencyNeverSatisfied" => bail!(
                     "a part failed or was cancelled, so the merge cannot run: `embray slurm resume {}`",

@@ -22,10 +22,10 @@ pub enum MergeError {
     #[error("part {part} is given twice: '{}' and '{}'", .first.display(), .second.display())]
     Duplicate { part: Part, first: PathBuf, second: PathBuf },
     #[error(
-        "{} of {count} {} missing: {list} (parts count from 0; `embray slurm resume` or \
+        "{} of the {count} parts {} missing: {list} (parts count from 0; `embray slurm resume` or \
          `embray render SCENE --part I/{count}` makes them)",
         .missing.len(),
-        if .missing.len() == 1 { "part is" } else { "parts are" },
+        if .missing.len() == 1 { "is" } else { "are" },
         list = .missing.iter().map(|i| format!("{i}/{count}")).collect::<Vec<_>>().join(", ")
     )]
     Missing { missing: Vec<u32>, count: u32 },
@@ -60,7 +60,8 @@ pub fn check_parts(paths: &[PathBuf]) -> Result<Vec<(PathBuf, PartMeta)>, MergeE
             theirs,
             ours,
         };
-        for ((what, theirs), (_, ours)) in meta.shared_fields().into_iter().zip(first.shared_fields())
+        for ((what, theirs), (_, ours)) in
+            meta.shared_fields().into_iter().zip(first.shared_fields())
         {
             if theirs != ours {
                 return Err(mismatch(what, theirs, ours));

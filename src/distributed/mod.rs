@@ -10,6 +10,8 @@ mod metadata;
 mod part_file;
 pub mod slurm;
 
-pub use metadata::{PART_FORMAT, PartMeta, PngSettings, hash_files, options_difference, options_fingerprint};
-pub use part_file::{PartFileError, encode_part, read_part_meta, read_part_sums};
 pub use merge::{MergeError, check_parts, merge_parts};
+pub use metadata::{
+    PART_FORMAT, PartMeta, PngSettings, hash_files, options_difference, options_fingerprint,
+};
+pub use part_file::{PartFileError, encode_part, read_part_meta, read_part_sums};

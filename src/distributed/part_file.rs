@@ -46,7 +46,11 @@ fn set_quantity(sums: &mut PixelSums, q: usize, value: i128) {
 }
 
 /// Encodes a part into `sink`.
-pub fn encode_part(meta: &PartMeta, sums: &FilmSums, sink: &mut dyn WriteSeek) -> std::io::Result<()> {
+pub fn encode_part(
+    meta: &PartMeta,
+    sums: &FilmSums,
+    sink: &mut dyn WriteSeek,
+) -> std::io::Result<()> {
     use exr::prelude::*;
     let json = serde_json::to_string(meta).map_err(std::io::Error::other)?;
     let mut channels = Vec::new();
@@ -54,10 +58,12 @@ pub fn encode_part(meta: &PartMeta, sums: &FilmSums, sink: &mut dyn WriteSeek) -
         for w in 0..WORDS {
             let words: Vec<u32> =
                 sums.pixels.iter().map(|p| (quantity(p, q) as u128 >> (32 * w)) as u32).collect();
-            channels.push(AnyChannel::new(format!("sum.{name}.{w}").as_str(), FlatSamples::U32(words)));
+            channels
+                .push(AnyChannel::new(format!("sum.{name}.{w}").as_str(), FlatSamples::U32(words)));
         }
     }
-    let counts = |pick: fn(&PixelSums) -> u32| -> Vec<u32> { sums.pixels.iter().map(pick).collect() };
+    let counts =
+        |pick: fn(&PixelSums) -> u32| -> Vec<u32> { sums.pixels.iter().map(pick).collect() };
     channels.push(AnyChannel::new("count", FlatSamples::U32(counts(|p| p.samples))));
     channels.push(AnyChannel::new("count.Z", FlatSamples::U32(counts(|p| p.depth_samples))));
     let mut attributes = LayerAttributes::named("embray part");
@@ -124,7 +130,10 @@ pub fn read_part_sums(path: &Path, meta: &PartMeta) -> Result<FilmSums, PartFile
     let cap = pixels * BYTES_PER_PIXEL * 2 + (1 << 20);
     let damaged = |message: String| PartFileError::Damaged { path: path.to_path_buf(), message };
     if len > cap {
-        return Err(damaged(format!("{len} bytes, more than a {}x{} part can take", meta.width, meta.height)));
+        return Err(damaged(format!(
+            "{len} bytes, more than a {}x{} part can take",
+            meta.width, meta.height
+        )));
     }
     let image = read()
         .no_deep_data()
@@ -145,8 +154,9 @@ pub fn read_part_sums(path: &Path, meta: &PartMeta) -> Result<FilmSums, PartFile
     };
     let mut sums = FilmSums::new(meta.width, meta.height);
     for (q, name) in QUANTITIES.iter().enumerate() {
-        let words: Vec<&[u32]> =
-            (0..WORDS).map(|w| channel(&format!("sum.{name}.{w}"))).collect::<std::result::Result<_, _>>()?;
+        let words: Vec<&[u32]> = (0..WORDS)
+            .map(|w| channel(&format!("sum.{name}.{w}")))
+            .collect::<std::result::Result<_, _>>()?;
         for (i, p) in sums.pixels.iter_mut().enumerate() {
             let bits = (0..WORDS).fold(0u128, |acc, w| acc | (u128::from(words[w][i]) << (32 * w)));
             set_quantity(p, q, bits as i128);

@@ -46,9 +46,11 @@ pub struct JobFile {
 impl JobFile {
     pub fn read(dir: &Path) -> Result<JobFile, String> {
         let path = dir.join(JOB_FILE);
-        let text = crate::scene::read_input_bytes(&path)
-            .map_err(|e| format!("cannot read '{}': {e} (is it a folder `embray slurm` made?)", path.display()))?;
-        serde_json::from_slice(&text).map_err(|e| format!("'{}' does not parse: {e}", path.display()))
+        let text = crate::scene::read_input_bytes(&path).map_err(|e| {
+            format!("cannot read '{}': {e} (is it a folder `embray slurm` made?)", path.display())
+        })?;
+        serde_json::from_slice(&text)
+            .map_err(|e| format!("'{}' does not parse: {e}", path.display()))
     }
 
     pub fn encode(&self) -> String {

@@ -13,7 +13,9 @@ const COMMAND_TIMEOUT: Duration = Duration::from_secs(60);
 
 #[derive(Debug, thiserror::Error)]
 pub enum SchedulerError {
-    #[error("cannot run `{command}`: {message} (is Slurm installed here, and is this a login node?)")]
+    #[error(
+        "cannot run `{command}`: {message} (is Slurm installed here, and is this a login node?)"
+    )]
     Spawn { command: String, message: String },
     #[error("`{command}` failed: {message}")]
     Failed { command: String, message: String },
@@ -25,7 +27,10 @@ pub enum SchedulerError {
 
 /// Runs `program args…`, returning its standard output.
 fn run(program: &str, args: &[String]) -> Result<String, SchedulerError> {
-    let command = std::iter::once(program.to_owned()).chain(args.iter().cloned()).collect::<Vec<_>>().join(" ");
+    let command = std::iter::once(program.to_owned())
+        .chain(args.iter().cloned())
+        .collect::<Vec<_>>()
+        .join(" ");
     let mut child = Command::new(program)
         .args(args)
         .stdin(Stdio::null())
@@ -71,7 +76,10 @@ pub fn submit(script: &Path, args: &[String]) -> Result<String, SchedulerError> 
     // `--parsable` prints `id` or `id;cluster`.
     let id = answer.trim().split(';').next().unwrap_or("").to_owned();
     if id.is_empty() || !id.bytes().all(|b| b.is_ascii_digit()) {
-        return Err(SchedulerError::NoJobId { command: format!("sbatch {}", all.join(" ")), answer: crate::excerpt::excerpt(answer.trim()) });
+        return Err(SchedulerError::NoJobId {
+            command: format!("sbatch {}", all.join(" ")),
+            answer: crate::excerpt::excerpt(answer.trim()),
+        });
     }
     Ok(id)
 }
@@ -90,7 +98,15 @@ pub struct TaskState {
 impl TaskState {
     /// Pending or running: it may still write its file.
     pub fn is_active(&self) -> bool {
-        let live = ["PENDING", "RUNNING", "CONFIGURING", "COMPLETING", "REQUEUED", "RESIZING", "SUSPENDED"];
+        let live = [
+            "PENDING",
+            "RUNNING",
+            "CONFIGURING",
+            "COMPLETING",
+            "REQUEUED",
+            "RESIZING",
+            "SUSPENDED",
+        ];
         live.contains(&self.state.as_str()) && self.reason != "DependencyNeverSatisfied"
     }
 }
@@ -100,7 +116,9 @@ fn squeue(jobs: &str) -> Result<Vec<(String, TaskState)>, SchedulerError> {
     let out = match run("squeue", &args) {
         Ok(out) => out,
         // A job Slurm has forgotten (older than MinJobAge) is an error to squeue.
-        Err(SchedulerError::Failed { message, .. }) if message.contains("Invalid job id") => String::new(),
+        Err(SchedulerError::Failed { message, .. }) if message.contains("Invalid job id") => {
+            String::new()
+        }
         Err(e) => return Err(e),
     };
     Ok(out
@@ -108,7 +126,8 @@ fn squeue(jobs: &str) -> Result<Vec<(String, TaskState)>, SchedulerError> {
         .filter_map(|line| {
             let f: Vec<&str> = line.trim().split('|').collect();
             (f.len() == 4).then(|| {
-                let state = TaskState { state: f[1].into(), reason: f[2].into(), job_id: f[3].into() };
+                let state =
+                    TaskState { state: f[1].into(), reason: f[2].into(), job_id: f[3].into() };
                 (f[0].to_owned(), state)
             })
         })
@@ -118,7 +137,10 @@ fn squeue(jobs: &str) -> Result<Vec<(String, TaskState)>, SchedulerError> {
 /// The state of each task of the array job `array` that Slurm still knows: (task index,
 /// state).
 pub fn task_states(array: &str) -> Result<Vec<(u32, TaskState)>, SchedulerError> {
-    Ok(squeue(array)?.into_iter().filter_map(|(task, state)| Some((task.parse().ok()?, state))).collect())
+    Ok(squeue(array)?
+        .into_iter()
+        .filter_map(|(task, state)| Some((task.parse().ok()?, state)))
+        .collect())
 }
 
 /// The state of the job `id`, if Slurm still knows it.

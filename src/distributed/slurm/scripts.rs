@@ -9,7 +9,9 @@ use std::path::Path;
 
 /// `text` quoted for a POSIX shell.
 pub fn shell_quote(text: &str) -> String {
-    if !text.is_empty() && text.bytes().all(|b| b.is_ascii_alphanumeric() || b"/._-=,:+%@".contains(&b)) {
+    if !text.is_empty()
+        && text.bytes().all(|b| b.is_ascii_alphanumeric() || b"/._-=,:+%@".contains(&b))
+    {
         return text.to_owned();
     }
     format!("'{}'", text.replace('\'', r"'\''"))
@@ -136,7 +138,11 @@ mod tests {
         ), "{parts}");
         assert!(parts.trim_end().ends_with("--spp 64"));
         let merge = merge_script(&job(), dir);
-        assert!(merge.contains("'/shared/out dir/parts/part-3-of-4.exr' -o '/shared/out dir/render.exr'"));
+        assert!(
+            merge.contains(
+                "'/shared/out dir/parts/part-3-of-4.exr' -o '/shared/out dir/render.exr'"
+            )
+        );
         assert!(!merge.contains("part-4-of-4"));
     }
 

@@ -1,0 +1,160 @@
+//! `embray render --part` and `embray merge` as a user runs them: the merged EXR is the
+//! whole render's, byte for byte; parts that do not make one render are refused with a
+//! message naming the problem, a non-zero exit and no output.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn embray(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_embray"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("embray runs")
+}
+
+fn ok(args: &[&str], dir: &Path) {
+    let out = embray(args, dir);
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("embray-merge-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+const SCENE: &str = r#"
+[camera]
+lookfrom = [0.0, 1.0, 4.0]
+lookat = [0.0, 0.0, 0.0]
+vfov = 40.0
+resolution = [40, 24]
+
+[render]
+spp = 4
+
+[materials.white]
+albedo = [0.8, 0.8, 0.8]
+
+[[objects]]
+type = "sphere"
+material = "white"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+
+[[lights]]
+type = "point"
+position = [2.0, 3.0, 2.0]
+intensity = [10.0, 10.0, 10.0]
+"#;
+
+/// A folder with the scene, its whole render, and its three tile parts.
+fn rendered(name: &str) -> PathBuf {
+    let dir = temp_dir(name);
+    std::fs::write(dir.join("scene.toml"), SCENE).unwrap();
+    ok(&["render", "scene.toml", "-q", "-o", "whole.exr"], &dir);
+    for i in 0..3 {
+        let part = format!("{i}/3");
+        ok(&["render", "scene.toml", "-q", "--part", &part, "-o", &format!("p{i}.exr")], &dir);
+    }
+    dir
+}
+
+fn assert_refused(dir: &Path, parts: &[&str], expected: &[&str]) {
+    let mut args = vec!["merge"];
+    args.extend(parts);
+    args.extend(["-o", "merged.exr", "--png", "merged.png"]);
+    let out = embray(&args, dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{parts:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    for text in expected {
+        assert!(stderr.contains(text), "{parts:?}: '{text}' not in: {stderr}");
+    }
+    assert!(!dir.join("merged.exr").exists() && !dir.join("merged.png").exists());
+}
+
+#[test]
+fn merged_parts_are_the_whole_render_byte_for_byte() {
+    let dir = rendered("same");
+    ok(&["merge", "p2.exr", "p0.exr", "p1.exr", "-o", "merged.exr", "--png", "merged.png"], &dir);
+    let whole = std::fs::read(dir.join("whole.exr")).unwrap();
+    assert_eq!(std::fs::read(dir.join("merged.exr")).unwrap(), whole);
+    assert_eq!(
+        std::fs::read(dir.join("merged.png")).unwrap(),
+        std::fs::read(dir.join("whole.png")).unwrap()
+    );
+    for i in 0..2 {
+        let part = format!("{i}/2");
+        let path = format!("s{i}.exr");
+        ok(
+            &["render", "scene.toml", "-q", "--part", &part, "--split", "samples", "-o", &path],
+            &dir,
+        );
+    }
+    ok(&["merge", "s0.exr", "s1.exr", "-o", "merged-s.exr"], &dir);
+    assert_eq!(std::fs::read(dir.join("merged-s.exr")).unwrap(), whole);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn parts_that_do_not_make_one_render_are_refused() {
+    let dir = rendered("refused");
+    assert_refused(&dir, &["p0.exr", "p2.exr"], &["1 of the 3 parts is missing: 1/3"]);
+    assert_refused(&dir, &["p0.exr", "p1.exr", "p1.exr", "p2.exr"], &["part 1/3 is given twice"]);
+    ok(&["render", "scene.toml", "-q", "--part", "1/3", "--seed", "5", "-o", "seed.exr"], &dir);
+    assert_refused(
+        &dir,
+        &["p0.exr", "seed.exr", "p2.exr"],
+        &["'seed.exr' does not belong with 'p0.exr'", "render option seed differs (5 vs 0)"],
+    );
+    std::fs::write(dir.join("other.toml"), SCENE.replace("radius = 1.0", "radius = 0.9")).unwrap();
+    ok(&["render", "other.toml", "-q", "--part", "1/3", "-o", "other.exr"], &dir);
+    assert_refused(&dir, &["p0.exr", "other.exr", "p2.exr"], &["scene contents (SHA-256) differs"]);
+    ok(&["render", "scene.toml", "-q", "--part", "1/2", "-o", "half.exr"], &dir);
+    assert_refused(
+        &dir,
+        &["p0.exr", "half.exr", "p2.exr"],
+        &["split differs (tiles into 2 parts vs tiles into 3 parts)"],
+    );
+    assert_refused(
+        &dir,
+        &["p0.exr", "whole.exr", "p2.exr"],
+        &["'whole.exr' is not an embray part file"],
+    );
+    // A part whose pixel data is damaged (its header intact) is refused, not merged.
+    let mut bytes = std::fs::read(dir.join("p1.exr")).unwrap();
+    let n = bytes.len();
+    for b in &mut bytes[n - 200..] {
+        *b ^= 0x5a;
+    }
+    std::fs::write(dir.join("bad.exr"), bytes).unwrap();
+    assert_refused(&dir, &["p0.exr", "bad.exr", "p2.exr"], &["bad.exr"]);
+    assert_refused(&dir, &["p0.exr", "missing.exr"], &["cannot read part file 'missing.exr'"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_part_options_are_refused_before_rendering() {
+    let dir = temp_dir("options");
+    std::fs::write(dir.join("scene.toml"), SCENE).unwrap();
+    for (args, expected) in [
+        (vec!["--part", "3/3"], "the index counts from 0"),
+        (vec!["--part", "x"], "is not of the form I/N"),
+        (vec!["--part", "0/2", "--png", "a.png"], "--png cannot be used with --part"),
+        (vec!["--part", "0/5", "--split", "samples"], "4 spp cannot be split into 5 sample ranges"),
+        (vec!["--split", "samples"], "--part"),
+    ] {
+        let mut all = vec!["render", "scene.toml", "-q"];
+        all.extend(&args);
+        let out = embray(&all, &dir);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && stderr.contains(expected), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"));
+    }
+    let files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(files.len(), 1, "nothing but the scene: {files:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
