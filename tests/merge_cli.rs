@@ -2,58 +2,28 @@
 //! whole render's, byte for byte; parts that do not make one render are refused with a
 //! message naming the problem, a non-zero exit and no output.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn embray(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_embray"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("embray runs")
-}
+use common::command::{GOOD_SCENE, embray, temp_dir};
+use std::path::{Path, PathBuf};
 
 fn ok(args: &[&str], dir: &Path) {
     let out = embray(args, dir);
     assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("embray-merge-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// Three 16×16 tiles across, and four samples a pixel.
+fn scene() -> String {
+    format!(
+        "{}\n[render]\nspp = 4\n",
+        GOOD_SCENE.replace("resolution = [16, 12]", "resolution = [40, 24]")
+    )
 }
-
-const SCENE: &str = r#"
-[camera]
-lookfrom = [0.0, 1.0, 4.0]
-lookat = [0.0, 0.0, 0.0]
-vfov = 40.0
-resolution = [40, 24]
-
-[render]
-spp = 4
-
-[materials.white]
-albedo = [0.8, 0.8, 0.8]
-
-[[objects]]
-type = "sphere"
-material = "white"
-center = [0.0, 0.0, 0.0]
-radius = 1.0
-
-[[lights]]
-type = "point"
-position = [2.0, 3.0, 2.0]
-intensity = [10.0, 10.0, 10.0]
-"#;
 
 /// A folder with the scene, its whole render, and its three tile parts.
 fn rendered(name: &str) -> PathBuf {
     let dir = temp_dir(name);
-    std::fs::write(dir.join("scene.toml"), SCENE).unwrap();
+    std::fs::write(dir.join("scene.toml"), scene()).unwrap();
     ok(&["render", "scene.toml", "-q", "-o", "whole.exr"], &dir);
     for i in 0..3 {
         let part = format!("{i}/3");
@@ -110,7 +80,8 @@ fn parts_that_do_not_make_one_render_are_refused() {
         &["p0.exr", "seed.exr", "p2.exr"],
         &["'seed.exr' does not belong with 'p0.exr'", "render option seed differs (5 vs 0)"],
     );
-    std::fs::write(dir.join("other.toml"), SCENE.replace("radius = 1.0", "radius = 0.9")).unwrap();
+    std::fs::write(dir.join("other.toml"), scene().replace("radius = 1.0", "radius = 0.9"))
+        .unwrap();
     ok(&["render", "other.toml", "-q", "--part", "1/3", "-o", "other.exr"], &dir);
     assert_refused(&dir, &["p0.exr", "other.exr", "p2.exr"], &["scene contents (SHA-256) differs"]);
     ok(&["render", "scene.toml", "-q", "--part", "1/2", "-o", "half.exr"], &dir);
@@ -139,7 +110,7 @@ fn parts_that_do_not_make_one_render_are_refused() {
 #[test]
 fn bad_part_options_are_refused_before_rendering() {
     let dir = temp_dir("options");
-    std::fs::write(dir.join("scene.toml"), SCENE).unwrap();
+    std::fs::write(dir.join("scene.toml"), scene()).unwrap();
     for (args, expected) in [
         (vec!["--part", "3/3"], "the index counts from 0"),
         (vec!["--part", "x"], "is not of the form I/N"),

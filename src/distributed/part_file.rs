@@ -4,6 +4,7 @@
 //! reader can open it; only `embray merge` makes an image of it.
 
 use super::metadata::PartMeta;
+use super::part::{MAX_PARTS, Split};
 use crate::output::WriteSeek;
 use crate::sample_sums::{FilmSums, PixelSums};
 use std::path::Path;
@@ -27,6 +28,31 @@ pub enum PartFileError {
     NotAPart { path: std::path::PathBuf },
     #[error("part file '{}' is damaged: {message}", .path.display())]
     Damaged { path: std::path::PathBuf, message: String },
+}
+
+/// Where the file's pixels come from: the file's width and height, and for each of its pixels
+/// (row-major) the image pixel it holds, `None` for padding. A sample-range part holds the
+/// whole image as it is. A tile part holds only its own tiles, each padded to a full tile and
+/// stacked top to bottom in tile order, so a part file's size follows the part's share of
+/// the image, not the image (a 1000-part render does not read 1000 images to merge).
+pub fn file_layout(meta: &PartMeta) -> ((u32, u32), Vec<Option<usize>>) {
+    let (width, height) = (meta.width, meta.height);
+    if meta.part.split == Split::Samples {
+        let n = width as usize * height as usize;
+        return ((width, height), (0..n).map(Some).collect());
+    }
+    let size = meta.tile_size;
+    let tiles = meta.part.tiles(&crate::film::tiles(width, height, size));
+    let mut map = Vec::with_capacity(tiles.len() * (size * size) as usize);
+    for tile in &tiles {
+        for y in tile.y0..tile.y0 + size {
+            for x in tile.x0..tile.x0 + size {
+                let inside = x < tile.x1 && y < tile.y1;
+                map.push(inside.then(|| y as usize * width as usize + x as usize));
+            }
+        }
+    }
+    ((size, size * tiles.len() as u32), map)
 }
 
 fn quantity(sums: &PixelSums, q: usize) -> i128 {
@@ -53,17 +79,21 @@ pub fn encode_part(
 ) -> std::io::Result<()> {
     use exr::prelude::*;
     let json = serde_json::to_string(meta).map_err(std::io::Error::other)?;
+    let ((file_width, file_height), layout) = file_layout(meta);
+    let zero = PixelSums::default();
+    let pixels: Vec<&PixelSums> =
+        layout.iter().map(|i| i.map_or(&zero, |i| &sums.pixels[i])).collect();
     let mut channels = Vec::new();
     for (q, name) in QUANTITIES.iter().enumerate() {
         for w in 0..WORDS {
             let words: Vec<u32> =
-                sums.pixels.iter().map(|p| (quantity(p, q) as u128 >> (32 * w)) as u32).collect();
+                pixels.iter().map(|p| (quantity(p, q) as u128 >> (32 * w)) as u32).collect();
             channels
                 .push(AnyChannel::new(format!("sum.{name}.{w}").as_str(), FlatSamples::U32(words)));
         }
     }
     let counts =
-        |pick: fn(&PixelSums) -> u32| -> Vec<u32> { sums.pixels.iter().map(pick).collect() };
+        |pick: fn(&PixelSums) -> u32| -> Vec<u32> { pixels.iter().map(|p| pick(p)).collect() };
     channels.push(AnyChannel::new("count", FlatSamples::U32(counts(|p| p.samples))));
     channels.push(AnyChannel::new("count.Z", FlatSamples::U32(counts(|p| p.depth_samples))));
     let mut attributes = LayerAttributes::named("embray part");
@@ -72,9 +102,11 @@ pub fn encode_part(
         AttributeValue::Text(Text::from_slice_unchecked(json.as_bytes())),
     );
     let layer = Layer::new(
-        Vec2(sums.width as usize, sums.height as usize),
+        Vec2(file_width as usize, file_height as usize),
         attributes,
-        Encoding::SMALL_LOSSLESS,
+        // RLE: the zero words (pixels of other parts, high words of small sums) shrink, and
+        // unlike ZIP it costs next to nothing (ZIP took a third of a small part's time).
+        Encoding { line_order: LineOrder::Increasing, ..Encoding::FAST_LOSSLESS },
         AnyChannels::sort(SmallVec::from_vec(channels)),
     );
     Image::from_layer(layer).write().to_buffered(sink).map_err(|e| match e {
@@ -101,14 +133,37 @@ pub fn read_part_meta(path: &Path) -> Result<PartMeta, PartFileError> {
     let json = std::str::from_utf8(text.bytes()).map_err(|e| damaged(e.to_string()))?;
     let meta: PartMeta = serde_json::from_str(json)
         .map_err(|e| damaged(format!("its metadata does not parse ({e})")))?;
+    check_meta(&meta).map_err(damaged)?;
     let size = header.layer_size;
-    if (size.0, size.1) != (meta.width as usize, meta.height as usize) {
+    let ((width, height), _) = file_layout(&meta);
+    if (size.0, size.1) != (width as usize, height as usize) {
         return Err(damaged(format!(
-            "the image is {}x{} but its metadata says {}x{}",
-            size.0, size.1, meta.width, meta.height
+            "its pixels are {}x{}, but part {} of a {}x{} image takes {width}x{height}",
+            size.0, size.1, meta.part, meta.width, meta.height
         )));
     }
     Ok(meta)
+}
+
+/// The metadata's numbers are within what a render can have, so that laying out and reading
+/// the file is bounded (a hostile header cannot ask for a huge allocation).
+fn check_meta(meta: &PartMeta) -> Result<(), String> {
+    use crate::limits::{MAX_SAMPLES, MAX_SPP};
+    let pixels = meta.width as u64 * meta.height as u64;
+    let part = meta.part;
+    if meta.width == 0 || meta.height == 0 || pixels * u64::from(meta.spp.max(1)) > MAX_SAMPLES {
+        return Err(format!("its image size {}x{} is out of range", meta.width, meta.height));
+    }
+    if meta.spp == 0 || meta.spp > MAX_SPP {
+        return Err(format!("its spp {} is out of range", meta.spp));
+    }
+    if !(1..=4096).contains(&meta.tile_size) {
+        return Err(format!("its tile size {} is out of range", meta.tile_size));
+    }
+    if part.count == 0 || part.count > MAX_PARTS || part.index >= part.count {
+        return Err(format!("its part {part} is out of range"));
+    }
+    Ok(())
 }
 
 /// Refuses what is not a regular file before an EXR reader opens it (a FIFO would block).
@@ -124,7 +179,8 @@ fn check_readable(path: &Path) -> Result<(), PartFileError> {
 /// (its size bounds what is read: larger files are refused before decoding).
 pub fn read_part_sums(path: &Path, meta: &PartMeta) -> Result<FilmSums, PartFileError> {
     use exr::prelude::*;
-    let pixels = meta.width as u64 * meta.height as u64;
+    let ((file_width, file_height), layout) = file_layout(meta);
+    let pixels = file_width as u64 * file_height as u64;
     let len = std::fs::metadata(path).map_err(|e| read_error(path, e))?.len();
     // Compression can grow incompressible data a little; headers are small.
     let cap = pixels * BYTES_PER_PIXEL * 2 + (1 << 20);
@@ -157,15 +213,128 @@ pub fn read_part_sums(path: &Path, meta: &PartMeta) -> Result<FilmSums, PartFile
         let words: Vec<&[u32]> = (0..WORDS)
             .map(|w| channel(&format!("sum.{name}.{w}")))
             .collect::<std::result::Result<_, _>>()?;
-        for (i, p) in sums.pixels.iter_mut().enumerate() {
+        for (i, target) in layout.iter().enumerate() {
             let bits = (0..WORDS).fold(0u128, |acc, w| acc | (u128::from(words[w][i]) << (32 * w)));
-            set_quantity(p, q, bits as i128);
+            match target {
+                Some(t) => set_quantity(&mut sums.pixels[*t], q, bits as i128),
+                None if bits != 0 => return Err(damaged("a padding pixel holds a sum".into())),
+                None => {}
+            }
         }
     }
     let (count, depth_count) = (channel("count")?, channel("count.Z")?);
-    for (i, p) in sums.pixels.iter_mut().enumerate() {
-        p.samples = count[i];
-        p.depth_samples = depth_count[i];
+    for (i, target) in layout.iter().enumerate() {
+        match target {
+            Some(t) => {
+                sums.pixels[*t].samples = count[i];
+                sums.pixels[*t].depth_samples = depth_count[i];
+            }
+            None if count[i] != 0 || depth_count[i] != 0 => {
+                return Err(damaged("a padding pixel holds samples".into()));
+            }
+            None => {}
+        }
     }
     Ok(sums)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::distributed::Part;
+    use glam::Vec3;
+
+    fn meta(width: u32, height: u32, part: Part) -> PartMeta {
+        PartMeta {
+            format: super::super::PART_FORMAT.into(),
+            embray_version: "test".into(),
+            embree: None,
+            scene: "test".into(),
+            scene_hash: "0".into(),
+            options: "test".into(),
+            width,
+            height,
+            spp: 4,
+            tile_size: 16,
+            part,
+            png: super::super::PngSettings {
+                curve: "aces".into(),
+                exposure: 0.0,
+                photographic: [0.18, 1.0, 1.0, 2.2],
+            },
+            stats: Default::default(),
+        }
+    }
+
+    fn write(meta: &PartMeta, sums: &FilmSums, name: &str) -> std::path::PathBuf {
+        let path =
+            std::env::temp_dir().join(format!("embray-part-{name}-{}.exr", std::process::id()));
+        let mut file = std::fs::File::create(&path).unwrap();
+        encode_part(meta, sums, &mut file).unwrap();
+        path
+    }
+
+    #[test]
+    fn a_tile_part_stores_only_its_tiles_and_reads_back_exactly() {
+        // 40×24: 3×2 tiles, the right and bottom ones cut; part 1 of 2 owns tiles 1 (16×16),
+        // 3 (16×8) and 5 (8×8).
+        let part = Part { index: 1, count: 2, split: Split::Tiles };
+        let meta = meta(40, 24, part);
+        let mut sums = FilmSums::new(40, 24);
+        for t in part.tiles(&crate::film::tiles(40, 24, 16)) {
+            for y in t.y0..t.y1 {
+                for x in t.x0..t.x1 {
+                    let i = sums.index(x, y);
+                    let v = Vec3::new(x as f32, -(y as f32), 1e-3 * i as f32);
+                    sums.pixels[i].add_sample(v, Some(1e9), Some(Vec3::Y));
+                }
+            }
+        }
+        let ((w, h), layout) = file_layout(&meta);
+        assert_eq!((w, h), (16, 48), "three padded tiles, stacked");
+        assert_eq!(layout.iter().flatten().count(), 16 * 16 + 16 * 8 + 8 * 8);
+        let path = write(&meta, &sums, "tiles");
+        let read_meta = read_part_meta(&path).unwrap();
+        assert_eq!(read_meta, meta);
+        assert_eq!(read_part_sums(&path, &read_meta).unwrap(), sums);
+        std::fs::remove_file(&path).unwrap();
+    }
+
+    #[test]
+    fn metadata_out_of_range_is_refused_before_reading_pixels() {
+        let part = Part { index: 0, count: 1, split: Split::Samples };
+        let sums = FilmSums::new(8, 8);
+        for (name, bad) in [
+            ("huge", PartMeta { width: 1 << 30, height: 1 << 30, ..meta(8, 8, part) }),
+            ("spp", PartMeta { spp: 0, ..meta(8, 8, part) }),
+            ("index", PartMeta { part: Part { index: 3, count: 2, ..part }, ..meta(8, 8, part) }),
+            ("size", meta(9, 8, part)),
+        ] {
+            let path = write(&meta(8, 8, part), &sums, name);
+            // Rewrite the header's JSON with the bad metadata, pixels unchanged.
+            let bytes = std::fs::read(&path).unwrap();
+            let good = serde_json::to_string(&meta(8, 8, part)).unwrap();
+            let evil = serde_json::to_string(&bad).unwrap();
+            let text = String::from_utf8_lossy(&bytes).into_owned();
+            assert!(text.contains(&good));
+            let mut out = Vec::new();
+            let at = bytes.windows(good.len()).position(|w| w == good.as_bytes()).unwrap();
+            out.extend_from_slice(&bytes[..at - 4]);
+            out.extend_from_slice(&(evil.len() as u32).to_le_bytes());
+            out.extend_from_slice(evil.as_bytes());
+            out.extend_from_slice(&bytes[at + good.len()..]);
+            std::fs::write(&path, out).unwrap();
+            let message = match read_part_meta(&path) {
+                Err(e) => e.to_string(),
+                Ok(m) => read_part_sums(&path, &m)
+                    .map(|_| String::new())
+                    .unwrap_or_else(|e| e.to_string()),
+            };
+            assert!(
+                message.contains("damaged") || message.contains("cannot read"),
+                "{name}: {message}"
+            );
+            std::fs::remove_file(&path).unwrap();
+        }
+    }
 }

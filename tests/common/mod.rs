@@ -45,6 +45,9 @@ pub fn backends() -> Vec<BackendKind> {
 /// Programmatic scenes for effect tests (independent of the file format).
 pub mod scene_files;
 
+/// The command line, run as a user runs it.
+pub mod command;
+
 pub mod build {
     use embray::scene::*;
     use glam::{DAffine3, DVec3, Vec2, Vec3};

@@ -1,0 +1,41 @@
+//! Running the `embray` binary in a scratch folder, and a small scene that renders.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+pub fn embray(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_embray"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("embray runs")
+}
+
+pub fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("embray-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+pub const GOOD_SCENE: &str = r#"
+[camera]
+lookfrom = [0.0, 1.0, 4.0]
+lookat = [0.0, 0.0, 0.0]
+vfov = 40.0
+resolution = [16, 12]
+
+[materials.white]
+albedo = [0.8, 0.8, 0.8]
+
+[[objects]]
+type = "sphere"
+material = "white"
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+
+[[lights]]
+type = "point"
+position = [2.0, 3.0, 2.0]
+intensity = [10.0, 10.0, 10.0]
+"#;
