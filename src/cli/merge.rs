@@ -31,8 +31,9 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     }
     let exr = plan.output("-o", &args.output, false)?;
     let png = args.png.as_deref().map(|p| plan.output("--png", p, false)).transpose()?;
-    let (sums, meta, stats) = merge_parts(&args.parts)?;
-    let film = sums.resolve();
+    let merged = merge_parts(&args.parts)?;
+    let (meta, stats) = (&merged.meta, merged.stats);
+    let film = merged.sums.resolve();
     let mut files = OutputSet::new();
     files.write(&exr, |w| encode_exr(&film, w))?;
     if let Some(png) = &png {
@@ -43,8 +44,11 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     }
     files.commit()?;
     if !args.quiet {
+        let render: f64 = merged.timings.iter().map(|t| t.render_seconds).sum();
+        let longest = merged.timings.iter().map(|t| t.render_seconds).fold(0.0, f64::max);
         note(format!(
-            "merged {} parts ({} split) of {}x{} @ {} spp, {} rays in all, in {:.3} s → {}{}",
+            "merged {} parts ({} split) of {}x{} @ {} spp, {} rays in all (parts rendered for \
+             {render:.3} s in all, the longest {longest:.3} s), in {:.3} s → {}{}",
             meta.part.count,
             meta.part.split,
             meta.width,

@@ -5,7 +5,7 @@ use super::console::note;
 use super::render::RenderArgs;
 use anyhow::{Result, bail};
 use embray::distributed::{
-    Part, PartMeta, PngSettings, encode_part, hash_files, options_fingerprint,
+    Part, PartMeta, PartTiming, PngSettings, encode_part, hash_files, options_fingerprint,
 };
 use embray::output::{OutputPlan, OutputSet};
 use embray::render::{TILE_SIZE, render_part};
@@ -86,6 +86,15 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
             ],
         },
         stats: rendered.stats,
+        timing: PartTiming {
+            build_seconds: rendered.build_time.as_secs_f64(),
+            render_seconds: rendered.render_time.as_secs_f64(),
+            threads: options.threads.unwrap_or_else(rayon::current_num_threads),
+            host: std::fs::read_to_string("/proc/sys/kernel/hostname")
+                .unwrap_or_default()
+                .trim()
+                .to_owned(),
+        },
     };
     let mut set = OutputSet::new();
     set.write(&target, |w| encode_part(&meta, &rendered.sums, w))?;

@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand};
 use embray::distributed::slurm::{
     self, JOB_FILE, JobFile, SbatchOptions, Submission, TaskState, part_path,
 };
-use embray::distributed::{MAX_PARTS, Part, Split, read_part_meta};
+use embray::distributed::{MAX_PARTS, Part, PartTiming, Split, read_part_meta};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -113,6 +113,7 @@ fn submit(args: &SubmitArgs) -> Result<()> {
         .canonicalize()
         .with_context(|| format!("cannot find the scene '{}'", scene.display()))?;
     check_render_args(&scene, parts, args.split, &args.render_args)?;
+    let slurm_version = slurm::version()?;
     if dir.join(JOB_FILE).exists() {
         bail!(
             "'{}' already holds a job ({JOB_FILE}): `embray slurm status {0}` or `embray slurm \
@@ -143,6 +144,12 @@ fn submit(args: &SubmitArgs) -> Result<()> {
     write_text(&dir.join("parts.sbatch"), &slurm::parts_script(&job, &dir))?;
     write_text(&dir.join("merge.sbatch"), &slurm::merge_script(&job, &dir))?;
     write_text(&dir.join(JOB_FILE), &job.encode())?;
+    note(format!(
+        "{}: {parts} parts of {} into {}",
+        slurm_version,
+        job.scene.display(),
+        dir.display()
+    ));
     let all: Vec<u32> = (0..parts).collect();
     let job = submit_round(&dir, job, &all, &[])?;
     if args.no_wait {
@@ -161,6 +168,16 @@ fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[Stri
     let super::Command::Render(render) = cli.command else {
         bail!("the render options (after --) are not `embray render` options");
     };
+    if embray::scene::ceng795::is_ceng795_path(scene) {
+        let cameras = embray::scene::ceng795::load(scene)?.len();
+        if cameras != 1 {
+            bail!(
+                "'{}' has {cameras} cameras; a split render is one image: convert it with \
+                 `embray convert` and submit one camera's TOML",
+                scene.display()
+            );
+        }
+    }
     let desc = super::load_scene(Some(scene))?;
     let options = render.to_options(&desc)?;
     let part = Part { index: 0, count: parts, split };
@@ -216,7 +233,7 @@ fn submit_round(
 /// Where one part stands.
 #[derive(Debug)]
 enum PartStatus {
-    Done,
+    Done(PartTiming),
     /// Its task is pending or running.
     Active(TaskState),
     /// No file, no live task: `resume` resubmits it (the last state Slurm knew, if any).
@@ -252,7 +269,7 @@ fn status(dir: &Path) -> Result<Report> {
             if path.exists() {
                 return match read_part_meta(&path) {
                     Ok(meta) if meta.part.index == i as u32 && meta.part.count == job.parts => {
-                        PartStatus::Done
+                        PartStatus::Done(meta.timing)
                     }
                     Ok(meta) => PartStatus::Damaged(format!("holds part {}", meta.part)),
                     Err(e) => PartStatus::Damaged(e.to_string()),
@@ -274,7 +291,7 @@ fn status(dir: &Path) -> Result<Report> {
 
 impl Report {
     fn done(&self) -> usize {
-        self.parts.iter().filter(|p| matches!(p, PartStatus::Done)).count()
+        self.parts.iter().filter(|p| matches!(p, PartStatus::Done(_))).count()
     }
 
     fn missing(&self) -> Vec<u32> {
@@ -300,7 +317,13 @@ impl Report {
         );
         for (i, part) in self.parts.iter().enumerate() {
             let line = match part {
-                PartStatus::Done => "done".to_owned(),
+                PartStatus::Done(t) => format!(
+                    "done: render {:.2} s on {} ({} thread{})",
+                    t.render_seconds,
+                    t.host,
+                    t.threads,
+                    if t.threads == 1 { "" } else { "s" }
+                ),
                 PartStatus::Active(s) => describe(s),
                 PartStatus::Missing(Some(s)) => format!("missing: its task ended {}", describe(s)),
                 PartStatus::Missing(None) => "missing (Slurm no longer knows its task)".to_owned(),

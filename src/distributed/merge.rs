@@ -1,7 +1,7 @@
 //! Merging parts: check that the files belong to one render and cover it exactly once, then
 //! add their exact sums, one part in memory at a time.
 
-use super::metadata::{PartMeta, options_difference};
+use super::metadata::{PartMeta, PartTiming, options_difference};
 use super::part::{Part, Split};
 use super::part_file::{PartFileError, read_part_meta, read_part_sums};
 use crate::sample_sums::FilmSums;
@@ -91,9 +91,19 @@ pub fn check_parts(paths: &[PathBuf]) -> Result<Vec<(PathBuf, PartMeta)>, MergeE
     Ok(slots.into_iter().flatten().collect())
 }
 
-/// The merged sums of the parts `paths` (checked by [`check_parts`] first), the first part's
-/// metadata, and the counters of all parts added.
-pub fn merge_parts(paths: &[PathBuf]) -> Result<(FilmSums, PartMeta, RenderStats), MergeError> {
+/// What merging gave.
+pub struct Merged {
+    pub sums: FilmSums,
+    /// The first part's metadata (all share what matters).
+    pub meta: PartMeta,
+    /// The counters of all parts added.
+    pub stats: RenderStats,
+    /// Each part's times, in part order.
+    pub timings: Vec<PartTiming>,
+}
+
+/// The merged sums of the parts `paths`, checked by [`check_parts`] first.
+pub fn merge_parts(paths: &[PathBuf]) -> Result<Merged, MergeError> {
     let parts = check_parts(paths)?;
     let (_, first) = &parts[0];
     check_merge_memory(first.width, first.height)?;
@@ -130,7 +140,8 @@ pub fn merge_parts(paths: &[PathBuf]) -> Result<(FilmSums, PartMeta, RenderStats
     debug_assert!(
         first.part.split != Split::Samples || total.pixels.iter().all(|p| p.samples == first.spp)
     );
-    Ok((total, first.clone(), stats))
+    let timings = parts.iter().map(|(_, m)| m.timing.clone()).collect();
+    Ok(Merged { sums: total, meta: first.clone(), stats, timings })
 }
 
 /// The merge holds the merged sums and one part's: refused before allocating when that

@@ -42,6 +42,19 @@ pub struct PartMeta {
     pub part: Part,
     pub png: PngSettings,
     pub stats: RenderStats,
+    /// How long the part took where it ran (reported, never compared).
+    pub timing: PartTiming,
+}
+
+/// The part's own times: for `embray slurm status` and the merge's summary.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PartTiming {
+    pub build_seconds: f64,
+    pub render_seconds: f64,
+    /// Worker threads it rendered with.
+    pub threads: usize,
+    /// The machine it ran on.
+    pub host: String,
 }
 
 impl PartMeta {

@@ -10,8 +10,9 @@ mod metadata;
 mod part_file;
 pub mod slurm;
 
-pub use merge::{MergeError, check_parts, merge_parts};
+pub use merge::{MergeError, Merged, check_parts, merge_parts};
 pub use metadata::{
-    PART_FORMAT, PartMeta, PngSettings, hash_files, options_difference, options_fingerprint,
+    PART_FORMAT, PartMeta, PartTiming, PngSettings, hash_files, options_difference,
+    options_fingerprint,
 };
 pub use part_file::{PartFileError, encode_part, read_part_meta, read_part_sums};

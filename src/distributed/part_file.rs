@@ -263,6 +263,7 @@ mod tests {
                 photographic: [0.18, 1.0, 1.0, 2.2],
             },
             stats: Default::default(),
+            timing: Default::default(),
         }
     }
 

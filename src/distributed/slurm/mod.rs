@@ -7,5 +7,5 @@ mod scheduler;
 mod scripts;
 
 pub use job_file::{JOB_FILE, JobFile, SbatchOptions, Submission, part_path};
-pub use scheduler::{SchedulerError, TaskState, cancel, job_state, submit, task_states};
+pub use scheduler::{SchedulerError, TaskState, cancel, job_state, submit, task_states, version};
 pub use scripts::{merge_script, parts_script, shell_quote};

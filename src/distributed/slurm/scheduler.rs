@@ -152,3 +152,9 @@ pub fn job_state(id: &str) -> Result<Option<TaskState>, SchedulerError> {
 pub fn cancel(id: &str) -> Result<(), SchedulerError> {
     run("scancel", &[id.to_owned()]).map(|_| ())
 }
+
+/// Slurm's version as `sbatch` reports it ("slurm 22.05.8"): fails where there is no Slurm
+/// client, before anything is written.
+pub fn version() -> Result<String, SchedulerError> {
+    Ok(run("sbatch", &["--version".to_owned()])?.trim().to_owned())
+}
