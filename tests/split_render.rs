@@ -51,6 +51,25 @@ fn every_split_merges_bit_identically_to_the_whole_render() {
 }
 
 #[test]
+fn sample_ranges_merge_bit_identically_for_every_sampler() {
+    let scene = blurred_scene();
+    for &sampler in embray::sampling::SamplerKind::ALL {
+        let mut options = options(&scene, backends()[0], 5);
+        options.sampler = sampler;
+        let whole = render_part(&scene, &options, Part::WHOLE).unwrap();
+        let mut merged = FilmSums::new(64, 40);
+        for index in 0..3 {
+            let part = Part { index, count: 3, split: Split::Samples };
+            let sums = render_part(&scene, &options, part).unwrap().sums;
+            for (m, p) in merged.pixels.iter_mut().zip(&sums.pixels) {
+                *m = m.checked_add(p).unwrap();
+            }
+        }
+        assert_eq!(merged, whole.sums, "{sampler}");
+    }
+}
+
+#[test]
 fn each_part_renders_only_its_share() {
     let scene = cornell(48, 32);
     let options = options(&scene, backends()[0], 6);
