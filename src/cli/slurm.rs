@@ -203,12 +203,7 @@ fn submit_round(
     let array_job = if parts.is_empty() {
         None
     } else {
-        let list = parts.iter().map(u32::to_string).collect::<Vec<_>>().join(",");
-        let list = if parts.len() as u32 == job.parts && job.parts > 1 {
-            format!("0-{}", job.parts - 1)
-        } else {
-            list
-        };
+        let list = slurm::array_ranges(parts);
         let throttle = job.sbatch.max_running.map(|k| format!("%{k}")).unwrap_or_default();
         let id = slurm::submit(&dir.join("parts.sbatch"), &[format!("--array={list}{throttle}")])?;
         note(format!("submitted parts {list} of {} as array job {id}", job.parts));
@@ -449,6 +444,9 @@ fn follow(dir: &Path, job: &JobFile) -> Result<()> {
                 None => bail!("Slurm no longer knows the merge job and there is no render.exr"),
             }
         }
-        std::thread::sleep(Duration::from_secs(2));
+        // Polite to the controller on large arrays: every 2 s, plus 1 s per 100 tasks, at most
+        // every 30 s (one `squeue` per submission round and one for the merge).
+        let seconds = (2 + u64::from(job.parts) / 100).min(30);
+        std::thread::sleep(Duration::from_secs(seconds));
     }
 }

@@ -8,4 +8,4 @@ mod scripts;
 
 pub use job_file::{JOB_FILE, JobFile, SbatchOptions, Submission, part_path};
 pub use scheduler::{SchedulerError, TaskState, cancel, job_state, submit, task_states, version};
-pub use scripts::{merge_script, parts_script, shell_quote};
+pub use scripts::{array_ranges, merge_script, parts_script, shell_quote};

@@ -7,6 +7,25 @@ use super::job_file::{JOB_FILE, JobFile, part_path};
 use std::fmt::Write;
 use std::path::Path;
 
+/// Sorted task indices as sbatch's `--array` list: runs become ranges (`0-3,7,9-10`).
+pub fn array_ranges(tasks: &[u32]) -> String {
+    let mut sorted = tasks.to_vec();
+    sorted.sort_unstable();
+    sorted.dedup();
+    let mut out: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < sorted.len() {
+        let start = sorted[i];
+        while i + 1 < sorted.len() && sorted[i + 1] == sorted[i] + 1 {
+            i += 1;
+        }
+        let end = sorted[i];
+        out.push(if start == end { start.to_string() } else { format!("{start}-{end}") });
+        i += 1;
+    }
+    out.join(",")
+}
+
 /// `text` quoted for a POSIX shell.
 pub fn shell_quote(text: &str) -> String {
     if !text.is_empty()
@@ -144,6 +163,13 @@ mod tests {
             )
         );
         assert!(!merge.contains("part-4-of-4"));
+    }
+
+    #[test]
+    fn array_lists_use_ranges() {
+        assert_eq!(array_ranges(&[0, 1, 2, 3]), "0-3");
+        assert_eq!(array_ranges(&[9, 1, 3, 4, 5, 7, 10]), "1,3-5,7,9-10");
+        assert_eq!(array_ranges(&[6]), "6");
     }
 
     #[test]
