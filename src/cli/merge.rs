@@ -46,9 +46,10 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     if !args.quiet {
         let render: f64 = merged.timings.iter().map(|t| t.render_seconds).sum();
         let longest = merged.timings.iter().map(|t| t.render_seconds).fold(0.0, f64::max);
+        let cpu: f64 = merged.timings.iter().map(|t| t.cpu_seconds).sum();
         note(format!(
             "merged {} parts ({} split) of {}x{} @ {} spp, {} rays in all (parts rendered for \
-             {render:.3} s in all, the longest {longest:.3} s), in {:.3} s → {}{}",
+             {render:.3} s in all, the longest {longest:.3} s; {cpu:.2} s of CPU), in {:.3} s → {}{}",
             meta.part.count,
             meta.part.split,
             meta.width,

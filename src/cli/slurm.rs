@@ -313,8 +313,9 @@ impl Report {
         for (i, part) in self.parts.iter().enumerate() {
             let line = match part {
                 PartStatus::Done(t) => format!(
-                    "done: render {:.2} s on {} ({} thread{})",
+                    "done: render {:.2} s, {:.2} s of CPU on {} ({} thread{})",
                     t.render_seconds,
+                    t.cpu_seconds,
                     t.host,
                     t.threads,
                     if t.threads == 1 { "" } else { "s" }

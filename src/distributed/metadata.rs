@@ -51,6 +51,10 @@ pub struct PartMeta {
 pub struct PartTiming {
     pub build_seconds: f64,
     pub render_seconds: f64,
+    /// The process's CPU time (user + system, all threads) when the part was encoded: load,
+    /// build, render and encoding; what a cluster's accounting would bill.
+    #[serde(default)]
+    pub cpu_seconds: f64,
     /// Worker threads it rendered with.
     pub threads: usize,
     /// The machine it ran on.
@@ -73,6 +77,24 @@ impl PartMeta {
             ("PNG settings", format!("{:?}", self.png)),
         ]
     }
+}
+
+/// This process's CPU time so far (user + system, every thread), from `/proc/self/stat`;
+/// 0 where that cannot be read.
+pub fn process_cpu_seconds() -> f64 {
+    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // The command name (field 2) is in parentheses and may hold spaces: count after it.
+    let Some((_, rest)) = stat.rsplit_once(')') else {
+        return 0.0;
+    };
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // utime and stime are fields 14 and 15 of the line, 11 and 12 after the name; in clock
+    // ticks, which Linux reports to user space at 100 per second on every architecture
+    // (USER_HZ).
+    let ticks = |i: usize| fields.get(i).and_then(|f| f.parse::<u64>().ok()).unwrap_or(0);
+    (ticks(11) + ticks(12)) as f64 / 100.0
 }
 
 /// The render options that decide the image, as text: the options less the thread count and
@@ -116,6 +138,18 @@ pub fn hash_files(files: &[PathBuf]) -> std::io::Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn process_cpu_time_counts_work_done() {
+        let before = process_cpu_seconds();
+        let start = std::time::Instant::now();
+        let mut x = 0u64;
+        while start.elapsed().as_secs_f64() < 0.3 {
+            x = std::hint::black_box(x.wrapping_mul(6364136223846793005).wrapping_add(1));
+        }
+        let spent = process_cpu_seconds() - before;
+        assert!(spent >= 0.1 && spent < 5.0, "{spent} s of CPU for a 0.3 s busy loop");
+    }
 
     #[test]
     fn option_differences_are_named() {
