@@ -2,7 +2,7 @@
 //! add their exact sums, one part in memory at a time.
 
 use super::metadata::{PartMeta, PartTiming, options_difference};
-use super::part::{Part, Split};
+use super::part::Part;
 use super::part_file::{PartFileError, read_part_meta, read_part_sums};
 use crate::sample_sums::FilmSums;
 use crate::stats::RenderStats;
@@ -109,37 +109,43 @@ pub fn merge_parts(paths: &[PathBuf]) -> Result<Merged, MergeError> {
     check_merge_memory(first.width, first.height)?;
     let mut total = FilmSums::new(first.width, first.height);
     let mut stats = RenderStats::default();
-    let all_tiles = crate::film::tiles(first.width, first.height, first.tile_size);
     for (path, meta) in &parts {
-        let sums = read_part_sums(path, meta)?;
-        let samples = meta.part.samples(meta.spp).len() as u32;
-        for (t, tile) in all_tiles.iter().enumerate() {
-            let expected = if meta.part.owns_tile(t) { samples } else { 0 };
-            for y in tile.y0..tile.y1 {
-                for x in tile.x0..tile.x1 {
-                    let i = total.index(x, y);
-                    let found = sums.pixels[i].samples;
-                    if found != expected || sums.pixels[i].depth_samples > found {
-                        return Err(MergeError::Coverage {
-                            path: path.clone(),
-                            part: meta.part,
-                            x,
-                            y,
-                            found,
-                            expected,
-                        });
-                    }
-                    total.pixels[i] = total.pixels[i]
-                        .checked_add(&sums.pixels[i])
-                        .ok_or_else(|| MergeError::Overflow { path: path.clone(), x, y })?;
-                }
+        // The file's layout places exactly the part's pixels; each must hold its samples.
+        let expected = meta.part.samples(meta.spp).len() as u32;
+        for (i, sums) in read_part_sums(path, meta)? {
+            let (x, y) = ((i % first.width as usize) as u32, (i / first.width as usize) as u32);
+            if sums.samples != expected || sums.depth_samples > sums.samples {
+                let found = sums.samples;
+                let part = meta.part;
+                return Err(MergeError::Coverage {
+                    path: path.clone(),
+                    part,
+                    x,
+                    y,
+                    found,
+                    expected,
+                });
             }
+            total.pixels[i] = total.pixels[i]
+                .checked_add(&sums)
+                .ok_or_else(|| MergeError::Overflow { path: path.clone(), x, y })?;
         }
         stats += meta.stats;
     }
-    debug_assert!(
-        first.part.split != Split::Samples || total.pixels.iter().all(|p| p.samples == first.spp)
-    );
+    // Each part exactly once and each part's layout exact: every pixel has every sample.
+    if let Some(i) = total.pixels.iter().position(|p| p.samples != first.spp) {
+        let (x, y) = ((i % first.width as usize) as u32, (i / first.width as usize) as u32);
+        let (path, meta) = &parts[0];
+        let found = total.pixels[i].samples;
+        return Err(MergeError::Coverage {
+            path: path.clone(),
+            part: meta.part,
+            x,
+            y,
+            found,
+            expected: first.spp,
+        });
+    }
     let timings = parts.iter().map(|(_, m)| m.timing.clone()).collect();
     Ok(Merged { sums: total, meta: first.clone(), stats, timings })
 }

@@ -176,8 +176,13 @@ fn check_readable(path: &Path) -> Result<(), PartFileError> {
 }
 
 /// The sums stored in the part file `path`, whose metadata `meta` has been read and checked
-/// (its size bounds what is read: larger files are refused before decoding).
-pub fn read_part_sums(path: &Path, meta: &PartMeta) -> Result<FilmSums, PartFileError> {
+/// (its size bounds what is read: larger files are refused before decoding): each of the
+/// part's pixels as (index in the image, sums). Only the part's pixels are held, so merging
+/// many small parts costs what they hold, not an image each.
+pub fn read_part_sums(
+    path: &Path,
+    meta: &PartMeta,
+) -> Result<Vec<(usize, PixelSums)>, PartFileError> {
     use exr::prelude::*;
     let ((file_width, file_height), layout) = file_layout(meta);
     let pixels = file_width as u64 * file_height as u64;
@@ -208,34 +213,36 @@ pub fn read_part_sums(path: &Path, meta: &PartMeta) -> Result<FilmSums, PartFile
             None => Err(damaged(format!("channel '{name}' is missing"))),
         }
     };
-    let mut sums = FilmSums::new(meta.width, meta.height);
+    // The part's own pixels (image index, sums), in file order; padding must be empty.
+    let mut pixels_read: Vec<(usize, usize, PixelSums)> = Vec::new();
+    for (file_index, target) in layout.iter().enumerate() {
+        if let Some(image_index) = target {
+            pixels_read.push((file_index, *image_index, PixelSums::default()));
+        }
+    }
+    let padding = layout.iter().enumerate().filter(|(_, t)| t.is_none()).map(|(i, _)| i);
     for (q, name) in QUANTITIES.iter().enumerate() {
         let words: Vec<&[u32]> = (0..WORDS)
             .map(|w| channel(&format!("sum.{name}.{w}")))
             .collect::<std::result::Result<_, _>>()?;
-        for (i, target) in layout.iter().enumerate() {
-            let bits = (0..WORDS).fold(0u128, |acc, w| acc | (u128::from(words[w][i]) << (32 * w)));
-            match target {
-                Some(t) => set_quantity(&mut sums.pixels[*t], q, bits as i128),
-                None if bits != 0 => return Err(damaged("a padding pixel holds a sum".into())),
-                None => {}
-            }
+        let bits =
+            |i: usize| (0..WORDS).fold(0u128, |acc, w| acc | (u128::from(words[w][i]) << (32 * w)));
+        for (file_index, _, sums) in &mut pixels_read {
+            set_quantity(sums, q, bits(*file_index) as i128);
+        }
+        if padding.clone().any(|i| bits(i) != 0) {
+            return Err(damaged("a padding pixel holds a sum".into()));
         }
     }
     let (count, depth_count) = (channel("count")?, channel("count.Z")?);
-    for (i, target) in layout.iter().enumerate() {
-        match target {
-            Some(t) => {
-                sums.pixels[*t].samples = count[i];
-                sums.pixels[*t].depth_samples = depth_count[i];
-            }
-            None if count[i] != 0 || depth_count[i] != 0 => {
-                return Err(damaged("a padding pixel holds samples".into()));
-            }
-            None => {}
-        }
+    for (file_index, _, sums) in &mut pixels_read {
+        sums.samples = count[*file_index];
+        sums.depth_samples = depth_count[*file_index];
     }
-    Ok(sums)
+    if padding.clone().any(|i| count[i] != 0 || depth_count[i] != 0) {
+        return Err(damaged("a padding pixel holds samples".into()));
+    }
+    Ok(pixels_read.into_iter().map(|(_, image_index, sums)| (image_index, sums)).collect())
 }
 
 #[cfg(test)]
@@ -297,8 +304,39 @@ mod tests {
         let path = write(&meta, &sums, "tiles");
         let read_meta = read_part_meta(&path).unwrap();
         assert_eq!(read_meta, meta);
-        assert_eq!(read_part_sums(&path, &read_meta).unwrap(), sums);
+        let mut read_back = FilmSums::new(40, 24);
+        for (i, p) in read_part_sums(&path, &read_meta).unwrap() {
+            read_back.pixels[i] = p;
+        }
+        assert_eq!(read_back, sums);
         std::fs::remove_file(&path).unwrap();
+    }
+
+    #[test]
+    fn a_part_whose_pixels_do_not_match_its_metadata_is_not_merged() {
+        let meta_of = |index| meta(16, 16, Part { index, count: 2, split: Split::Samples });
+        let mut paths = Vec::new();
+        for index in 0..2 {
+            // Each part renders 2 of the 4 samples; part 1's file holds 3 at every pixel.
+            let mut sums = FilmSums::new(16, 16);
+            for p in &mut sums.pixels {
+                for _ in 0..2 + index {
+                    p.add_sample(Vec3::ONE, None, None);
+                }
+            }
+            paths.push(write(&meta_of(index), &sums, &format!("coverage{index}")));
+        }
+        let message = match super::super::merge_parts(&paths) {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("merged a damaged part"),
+        };
+        assert!(
+            message.contains("pixel (0, 0) has 3 samples, but part 1/2 renders 2"),
+            "{message}"
+        );
+        for path in paths {
+            std::fs::remove_file(path).unwrap();
+        }
     }
 
     #[test]
