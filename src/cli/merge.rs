@@ -4,7 +4,7 @@ use super::console::note;
 use anyhow::{Context, Result};
 use clap::Args;
 use embray::distributed::merge_parts;
-use embray::output::{OutputPlan, OutputSet, Photographic, ToneMap, encode_exr, encode_png};
+use embray::output::{OutputPlan, OutputSet, Photographic, ToneMap, encode_exr, encode_png_graded};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -18,6 +18,9 @@ pub struct MergeArgs {
     /// Also write the tone-mapped PNG, with the settings the parts were rendered with.
     #[arg(long)]
     pub png: Option<PathBuf>,
+    /// A 3-D LUT (.cube) applied to the PNG last, as a grading look.
+    #[arg(long, value_name = "FILE.cube", requires = "png")]
+    pub lut: Option<PathBuf>,
     /// No summary line.
     #[arg(short, long)]
     pub quiet: bool,
@@ -29,6 +32,7 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     for path in &args.parts {
         plan.input("the part file", path);
     }
+    let lut = super::read_lut(args.lut.as_deref(), &mut plan)?;
     let exr = plan.output("-o", &args.output, false)?;
     let png = args.png.as_deref().map(|p| plan.output("--png", p, false)).transpose()?;
     let merged = merge_parts(&args.parts)?;
@@ -40,7 +44,10 @@ pub fn run(args: &MergeArgs) -> Result<()> {
         let curve: ToneMap = meta.png.curve.parse().context("the parts' PNG settings")?;
         let [key, burn_out, saturation, gamma] = meta.png.photographic;
         let photographic = Photographic { key, burn_out, saturation, gamma };
-        files.write(png, |w| encode_png(&film, curve, meta.png.exposure, &photographic, w))?;
+        let exposure = meta.png.exposure;
+        files.write(png, |w| {
+            encode_png_graded(&film, curve, exposure, &photographic, lut.as_ref(), w)
+        })?;
     }
     files.commit()?;
     if !args.quiet {

@@ -96,3 +96,15 @@ pub fn load_scene(path: Option<&Path>) -> Result<SceneDesc> {
             .context("the built-in default scene failed to load")?,
     })
 }
+
+/// The `--lut` file, read and recorded as an input of the run (no output may overwrite it).
+pub fn read_lut(
+    path: Option<&Path>,
+    plan: &mut embray::output::OutputPlan,
+) -> Result<Option<embray::output::Lut3d>> {
+    let Some(path) = path else {
+        return Ok(None);
+    };
+    plan.input("the LUT", path);
+    Ok(Some(embray::output::Lut3d::read(path)?))
+}

@@ -12,7 +12,9 @@ use embray::distributed::{Part, Split};
 use embray::excerpt::excerpt;
 use embray::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SPP, MAX_THREADS};
 use embray::output::stats::{StatsReport, stats_table};
-use embray::output::{OutputPlan, OutputSet, Target, camera_outputs, encode_exr, encode_png};
+use embray::output::{
+    OutputPlan, OutputSet, Target, camera_outputs, encode_exr, encode_png_graded,
+};
 use embray::render::{RenderOptions, RenderOutput, render};
 use embray::render_space::RenderSpace;
 use embray::sampling::SamplerKind;
@@ -79,6 +81,9 @@ pub struct RenderArgs {
     pub tonemap: TonemapArg,
     #[command(flatten)]
     pub photographic: PhotographicArgs,
+    /// A 3-D LUT (.cube, Adobe/Resolve format) applied to the PNG last, as a grading look.
+    #[arg(long, value_name = "FILE.cube")]
+    pub lut: Option<PathBuf>,
     /// Exposure adjustment in stops, applied before tone mapping (PNG only).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
@@ -211,6 +216,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let Some(path) = &args.scene {
         plan.input("the scene", path);
     }
+    let lut = super::read_lut(args.lut.as_deref(), &mut plan)?;
     let jobs = match args.scene.as_deref().filter(|p| ceng795::is_ceng795_path(p)) {
         Some(path) => ceng795_jobs(args, path, &mut plan)?,
         None => {
@@ -243,7 +249,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let curve = args.tonemap.resolve(&job.scene.settings);
         let photographic = args.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
         files.write(&job.png, |w| {
-            encode_png(&output.film, curve, args.exposure, &photographic, w)
+            encode_png_graded(&output.film, curve, args.exposure, &photographic, lut.as_ref(), w)
         })?;
         if let Some(target) = &stats_json {
             let report = StatsReport::new(&output, &options);

@@ -24,7 +24,8 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         if given {
             bail!(
                 "{flag} cannot be used with --part: a part holds sample sums, not an image; \
-                 `embray merge` writes the image (and its PNG) once every part is done"
+                 `embray merge` writes the image (and its PNG, graded with its own --lut) once \
+                 every part is done"
             );
         }
     }

@@ -52,6 +52,7 @@ pub struct SubmitArgs {
     /// How the render is divided among the parts.
     #[arg(long, value_parser = super::choices::choice::<Split>(), default_value_t = Split::Tiles)]
     pub split: Split,
+    /// Slurm partition of every job (sbatch --partition) [default: the cluster's].
     #[arg(long)]
     pub partition: Option<String>,
     /// Time limit of each task (sbatch --time, e.g. 01:00:00).

@@ -4,7 +4,7 @@
 use super::choices::PhotographicArgs;
 use anyhow::Result;
 use clap::Args;
-use embray::output::{OutputPlan, OutputSet, ToneMap, encode_png};
+use embray::output::{OutputPlan, OutputSet, ToneMap, encode_png_graded};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -16,6 +16,9 @@ pub struct TonemapArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub photographic: PhotographicArgs,
+    /// A 3-D LUT (.cube) applied to the PNG last, as a grading look.
+    #[arg(long, value_name = "FILE.cube")]
+    pub lut: Option<PathBuf>,
     /// Exposure adjustment in stops, applied first.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
@@ -29,11 +32,13 @@ pub fn run(args: &TonemapArgs) -> Result<()> {
     // The PNG may not overwrite the EXR: checked before anything is read.
     let mut plan = OutputPlan::new();
     plan.input("the EXR", &args.input);
+    let lut = super::read_lut(args.lut.as_deref(), &mut plan)?;
     let png = plan.output("-o", &args.output, false)?;
     let film = embray::bench::convergence::read_reference(&args.input)?;
     let mut files = OutputSet::new();
     files.write(&png, |w| {
-        encode_png(&film, ToneMap::Photographic, args.exposure, &photographic, w)
+        let curve = ToneMap::Photographic;
+        encode_png_graded(&film, curve, args.exposure, &photographic, lut.as_ref(), w)
     })?;
     files.commit()?;
     Ok(())

@@ -65,7 +65,23 @@ pub fn encode_png(
     photographic: &Photographic,
     sink: &mut dyn WriteSeek,
 ) -> std::io::Result<()> {
-    encode_rgb8(&to_srgb8(film, curve, exposure, photographic), film.width, film.height, sink)
+    encode_png_graded(film, curve, exposure, photographic, None, sink)
+}
+
+/// As [`encode_png`], with `lut` (if any) grading the display pixels last.
+pub fn encode_png_graded(
+    film: &Film,
+    curve: ToneMap,
+    exposure: f32,
+    photographic: &Photographic,
+    lut: Option<&super::Lut3d>,
+    sink: &mut dyn WriteSeek,
+) -> std::io::Result<()> {
+    let mut pixels = to_srgb8(film, curve, exposure, photographic);
+    if let Some(lut) = lut {
+        lut.apply_rgb8(&mut pixels);
+    }
+    encode_rgb8(&pixels, film.width, film.height, sink)
 }
 
 /// Encodes 8-bit RGB pixels as PNG into `sink`.
