@@ -38,6 +38,7 @@ pub fn describe(scene: &SceneDesc) -> String {
         }
     }
     let points = scene.lights.iter().filter(|l| matches!(l, LightDesc::Point { .. })).count();
+    let spots = scene.lights.iter().filter(|l| matches!(l, LightDesc::Spot { .. })).count();
     let directional =
         scene.lights.iter().filter(|l| matches!(l, LightDesc::Directional { .. })).count();
     let emissive = scene
@@ -47,7 +48,7 @@ pub fn describe(scene: &SceneDesc) -> String {
         .count();
     out += &format!("objects: {meshes} meshes ({triangles} triangles), {spheres} spheres\n");
     out += &format!(
-        "materials: {}\nlights: {points} point, {directional} directional, {emissive} emissive objects\n",
+        "materials: {}\nlights: {points} point, {spots} spot, {directional} directional, {emissive} emissive objects\n",
         scene.materials.len()
     );
     let area = scene.lights.iter().filter(|l| matches!(l, LightDesc::Area { .. })).count();

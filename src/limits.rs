@@ -228,7 +228,9 @@ pub fn check_coordinates(desc: &SceneDesc, space: RenderSpace) -> Result<(), Lim
         }
         for (i, light) in desc.lights.iter().enumerate() {
             let reach = match light {
-                LightDesc::Point { position, .. } => far(*position),
+                LightDesc::Point { position, .. } | LightDesc::Spot { position, .. } => {
+                    far(*position)
+                }
                 LightDesc::Area { center, size, .. } => far(*center) + size,
                 _ => 0.0,
             };

@@ -6,6 +6,7 @@ use crate::render_scene::{Geometry, Instance, Placement, Prototype};
 use crate::scene::LightDesc;
 use crate::shading::light::{
     DirectionalLight, Emitter, EmitterShape, InstanceEmitters, LightSet, NO_GEOMETRY, PointLight,
+    SpotCone,
 };
 use crate::shading::material::Material;
 use crate::transform::course_square_axes;
@@ -109,7 +110,26 @@ pub(super) fn compile_lights(
             LightDesc::Point { position, intensity } => points.push(PointLight {
                 position: render_from_world.transform_point3(*position).as_vec3(),
                 intensity: *intensity,
+                spot: None,
             }),
+            LightDesc::Spot {
+                position,
+                direction,
+                intensity,
+                coverage_degrees,
+                falloff_degrees,
+            } => {
+                let half_cos = |degrees: f64| (0.5 * degrees).to_radians().cos() as f32;
+                points.push(PointLight {
+                    position: render_from_world.transform_point3(*position).as_vec3(),
+                    intensity: *intensity,
+                    spot: Some(SpotCone {
+                        axis: render_from_world.transform_vector3(*direction).normalize().as_vec3(),
+                        cos_falloff: half_cos(*falloff_degrees),
+                        cos_coverage: half_cos(*coverage_degrees),
+                    }),
+                })
+            }
             LightDesc::Directional { direction, irradiance } => {
                 directional.push(DirectionalLight {
                     direction: render_from_world

@@ -112,7 +112,7 @@ impl<'a> PathTracer<'a> {
             let shadow =
                 self.tracer.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
             if !self.occluded(&shadow, stats) {
-                sum += f_cos * light.intensity / dist2;
+                sum += f_cos * light.intensity_towards(-wi) / dist2;
             }
         }
         for light in &lights.directional {

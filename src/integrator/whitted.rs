@@ -97,7 +97,7 @@ impl<'a> WhittedTracer<'a> {
             let shadow =
                 self.tracer.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
             if !self.occluded(&shadow, stats) {
-                color += shade(wi, light.intensity / dist2);
+                color += shade(wi, light.intensity_towards(-wi) / dist2);
             }
         }
         for light in &lights.directional {

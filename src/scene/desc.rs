@@ -200,6 +200,21 @@ impl ObjectDesc {
 pub enum LightDesc {
     /// Isotropic point light; `intensity` is radiant intensity (W/sr per channel).
     Point { position: DVec3, intensity: Vec3 },
+    /// A point light that sends its light into a cone around `direction` (unit, from the
+    /// light into the scene): the course's SpotLight. Full `intensity` within half the
+    /// `falloff_degrees` of the axis, none beyond half the `coverage_degrees`, and in
+    /// between `intensity` times ((cos α − cos(coverage/2)) / (cos(falloff/2) −
+    /// cos(coverage/2)))⁴. (hw5.tex prints cos(falloff/2) as the first term, which makes
+    /// the light drop to 0 just outside the falloff cone and jump back to full at the
+    /// coverage edge, against its own description: "diminish non-linearly" from the first to
+    /// the second. The pack has no SpotLight reference to settle it.)
+    Spot {
+        position: DVec3,
+        direction: DVec3,
+        intensity: Vec3,
+        coverage_degrees: f64,
+        falloff_degrees: f64,
+    },
     /// Light from infinitely far away arriving along `direction` (pointing from the light
     /// into the scene); `irradiance` on a surface facing it.
     Directional { direction: DVec3, irradiance: Vec3 },
@@ -281,7 +296,9 @@ impl SceneDesc {
         }
         for light in &mut self.lights {
             match light {
-                LightDesc::Point { position, .. } => *position += offset,
+                LightDesc::Point { position, .. } | LightDesc::Spot { position, .. } => {
+                    *position += offset
+                }
                 LightDesc::Area { center, .. } => *center += offset,
                 _ => {}
             }

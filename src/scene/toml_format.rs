@@ -217,6 +217,8 @@ pub(crate) struct RepeatToml {
 #[serde(rename_all = "snake_case")]
 pub(crate) enum LightKind {
     Point,
+    /// A point light shining into a cone (`direction`, `coverage_angle`, `falloff_angle`).
+    Spot,
     Quad,
     Directional,
     Ambient,
@@ -247,6 +249,8 @@ pub(crate) struct LightToml {
     pub transform: Option<Vec<TransformEntry>>,
     pub normal: Option<Vec3>,
     pub size: Option<f64>,
+    pub coverage_angle: Option<f64>,
+    pub falloff_angle: Option<f64>,
 }
 
 /// One entry of a transform list as written: an inline table that should have exactly one

@@ -170,6 +170,20 @@ impl TomlWriter {
                     v3(*position),
                     c3(*intensity)
                 ),
+                LightDesc::Spot {
+                    position,
+                    direction,
+                    intensity,
+                    coverage_degrees,
+                    falloff_degrees,
+                } => writeln!(
+                    out,
+                    "type = \"spot\"\nposition = {}\ndirection = {}\nintensity = {}\n\
+                     coverage_angle = {coverage_degrees:?}\nfalloff_angle = {falloff_degrees:?}",
+                    v3(*position),
+                    v3(*direction),
+                    c3(*intensity)
+                ),
                 LightDesc::Directional { direction, irradiance } => writeln!(
                     out,
                     "type = \"directional\"\ndirection = {}\nirradiance = {}",

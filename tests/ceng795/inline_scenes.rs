@@ -336,3 +336,43 @@ fn hw6_brdfs_gaze_cameras_and_object_lights() {
     let ShapeDesc::Mesh(mesh) = &s.objects[1].shape else { panic!("a mesh") };
     assert_eq!(mesh.positions.len(), 3);
 }
+
+/// hw5's `DirectionalLight` (Radiance is the irradiance it gives) and `SpotLight` (angles in
+/// degrees, full cones) import, refuse bad angles naming the element, and survive
+/// `embray convert`'s TOML.
+#[test]
+fn hw5_directional_and_spot_lights_import_and_convert() {
+    let lights = "<DirectionalLight id=\"1\"><Direction>1 -0.8 -1</Direction>\
+                  <Radiance>200 200 200</Radiance></DirectionalLight>\n\
+                  <SpotLight id=\"1\"><Position>-0.93 1 0.9</Position><Direction>1 -1 -1</Direction>\
+                  <Intensity>600 600 600</Intensity><CoverageAngle>10</CoverageAngle>\
+                  <FalloffAngle>8</FalloffAngle></SpotLight>";
+    let s = one(&with_lights(scene_xml(TRIANGLE), lights));
+    assert_eq!(
+        s.lights,
+        [
+            LightDesc::Directional {
+                direction: DVec3::new(1.0, -0.8, -1.0).normalize(),
+                irradiance: glam::Vec3::splat(200.0)
+            },
+            LightDesc::Spot {
+                position: DVec3::new(-0.93, 1.0, 0.9),
+                direction: DVec3::new(1.0, -1.0, -1.0).normalize(),
+                intensity: glam::Vec3::splat(600.0),
+                coverage_degrees: 10.0,
+                falloff_degrees: 8.0
+            },
+        ]
+    );
+    let dir = std::env::temp_dir().join(format!("embray-hw5-lights-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
+    let toml = dir.join("lights.toml");
+    writer.write(&s, &toml, "round trip").unwrap();
+    let back = embray::scene::load(&toml).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(back.lights, s.lights);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let wider = lights.replace("<FalloffAngle>8", "<FalloffAngle>12");
+    let message = load_text(&with_lights(scene_xml(TRIANGLE), &wider)).unwrap_err().to_string();
+    assert!(message.contains("FalloffAngle") && message.contains("12"), "{message}");
+}

@@ -325,6 +325,7 @@ fn converted_toml_renders_like_the_xml() {
         "2021/hw3/ellipsoids.xml",
         "2021/hw3/metal_glass_plates.xml",
         "2021/hw3/spheres_dof.xml",
+        "2022/hw5/inputs/cube_directional.xml",
         "2022/hw6/brdf/inputs/brdf_torrancesparrow.xml",
         "2022/hw6/brdf/inputs/brdf_phong_modified_normalized.xml",
         "2022/hw6/directLighting/inputs/cornellbox_jaroslav_glossy_area.xml",

@@ -1,7 +1,9 @@
 //! `<Lights>` → `LightDesc`s: AmbientLight (radiance added to every surface's ambient
-//! reflectance), PointLight (Intensity, W/sr in the course's 0–255 units) and AreaLight (a
+//! reflectance), PointLight (Intensity, W/sr in the course's 0–255 units), AreaLight (a
 //! square of edge `Size` at `Position` facing `Normal`, emitting `Radiance`; it lights the
-//! scene but rays cannot hit it).
+//! scene but rays cannot hit it), DirectionalLight (`Direction`, and `Radiance`: the
+//! irradiance on a surface facing it, no distance attenuation) and SpotLight (a point light
+//! with `Direction`, `CoverageAngle` and `FalloffAngle` in degrees, full angles).
 
 use super::xml::Xml;
 use crate::scene::desc::LightDesc;
@@ -14,7 +16,10 @@ pub(super) fn lights<'a, 'i: 'a>(
 ) -> Result<Vec<LightDesc>, SceneError> {
     let mut out = Vec::new();
     for list in lists {
-        x.check_children(list, &["AmbientLight", "PointLight", "AreaLight"])?;
+        x.check_children(
+            list,
+            &["AmbientLight", "PointLight", "AreaLight", "DirectionalLight", "SpotLight"],
+        )?;
         for node in list.children().filter(Node::is_element) {
             out.push(match node.tag_name().name() {
                 "AmbientLight" => LightDesc::Ambient { radiance: x.color(node)? },
@@ -25,12 +30,39 @@ pub(super) fn lights<'a, 'i: 'a>(
                         intensity: x.color(x.required(node, "Intensity")?)?,
                     }
                 }
+                "DirectionalLight" => {
+                    x.check_children(node, &["Direction", "Radiance"])?;
+                    LightDesc::Directional {
+                        direction: direction(x, x.required(node, "Direction")?)?,
+                        irradiance: x.color(x.required(node, "Radiance")?)?,
+                    }
+                }
+                "SpotLight" => {
+                    let children =
+                        ["Position", "Direction", "Intensity", "CoverageAngle", "FalloffAngle"];
+                    x.check_children(node, &children)?;
+                    let coverage_node = x.required(node, "CoverageAngle")?;
+                    let coverage = x.scalar(coverage_node)?;
+                    if !(coverage > 0.0 && coverage <= 360.0) {
+                        return Err(x.out_of_range(coverage_node, coverage, "degrees in (0, 360]"));
+                    }
+                    let falloff_node = x.required(node, "FalloffAngle")?;
+                    let falloff = x.scalar(falloff_node)?;
+                    if !(falloff >= 0.0 && falloff <= coverage) {
+                        let requirement = "degrees in [0, CoverageAngle]";
+                        return Err(x.out_of_range(falloff_node, falloff, requirement));
+                    }
+                    LightDesc::Spot {
+                        position: x.vec3(x.required(node, "Position")?)?,
+                        direction: direction(x, x.required(node, "Direction")?)?,
+                        intensity: x.color(x.required(node, "Intensity")?)?,
+                        coverage_degrees: coverage,
+                        falloff_degrees: falloff,
+                    }
+                }
                 _ => {
                     x.check_children(node, &["Position", "Normal", "Size", "Radiance"])?;
-                    let normal_node = x.required(node, "Normal")?;
-                    let Some(normal) = x.vec3(normal_node)?.try_normalize() else {
-                        return Err(x.out_of_range(normal_node, "0 0 0", "a non-zero vector"));
-                    };
+                    let normal = direction(x, x.required(node, "Normal")?)?;
                     let size_node = x.required(node, "Size")?;
                     let size = x.scalar(size_node)?;
                     if !(size > 0.0) {
@@ -47,4 +79,9 @@ pub(super) fn lights<'a, 'i: 'a>(
         }
     }
     Ok(out)
+}
+
+/// A unit direction from a `Direction` element (refused when zero).
+fn direction(x: &Xml, node: Node) -> Result<glam::DVec3, SceneError> {
+    x.vec3(node)?.try_normalize().ok_or_else(|| x.out_of_range(node, "0 0 0", "a non-zero vector"))
 }

@@ -205,7 +205,12 @@ pub fn load_str_with_warnings(
                         Some(mode) if !mode.next_event => lights
                             .iter()
                             .filter(|l| {
-                                !matches!(l, LightDesc::Point { .. } | LightDesc::Area { .. })
+                                !matches!(
+                                    l,
+                                    LightDesc::Point { .. }
+                                        | LightDesc::Spot { .. }
+                                        | LightDesc::Area { .. }
+                                )
                             })
                             .cloned()
                             .collect(),

@@ -17,6 +17,10 @@ impl Builder<'_> {
         let path = FieldPath::root("lights").index(i);
         let (kind, allowed): (&str, &[&str]) = match l.kind {
             LightKind::Point => ("point light", &["type", "position", "intensity"]),
+            LightKind::Spot => (
+                "spot light",
+                &["type", "position", "direction", "intensity", "coverage_angle", "falloff_angle"],
+            ),
             LightKind::Quad => {
                 ("quad light", &["type", "corner", "u", "v", "emission", "transform"])
             }
@@ -45,6 +49,8 @@ impl Builder<'_> {
             ("transform", l.transform.is_some()),
             ("normal", l.normal.is_some()),
             ("size", l.size.is_some()),
+            ("coverage_angle", l.coverage_angle.is_some()),
+            ("falloff_angle", l.falloff_angle.is_some()),
         ];
         let ctx = self.ctx;
         ctx.check_fields(&path, &item, &present, allowed)?;
@@ -58,6 +64,38 @@ impl Builder<'_> {
                 let intensity = ctx.required(&path, &item, "intensity", l.intensity)?;
                 let intensity = ctx.color(&path.key("intensity"), intensity, false)?;
                 self.lights.push(LightDesc::Point { position: dvec(position), intensity });
+            }
+            LightKind::Spot => {
+                let position = ctx.required(&path, &item, "position", l.position)?;
+                let intensity = ctx.required(&path, &item, "intensity", l.intensity)?;
+                let intensity = ctx.color(&path.key("intensity"), intensity, false)?;
+                let direction = ctx.required(&path, &item, "direction", l.direction)?;
+                let field = path.key("direction");
+                let direction = dvec(direction).try_normalize().ok_or_else(|| {
+                    ctx.out_of_range(&field, fmt_vec(&direction), "a non-zero vector")
+                })?;
+                let coverage = ctx.required(&path, &item, "coverage_angle", l.coverage_angle)?;
+                let falloff = ctx.required(&path, &item, "falloff_angle", l.falloff_angle)?;
+                let coverage_field = path.key("coverage_angle");
+                ctx.require(
+                    coverage > 0.0 && coverage <= 360.0,
+                    &coverage_field,
+                    coverage,
+                    "an angle in degrees, > 0 and <= 360",
+                )?;
+                ctx.require(
+                    falloff >= 0.0 && falloff <= coverage,
+                    &path.key("falloff_angle"),
+                    falloff,
+                    "an angle in degrees, >= 0 and <= coverage_angle",
+                )?;
+                self.lights.push(LightDesc::Spot {
+                    position: dvec(position),
+                    direction,
+                    intensity,
+                    coverage_degrees: coverage,
+                    falloff_degrees: falloff,
+                });
             }
             LightKind::Directional => {
                 let direction = ctx.required(&path, &item, "direction", l.direction)?;

@@ -16,8 +16,45 @@ use glam::{Vec2, Vec3};
 #[derive(Clone, Debug, PartialEq)]
 pub struct PointLight {
     pub position: Vec3,
-    /// Radiant intensity (W/sr) per channel.
+    /// Radiant intensity (W/sr) per channel (on the axis, for a spot light).
     pub intensity: Vec3,
+    /// The cone a spot light shines into; `None` for an isotropic point light.
+    pub spot: Option<SpotCone>,
+}
+
+/// A spot light's cone (the course's SpotLight): see `LightDesc::Spot`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotCone {
+    /// Unit axis, from the light into the scene.
+    pub axis: Vec3,
+    /// cos(falloff / 2): full intensity within.
+    pub cos_falloff: f32,
+    /// cos(coverage / 2): no light beyond.
+    pub cos_coverage: f32,
+}
+
+impl SpotCone {
+    /// The fraction of the axis intensity sent along the unit direction `w` (from the light).
+    pub fn factor(&self, w: Vec3) -> f32 {
+        let cos = self.axis.dot(w);
+        if cos >= self.cos_falloff {
+            1.0
+        } else if cos > self.cos_coverage {
+            ((cos - self.cos_coverage) / (self.cos_falloff - self.cos_coverage)).powi(4)
+        } else {
+            0.0
+        }
+    }
+}
+
+impl PointLight {
+    /// Radiant intensity towards the unit direction `w` (from the light).
+    pub fn intensity_towards(&self, w: Vec3) -> Vec3 {
+        match &self.spot {
+            Some(cone) => self.intensity * cone.factor(w),
+            None => self.intensity,
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -149,3 +149,36 @@ fn only_parallelograms_become_quads() {
         Some(EmitterShape::Quad { rectangle: false, .. })
     ));
 }
+
+#[test]
+fn spot_cone_falls_off_from_full_to_nothing_between_its_angles() {
+    use super::{PointLight, SpotCone};
+    let half_cos = |degrees: f32| (0.5 * degrees).to_radians().cos();
+    // Coverage 60°, falloff 20°: full within 10° of the axis, none beyond 30°.
+    let cone =
+        SpotCone { axis: Vec3::NEG_Y, cos_falloff: half_cos(20.0), cos_coverage: half_cos(60.0) };
+    let light =
+        PointLight { position: Vec3::ZERO, intensity: Vec3::splat(100.0), spot: Some(cone) };
+    let at = |degrees: f32| {
+        let a = degrees.to_radians();
+        light.intensity_towards(Vec3::new(a.sin(), -a.cos(), 0.0)).x
+    };
+    assert_eq!(at(0.0), 100.0);
+    assert_eq!(at(9.9), 100.0);
+    assert_eq!(at(30.1), 0.0);
+    assert_eq!(at(120.0), 0.0);
+    for degrees in [12.0f32, 20.0, 28.0] {
+        let cos = degrees.to_radians().cos();
+        let s = ((cos - half_cos(60.0)) / (half_cos(20.0) - half_cos(60.0))).powi(4);
+        assert!(
+            (at(degrees) - 100.0 * s).abs() < 1e-3,
+            "{degrees}°: {} vs {}",
+            at(degrees),
+            100.0 * s
+        );
+    }
+    // Continuous at the falloff edge, monotone down to zero at the coverage edge.
+    assert!(at(10.01) > 99.0 && at(29.9) < 1e-3);
+    let point = PointLight { spot: None, ..light.clone() };
+    assert_eq!(point.intensity_towards(Vec3::X), Vec3::splat(100.0));
+}
