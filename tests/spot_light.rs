@@ -86,10 +86,13 @@ fn a_spot_light_is_a_point_light_times_its_cone() {
                         (got - expected).abs() <= 1e-4 + 1e-3 * expected,
                         "{what}: {got} vs {expected}"
                     );
-                    match factor(alpha) {
-                        f if f == 1.0 => full += 1,
-                        f if f == 0.0 => dark += 1,
-                        _ => blended += 1,
+                    let f = factor(alpha);
+                    if f == 1.0 {
+                        full += 1;
+                    } else if f == 0.0 {
+                        dark += 1;
+                    } else {
+                        blended += 1;
                     }
                 }
             }
