@@ -337,6 +337,7 @@ fn checker_material() -> MaterialDesc {
                 even: Vec3::splat(0.9),
                 odd: Vec3::new(0.8, 0.1, 0.1),
             },
+            mode: Default::default(),
             texture_from_object: DAffine3::IDENTITY,
         }),
         ..Default::default()

@@ -73,15 +73,8 @@ impl<'a> PathTracer<'a> {
     fn albedo(&self, material: &Material, si: &SurfaceInteraction, time: f32) -> Vec3 {
         match &material.texture {
             None => material.albedo,
-            Some(texture) => {
-                let p_object = if texture.needs_object_point() {
-                    let placement = &self.tracer.scene.instances[si.geom_id as usize].placement;
-                    placement.texture_object_from_render(time).transform_point3(si.surface.point)
-                } else {
-                    Vec3::ZERO
-                };
-                texture.eval(p_object, si.uv)
-            }
+            Some(texture) => texture
+                .apply_to_albedo(material.albedo, self.tracer.texture_color(texture, si, time)),
         }
     }
 

@@ -5,7 +5,10 @@ use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::shading::spawn::SpawnMode;
+use crate::shading::surface::SurfaceInteraction;
+use crate::shading::texture::Texture;
 use crate::stats::RenderStats;
+use glam::Vec3;
 
 /// A scene, the backend built over it, and how rays leave surfaces.
 pub(crate) struct SceneTracer<'a> {
@@ -44,5 +47,16 @@ impl SceneTracer<'_> {
         counts.rays += 1;
         counts.hits += hit.is_some() as u64;
         hit
+    }
+
+    /// `texture`'s colour at `si` (solid patterns in the hit object's own space at `time`).
+    pub fn texture_color(&self, texture: &Texture, si: &SurfaceInteraction, time: f32) -> Vec3 {
+        let p_object = if texture.needs_object_point() {
+            let placement = &self.scene.instances[si.geom_id as usize].placement;
+            placement.texture_object_from_render(time).transform_point3(si.surface.point)
+        } else {
+            Vec3::ZERO
+        };
+        texture.eval(p_object, si.uv)
     }
 }

@@ -20,7 +20,7 @@ use super::trace::SceneTracer;
 use crate::ray::Ray;
 use crate::render_scene::{Geometry, RenderScene};
 use crate::sampling::SampleStream;
-use crate::scene::{CourseBrdf, Specular};
+use crate::scene::{CourseBrdf, Specular, TextureMode};
 use crate::shading::bsdf::{fresnel_conductor, fresnel_dielectric};
 use crate::shading::course_brdf::{CourseTerms, cos_weighted};
 use crate::shading::spawn::SurfacePoint;
@@ -74,7 +74,20 @@ impl<'a> WhittedTracer<'a> {
             Some(p) => (p.ambient, p.specular, p.exponent, p.brdf),
             None => (Vec3::ZERO, Vec3::ZERO, 1.0, CourseBrdf::default()),
         };
-        let terms = CourseTerms { diffuse: material.albedo, specular, exponent };
+        let mut diffuse = material.albedo;
+        if let Some(t) = &material.texture {
+            let color = self.tracer.texture_color(t, si, time);
+            if t.mode == TextureMode::ReplaceAll {
+                // Shading is off: the texture is the colour seen (in display units).
+                return color;
+            }
+            diffuse = t.apply_to_albedo(diffuse, color);
+        }
+        let specular = match &material.specular_texture {
+            Some(t) => self.tracer.texture_color(t, si, time),
+            None => specular,
+        };
+        let terms = CourseTerms { diffuse, specular, exponent };
         // The course lights a surface on the side its own normal points to, whichever side
         // the ray arrived on: the back of a one-sided triangle is lit only by lights behind
         // it (so a sail seen from the back is dark where a two-sided surface would be lit).

@@ -63,8 +63,11 @@ pub struct MaterialDesc {
     pub specular: Specular,
     /// GGX roughness α of the specular part (0 = perfectly smooth).
     pub roughness: f32,
-    /// A pattern that replaces `albedo`.
+    /// A pattern that replaces (or blends into) `albedo`, per its `mode`.
     pub texture: Option<TextureDesc>,
+    /// A pattern that replaces the specular reflectance of the course's shading terms
+    /// (`phong.specular`; the course's `replace_ks`).
+    pub specular_texture: Option<TextureDesc>,
     /// Terms only the course's Whitted shading model uses (ambient, Blinn-Phong highlight).
     pub phong: Option<PhongDesc>,
 }
@@ -78,6 +81,7 @@ impl Default for MaterialDesc {
             specular: Specular::None,
             roughness: 0.0,
             texture: None,
+            specular_texture: None,
             phong: None,
         }
     }
@@ -141,18 +145,89 @@ pub enum CourseBrdf {
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureDesc {
     pub pattern: Pattern,
+    /// What the pattern's colour does to the surface (only `Replace` for a specular texture).
+    pub mode: TextureMode,
     /// Maps the space of the object the material is attached to (the mesh's own vertex
     /// space, or for a material given at the instance level the instance's space) to the
     /// pattern's space. Set by the loader; identity for object-level materials.
     pub texture_from_object: DAffine3,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// How a colour texture combines with the material (the course's decal modes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TextureMode {
+    /// The texture is the diffuse reflectance (`replace_kd`).
+    #[default]
+    Replace,
+    /// The mean of the material's diffuse reflectance and the texture (`blend_kd`).
+    Blend,
+    /// The texture is the surface's colour, unshaded (`replace_all`): the Whitted
+    /// integrator shows it as is; the path tracer treats it as `Replace`.
+    ReplaceAll,
+}
+
+crate::choice::named_choices!(TextureMode, "texture mode", {
+    Replace => "replace",
+    Blend => "blend",
+    ReplaceAll => "replace_all",
+});
+
+#[derive(Clone, Debug, PartialEq)]
 pub enum Pattern {
     /// Checkerboard in texture coordinates: `scale` checks per unit of u and v.
     Checker2d { scale: f32, even: Vec3, odd: Vec3 },
     /// Solid checkerboard in the object's space: cubes of side 1/`scale`.
     Checker3d { scale: f32, even: Vec3, odd: Vec3 },
+    /// The course's solid checkerboard: cells of side 1/`scale` shifted by `offset`, cell
+    /// indices truncated towards zero (so the cells that touch an axis plane are twice as
+    /// wide as the others, as in the course's definition).
+    CourseChecker { scale: f32, offset: f32, black: Vec3, white: Vec3 },
+    /// Perlin's improved gradient noise of the object-space point times `scale`, grey.
+    Perlin { scale: f32, conversion: NoiseConversion },
+    /// An image looked up at the texture coordinates (repeating outside [0, 1]; v = 0 is
+    /// the image's top row), divided by `normalizer`.
+    Image { image: std::sync::Arc<TextureImage>, interpolation: Interpolation, normalizer: f32 },
+}
+
+/// How Perlin noise in [-1, 1] becomes a grey level in [0, 1].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum NoiseConversion {
+    /// |noise|: vein-like patterns.
+    #[default]
+    Absolute,
+    /// (noise + 1) / 2: soft patches.
+    Linear,
+}
+
+crate::choice::named_choices!(NoiseConversion, "noise conversion", {
+    Absolute => "absval",
+    Linear => "linear",
+});
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Interpolation {
+    Nearest,
+    #[default]
+    Bilinear,
+}
+
+crate::choice::named_choices!(Interpolation, "interpolation", {
+    Nearest => "nearest",
+    Bilinear => "bilinear",
+});
+
+/// Decoded texels, row-major from the top-left, in the file's own units (0–255 for 8-bit
+/// files, 0–65535 for 16-bit ones, linear values for float ones) unless the loader was
+/// asked to decode sRGB into linear [0, 1]. `file` is kept for messages and for writing
+/// the scene back out.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureImage {
+    pub file: PathBuf,
+    pub width: u32,
+    pub height: u32,
+    pub texels: Vec<Vec3>,
+    /// True if the texels were decoded from sRGB to linear [0, 1].
+    pub srgb_decoded: bool,
 }
 
 /// Mesh data in object space. Positions are f64 so that no precision is lost before the

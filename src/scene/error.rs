@@ -101,6 +101,14 @@ pub enum SceneError {
     )]
     PlyData { ply: PathBuf, ply_line: Line, scene: PathBuf, item: String, problem: String },
 
+    /// An image a texture names is missing, unreadable, not a PNG or JPEG, corrupt or too
+    /// large.
+    #[error(
+        "image file '{}': {}; named by {item} in '{}'{line}",
+        .image.display(), brief(.problem), .scene.display()
+    )]
+    Image { image: PathBuf, scene: PathBuf, item: String, problem: String, line: Line },
+
     /// Two fields that exclude each other (`aperture` and `f_number`; a conductor's
     /// `preset` and `eta`/`k`).
     #[error("{}: {item} takes `{first}` or `{second}`, not both{line}", .file.display())]

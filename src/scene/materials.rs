@@ -3,17 +3,21 @@
 //! only its own fields.
 
 use super::desc::{CourseBrdf, MaterialDesc, Pattern, PhongDesc, Specular, TextureDesc};
+use super::desc::{Interpolation, NoiseConversion, TextureMode};
 use super::error::SceneError;
 use super::source_map::FieldPath;
 use super::toml_format::{
-    BrdfModelToml, BrdfToml, MaterialKind, MaterialToml, MetalPreset, PhongToml, TextureKind,
+    BrdfModelToml, BrdfToml, ImageEncodingToml, InterpolationToml, MaterialKind, MaterialToml,
+    MetalPreset, NoiseConversionToml, PhongToml, TextureKind, TextureModeToml,
 };
 use super::toml_format::{TextureToml, Vec3};
 use super::validate::Ctx;
 use glam::DAffine3;
+use std::path::Path;
 
 /// Fields every material type takes.
-const COMMON: [&str; 6] = ["type", "albedo", "emission", "texture", "phong", "brdf"];
+const COMMON: [&str; 7] =
+    ["type", "albedo", "emission", "texture", "specular_texture", "phong", "brdf"];
 
 /// Complex refractive index (eta, k) of the `preset` metals, per linear sRGB channel.
 ///
@@ -42,7 +46,7 @@ pub(crate) fn metal_preset(preset: MetalPreset) -> ([f32; 3], [f32; 3]) {
 /// should follow the instance rather than the mesh's own vertex space.
 pub fn with_texture_space(material: &MaterialDesc, texture_from_object: DAffine3) -> MaterialDesc {
     let mut material = material.clone();
-    if let Some(texture) = &mut material.texture {
+    for texture in [&mut material.texture, &mut material.specular_texture].into_iter().flatten() {
         texture.texture_from_object = texture_from_object;
     }
     material
@@ -53,6 +57,7 @@ pub(crate) fn material(
     name: &str,
     m: &MaterialToml,
     ctx: &Ctx,
+    base_dir: &Path,
 ) -> Result<MaterialDesc, SceneError> {
     let path = FieldPath::root("materials").key(name);
     let kind = m.kind.unwrap_or_default();
@@ -108,7 +113,16 @@ pub(crate) fn material(
             Specular::Dielectric { ior, absorption }
         }
     };
-    let texture = m.texture.as_ref().map(|t| texture(&path.key("texture"), t, ctx)).transpose()?;
+    let texture = m
+        .texture
+        .as_ref()
+        .map(|t| texture_desc(&path.key("texture"), t, true, ctx, base_dir))
+        .transpose()?;
+    let specular_texture = m
+        .specular_texture
+        .as_ref()
+        .map(|t| texture_desc(&path.key("specular_texture"), t, false, ctx, base_dir))
+        .transpose()?;
     let mut phong = m.phong.as_ref().map(|p| phong(&path.key("phong"), p, ctx)).transpose()?;
     if let Some(b) = &m.brdf {
         // A BRDF without a `phong` table reflects only its diffuse part (no specular).
@@ -127,6 +141,7 @@ pub(crate) fn material(
         specular,
         roughness,
         texture,
+        specular_texture,
         phong,
     })
 }
@@ -158,17 +173,113 @@ fn conductor_index(
     Ok((eta, k))
 }
 
-fn texture(path: &FieldPath, t: &TextureToml, ctx: &Ctx) -> Result<TextureDesc, SceneError> {
-    let scale = ctx.positive(&path.key("scale"), t.scale)?;
-    let even = ctx.color(&path.key("even"), t.even, true)?;
-    let odd = ctx.color(&path.key("odd"), t.odd, true)?;
+/// One `texture` (or, without `mode`, `specular_texture`) table.
+fn texture_desc(
+    path: &FieldPath,
+    t: &TextureToml,
+    takes_mode: bool,
+    ctx: &Ctx,
+    base_dir: &Path,
+) -> Result<TextureDesc, SceneError> {
+    let (kind_name, own): (&str, &[&str]) = match t.kind {
+        TextureKind::Checker2d => ("checker2d", &["scale", "even", "odd"]),
+        TextureKind::Checker3d => ("checker3d", &["scale", "even", "odd"]),
+        TextureKind::Checker => ("checker", &["scale", "offset", "black", "white"]),
+        TextureKind::Perlin => ("perlin", &["scale", "conversion"]),
+        TextureKind::Image => ("image", &["file", "interpolation", "encoding", "normalizer"]),
+    };
+    let item = format!("{path} ({kind_name})");
+    let mut allowed = vec!["type"];
+    if takes_mode {
+        allowed.push("mode");
+    }
+    allowed.extend(own);
+    let present = [
+        ("mode", t.mode.is_some()),
+        ("scale", t.scale.is_some()),
+        ("even", t.even.is_some()),
+        ("odd", t.odd.is_some()),
+        ("offset", t.offset.is_some()),
+        ("black", t.black.is_some()),
+        ("white", t.white.is_some()),
+        ("conversion", t.conversion.is_some()),
+        ("file", t.file.is_some()),
+        ("interpolation", t.interpolation.is_some()),
+        ("encoding", t.encoding.is_some()),
+        ("normalizer", t.normalizer.is_some()),
+    ];
+    ctx.check_fields(path, &item, &present, &allowed)?;
+    let scale = |ctx: &Ctx| -> Result<f32, SceneError> {
+        let field = path.key("scale");
+        let scale = ctx.positive(&field, t.scale.unwrap_or(1.0))?;
+        ctx.f32(&field, scale)
+    };
+    let color = |ctx: &Ctx, name: &str, value: Option<Vec3>, default: f64| {
+        ctx.color(&path.key(name), value.unwrap_or([default; 3]), true)
+    };
     let pattern = match t.kind {
-        TextureKind::Checker2d => Pattern::Checker2d { scale: scale as f32, even, odd },
-        TextureKind::Checker3d => Pattern::Checker3d { scale: scale as f32, even, odd },
+        TextureKind::Checker2d | TextureKind::Checker3d => {
+            ctx.required(path, &item, "scale", t.scale)?;
+            let scale = scale(ctx)?;
+            let even = color(ctx, "even", Some(ctx.required(path, &item, "even", t.even)?), 0.0)?;
+            let odd = color(ctx, "odd", Some(ctx.required(path, &item, "odd", t.odd)?), 0.0)?;
+            if t.kind == TextureKind::Checker2d {
+                Pattern::Checker2d { scale, even, odd }
+            } else {
+                Pattern::Checker3d { scale, even, odd }
+            }
+        }
+        TextureKind::Checker => {
+            let field = path.key("offset");
+            let offset = ctx.f32(&field, t.offset.unwrap_or(0.0))?;
+            Pattern::CourseChecker {
+                scale: scale(ctx)?,
+                offset,
+                black: color(ctx, "black", t.black, 0.0)?,
+                white: color(ctx, "white", t.white, 1.0)?,
+            }
+        }
+        TextureKind::Perlin => Pattern::Perlin {
+            scale: scale(ctx)?,
+            conversion: match t.conversion.unwrap_or(NoiseConversionToml::Absval) {
+                NoiseConversionToml::Absval => NoiseConversion::Absolute,
+                NoiseConversionToml::Linear => NoiseConversion::Linear,
+            },
+        },
+        TextureKind::Image => {
+            let file = ctx.required(path, &item, "file", t.file.as_deref())?;
+            let srgb = t.encoding.unwrap_or(ImageEncodingToml::Srgb) == ImageEncodingToml::Srgb;
+            if srgb && t.normalizer.is_some() {
+                let requirement = "given only with encoding = \"raw\"";
+                ctx.require(false, &path.key("normalizer"), "given", requirement)?;
+            }
+            let field = path.key("normalizer");
+            let normalizer =
+                if srgb { 1.0 } else { ctx.positive(&field, t.normalizer.unwrap_or(255.0))? };
+            let at = super::texture_image::ImageRef {
+                image: base_dir.join(file),
+                scene: ctx.file,
+                item: path.key("file").to_string(),
+                line: ctx.line(&path.key("file")),
+            };
+            Pattern::Image {
+                image: super::texture_image::load(&at, srgb)?,
+                interpolation: match t.interpolation.unwrap_or(InterpolationToml::Bilinear) {
+                    InterpolationToml::Nearest => Interpolation::Nearest,
+                    InterpolationToml::Bilinear => Interpolation::Bilinear,
+                },
+                normalizer: ctx.f32(&field, normalizer)?,
+            }
+        }
+    };
+    let mode = match t.mode.unwrap_or(TextureModeToml::Replace) {
+        TextureModeToml::Replace => TextureMode::Replace,
+        TextureModeToml::Blend => TextureMode::Blend,
+        TextureModeToml::ReplaceAll => TextureMode::ReplaceAll,
     };
     // A material from the table is attached to objects directly: its pattern lives in the
     // space of each object's own vertices.
-    Ok(TextureDesc { pattern, texture_from_object: DAffine3::IDENTITY })
+    Ok(TextureDesc { pattern, mode, texture_from_object: DAffine3::IDENTITY })
 }
 
 /// The model and exponent of a `brdf` table (`exponent` defaults to the `phong` one).
@@ -258,6 +369,7 @@ mod tests {
                     even: glam::Vec3::ONE,
                     odd: glam::Vec3::ZERO,
                 },
+                mode: TextureMode::Replace,
                 texture_from_object: DAffine3::IDENTITY,
             }),
             ..MaterialDesc::default()

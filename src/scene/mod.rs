@@ -23,6 +23,7 @@ mod obj_scan;
 mod ply;
 mod shapes;
 mod source_map;
+pub mod texture_image;
 mod toml_format;
 pub mod toml_writer;
 mod transform_list;

@@ -122,6 +122,7 @@ pub(crate) struct MaterialToml {
     pub ior: Option<f64>,
     pub absorption: Option<Vec3>,
     pub texture: Option<TextureToml>,
+    pub specular_texture: Option<TextureToml>,
     pub phong: Option<PhongToml>,
     pub brdf: Option<BrdfToml>,
 }
@@ -156,16 +157,62 @@ pub(crate) struct BrdfToml {
 pub(crate) enum TextureKind {
     Checker2d,
     Checker3d,
+    /// The course's checkerboard (`scale`, `offset`, `black`, `white`).
+    Checker,
+    Perlin,
+    Image,
 }
 
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum TextureModeToml {
+    Replace,
+    Blend,
+    ReplaceAll,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum NoiseConversionToml {
+    Absval,
+    Linear,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum InterpolationToml {
+    Nearest,
+    Bilinear,
+}
+
+/// How an image's texel values become colours: `srgb` decodes 8- and 16-bit values through
+/// the sRGB curve to linear [0, 1]; `raw` divides the file's own values by `normalizer`.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum ImageEncodingToml {
+    Srgb,
+    Raw,
+}
+
+/// `texture = { type = "image", file = "wood.png" }` and the procedural patterns; each
+/// type takes only its own fields (checked in `materials`).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct TextureToml {
     #[serde(rename = "type")]
     pub kind: TextureKind,
-    pub scale: f64,
-    pub even: Vec3,
-    pub odd: Vec3,
+    pub mode: Option<TextureModeToml>,
+    pub scale: Option<f64>,
+    pub even: Option<Vec3>,
+    pub odd: Option<Vec3>,
+    pub offset: Option<f64>,
+    pub black: Option<Vec3>,
+    pub white: Option<Vec3>,
+    pub conversion: Option<NoiseConversionToml>,
+    pub file: Option<String>,
+    pub interpolation: Option<InterpolationToml>,
+    pub encoding: Option<ImageEncodingToml>,
+    pub normalizer: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -9,7 +9,7 @@
 //! an albedo or mirror reflectance above 1, a Phong exponent of 0 with a non-zero specular
 //! colour, a texture mapped through a non-identity transform.
 
-use super::desc::{CourseBrdf, IntegratorKind};
+use super::desc::{CourseBrdf, IntegratorKind, TextureDesc, TextureMode};
 use super::desc::{
     LensShape, LightDesc, MaterialDesc, MeshData, Pattern, SceneDesc, ShapeDesc, Specular,
 };
@@ -332,21 +332,10 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
         let _ = writeln!(out, "roughness = {:?}", m.roughness);
     }
     if let Some(t) = &m.texture {
-        if t.texture_from_object != DAffine3::IDENTITY {
-            return Err(unsupported("its texture is mapped through a transform".to_owned()));
-        }
-        let (kind, scale, even, odd) = match t.pattern {
-            Pattern::Checker2d { scale, even, odd } => ("checker2d", scale, even, odd),
-            Pattern::Checker3d { scale, even, odd } => ("checker3d", scale, even, odd),
-        };
-        at_most_one("a texture colour", even.max(odd))?;
-        let _ = writeln!(
-            out,
-            "texture = {{ type = \"{kind}\", scale = {}, even = {}, odd = {} }}",
-            f(scale as f64),
-            c3(even),
-            c3(odd)
-        );
+        let _ = writeln!(out, "texture = {}", texture_toml(t, true)?);
+    }
+    if let Some(t) = &m.specular_texture {
+        let _ = writeln!(out, "specular_texture = {}", texture_toml(t, false)?);
     }
     if let Some(p) = &m.phong {
         let exponent = if p.exponent > 0.0 {
@@ -392,6 +381,72 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
 
 /// The mesh as OBJ text: positions (and normals, texture coordinates) per vertex, one face
 /// per triangle with the same index for every attribute.
+/// The inline table of a texture; `with_mode` for the diffuse one (a specular texture
+/// always replaces).
+fn texture_toml(t: &TextureDesc, with_mode: bool) -> Result<String, TomlWriteError> {
+    let unsupported = |problem: &str| TomlWriteError::Unsupported {
+        item: "a texture".to_owned(),
+        problem: problem.to_owned(),
+    };
+    if t.texture_from_object != DAffine3::IDENTITY {
+        return Err(unsupported("it is mapped through a transform"));
+    }
+    let at_most_one = |c: Vec3| {
+        if c.max_element() > 1.0 { Err(unsupported("a colour above 1")) } else { Ok(()) }
+    };
+    let fields = match &t.pattern {
+        Pattern::Checker2d { scale, even, odd } | Pattern::Checker3d { scale, even, odd } => {
+            at_most_one(even.max(*odd))?;
+            let kind = if matches!(t.pattern, Pattern::Checker2d { .. }) {
+                "checker2d"
+            } else {
+                "checker3d"
+            };
+            format!(
+                "type = \"{kind}\", scale = {}, even = {}, odd = {}",
+                f(*scale as f64),
+                c3(*even),
+                c3(*odd)
+            )
+        }
+        Pattern::CourseChecker { scale, offset, black, white } => {
+            at_most_one(black.max(*white))?;
+            format!(
+                "type = \"checker\", scale = {}, offset = {}, black = {}, white = {}",
+                f(*scale as f64),
+                f(*offset as f64),
+                c3(*black),
+                c3(*white)
+            )
+        }
+        Pattern::Perlin { scale, conversion } => {
+            format!(
+                "type = \"perlin\", scale = {}, conversion = \"{conversion}\"",
+                f(*scale as f64)
+            )
+        }
+        Pattern::Image { image, interpolation, normalizer } => {
+            // Absolute, so that the TOML finds the image wherever it is written.
+            let file = std::fs::canonicalize(&image.file).unwrap_or_else(|_| image.file.clone());
+            let encoding = if image.srgb_decoded {
+                "encoding = \"srgb\"".to_owned()
+            } else {
+                format!("encoding = \"raw\", normalizer = {}", f(*normalizer as f64))
+            };
+            format!(
+                "type = \"image\", file = {}, interpolation = \"{interpolation}\", {encoding}",
+                quoted(&file.to_string_lossy())
+            )
+        }
+    };
+    let mode = if with_mode && t.mode != TextureMode::Replace {
+        format!(", mode = \"{}\"", t.mode)
+    } else {
+        String::new()
+    };
+    Ok(format!("{{ {fields}{mode} }}"))
+}
+
 fn obj_text(mesh: &MeshData) -> String {
     let mut out = String::with_capacity(mesh.positions.len() * 40 + mesh.indices.len() * 24);
     for p in &mesh.positions {

@@ -3,38 +3,12 @@
 //! its two meanings (GGX α, Whitted perturbation), no name. The specular lobe and the
 //! pattern are the scene's own types.
 
-use crate::scene::{MaterialDesc, Pattern, PhongDesc, Specular};
-use glam::{Affine3A, Vec2, Vec3};
+pub use super::texture::Texture;
+use crate::scene::{MaterialDesc, PhongDesc, Specular};
+use glam::Vec3;
 
 /// Below this GGX α a lobe is treated as perfectly smooth (a delta distribution).
 pub const SMOOTH_ROUGHNESS: f32 = 1e-3;
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Texture {
-    pub pattern: Pattern,
-    /// From the attached object's space to the pattern's space.
-    pub texture_from_object: Affine3A,
-}
-
-impl Texture {
-    /// The colour at object-space point `p_object` with texture coordinates `uv`.
-    pub fn eval(&self, p_object: Vec3, uv: Vec2) -> Vec3 {
-        let parity = |cells: &[f32]| cells.iter().map(|c| c.floor() as i64).sum::<i64>() & 1;
-        match self.pattern {
-            Pattern::Checker2d { scale, even, odd } => {
-                if parity(&[uv.x * scale, uv.y * scale]) == 0 { even } else { odd }
-            }
-            Pattern::Checker3d { scale, even, odd } => {
-                let p = self.texture_from_object.transform_point3(p_object) * scale;
-                if parity(&[p.x, p.y, p.z]) == 0 { even } else { odd }
-            }
-        }
-    }
-
-    pub fn needs_object_point(&self) -> bool {
-        matches!(self.pattern, Pattern::Checker3d { .. })
-    }
-}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
@@ -50,6 +24,8 @@ pub struct Material {
     /// perturbs reflected rays (its glossy reflection).
     pub perturbation: f32,
     pub texture: Option<Texture>,
+    /// Replaces `phong.specular` (the course's `replace_ks`).
+    pub specular_texture: Option<Texture>,
     pub phong: Option<PhongDesc>,
 }
 
@@ -62,6 +38,7 @@ impl Default for Material {
             ggx_alpha: 0.0,
             perturbation: 0.0,
             texture: None,
+            specular_texture: None,
             phong: None,
         }
     }
@@ -74,12 +51,6 @@ impl Material {
     }
 
     pub fn from_desc(desc: &MaterialDesc) -> Self {
-        let texture = desc.texture.as_ref().map(|t| Texture {
-            pattern: t.pattern,
-            texture_from_object: Affine3A::from_mat4(
-                glam::DMat4::from(t.texture_from_object).as_mat4(),
-            ),
-        });
         Material {
             albedo: desc.albedo,
             emission: desc.emission,
@@ -88,7 +59,8 @@ impl Material {
             // perturbation square to the course's Whitted model.
             ggx_alpha: desc.roughness,
             perturbation: desc.roughness,
-            texture,
+            texture: desc.texture.as_ref().map(Texture::from_desc),
+            specular_texture: desc.specular_texture.as_ref().map(Texture::from_desc),
             phong: desc.phong.clone(),
         }
     }

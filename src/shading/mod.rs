@@ -7,3 +7,4 @@ pub mod light;
 pub mod material;
 pub mod spawn;
 pub mod surface;
+pub mod texture;

@@ -71,8 +71,10 @@ fn local_hit(geometry: &Geometry, hit: &Hit, origin: Vec3, dir: Vec3) -> LocalHi
         Geometry::Sphere(s) => {
             let (point, error) = sphere_point(s.center, s.radius, origin, dir, hit.t);
             let n = ((point - s.center) / s.radius).normalize_or_zero();
+            // u grows eastwards seen from outside (so that images are not mirrored), v from
+            // the +Y pole (the image's top row) down: the course's sphere mapping.
             let uv = Vec2::new(
-                0.5 + n.z.atan2(n.x) / std::f32::consts::TAU,
+                0.5 - n.z.atan2(n.x) / std::f32::consts::TAU,
                 n.y.clamp(-1.0, 1.0).acos() / std::f32::consts::PI,
             );
             LocalHit { point, error, geometric: n, shading: n, uv }

@@ -38,7 +38,7 @@ fn field_of_another_material_type_is_rejected() {
     assert_contains(
         &err,
         &["scene.toml: materials.white (diffuse) does not take the field `roughness` \
-             (it takes: type, albedo, emission, texture, phong, brdf) (line 8)"],
+             (it takes: type, albedo, emission, texture, specular_texture, phong, brdf) (line 8)"],
     );
     let err =
         load_err(&format!("{CAMERA}[materials.glass]\ntype = \"dielectric\"\neta = [1, 1, 1]\n"));
@@ -128,11 +128,73 @@ fn texture_fields_are_checked() {
     let err = load_err(&format!(
         "{floor}texture = {{ type = \"checker2d\", scale = 2.0, even = [1, 1, 1] }}\n"
     ));
-    assert_contains(&err, &["scene.toml", "line 7", "missing field `odd`"]);
+    assert_contains(
+        &err,
+        &["scene.toml: materials.floor.texture (checker2d) is missing the field `odd` (line 7)"],
+    );
     let err = load_err(&format!(
         "{floor}texture = {{ type = \"checker2d\", scale = 2.0, even = [1, 1, 1], odd = [0, 0, 0], rotation = 3 }}\n"
     ));
     assert_contains(&err, &["scene.toml", "line 7", "unknown field `rotation`"]);
+    // Each texture type takes its own fields only, and a specular texture has no mode.
+    let err = load_err(&format!(
+        "{floor}texture = {{ type = \"perlin\", scale = 2.0, even = [1, 1, 1] }}\n"
+    ));
+    assert_contains(
+        &err,
+        &["materials.floor.texture (perlin) does not take the field `even` \
+           (it takes: type, mode, scale, conversion) (line 7)"],
+    );
+    let err = load_err(&format!(
+        "{floor}specular_texture = {{ type = \"checker\", mode = \"blend\" }}\n"
+    ));
+    assert_contains(
+        &err,
+        &["materials.floor.specular_texture (checker) does not take the field `mode`"],
+    );
+    let err = load_err(&format!("{floor}texture = {{ type = \"image\" }}\n"));
+    assert_contains(
+        &err,
+        &["materials.floor.texture (image) is missing the field `file` (line 7)"],
+    );
+    let err = load_err(&format!(
+        "{floor}texture = {{ type = \"image\", file = \"x.png\", normalizer = 30 }}\n"
+    ));
+    assert_contains(
+        &err,
+        &["materials.floor.texture.normalizer is given, but must be given only with \
+           encoding = \"raw\" (line 7)"],
+    );
+}
+
+#[test]
+fn texture_images_that_cannot_be_read_name_the_file_and_the_field() {
+    let dir = std::env::temp_dir().join(format!("embray-bad-texture-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("notes.png"), "not an image").unwrap();
+    std::fs::write(dir.join("cut.png"), &b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR"[..]).unwrap();
+    for (file, problem) in [
+        ("missing.png", "No such file"),
+        ("notes.png", "not a PNG or JPEG image"),
+        ("cut.png", "unexpected end of file"),
+    ] {
+        let text = format!(
+            "{CAMERA}[materials.floor]\ntexture = {{ type = \"image\", file = \"{file}\" }}\n"
+        );
+        let scene = dir.join("scene.toml");
+        std::fs::write(&scene, text).unwrap();
+        let err = embray::scene::load(&scene).unwrap_err().to_string();
+        assert_contains(
+            &err,
+            &[
+                &format!("image file '{}'", dir.join(file).display()),
+                problem,
+                "named by materials.floor.texture.file",
+                "(line 7)",
+            ],
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

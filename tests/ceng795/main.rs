@@ -109,6 +109,7 @@ fn course_options(scene: &SceneDesc, backend: BackendKind) -> RenderOptions {
     options
 }
 
+mod hw4;
 mod hw6;
 mod inline_errors;
 mod inline_scenes;

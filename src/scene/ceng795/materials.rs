@@ -201,6 +201,7 @@ fn material(
         specular,
         roughness,
         texture: None,
+        specular_texture: None,
         phong: Some(phong),
     })
 }

@@ -15,6 +15,7 @@ mod camera;
 mod lights;
 mod materials;
 mod objects;
+mod textures;
 mod transforms;
 mod xml;
 
@@ -50,7 +51,7 @@ fn path_depth(depth: u32, next_event: bool) -> u32 {
     if next_event { depth + 1 } else { depth }
 }
 
-const SCENE_CHILDREN: [&str; 12] = [
+const SCENE_CHILDREN: [&str; 13] = [
     "BackgroundColor",
     "ShadowRayEpsilon",
     "IntersectionTestEpsilon",
@@ -62,6 +63,7 @@ const SCENE_CHILDREN: [&str; 12] = [
     "Transformations",
     "VertexData",
     "TexCoordData",
+    "Textures",
     "Objects",
 ];
 
@@ -137,17 +139,19 @@ pub fn load_str_with_warnings(
     let texcoords = objects::texcoord_data(&x, all("TexCoordData"))?;
     let lights = lights::lights(&x, all("Lights"))?;
     let base_dir = source.parent().unwrap_or(Path::new(""));
+    let textures = textures::texture_maps(&x, base_dir, all("Textures"))?;
     let refs = objects::Refs {
         base_dir,
         materials: &materials,
         transforms: &transforms,
         vertices: &vertices,
         texcoords: &texcoords,
+        textures: &textures,
     };
-    let objects::Objects { objects, light_materials } =
+    let objects::Objects { objects, extra_materials } =
         objects::objects(&x, &refs, all("Objects"), &mut warnings)?;
     let mut material_list = materials.list.clone();
-    material_list.extend(light_materials);
+    material_list.extend(extra_materials);
 
     let mut cameras = Vec::new();
     // Two cameras writing one file would silently overwrite each other's image.

@@ -10,8 +10,12 @@
 //! `LightMesh` and `LightSphere` (hw6) are a mesh and a sphere that also emit `Radiance`:
 //! each gets its own copy of its material with that emission, appended to the material
 //! list, so the renderer samples it like any emitter (one-sided, where its normal points).
+//! An object with `<Textures>` likewise gets its own copy of its material with the texture
+//! maps attached. Texture coordinates are per vertex: `<TexCoordData>` entry `i +
+//! textureOffset` for vertex index `i` of a `Faces` list.
 
 use super::materials::Materials;
+use super::textures::TextureMaps;
 use super::transforms::Transforms;
 use super::xml::{Xml, describe, tokens};
 use crate::scene::desc::{MaterialDesc, MeshData, ObjectDesc, ShapeDesc};
@@ -31,6 +35,7 @@ pub(super) struct Refs<'a> {
     pub transforms: &'a Transforms,
     pub vertices: &'a [DVec3],
     pub texcoords: &'a [Vec2],
+    pub textures: &'a TextureMaps,
 }
 
 /// The numbers of every list element in `lists`, in order, in tuples of `N` (`what` names
@@ -90,14 +95,14 @@ struct Builder<'a, 'x, 'i> {
     warnings: &'a mut Vec<String>,
     meshes: HashMap<String, BaseMesh>,
     objects: Vec<ObjectDesc>,
-    /// Materials made for object lights, numbered after the file's.
-    light_materials: Vec<MaterialDesc>,
+    /// Materials made for object lights and textured objects, numbered after the file's.
+    extra_materials: Vec<MaterialDesc>,
 }
 
 /// The objects of a file and the materials its object lights added.
 pub(super) struct Objects {
     pub objects: Vec<ObjectDesc>,
-    pub light_materials: Vec<MaterialDesc>,
+    pub extra_materials: Vec<MaterialDesc>,
 }
 
 pub(super) fn objects<'a, 'i: 'a>(
@@ -113,7 +118,7 @@ pub(super) fn objects<'a, 'i: 'a>(
         warnings,
         meshes: HashMap::new(),
         objects: Vec::new(),
-        light_materials: Vec::new(),
+        extra_materials: Vec::new(),
     };
     const KINDS: [&str; 6] =
         ["Mesh", "Triangle", "Sphere", "MeshInstance", "LightMesh", "LightSphere"];
@@ -136,12 +141,35 @@ pub(super) fn objects<'a, 'i: 'a>(
             b.instance(node)?;
         }
     }
-    Ok(Objects { objects: b.objects, light_materials: b.light_materials })
+    Ok(Objects { objects: b.objects, extra_materials: b.extra_materials })
 }
 
 impl Builder<'_, '_, '_> {
-    fn material(&self, node: Node) -> Result<u32, SceneError> {
-        self.refs.materials.lookup(self.x, self.x.required(node, "Material")?)
+    fn material(&mut self, node: Node) -> Result<u32, SceneError> {
+        let material = self.refs.materials.lookup(self.x, self.x.required(node, "Material")?)?;
+        self.with_textures(node, material)
+    }
+
+    /// The material at `index` (of the file's, or one made here), in full.
+    fn material_desc(&self, index: u32) -> &MaterialDesc {
+        let file = &self.refs.materials.list;
+        file.get(index as usize)
+            .unwrap_or_else(|| &self.extra_materials[index as usize - file.len()])
+    }
+
+    /// `material`, or a copy of it with the texture maps `node` lists.
+    fn with_textures(&mut self, node: Node, material: u32) -> Result<u32, SceneError> {
+        let base = self.material_desc(material);
+        match self.refs.textures.textured(self.x, node, base)? {
+            None => Ok(material),
+            Some(textured) => Ok(self.add_material(textured)),
+        }
+    }
+
+    fn add_material(&mut self, material: MaterialDesc) -> u32 {
+        let index = self.refs.materials.list.len() + self.extra_materials.len();
+        self.extra_materials.push(material);
+        index as u32
     }
 
     /// `<Transformations>` and `<MotionBlur>` of `node`, on top of `base`.
@@ -208,7 +236,13 @@ impl Builder<'_, '_, '_> {
 
     /// A mesh of the listed scene vertices (triples of indices in `node`'s text), keeping
     /// only the vertices it uses.
-    fn inline_mesh(&self, node: Node, offset: i64, smooth: bool) -> Result<MeshData, SceneError> {
+    fn inline_mesh(
+        &self,
+        node: Node,
+        offset: i64,
+        texture_offset: i64,
+        smooth: bool,
+    ) -> Result<MeshData, SceneError> {
         let mut local: HashMap<usize, u32> = HashMap::new();
         let mut positions = Vec::new();
         let mut used = Vec::new();
@@ -232,8 +266,16 @@ impl Builder<'_, '_, '_> {
             ));
         }
         let indices: Vec<[u32; 3]> = corners.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-        let uvs = (self.refs.texcoords.len() >= self.refs.vertices.len())
-            .then(|| used.iter().map(|&g| self.refs.texcoords[g]).collect());
+        // Vertex `g` (0-based, vertexOffset included) has the coordinates of entry
+        // `g - vertexOffset + textureOffset`; a mesh any of whose vertices has none gets none.
+        let texcoords = self.refs.texcoords;
+        let uvs = used
+            .iter()
+            .map(|&g| {
+                let i = (g as i64).checked_sub(offset)?.checked_add(texture_offset)?;
+                usize::try_from(i).ok().and_then(|i| texcoords.get(i).copied())
+            })
+            .collect::<Option<Vec<Vec2>>>();
         let normals = smooth.then(|| area_weighted_normals(&positions, &indices));
         Ok(MeshData { positions, indices, normals, uvs })
     }
@@ -247,20 +289,18 @@ impl Builder<'_, '_, '_> {
         let x = self.x;
         let radiance_node = x.required(node, "Radiance")?;
         let radiance = x.color(radiance_node)?;
-        let mut emissive = self.refs.materials.list[material as usize].clone();
+        let mut emissive = self.material_desc(material).clone();
         emissive.emission = radiance;
         emissive.name = format!("{} emitting ({})", emissive.name, describe(node));
-        let index = self.refs.materials.list.len() + self.light_materials.len();
-        self.light_materials.push(emissive);
-        Ok(index as u32)
+        Ok(self.add_material(emissive))
     }
 
     fn mesh(&mut self, node: Node, light: bool) -> Result<(), SceneError> {
         let x = self.x;
         let allowed: &[&str] = if light {
-            &["Material", "Faces", "Radiance", "Transformations", "MotionBlur"]
+            &["Material", "Faces", "Radiance", "Transformations", "MotionBlur", "Textures"]
         } else {
-            &["Material", "Faces", "Transformations", "MotionBlur"]
+            &["Material", "Faces", "Transformations", "MotionBlur", "Textures"]
         };
         x.check_children(node, allowed)?;
         let id = node.attribute("id").map(str::trim).unwrap_or("").to_owned();
@@ -292,13 +332,15 @@ impl Builder<'_, '_, '_> {
                 }
             }
             None => {
-                let offset = match faces.attribute("vertexOffset") {
+                let offset = |name: &str| match faces.attribute(name) {
                     Some(text) => text.trim().parse::<i64>().map_err(|_| {
-                        x.error(faces, format!("vertexOffset \"{text}\" is not a whole number"))
-                    })?,
-                    None => 0,
+                        x.error(faces, format!("{name} \"{text}\" is not a whole number"))
+                    }),
+                    None => Ok(0),
                 };
-                Arc::new(self.inline_mesh(faces, offset, smooth)?)
+                let (vertex_offset, texture_offset) =
+                    (offset("vertexOffset")?, offset("textureOffset")?);
+                Arc::new(self.inline_mesh(faces, vertex_offset, texture_offset, smooth)?)
             }
         };
         let place = self.placement(node, DAffine3::IDENTITY)?;
@@ -315,13 +357,16 @@ impl Builder<'_, '_, '_> {
 
     fn triangle(&mut self, node: Node) -> Result<(), SceneError> {
         let x = self.x;
-        x.check_children(node, &["Material", "Indices", "Transformations", "MotionBlur"])?;
+        x.check_children(
+            node,
+            &["Material", "Indices", "Transformations", "MotionBlur", "Textures"],
+        )?;
         let material = self.material(node)?;
         let indices = x.required(node, "Indices")?;
         if tokens(indices).count() != 3 {
             return Err(x.error(indices, "a triangle takes exactly 3 vertex indices"));
         }
-        let mesh = self.inline_mesh(indices, 0, false)?;
+        let mesh = self.inline_mesh(indices, 0, 0, false)?;
         let place = self.placement(node, DAffine3::IDENTITY)?;
         self.push(node, ShapeDesc::Mesh(Arc::new(mesh)), material, place);
         Ok(())
@@ -330,9 +375,17 @@ impl Builder<'_, '_, '_> {
     fn sphere(&mut self, node: Node, light: bool) -> Result<(), SceneError> {
         let x = self.x;
         let allowed: &[&str] = if light {
-            &["Material", "Center", "Radius", "Radiance", "Transformations", "MotionBlur"]
+            &[
+                "Material",
+                "Center",
+                "Radius",
+                "Radiance",
+                "Transformations",
+                "MotionBlur",
+                "Textures",
+            ]
         } else {
-            &["Material", "Center", "Radius", "Transformations", "MotionBlur"]
+            &["Material", "Center", "Radius", "Transformations", "MotionBlur", "Textures"]
         };
         x.check_children(node, allowed)?;
         let material = self.material_of(node, light)?;
@@ -354,7 +407,7 @@ impl Builder<'_, '_, '_> {
 
     fn instance(&mut self, node: Node) -> Result<(), SceneError> {
         let x = self.x;
-        x.check_children(node, &["Material", "Transformations", "MotionBlur"])?;
+        x.check_children(node, &["Material", "Transformations", "MotionBlur", "Textures"])?;
         let base_id = node
             .attribute("baseMeshId")
             .map(str::trim)
@@ -384,6 +437,7 @@ impl Builder<'_, '_, '_> {
             Some(m) => self.refs.materials.lookup(x, m)?,
             None => base_material,
         };
+        let material = self.with_textures(node, material)?;
         let base = if reset { DAffine3::IDENTITY } else { base_transform };
         let place = self.placement(node, base)?;
         self.push(node, ShapeDesc::Mesh(mesh), material, place);

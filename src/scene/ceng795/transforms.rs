@@ -1,6 +1,6 @@
 //! `<Transformations>`: the named Scaling, Rotation ("angle x y z", degrees, right-handed
-//! about the axis) and Translation entries, and the reference lists ("s1 r2 t1") objects
-//! use, applied in the listed order (the result is t1 · r2 · s1), composed in f64.
+//! about the axis), Translation and Composite (a 4×4 matrix, row by row, last row 0 0 0 1)
+//! entries, and the reference lists ("s1 r2 t1 c1") objects use, applied in the listed order (the result is t1 · r2 · s1), composed in f64.
 
 use super::xml::{Xml, tokens};
 use crate::scene::error::SceneError;
@@ -20,7 +20,7 @@ pub(super) fn transforms<'a, 'i: 'a>(
 ) -> Result<Transforms, SceneError> {
     let mut out = Transforms::default();
     for list in lists {
-        x.check_children(list, &["Scaling", "Rotation", "Translation"])?;
+        x.check_children(list, &["Scaling", "Rotation", "Translation", "Composite"])?;
         for node in list.children().filter(Node::is_element) {
             let id = node.attribute("id").map(str::trim).unwrap_or("");
             if id.is_empty() {
@@ -40,6 +40,19 @@ pub(super) fn transforms<'a, 'i: 'a>(
                         return Err(x.out_of_range(node, "axis 0 0 0", "a non-zero axis"));
                     };
                     ("r", DAffine3::from_axis_angle(axis, angle.to_radians()))
+                }
+                "Composite" => {
+                    let m = x.numbers::<16>(node, false)?;
+                    if m[12..] != [0.0, 0.0, 0.0, 1.0] {
+                        return Err(x.error(node, "the last row of the matrix must be 0 0 0 1"));
+                    }
+                    let matrix = glam::DMat4::from_cols_array(&m).transpose();
+                    let affine = DAffine3::from_mat4(matrix);
+                    let det = affine.matrix3.determinant();
+                    if !det.is_finite() || det == 0.0 {
+                        return Err(x.error(node, "the matrix is singular"));
+                    }
+                    ("c", affine)
                 }
                 _ => ("t", DAffine3::from_translation(x.vec3(node)?)),
             };

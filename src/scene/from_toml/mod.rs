@@ -54,7 +54,7 @@ pub(crate) fn scene_desc(
         lights: Vec::new(),
     };
     for (name, material) in &file.materials {
-        let material = materials::material(name, material, ctx)?;
+        let material = materials::material(name, material, ctx, base_dir)?;
         let index = builder.add_material(material);
         builder.named.insert(name.clone(), index);
     }

@@ -1,0 +1,262 @@
+//! `<Textures>` (hw4): `<Images>` and `<TextureMap>`s, and an object's `<Textures>` list →
+//! the object's own copy of its material with the textures attached.
+//!
+//! Image texels keep the file's 0–255 values and are divided by `Normalizer` (default 255,
+//! the text's "divide the texture color value by 255"); Perlin noise (`NoiseScale`,
+//! `NoiseConversion`) and the checkerboard (`Scale`, `Offset`, `BlackColor`, `WhiteColor`)
+//! are evaluated at the object-space point. Decal modes: `replace_kd`, `blend_kd`,
+//! `replace_all` set the diffuse texture, `replace_ks` the specular one. The normal-map,
+//! bump-map and background modes are refused with a clear error until they are built.
+
+use super::xml::{Xml, describe, tokens};
+use crate::choice::Choice;
+use crate::excerpt::excerpt;
+use crate::scene::desc::{
+    Interpolation, MaterialDesc, NoiseConversion, Pattern, TextureDesc, TextureImage, TextureMode,
+};
+use crate::scene::error::SceneError;
+use crate::scene::texture_image::{ImageRef, load};
+use glam::DAffine3;
+use roxmltree::Node;
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// What a texture map does to the objects that list it.
+#[derive(Clone, Debug)]
+enum Role {
+    Diffuse(TextureMode),
+    Specular,
+}
+
+#[derive(Clone, Debug)]
+struct TextureMap {
+    role: Role,
+    pattern: Pattern,
+}
+
+/// The file's texture maps by id.
+#[derive(Default)]
+pub(super) struct TextureMaps {
+    maps: HashMap<String, TextureMap>,
+}
+
+const MAP_CHILDREN: [&str; 11] = [
+    "ImageId",
+    "DecalMode",
+    "Interpolation",
+    "Normalizer",
+    "BumpFactor",
+    "NoiseScale",
+    "NoiseConversion",
+    "Scale",
+    "Offset",
+    "BlackColor",
+    "WhiteColor",
+];
+
+fn parse_choice<T: Choice>(x: &Xml, node: Node) -> Result<T, SceneError> {
+    T::from_name(x.text(node)).map_err(|e| x.error(node, e.to_string()))
+}
+
+/// Every `<Textures>` element of the scene.
+pub(super) fn texture_maps<'a, 'i: 'a>(
+    x: &Xml,
+    base_dir: &Path,
+    lists: impl Iterator<Item = Node<'a, 'i>>,
+) -> Result<TextureMaps, SceneError> {
+    let mut image_nodes: HashMap<String, Node> = HashMap::new();
+    let mut map_nodes = Vec::new();
+    for list in lists {
+        x.check_children(list, &["Images", "TextureMap"])?;
+        for child in list.children().filter(Node::is_element) {
+            if child.has_tag_name("TextureMap") {
+                map_nodes.push(child);
+                continue;
+            }
+            x.check_children(child, &["Image"])?;
+            for image in child.children().filter(Node::is_element) {
+                let id = image.attribute("id").map(str::trim).unwrap_or("").to_owned();
+                if image_nodes.insert(id.clone(), image).is_some() {
+                    return Err(
+                        x.error(image, format!("image id {} is defined twice", excerpt(&id)))
+                    );
+                }
+            }
+        }
+    }
+    // Images are decoded once however many maps use them, and only if some map does.
+    let mut images: HashMap<String, Arc<TextureImage>> = HashMap::new();
+    let mut maps = HashMap::new();
+    for node in map_nodes {
+        x.check_children(node, &MAP_CHILDREN)?;
+        let id = node.attribute("id").map(str::trim).unwrap_or("").to_owned();
+        let decal = x.required(node, "DecalMode")?;
+        let role = match x.text(decal) {
+            "replace_kd" => Role::Diffuse(TextureMode::Replace),
+            "blend_kd" => Role::Diffuse(TextureMode::Blend),
+            "replace_all" => Role::Diffuse(TextureMode::ReplaceAll),
+            "replace_ks" => Role::Specular,
+            mode @ ("replace_normal" | "bump_normal" | "replace_background") => {
+                return Err(x.error(decal, format!("DecalMode {mode} is not supported yet")));
+            }
+            other => {
+                return Err(x.error(
+                    decal,
+                    format!(
+                        "unknown DecalMode {} (expected replace_kd, blend_kd, replace_ks, \
+                         replace_all, replace_normal, bump_normal or replace_background)",
+                        excerpt(other)
+                    ),
+                ));
+            }
+        };
+        let positive = |name: &str, default: f64| -> Result<f32, SceneError> {
+            match x.child(node, name)? {
+                None => Ok(default as f32),
+                Some(n) => {
+                    let v = x.scalar(n)?;
+                    if !(v > 0.0) || !(v as f32).is_finite() {
+                        return Err(x.out_of_range(n, v, "> 0 (and small enough for f32)"));
+                    }
+                    Ok(v as f32)
+                }
+            }
+        };
+        let pattern = match node.attribute("type").map(str::trim) {
+            Some("image") => {
+                let image_id_node = x.required(node, "ImageId")?;
+                let image_id = x.text(image_id_node);
+                let image = match images.get(image_id) {
+                    Some(image) => Arc::clone(image),
+                    None => {
+                        let Some(&image_node) = image_nodes.get(image_id) else {
+                            let mut ids: Vec<&str> =
+                                image_nodes.keys().map(String::as_str).collect();
+                            ids.sort();
+                            return Err(x.error(
+                                image_id_node,
+                                format!(
+                                    "image id {} is not defined; images: {}",
+                                    excerpt(image_id),
+                                    if ids.is_empty() {
+                                        "(none)".to_owned()
+                                    } else {
+                                        ids.join(", ")
+                                    }
+                                ),
+                            ));
+                        };
+                        let at = ImageRef {
+                            image: base_dir.join(x.text(image_node)),
+                            scene: x.file,
+                            item: describe(image_node),
+                            line: x.line(image_node),
+                        };
+                        let image = load(&at, false)?;
+                        images.insert(image_id.to_owned(), Arc::clone(&image));
+                        image
+                    }
+                };
+                let interpolation = match x.child(node, "Interpolation")? {
+                    Some(n) => parse_choice::<Interpolation>(x, n)?,
+                    None => Interpolation::Bilinear,
+                };
+                Pattern::Image { image, interpolation, normalizer: positive("Normalizer", 255.0)? }
+            }
+            Some("perlin") => Pattern::Perlin {
+                scale: positive("NoiseScale", 1.0)?,
+                conversion: match x.child(node, "NoiseConversion")? {
+                    Some(n) => parse_choice::<NoiseConversion>(x, n)?,
+                    None => NoiseConversion::Absolute,
+                },
+            },
+            Some("checkerboard") => {
+                let color = |name: &str, default: f32| match x.child(node, name)? {
+                    Some(n) => x.color(n),
+                    None => Ok(glam::Vec3::splat(default)),
+                };
+                let offset = match x.child(node, "Offset")? {
+                    Some(n) => x.scalar(n)? as f32,
+                    None => 0.0,
+                };
+                Pattern::CourseChecker {
+                    scale: positive("Scale", 1.0)?,
+                    offset,
+                    black: color("BlackColor", 0.0)?,
+                    white: color("WhiteColor", 1.0)?,
+                }
+            }
+            other => {
+                return Err(x.error(
+                    node,
+                    format!(
+                        "texture map type {} is not supported (expected image, perlin or \
+                         checkerboard)",
+                        excerpt(other.unwrap_or("(none)"))
+                    ),
+                ));
+            }
+        };
+        if maps.insert(id.clone(), TextureMap { role, pattern }).is_some() {
+            return Err(x.error(node, format!("texture map id {} is defined twice", excerpt(&id))));
+        }
+    }
+    Ok(TextureMaps { maps })
+}
+
+impl TextureMaps {
+    /// `material` with the texture maps listed in `node`'s `<Textures>` elements attached,
+    /// or `None` if it lists none.
+    pub fn textured(
+        &self,
+        x: &Xml,
+        node: Node,
+        material: &MaterialDesc,
+    ) -> Result<Option<MaterialDesc>, SceneError> {
+        let mut textured = material.clone();
+        let mut listed = false;
+        for list in node.children().filter(|c| c.has_tag_name("Textures")) {
+            for (id, pos) in tokens(list) {
+                listed = true;
+                let Some(map) = self.maps.get(id) else {
+                    let mut ids: Vec<&str> = self.maps.keys().map(String::as_str).collect();
+                    ids.sort_by_key(|id| (id.parse::<u64>().unwrap_or(u64::MAX), *id));
+                    let ids = if ids.is_empty() { "(none)".to_owned() } else { ids.join(", ") };
+                    return Err(x.token_error(
+                        list,
+                        pos,
+                        format!(
+                            "texture map id {} is not defined; texture maps: {ids}",
+                            excerpt(id)
+                        ),
+                    ));
+                };
+                let (slot, mode) = match map.role {
+                    Role::Diffuse(mode) => (&mut textured.texture, mode),
+                    Role::Specular => (&mut textured.specular_texture, TextureMode::Replace),
+                };
+                if slot.is_some() {
+                    return Err(x.token_error(
+                        list,
+                        pos,
+                        format!(
+                            "texture map {} is the object's second {} texture",
+                            excerpt(id),
+                            if matches!(map.role, Role::Specular) { "specular" } else { "diffuse" }
+                        ),
+                    ));
+                }
+                *slot = Some(TextureDesc {
+                    pattern: map.pattern.clone(),
+                    mode,
+                    texture_from_object: DAffine3::IDENTITY,
+                });
+            }
+        }
+        if listed {
+            textured.name = format!("{} textured ({})", material.name, describe(node));
+        }
+        Ok(listed.then_some(textured))
+    }
+}

@@ -1,0 +1,147 @@
+//! Reading a texture's image (PNG or JPEG, through the `image` crate) into `TextureImage`,
+//! its size checked against `MAX_TEXTURE_TEXELS` before any texel is decoded.
+
+use super::desc::TextureImage;
+use super::error::{Line, SceneError};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// The most texels one texture image may have (12 bytes each once decoded: 384 MiB), a
+/// 8192 × 4096 image; larger ones are refused before decoding.
+pub const MAX_TEXTURE_TEXELS: u64 = 1 << 25;
+
+/// Where an image is named, for messages.
+pub struct ImageRef<'a> {
+    pub image: PathBuf,
+    pub scene: &'a Path,
+    /// The texture that names it (`materials.wood.texture.file`, `<TextureMap id="2">`).
+    pub item: String,
+    pub line: Line,
+}
+
+impl ImageRef<'_> {
+    fn error(&self, problem: impl Into<String>) -> SceneError {
+        SceneError::Image {
+            image: self.image.clone(),
+            scene: self.scene.to_path_buf(),
+            item: self.item.clone(),
+            problem: problem.into(),
+            line: self.line,
+        }
+    }
+}
+
+/// sRGB's transfer function, from an encoded value in [0, 1] to linear.
+fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
+/// The image `at` names. `decode_srgb`: texels become linear [0, 1] through sRGB's curve;
+/// otherwise they keep the file's own units (0–255 for 8-bit files, 0–65535 for 16-bit).
+pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
+    let bytes = super::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
+    let reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
+        .with_guessed_format()
+        .map_err(|e| at.error(e.to_string()))?;
+    if reader.format().is_none() {
+        return Err(at.error("not a PNG or JPEG image"));
+    }
+    let (width, height) = reader.into_dimensions().map_err(|e| at.error(e.to_string()))?;
+    let texels = u64::from(width) * u64::from(height);
+    if texels == 0 || texels > MAX_TEXTURE_TEXELS {
+        return Err(at.error(format!(
+            "{width} × {height} texels; a texture takes 1 to {MAX_TEXTURE_TEXELS} texels"
+        )));
+    }
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
+        .with_guessed_format()
+        .map_err(|e| at.error(e.to_string()))?;
+    let mut limits = image::Limits::default();
+    limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 16);
+    reader.limits(limits);
+    let decoded = reader.decode().map_err(|e| at.error(e.to_string()))?;
+    let sixteen_bit = matches!(
+        decoded.color(),
+        image::ColorType::L16
+            | image::ColorType::La16
+            | image::ColorType::Rgb16
+            | image::ColorType::Rgba16
+    );
+    let full_scale = if sixteen_bit { 65535.0 } else { 255.0 };
+    let rgb = decoded.into_rgb32f();
+    let texels = rgb
+        .pixels()
+        .map(|p| {
+            let c = glam::Vec3::from_array(p.0);
+            if decode_srgb {
+                glam::Vec3::new(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z))
+            } else {
+                (c * full_scale).round()
+            }
+        })
+        .collect();
+    Ok(Arc::new(TextureImage {
+        file: at.image.clone(),
+        width,
+        height,
+        texels,
+        srgb_decoded: decode_srgb,
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn write_png(name: &str, image: image::RgbImage) -> PathBuf {
+        let path = std::env::temp_dir().join(format!("embray-tex-{}-{name}", std::process::id()));
+        image.save(&path).unwrap();
+        path
+    }
+
+    fn at(path: &Path) -> ImageRef<'_> {
+        ImageRef {
+            image: path.to_path_buf(),
+            scene: Path::new("scene.xml"),
+            item: "<TextureMap id=\"1\">".into(),
+            line: Line(Some(7)),
+        }
+    }
+
+    #[test]
+    fn texels_keep_file_units_or_decode_srgb() {
+        let mut img = image::RgbImage::new(2, 1);
+        img.put_pixel(0, 0, image::Rgb([255, 128, 0]));
+        img.put_pixel(1, 0, image::Rgb([10, 20, 30]));
+        let path = write_png("units.png", img);
+        let raw = load(&at(&path), false).unwrap();
+        assert_eq!((raw.width, raw.height), (2, 1));
+        assert_eq!(raw.texels[0], glam::Vec3::new(255.0, 128.0, 0.0));
+        assert_eq!(raw.texels[1], glam::Vec3::new(10.0, 20.0, 30.0));
+        let linear = load(&at(&path), true).unwrap();
+        assert_eq!(linear.texels[0].x, 1.0);
+        assert!((linear.texels[0].y - 0.2158605).abs() < 1e-5, "{}", linear.texels[0].y);
+        std::fs::remove_file(path).unwrap();
+    }
+
+    #[test]
+    fn broken_and_missing_images_name_the_file_and_the_texture() {
+        let path = std::env::temp_dir().join(format!("embray-tex-{}-bad.png", std::process::id()));
+        std::fs::write(&path, b"\x89PNG\r\n\x1a\n garbage").unwrap();
+        let err = load(&at(&path), false).unwrap_err().to_string();
+        assert!(
+            err.contains("bad.png")
+                && err.contains("TextureMap id=\"1\"")
+                && err.contains("line 7"),
+            "{err}"
+        );
+        std::fs::remove_file(&path).unwrap();
+        let err = load(&at(&path), false).unwrap_err().to_string();
+        assert!(err.contains("No such file"), "{err}");
+        let text = std::env::temp_dir().join(format!("embray-tex-{}-text.png", std::process::id()));
+        std::fs::write(&text, b"just words").unwrap();
+        let err = load(&at(&text), false).unwrap_err().to_string();
+        assert!(err.contains("not a PNG or JPEG"), "{err}");
+        std::fs::remove_file(&text).unwrap();
+    }
+}

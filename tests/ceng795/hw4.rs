@@ -1,0 +1,151 @@
+//! Fall 2022 hw4 (textures) against the instructor's references: image textures (nearest
+//! and bilinear, every decal mode that colours a surface), the checkerboard and Perlin
+//! noise, on meshes and transformed spheres.
+
+use super::reference_scenes::*;
+use super::*;
+use embray::choice::Choice;
+
+/// Scenes that need a texture kind not built yet, with the message the loader gives. The
+/// test fails when one of them loads (update the list) or when another scene does not.
+const NOT_YET: &[(&str, &str)] = &[
+    ("brickwall_with_normalmap.xml", "replace_normal"),
+    ("bump_mapping_transformed.xml", "bump_normal"),
+    ("cube_cushion.xml", "replace_normal"),
+    ("cube_perlin_bump.xml", "bump_normal"),
+    ("cube_wall_normal.xml", "replace_normal"),
+    ("cube_waves.xml", "replace_normal"),
+    ("galactica_dynamic.xml", "bump_normal"),
+    ("galactica_static.xml", "bump_normal"),
+    ("sphere_nobump_bump.xml", "bump_normal"),
+    ("sphere_nobump_justbump.xml", "bump_normal"),
+    ("sphere_normal.xml", "replace_normal"),
+    ("sphere_perlin_bump.xml", "bump_normal"),
+    ("wood_box_all.xml", "bump_normal"),
+];
+
+/// Scenes that cannot match pixel for pixel, with the fraction within 3/255 measured (both
+/// backends) and why; the test holds them at that level so that a regression shows.
+const PARTIAL: &[(&str, f64, &str)] = &[
+    (
+        "cube_perlin.xml",
+        0.63,
+        "Perlin noise: the course fixes neither the permutation nor the gradients, so the \
+         pattern is another instance of the same noise (measured 63.97 %)",
+    ),
+    ("sphere_perlin.xml", 0.72, "Perlin noise (measured 72.87 %)"),
+    (
+        "ellipsoids_texture.xml",
+        0.91,
+        "two Perlin ellipsoids, and the blend_kd earth (a rotated sphere) differs: the \
+         reference's continents sit elsewhere on it (measured 91.91 %)",
+    ),
+];
+
+#[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
+fn hw4_texture_scenes_match_the_course_images() {
+    let data = data_dir();
+    let inputs = data.join("2022/hw4/inputs");
+    let outputs = data.join("2022/hw4/outputs");
+    let (mut rows, mut failures, mut matched) = (Vec::new(), Vec::new(), 0);
+    for xml in xml_files(&inputs) {
+        let name = relative(&inputs, &xml);
+        let not_yet = NOT_YET.iter().find(|(n, _)| *n == name);
+        let cameras = match (ceng795::load(&xml), not_yet) {
+            (Ok(cameras), None) => cameras,
+            (Err(e), Some((_, mode))) => {
+                let message = e.to_string();
+                assert!(
+                    message.contains(&format!("DecalMode {mode} is not supported yet")),
+                    "{name}: {message}"
+                );
+                println!("{name}: not rendered: {message}");
+                continue;
+            }
+            (Ok(_), Some(_)) => panic!("{name} loads now: take it off NOT_YET"),
+            (Err(e), None) => panic!("{name}: {e}"),
+        };
+        for camera in &cameras {
+            let tag = format!("{name} → {}", camera.image_name);
+            let mut scene = camera.scene.clone();
+            // Veach Ajar (16 spp) renders at 4 spp here: its reference comparison is on
+            // block means in the closing note, not in CI.
+            if name.starts_with("veach_ajar") {
+                scene.settings.spp = scene.settings.spp.min(4);
+            }
+            let images: Vec<(BackendKind, RgbImage, f64)> = BackendKind::compiled()
+                .into_iter()
+                .map(|backend| {
+                    let (image, seconds) = render_rgb(&scene, &course_options(&scene, backend));
+                    (backend, image, seconds)
+                })
+                .collect();
+            for (backend, image, _) in &images[1..] {
+                let c = compare_images(image, &images[0].1, 3).unwrap();
+                assert!(
+                    c.fraction_within() >= 0.999,
+                    "{tag}: {} vs {}: {c:?}",
+                    backend.name(),
+                    images[0].0.name()
+                );
+            }
+            // References sit in `outputs/` under the scene's own sub-folder.
+            let folder = Path::new(&name).parent().unwrap_or(Path::new(""));
+            let Ok(reference) = read_rgb(&outputs.join(folder).join(&camera.image_name)) else {
+                println!(
+                    "{tag}: reference kept aside from the data set; rendered on every backend"
+                );
+                continue;
+            };
+            if scene.settings.spp > 1 {
+                // A multi-sample reference is noisy: compare 8×8 block means.
+                let ours = embray::compare::downsample_box(&images[0].1, 8);
+                let theirs = embray::compare::downsample_box(&reference, 8);
+                let c = compare_images(&ours, &theirs, 1).unwrap();
+                println!(
+                    "{tag}: {}×{} at {} spp: 8×8 block means off by {:.3}/255 on average, at most \
+                     {}/255 ({:.2} s)",
+                    scene.camera.width,
+                    scene.camera.height,
+                    scene.settings.spp,
+                    c.mean_abs_error,
+                    c.max_abs_error,
+                    images[0].2
+                );
+                if c.mean_abs_error > 1.0 {
+                    failures.push(format!("{tag}: block means off by {:.3}/255", c.mean_abs_error));
+                }
+                continue;
+            }
+            let partial = PARTIAL.iter().find(|(n, _, _)| *n == name);
+            let mut row = Row {
+                name: tag.clone(),
+                resolution: (scene.camera.width, scene.camera.height),
+                spp: scene.settings.spp,
+                results: Vec::new(),
+                note: partial.map_or("", |p| p.2),
+            };
+            for (backend, image, seconds) in images {
+                let c = compare_images(&image, &reference, 3).unwrap();
+                let required = partial.map_or(MIN_WITHIN, |p| p.1);
+                if c.fraction_within() < required {
+                    let kept = keep(&format!("{tag}_{}", backend.name()), &image, &c);
+                    failures.push(format!(
+                        "{tag} on {}: {:.3} % within 3/255 (required {:.1} %); kept in {}",
+                        backend.name(),
+                        100.0 * c.fraction_within(),
+                        100.0 * required,
+                        kept.display()
+                    ));
+                }
+                row.results.push((backend, seconds, c));
+            }
+            matched += partial.is_none() as usize;
+            rows.push(row);
+        }
+    }
+    print_table(&rows);
+    assert!(matched >= 4, "expected the four exact texture scenes, matched {matched}");
+    assert!(failures.is_empty(), "hw4 scenes below the threshold:\n{}", failures.join("\n"));
+}
