@@ -344,12 +344,56 @@ fn checker_material() -> MaterialDesc {
     }
 }
 
+/// Perlin noise (|noise|: dark veins) as the albedo.
+fn perlin_material() -> MaterialDesc {
+    MaterialDesc {
+        texture: Some(TextureDesc {
+            pattern: Pattern::Perlin {
+                scale: 7.0,
+                conversion: embray::scene::NoiseConversion::Absolute,
+            },
+            mode: embray::scene::TextureMode::Replace,
+            texture_from_object: DAffine3::IDENTITY,
+        }),
+        ..Default::default()
+    }
+}
+
+/// An 8 × 4 image of red and grey stripes, bilinear, in 0–255 units.
+fn image_material() -> MaterialDesc {
+    let texels =
+        (0..32)
+            .map(|i| {
+                if (i % 8) / 2 % 2 == 0 { Vec3::new(230.0, 20.0, 20.0) } else { Vec3::splat(200.0) }
+            })
+            .collect();
+    let image = embray::scene::TextureImage {
+        file: "stripes".into(),
+        width: 8,
+        height: 4,
+        texels,
+        srgb_decoded: false,
+    };
+    MaterialDesc {
+        texture: Some(TextureDesc {
+            pattern: Pattern::Image {
+                image: std::sync::Arc::new(image),
+                interpolation: embray::scene::Interpolation::Bilinear,
+                normalizer: 255.0,
+            },
+            mode: Default::default(),
+            texture_from_object: DAffine3::IDENTITY,
+        }),
+        ..Default::default()
+    }
+}
+
 /// A checker-textured sphere placed by `placement`, seen from a camera placed the same way.
-fn textured_sphere(placement: DAffine3, instanced: bool) -> SceneDesc {
+fn textured_sphere(placement: DAffine3, instanced: bool, material: MaterialDesc) -> SceneDesc {
     let eye = placement.transform_point3(DVec3::new(0.0, 1.0, 4.0));
     let target = placement.transform_point3(DVec3::ZERO);
     let mut s = scene(camera(eye.to_array(), target.to_array(), 40.0, 32, 32));
-    let m = add_material(&mut s, checker_material());
+    let m = add_material(&mut s, material);
     let mut shape = sphere(1.0);
     if instanced {
         // The same mesh twice makes it a shared prototype placed by a transform.
@@ -375,21 +419,38 @@ fn solid_texture_stays_fixed_to_its_object() {
         glam::DQuat::from_rotation_y(0.8),
         DVec3::new(30.0, -4.0, 12.0),
     );
+    // The solid checker and Perlin noise (object-space points) and an image (texture
+    // coordinates), each of which colours red and grey regions.
+    let materials = [
+        ("checker", checker_material()),
+        ("perlin", perlin_material()),
+        ("image", image_material()),
+    ];
     for backend in backends() {
-        for instanced in [false, true] {
-            let reference = textured_sphere(DAffine3::IDENTITY, instanced);
-            let transformed = textured_sphere(moved, instanced);
-            let a = render_ok(&reference, &direct_only(&reference, backend, 4)).film;
-            let b = render_ok(&transformed, &direct_only(&transformed, backend, 4)).film;
-            let error = image_error(&b, &a);
-            let reds = a.color.iter().filter(|c| c.x > 2.0 * c.y.max(1e-3)).count();
-            println!("{} instanced={instanced}: {error:?}, {reds} red pixels", backend.name());
-            assert!(reds > 20, "the checker pattern must be visible");
-            assert!(
-                error.fraction_off < 0.02,
-                "{} instanced={instanced}: {error:?}",
-                backend.name()
-            );
+        for (kind, material) in &materials {
+            for instanced in [false, true] {
+                let reference = textured_sphere(DAffine3::IDENTITY, instanced, material.clone());
+                let transformed = textured_sphere(moved, instanced, material.clone());
+                let a = render_ok(&reference, &direct_only(&reference, backend, 4)).film;
+                let b = render_ok(&transformed, &direct_only(&transformed, backend, 4)).film;
+                let error = image_error(&b, &a);
+                // The pattern shows as green (absent from the red parts and from the
+                // noise's dark veins) varying across the lit pixels.
+                let lit: Vec<f32> = a.color.iter().filter(|c| c.x > 0.05).map(|c| c.y).collect();
+                let top = lit.iter().copied().fold(0.0, f32::max);
+                let dark = lit.iter().filter(|&&g| g < 0.25 * top).count();
+                let bright = lit.iter().filter(|&&g| g > 0.6 * top).count();
+                println!(
+                    "{} {kind} instanced={instanced}: {error:?}, {dark} dark, {bright} bright",
+                    backend.name()
+                );
+                assert!(dark > 20 && bright > 20, "{kind}: the pattern must be visible");
+                assert!(
+                    error.fraction_off < 0.02,
+                    "{} {kind} instanced={instanced}: {error:?}",
+                    backend.name()
+                );
+            }
         }
     }
 }

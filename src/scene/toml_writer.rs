@@ -427,7 +427,7 @@ fn texture_toml(t: &TextureDesc, with_mode: bool) -> Result<String, TomlWriteErr
         }
         Pattern::Image { image, interpolation, normalizer } => {
             // Absolute, so that the TOML finds the image wherever it is written.
-            let file = std::fs::canonicalize(&image.file).unwrap_or_else(|_| image.file.clone());
+            let file = std::path::absolute(&image.file).unwrap_or_else(|_| image.file.clone());
             let encoding = if image.srgb_decoded {
                 "encoding = \"srgb\"".to_owned()
             } else {

@@ -6,7 +6,7 @@ use crate::float_error::{
     TrianglePlane, gamma, sphere_point, triangle_point, triangle_point_from_ray,
 };
 use crate::ray::{Hit, Ray};
-use crate::render_scene::{Geometry, RenderScene};
+use crate::render_scene::{Geometry, Placement, RenderScene};
 use crate::shading::spawn::SurfacePoint;
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 
@@ -33,6 +33,16 @@ fn transform_point_with_error(m: &Affine3A, p: Vec3, error: Vec3) -> (Vec3, Vec3
     let point = m.transform_point3(p);
     let rounding = (abs * p.abs() + Vec3::from(m.translation).abs()) * gamma(3);
     (point, abs * error * (1.0 + gamma(3)) + rounding)
+}
+
+/// Texture coordinates of the point with unit normal `n` (in the sphere's own frame) on a
+/// sphere: u grows eastwards seen from outside (so that images are not mirrored), v from
+/// the +Y pole (the image's top row) down. The course's sphere mapping.
+fn sphere_uv(n: Vec3) -> Vec2 {
+    Vec2::new(
+        0.5 - n.z.atan2(n.x) / std::f32::consts::TAU,
+        n.y.clamp(-1.0, 1.0).acos() / std::f32::consts::PI,
+    )
 }
 
 struct LocalHit {
@@ -71,13 +81,7 @@ fn local_hit(geometry: &Geometry, hit: &Hit, origin: Vec3, dir: Vec3) -> LocalHi
         Geometry::Sphere(s) => {
             let (point, error) = sphere_point(s.center, s.radius, origin, dir, hit.t);
             let n = ((point - s.center) / s.radius).normalize_or_zero();
-            // u grows eastwards seen from outside (so that images are not mirrored), v from
-            // the +Y pole (the image's top row) down: the course's sphere mapping.
-            let uv = Vec2::new(
-                0.5 - n.z.atan2(n.x) / std::f32::consts::TAU,
-                n.y.clamp(-1.0, 1.0).acos() / std::f32::consts::PI,
-            );
-            LocalHit { point, error, geometric: n, shading: n, uv }
+            LocalHit { point, error, geometric: n, shading: n, uv: sphere_uv(n) }
         }
     }
 }
@@ -89,7 +93,18 @@ pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteract
     let transforms =
         placement.render_from_object(ray.time).zip(placement.object_from_render(ray.time));
     let mut local = match transforms {
-        None => local_hit(geometry, hit, ray.origin, ray.dir),
+        None => {
+            let mut l = local_hit(geometry, hit, ray.origin, ray.dir);
+            // A sphere baked into render space (rotated and uniformly scaled) keeps its
+            // own frame for texture coordinates, so that textures turn with it.
+            if let (Geometry::Sphere(_), Placement::Baked { object_from_render }) =
+                (geometry, placement)
+            {
+                let own = Mat3::from(object_from_render.matrix3) * l.geometric;
+                l.uv = sphere_uv(own.normalize_or_zero());
+            }
+            l
+        }
         // The stored inverse (static instances), or the one the backends trace moving
         // instances with: the object-space ray is the one that found the hit.
         Some((render_from_object, object_from_render)) => {

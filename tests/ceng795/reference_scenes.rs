@@ -325,6 +325,9 @@ fn converted_toml_renders_like_the_xml() {
         "2021/hw3/ellipsoids.xml",
         "2021/hw3/metal_glass_plates.xml",
         "2021/hw3/spheres_dof.xml",
+        "2022/hw4/inputs/wood_box.xml",
+        "2022/hw4/inputs/ellipsoids_texture.xml",
+        "2022/hw4/inputs/sphere_nearest_bilinear.xml",
         "2022/hw5/inputs/cube_directional.xml",
         "2022/hw6/brdf/inputs/brdf_torrancesparrow.xml",
         "2022/hw6/brdf/inputs/brdf_phong_modified_normalized.xml",
@@ -355,6 +358,12 @@ fn converted_toml_renders_like_the_xml() {
             assert_eq!(
                 (ma.albedo, &ma.specular, ma.roughness, ma.emission, &ma.phong),
                 (mb.albedo, &mb.specular, mb.roughness, mb.emission, &mb.phong)
+            );
+            assert_eq!(
+                (&ma.texture, &ma.specular_texture),
+                (&mb.texture, &mb.specular_texture),
+                "{name}: {}",
+                b.name
             );
         }
         let backend = BackendKind::default_compiled();
