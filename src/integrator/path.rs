@@ -218,6 +218,7 @@ impl<'a> PathTracer<'a> {
             }
             let si = interaction(self.tracer.scene, &ray, &hit);
             let material = &self.tracer.scene.materials[si.material as usize];
+            let si = self.tracer.with_normal_map(si, material, ray.time);
             if depth == 0 {
                 result.depth = Some(hit.t);
                 result.normal =

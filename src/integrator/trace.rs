@@ -4,6 +4,8 @@
 use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
+use crate::shading::material::Material;
+use crate::shading::normal_map::{mapped_normal, uv_derivatives};
 use crate::shading::spawn::SpawnMode;
 use crate::shading::surface::SurfaceInteraction;
 use crate::shading::texture::Texture;
@@ -58,5 +60,25 @@ impl SceneTracer<'_> {
             Vec3::ZERO
         };
         texture.eval(p_object, si.uv)
+    }
+
+    /// `si` with its shading normal replaced by `material`'s normal map, if it has one.
+    pub fn with_normal_map(
+        &self,
+        mut si: SurfaceInteraction,
+        material: &Material,
+        time: f32,
+    ) -> SurfaceInteraction {
+        let Some(map) = &material.normal_map else { return si };
+        let Some((dpdu, dpdv)) = uv_derivatives(self.scene, &si, time) else { return si };
+        let color = self.texture_color(map, &si, time);
+        let mapped = mapped_normal(color, si.shading_normal, dpdu, dpdv);
+        // Kept on the side the ray arrived from, as every shading normal is.
+        si.shading_normal = if mapped.dot(si.surface.normal) < 0.0 {
+            (mapped - 2.0 * mapped.dot(si.surface.normal) * si.surface.normal).normalize()
+        } else {
+            mapped
+        };
+        si
     }
 }

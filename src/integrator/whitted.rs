@@ -206,6 +206,11 @@ impl<'a> WhittedTracer<'a> {
             return;
         };
         let si = interaction(self.tracer.scene, &ray, &hit);
+        let si = self.tracer.with_normal_map(
+            si,
+            &self.tracer.scene.materials[si.material as usize],
+            ray.time,
+        );
         // The course culls triangles seen from behind by camera rays, and its scenes rely
         // on it: cornellbox_boxes_dynamic's front wall faces into the box, away from the
         // camera. The ray continues past the culled triangle with the same value.

@@ -68,6 +68,9 @@ pub struct MaterialDesc {
     /// A pattern that replaces the specular reflectance of the course's shading terms
     /// (`phong.specular`; the course's `replace_ks`).
     pub specular_texture: Option<TextureDesc>,
+    /// A tangent-space normal map (colour c in [0, 1]³ is the normal 2c − 1 in the frame of
+    /// ∂p/∂u, ∂p/∂v and the shading normal; the course's `replace_normal`).
+    pub normal_map: Option<TextureDesc>,
     /// Terms only the course's Whitted shading model uses (ambient, Blinn-Phong highlight).
     pub phong: Option<PhongDesc>,
 }
@@ -82,6 +85,7 @@ impl Default for MaterialDesc {
             roughness: 0.0,
             texture: None,
             specular_texture: None,
+            normal_map: None,
             phong: None,
         }
     }

@@ -16,8 +16,8 @@ use glam::DAffine3;
 use std::path::Path;
 
 /// Fields every material type takes.
-const COMMON: [&str; 7] =
-    ["type", "albedo", "emission", "texture", "specular_texture", "phong", "brdf"];
+const COMMON: [&str; 8] =
+    ["type", "albedo", "emission", "texture", "specular_texture", "normal_map", "phong", "brdf"];
 
 /// Complex refractive index (eta, k) of the `preset` metals, per linear sRGB channel.
 ///
@@ -46,7 +46,9 @@ pub(crate) fn metal_preset(preset: MetalPreset) -> ([f32; 3], [f32; 3]) {
 /// should follow the instance rather than the mesh's own vertex space.
 pub fn with_texture_space(material: &MaterialDesc, texture_from_object: DAffine3) -> MaterialDesc {
     let mut material = material.clone();
-    for texture in [&mut material.texture, &mut material.specular_texture].into_iter().flatten() {
+    let textures =
+        [&mut material.texture, &mut material.specular_texture, &mut material.normal_map];
+    for texture in textures.into_iter().flatten() {
         texture.texture_from_object = texture_from_object;
     }
     material
@@ -116,12 +118,17 @@ pub(crate) fn material(
     let texture = m
         .texture
         .as_ref()
-        .map(|t| texture_desc(&path.key("texture"), t, true, ctx, base_dir))
+        .map(|t| texture_desc(&path.key("texture"), t, Use::Diffuse, ctx, base_dir))
         .transpose()?;
     let specular_texture = m
         .specular_texture
         .as_ref()
-        .map(|t| texture_desc(&path.key("specular_texture"), t, false, ctx, base_dir))
+        .map(|t| texture_desc(&path.key("specular_texture"), t, Use::Specular, ctx, base_dir))
+        .transpose()?;
+    let normal_map = m
+        .normal_map
+        .as_ref()
+        .map(|t| texture_desc(&path.key("normal_map"), t, Use::Normal, ctx, base_dir))
         .transpose()?;
     let mut phong = m.phong.as_ref().map(|p| phong(&path.key("phong"), p, ctx)).transpose()?;
     if let Some(b) = &m.brdf {
@@ -142,6 +149,7 @@ pub(crate) fn material(
         roughness,
         texture,
         specular_texture,
+        normal_map,
         phong,
     })
 }
@@ -173,11 +181,22 @@ fn conductor_index(
     Ok((eta, k))
 }
 
-/// One `texture` (or, without `mode`, `specular_texture`) table.
+/// What a texture table colours.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Use {
+    /// `texture`: takes `mode`; images decode sRGB unless told otherwise.
+    Diffuse,
+    /// `specular_texture`: no `mode`.
+    Specular,
+    /// `normal_map`: no `mode`; images are data, `raw` unless told otherwise.
+    Normal,
+}
+
+/// One `texture`, `specular_texture` or `normal_map` table.
 fn texture_desc(
     path: &FieldPath,
     t: &TextureToml,
-    takes_mode: bool,
+    usage: Use,
     ctx: &Ctx,
     base_dir: &Path,
 ) -> Result<TextureDesc, SceneError> {
@@ -190,7 +209,7 @@ fn texture_desc(
     };
     let item = format!("{path} ({kind_name})");
     let mut allowed = vec!["type"];
-    if takes_mode {
+    if usage == Use::Diffuse {
         allowed.push("mode");
     }
     allowed.extend(own);
@@ -248,7 +267,9 @@ fn texture_desc(
         },
         TextureKind::Image => {
             let file = ctx.required(path, &item, "file", t.file.as_deref())?;
-            let srgb = t.encoding.unwrap_or(ImageEncodingToml::Srgb) == ImageEncodingToml::Srgb;
+            let default =
+                if usage == Use::Normal { ImageEncodingToml::Raw } else { ImageEncodingToml::Srgb };
+            let srgb = t.encoding.unwrap_or(default) == ImageEncodingToml::Srgb;
             if srgb && t.normalizer.is_some() {
                 let requirement = "given only with encoding = \"raw\"";
                 ctx.require(false, &path.key("normalizer"), "given", requirement)?;

@@ -123,6 +123,7 @@ pub(crate) struct MaterialToml {
     pub absorption: Option<Vec3>,
     pub texture: Option<TextureToml>,
     pub specular_texture: Option<TextureToml>,
+    pub normal_map: Option<TextureToml>,
     pub phong: Option<PhongToml>,
     pub brdf: Option<BrdfToml>,
 }

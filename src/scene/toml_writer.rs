@@ -337,6 +337,9 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
     if let Some(t) = &m.specular_texture {
         let _ = writeln!(out, "specular_texture = {}", texture_toml(t, false)?);
     }
+    if let Some(t) = &m.normal_map {
+        let _ = writeln!(out, "normal_map = {}", texture_toml(t, false)?);
+    }
     if let Some(p) = &m.phong {
         let exponent = if p.exponent > 0.0 {
             format!(", exponent = {:?}", p.exponent)

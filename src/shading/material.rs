@@ -26,6 +26,8 @@ pub struct Material {
     pub texture: Option<Texture>,
     /// Replaces `phong.specular` (the course's `replace_ks`).
     pub specular_texture: Option<Texture>,
+    /// A tangent-space normal map (`shading::normal_map`).
+    pub normal_map: Option<Texture>,
     pub phong: Option<PhongDesc>,
 }
 
@@ -39,6 +41,7 @@ impl Default for Material {
             perturbation: 0.0,
             texture: None,
             specular_texture: None,
+            normal_map: None,
             phong: None,
         }
     }
@@ -61,6 +64,7 @@ impl Material {
             perturbation: desc.roughness,
             texture: desc.texture.as_ref().map(Texture::from_desc),
             specular_texture: desc.specular_texture.as_ref().map(Texture::from_desc),
+            normal_map: desc.normal_map.as_ref().map(Texture::from_desc),
             phong: desc.phong.clone(),
         }
     }

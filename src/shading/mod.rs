@@ -5,6 +5,7 @@ pub mod bsdf;
 pub mod course_brdf;
 pub mod light;
 pub mod material;
+pub mod normal_map;
 pub mod spawn;
 pub mod surface;
 pub mod texture;

@@ -1,6 +1,6 @@
 //! Fall 2022 hw4 (textures) against the instructor's references: image textures (nearest
-//! and bilinear, every decal mode that colours a surface), the checkerboard and Perlin
-//! noise, on meshes and transformed spheres.
+//! and bilinear, every decal mode that colours a surface), normal maps, the checkerboard
+//! and Perlin noise, on meshes and transformed spheres.
 
 use super::reference_scenes::*;
 use super::*;
@@ -9,17 +9,12 @@ use embray::choice::Choice;
 /// Scenes that need a texture kind not built yet, with the message the loader gives. The
 /// test fails when one of them loads (update the list) or when another scene does not.
 const NOT_YET: &[(&str, &str)] = &[
-    ("brickwall_with_normalmap.xml", "replace_normal"),
     ("bump_mapping_transformed.xml", "bump_normal"),
-    ("cube_cushion.xml", "replace_normal"),
     ("cube_perlin_bump.xml", "bump_normal"),
-    ("cube_wall_normal.xml", "replace_normal"),
-    ("cube_waves.xml", "replace_normal"),
     ("galactica_dynamic.xml", "bump_normal"),
     ("galactica_static.xml", "bump_normal"),
     ("sphere_nobump_bump.xml", "bump_normal"),
     ("sphere_nobump_justbump.xml", "bump_normal"),
-    ("sphere_normal.xml", "replace_normal"),
     ("sphere_perlin_bump.xml", "bump_normal"),
     ("wood_box_all.xml", "bump_normal"),
 ];
@@ -69,11 +64,9 @@ fn hw4_texture_scenes_match_the_course_images() {
         for camera in &cameras {
             let tag = format!("{name} → {}", camera.image_name);
             let mut scene = camera.scene.clone();
-            // Veach Ajar (16 spp) renders at 4 spp here: its reference comparison is on
-            // block means in the closing note, not in CI.
-            if name.starts_with("veach_ajar") {
-                scene.settings.spp = scene.settings.spp.min(4);
-            }
+            // Multi-sample scenes (Veach Ajar 16 spp, sphere_normal 100) render at 4 spp
+            // here and are compared on 8×8 block means; full-spp figures are in the notes.
+            scene.settings.spp = scene.settings.spp.min(4);
             let images: Vec<(BackendKind, RgbImage, f64)> = BackendKind::compiled()
                 .into_iter()
                 .map(|backend| {
@@ -146,6 +139,6 @@ fn hw4_texture_scenes_match_the_course_images() {
         }
     }
     print_table(&rows);
-    assert!(matched >= 4, "expected the four exact texture scenes, matched {matched}");
+    assert!(matched >= 7, "expected the seven exact texture scenes, matched {matched}");
     assert!(failures.is_empty(), "hw4 scenes below the threshold:\n{}", failures.join("\n"));
 }

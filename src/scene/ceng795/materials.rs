@@ -202,6 +202,7 @@ fn material(
         roughness,
         texture: None,
         specular_texture: None,
+        normal_map: None,
         phong: Some(phong),
     })
 }
