@@ -426,11 +426,14 @@ fn solid_texture_stays_fixed_to_its_object() {
         ("perlin", perlin_material()),
         ("image", image_material()),
     ];
+    // Far from the origin too: the default camera-relative render space keeps the
+    // object-space points precise there.
+    let far = DAffine3::from_translation(DVec3::new(3e6, -2e6, 5e6)) * moved;
     for backend in backends() {
-        for (kind, material) in &materials {
+        for ((kind, material), placement) in materials.iter().flat_map(|m| [(m, moved), (m, far)]) {
             for instanced in [false, true] {
                 let reference = textured_sphere(DAffine3::IDENTITY, instanced, material.clone());
-                let transformed = textured_sphere(moved, instanced, material.clone());
+                let transformed = textured_sphere(placement, instanced, material.clone());
                 let a = render_ok(&reference, &direct_only(&reference, backend, 4)).film;
                 let b = render_ok(&transformed, &direct_only(&transformed, backend, 4)).film;
                 let error = image_error(&b, &a);
@@ -447,8 +450,9 @@ fn solid_texture_stays_fixed_to_its_object() {
                 assert!(dark > 20 && bright > 20, "{kind}: the pattern must be visible");
                 assert!(
                     error.fraction_off < 0.02,
-                    "{} {kind} instanced={instanced}: {error:?}",
-                    backend.name()
+                    "{} {kind} instanced={instanced} at {}: {error:?}",
+                    backend.name(),
+                    placement.translation
                 );
             }
         }

@@ -1,0 +1,96 @@
+//! Image textures and normal maps from the TOML format: a quad seen face-on shows its image,
+//! a flat normal map changes nothing and a tilted one changes the shading, on every backend.
+
+mod common;
+
+use common::*;
+use embray::choice::Choice;
+use std::path::Path;
+
+fn write_png(path: &Path, width: u32, height: u32, texel: impl Fn(u32, u32) -> [u8; 3]) {
+    let image = image::RgbImage::from_fn(width, height, |x, y| image::Rgb(texel(x, y)));
+    image.save(path).unwrap();
+}
+
+/// A unit quad facing the camera, lit by a point light at the camera, with `material`.
+fn quad_scene(dir: &Path, material: &str) -> embray::scene::SceneDesc {
+    let text = format!(
+        r#"
+[camera]
+lookfrom = [0.5, 0.5, 2.0]
+lookat = [0.5, 0.5, 0.0]
+vfov = 28.0
+resolution = [32, 32]
+
+[render]
+integrator = "path"
+max_depth = 1
+
+[materials.m]
+{material}
+
+[[objects]]
+type = "quad"
+material = "m"
+corner = [0.0, 0.0, 0.0]
+u = [1.0, 0.0, 0.0]
+v = [0.0, 1.0, 0.0]
+
+[[lights]]
+type = "point"
+position = [0.5, 0.5, 2.0]
+intensity = [4.0, 4.0, 4.0]
+"#
+    );
+    embray::scene::load_str(&text, &dir.join("scene.toml")).expect("scene loads")
+}
+
+#[test]
+fn an_image_texture_shows_on_its_quad_and_normal_maps_bend_the_shading() {
+    let dir = std::env::temp_dir().join(format!("embray-texture-toml-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // Four vertical stripes: red, grey, red, grey.
+    write_png(&dir.join("stripes.png"), 8, 2, |x, _| {
+        if (x / 2) % 2 == 0 { [220, 30, 30] } else { [160, 160, 160] }
+    });
+    write_png(&dir.join("flat.png"), 2, 2, |_, _| [128, 128, 255]);
+    write_png(&dir.join("tilted.png"), 2, 2, |_, _| [230, 128, 180]);
+    let image = r#"texture = { type = "image", file = "stripes.png", interpolation = "nearest" }"#;
+    for backend in backends() {
+        let render = |material: &str| {
+            let scene = quad_scene(&dir, material);
+            render_ok(&scene, &options(&scene, backend, 4)).film
+        };
+        let textured = render(image);
+        // Along the middle row the stripes alternate: count the changes of the dominant
+        // colour (the quad spans the whole row).
+        let row: Vec<bool> = (0..32)
+            .map(|x| {
+                let c = textured.color[16 * 32 + x];
+                c.x > 2.0 * c.y
+            })
+            .collect();
+        let changes = row.windows(2).filter(|w| w[0] != w[1]).count();
+        assert_eq!(changes, 3, "{}: stripes along the row: {row:?}", backend.name());
+        // The image's top row is v = 0, the quad's v grows upwards: the image is upright,
+        // not mirrored left to right (the leftmost stripe is red).
+        assert!(row[1], "{}: the leftmost stripe must be red", backend.name());
+
+        let flat =
+            render(&format!("{image}\nnormal_map = {{ type = \"image\", file = \"flat.png\" }}"));
+        let tilted =
+            render(&format!("{image}\nnormal_map = {{ type = \"image\", file = \"tilted.png\" }}"));
+        let flat_error = image_error(&flat, &textured);
+        assert!(
+            flat_error.max_abs < 0.02,
+            "{}: a flat normal map changed the image: {flat_error:?}",
+            backend.name()
+        );
+        let luminance =
+            |f: &embray::film::Film| f.color.iter().map(|c| c.element_sum() as f64).sum::<f64>();
+        // Normals tilted ~45° away from the light at the camera: less light.
+        let ratio = luminance(&tilted) / luminance(&textured);
+        assert!(ratio < 0.85 && ratio > 0.3, "{}: tilted / flat = {ratio}", backend.name());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
