@@ -55,6 +55,9 @@ fn an_image_texture_shows_on_its_quad_and_normal_maps_bend_the_shading() {
     });
     write_png(&dir.join("flat.png"), 2, 2, |_, _| [128, 128, 255]);
     write_png(&dir.join("tilted.png"), 2, 2, |_, _| [230, 128, 180]);
+    // Heights: constant, and a ramp rising along u.
+    write_png(&dir.join("level.png"), 4, 4, |_, _| [90, 90, 90]);
+    write_png(&dir.join("ramp.png"), 64, 4, |x, _| [(x * 4) as u8; 3]);
     let image = r#"texture = { type = "image", file = "stripes.png", interpolation = "nearest" }"#;
     for backend in backends() {
         let render = |material: &str| {
@@ -91,6 +94,21 @@ fn an_image_texture_shows_on_its_quad_and_normal_maps_bend_the_shading() {
         // Normals tilted ~45° away from the light at the camera: less light.
         let ratio = luminance(&tilted) / luminance(&textured);
         assert!(ratio < 0.85 && ratio > 0.3, "{}: tilted / flat = {ratio}", backend.name());
+
+        // A level height field changes nothing; a ramp tilts the normal away from the light.
+        let bump = |file: &str| {
+            render(&format!(
+                "{image}\nbump_map = {{ type = \"image\", file = \"{file}\", factor = 1.0 }}"
+            ))
+        };
+        let level = image_error(&bump("level.png"), &textured);
+        assert!(
+            level.max_abs < 0.02,
+            "{}: a level bump map changed the image: {level:?}",
+            backend.name()
+        );
+        let ratio = luminance(&bump("ramp.png")) / luminance(&textured);
+        assert!(ratio < 0.95 && ratio > 0.3, "{}: ramp / flat = {ratio}", backend.name());
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

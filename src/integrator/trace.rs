@@ -5,7 +5,7 @@ use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::shading::material::Material;
-use crate::shading::normal_map::{mapped_normal, uv_derivatives};
+use crate::shading::normal_map::{bumped_normal, mapped_normal, uv_derivatives};
 use crate::shading::spawn::SpawnMode;
 use crate::shading::surface::SurfaceInteraction;
 use crate::shading::texture::Texture;
@@ -69,10 +69,23 @@ impl SceneTracer<'_> {
         material: &Material,
         time: f32,
     ) -> SurfaceInteraction {
-        let Some(map) = &material.normal_map else { return si };
+        if material.normal_map.is_none() && material.bump_map.is_none() {
+            return si;
+        }
         let Some((dpdu, dpdv)) = uv_derivatives(self.scene, &si, time) else { return si };
-        let color = self.texture_color(map, &si, time);
-        let mapped = mapped_normal(color, si.shading_normal, dpdu, dpdv);
+        let mapped = match (&material.normal_map, &material.bump_map) {
+            (Some(map), _) => {
+                mapped_normal(self.texture_color(map, &si, time), si.shading_normal, dpdu, dpdv)
+            }
+            (None, Some((map, factor))) => {
+                let height = |uv: glam::Vec2| {
+                    let at = SurfaceInteraction { uv, ..si };
+                    self.texture_color(map, &at, time).element_sum() / 3.0 * factor
+                };
+                bumped_normal(height, map.uv_step(), si.uv, si.shading_normal, dpdu, dpdv)
+            }
+            (None, None) => return si,
+        };
         // Kept on the side the ray arrived from, as every shading normal is.
         si.shading_normal = if mapped.dot(si.surface.normal) < 0.0 {
             (mapped - 2.0 * mapped.dot(si.surface.normal) * si.surface.normal).normalize()

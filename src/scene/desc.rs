@@ -71,6 +71,9 @@ pub struct MaterialDesc {
     /// A tangent-space normal map (colour c in [0, 1]³ is the normal 2c − 1 in the frame of
     /// ∂p/∂u, ∂p/∂v and the shading normal; the course's `replace_normal`).
     pub normal_map: Option<TextureDesc>,
+    /// A height field (the texture's mean channel, times `factor`) that displaces the
+    /// shading normal (the course's `bump_normal`); uv-mapped patterns only.
+    pub bump_map: Option<BumpMapDesc>,
     /// Terms only the course's Whitted shading model uses (ambient, Blinn-Phong highlight).
     pub phong: Option<PhongDesc>,
 }
@@ -86,6 +89,7 @@ impl Default for MaterialDesc {
             texture: None,
             specular_texture: None,
             normal_map: None,
+            bump_map: None,
             phong: None,
         }
     }
@@ -155,6 +159,13 @@ pub struct TextureDesc {
     /// space, or for a material given at the instance level the instance's space) to the
     /// pattern's space. Set by the loader; identity for object-level materials.
     pub texture_from_object: DAffine3,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct BumpMapDesc {
+    pub texture: TextureDesc,
+    /// Height per unit of the texture's value.
+    pub factor: f32,
 }
 
 /// How a colour texture combines with the material (the course's decal modes).

@@ -16,8 +16,17 @@ use glam::DAffine3;
 use std::path::Path;
 
 /// Fields every material type takes.
-const COMMON: [&str; 8] =
-    ["type", "albedo", "emission", "texture", "specular_texture", "normal_map", "phong", "brdf"];
+const COMMON: [&str; 9] = [
+    "type",
+    "albedo",
+    "emission",
+    "texture",
+    "specular_texture",
+    "normal_map",
+    "bump_map",
+    "phong",
+    "brdf",
+];
 
 /// Complex refractive index (eta, k) of the `preset` metals, per linear sRGB channel.
 ///
@@ -130,6 +139,26 @@ pub(crate) fn material(
         .as_ref()
         .map(|t| texture_desc(&path.key("normal_map"), t, Use::Normal, ctx, base_dir))
         .transpose()?;
+    let bump_map = match &m.bump_map {
+        None => None,
+        Some(t) => {
+            let field = path.key("bump_map");
+            let texture = texture_desc(&field, t, Use::Bump, ctx, base_dir)?;
+            if matches!(
+                texture.pattern,
+                Pattern::Perlin { .. } | Pattern::Checker3d { .. } | Pattern::CourseChecker { .. }
+            ) {
+                ctx.require(
+                    false,
+                    &field.key("type"),
+                    kind_name_of(t),
+                    "a pattern with texture coordinates (image or checker2d)",
+                )?;
+            }
+            let factor = ctx.f32(&field.key("factor"), t.factor.unwrap_or(1.0))?;
+            Some(super::desc::BumpMapDesc { texture, factor })
+        }
+    };
     let mut phong = m.phong.as_ref().map(|p| phong(&path.key("phong"), p, ctx)).transpose()?;
     if let Some(b) = &m.brdf {
         // A BRDF without a `phong` table reflects only its diffuse part (no specular).
@@ -150,6 +179,7 @@ pub(crate) fn material(
         texture,
         specular_texture,
         normal_map,
+        bump_map,
         phong,
     })
 }
@@ -190,6 +220,19 @@ enum Use {
     Specular,
     /// `normal_map`: no `mode`; images are data, `raw` unless told otherwise.
     Normal,
+    /// `bump_map`: as a normal map, with `factor`.
+    Bump,
+}
+
+/// The `type` of a texture table, as written.
+fn kind_name_of(t: &TextureToml) -> &'static str {
+    match t.kind {
+        TextureKind::Checker2d => "checker2d",
+        TextureKind::Checker3d => "checker3d",
+        TextureKind::Checker => "checker",
+        TextureKind::Perlin => "perlin",
+        TextureKind::Image => "image",
+    }
 }
 
 /// One `texture`, `specular_texture` or `normal_map` table.
@@ -212,6 +255,9 @@ fn texture_desc(
     if usage == Use::Diffuse {
         allowed.push("mode");
     }
+    if usage == Use::Bump {
+        allowed.push("factor");
+    }
     allowed.extend(own);
     let present = [
         ("mode", t.mode.is_some()),
@@ -226,6 +272,7 @@ fn texture_desc(
         ("interpolation", t.interpolation.is_some()),
         ("encoding", t.encoding.is_some()),
         ("normalizer", t.normalizer.is_some()),
+        ("factor", t.factor.is_some()),
     ];
     ctx.check_fields(path, &item, &present, &allowed)?;
     let scale = |ctx: &Ctx| -> Result<f32, SceneError> {
@@ -267,8 +314,11 @@ fn texture_desc(
         },
         TextureKind::Image => {
             let file = ctx.required(path, &item, "file", t.file.as_deref())?;
-            let default =
-                if usage == Use::Normal { ImageEncodingToml::Raw } else { ImageEncodingToml::Srgb };
+            let default = if matches!(usage, Use::Normal | Use::Bump) {
+                ImageEncodingToml::Raw
+            } else {
+                ImageEncodingToml::Srgb
+            };
             let srgb = t.encoding.unwrap_or(default) == ImageEncodingToml::Srgb;
             if srgb && t.normalizer.is_some() {
                 let requirement = "given only with encoding = \"raw\"";

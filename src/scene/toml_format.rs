@@ -124,6 +124,7 @@ pub(crate) struct MaterialToml {
     pub texture: Option<TextureToml>,
     pub specular_texture: Option<TextureToml>,
     pub normal_map: Option<TextureToml>,
+    pub bump_map: Option<TextureToml>,
     pub phong: Option<PhongToml>,
     pub brdf: Option<BrdfToml>,
 }
@@ -214,6 +215,8 @@ pub(crate) struct TextureToml {
     pub interpolation: Option<InterpolationToml>,
     pub encoding: Option<ImageEncodingToml>,
     pub normalizer: Option<f64>,
+    /// A bump map's height per unit of texture value.
+    pub factor: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]

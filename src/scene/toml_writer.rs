@@ -340,6 +340,11 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
     if let Some(t) = &m.normal_map {
         let _ = writeln!(out, "normal_map = {}", texture_toml(t, false)?);
     }
+    if let Some(b) = &m.bump_map {
+        let table = texture_toml(&b.texture, false)?;
+        let table = format!("{}, factor = {:?} }}", table.trim_end_matches(" }"), b.factor);
+        let _ = writeln!(out, "bump_map = {table}");
+    }
     if let Some(p) = &m.phong {
         let exponent = if p.exponent > 0.0 {
             format!(", exponent = {:?}", p.exponent)

@@ -28,6 +28,8 @@ pub struct Material {
     pub specular_texture: Option<Texture>,
     /// A tangent-space normal map (`shading::normal_map`).
     pub normal_map: Option<Texture>,
+    /// A height field and its scale (`shading::normal_map`).
+    pub bump_map: Option<(Texture, f32)>,
     pub phong: Option<PhongDesc>,
 }
 
@@ -42,6 +44,7 @@ impl Default for Material {
             texture: None,
             specular_texture: None,
             normal_map: None,
+            bump_map: None,
             phong: None,
         }
     }
@@ -65,6 +68,7 @@ impl Material {
             texture: desc.texture.as_ref().map(Texture::from_desc),
             specular_texture: desc.specular_texture.as_ref().map(Texture::from_desc),
             normal_map: desc.normal_map.as_ref().map(Texture::from_desc),
+            bump_map: desc.bump_map.as_ref().map(|b| (Texture::from_desc(&b.texture), b.factor)),
             phong: desc.phong.clone(),
         }
     }

@@ -89,6 +89,29 @@ pub fn mapped_normal(color: Vec3, n: Vec3, dpdu: Vec3, dpdv: Vec3) -> Vec3 {
     if mapped == Vec3::ZERO { n } else { mapped }
 }
 
+/// The shading normal of the surface displaced along `n` by `height(uv)`: with
+/// q = p + h·n, ∂q/∂u ≈ ∂p/∂u + (∂h/∂u)·n (likewise v), the slopes taken by forward
+/// differences over `step`; the new normal ∂q/∂u × ∂q/∂v is turned to `n`'s side.
+pub fn bumped_normal(
+    height: impl Fn(Vec2) -> f32,
+    step: Vec2,
+    uv: Vec2,
+    n: Vec3,
+    dpdu: Vec3,
+    dpdv: Vec3,
+) -> Vec3 {
+    let h = height(uv);
+    let dhdu = (height(uv + Vec2::new(step.x, 0.0)) - h) / step.x;
+    let dhdv = (height(uv + Vec2::new(0.0, step.y)) - h) / step.y;
+    let qu = dpdu + dhdu * n;
+    let qv = dpdv + dhdv * n;
+    let bumped = qu.cross(qv).normalize_or_zero();
+    if bumped == Vec3::ZERO || !bumped.is_finite() {
+        return n;
+    }
+    if bumped.dot(n) < 0.0 { -bumped } else { bumped }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -9,14 +9,16 @@ use embray::choice::Choice;
 /// Scenes that need a texture kind not built yet, with the message the loader gives. The
 /// test fails when one of them loads (update the list) or when another scene does not.
 const NOT_YET: &[(&str, &str)] = &[
-    ("bump_mapping_transformed.xml", "bump_normal"),
-    ("cube_perlin_bump.xml", "bump_normal"),
-    ("galactica_dynamic.xml", "bump_normal"),
-    ("galactica_static.xml", "bump_normal"),
-    ("sphere_nobump_bump.xml", "bump_normal"),
-    ("sphere_nobump_justbump.xml", "bump_normal"),
-    ("sphere_perlin_bump.xml", "bump_normal"),
-    ("wood_box_all.xml", "bump_normal"),
+    (
+        "cube_perlin_bump.xml",
+        "bump maps from solid patterns (Perlin, checkerboard) are not supported yet",
+    ),
+    ("galactica_dynamic.xml", "DecalMode replace_background is not supported yet"),
+    ("galactica_static.xml", "DecalMode replace_background is not supported yet"),
+    (
+        "sphere_perlin_bump.xml",
+        "bump maps from solid patterns (Perlin, checkerboard) are not supported yet",
+    ),
 ];
 
 /// Scenes that cannot match pixel for pixel, with the fraction within 3/255 measured (both
@@ -29,6 +31,13 @@ const PARTIAL: &[(&str, f64, &str)] = &[
          pattern is another instance of the same noise (measured 63.97 %)",
     ),
     ("sphere_perlin.xml", 0.72, "Perlin noise (measured 72.87 %)"),
+    (
+        "sphere_nobump_bump.xml",
+        0.965,
+        "bump map: the bumps sit where the reference's do but come out about twice as steep \
+         (halving the height gives 98.5 %); hw4.tex does not define the height scale \
+         (measured 96.53 %)",
+    ),
     (
         "ellipsoids_texture.xml",
         0.93,
@@ -49,12 +58,9 @@ fn hw4_texture_scenes_match_the_course_images() {
         let not_yet = NOT_YET.iter().find(|(n, _)| *n == name);
         let cameras = match (ceng795::load(&xml), not_yet) {
             (Ok(cameras), None) => cameras,
-            (Err(e), Some((_, mode))) => {
+            (Err(e), Some((_, why))) => {
                 let message = e.to_string();
-                assert!(
-                    message.contains(&format!("DecalMode {mode} is not supported yet")),
-                    "{name}: {message}"
-                );
+                assert!(message.contains(why), "{name}: {message}");
                 println!("{name}: not rendered: {message}");
                 continue;
             }

@@ -325,7 +325,8 @@ fn converted_toml_renders_like_the_xml() {
         "2021/hw3/ellipsoids.xml",
         "2021/hw3/metal_glass_plates.xml",
         "2021/hw3/spheres_dof.xml",
-        "2022/hw4/inputs/wood_box.xml",
+        "2022/hw4/inputs/wood_box_all.xml",
+        "2022/hw4/inputs/cube_waves.xml",
         "2022/hw4/inputs/ellipsoids_texture.xml",
         "2022/hw4/inputs/sphere_nearest_bilinear.xml",
         "2022/hw5/inputs/cube_directional.xml",
@@ -360,8 +361,8 @@ fn converted_toml_renders_like_the_xml() {
                 (mb.albedo, &mb.specular, mb.roughness, mb.emission, &mb.phong)
             );
             assert_eq!(
-                (&ma.texture, &ma.specular_texture),
-                (&mb.texture, &mb.specular_texture),
+                (&ma.texture, &ma.specular_texture, &ma.normal_map, &ma.bump_map),
+                (&mb.texture, &mb.specular_texture, &mb.normal_map, &mb.bump_map),
                 "{name}: {}",
                 b.name
             );

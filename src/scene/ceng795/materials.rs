@@ -203,6 +203,7 @@ fn material(
         texture: None,
         specular_texture: None,
         normal_map: None,
+        bump_map: None,
         phong: Some(phong),
     })
 }

@@ -31,6 +31,7 @@ enum Role {
     Diffuse(TextureMode),
     Specular,
     Normal,
+    Bump(f32),
 }
 
 #[derive(Clone, Debug)]
@@ -102,7 +103,17 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
             "replace_all" => Role::Diffuse(TextureMode::ReplaceAll),
             "replace_ks" => Role::Specular,
             "replace_normal" => Role::Normal,
-            mode @ ("bump_normal" | "replace_background") => {
+            "bump_normal" => Role::Bump(match x.child(node, "BumpFactor")? {
+                Some(n) => {
+                    let v = x.scalar(n)?;
+                    if !(v as f32).is_finite() {
+                        return Err(x.out_of_range(n, v, "small enough for f32"));
+                    }
+                    v as f32
+                }
+                None => 1.0,
+            }),
+            mode @ "replace_background" => {
                 return Err(x.error(decal, format!("DecalMode {mode} is not supported yet")));
             }
             other => {
@@ -243,6 +254,33 @@ impl TextureMaps {
                         (&mut textured.specular_texture, TextureMode::Replace, "specular")
                     }
                     Role::Normal => (&mut textured.normal_map, TextureMode::Replace, "normal-map"),
+                    Role::Bump(factor) => {
+                        if matches!(
+                            map.pattern,
+                            Pattern::Perlin { .. } | Pattern::CourseChecker { .. }
+                        ) {
+                            return Err(x.token_error(list, pos, format!("texture map {}: bump maps from solid patterns (Perlin, checkerboard) are not supported yet", excerpt(id))));
+                        }
+                        if textured.bump_map.is_some() {
+                            return Err(x.token_error(
+                                list,
+                                pos,
+                                format!(
+                                    "texture map {} is the object's second bump map",
+                                    excerpt(id)
+                                ),
+                            ));
+                        }
+                        textured.bump_map = Some(crate::scene::desc::BumpMapDesc {
+                            texture: TextureDesc {
+                                pattern: map.pattern.clone(),
+                                mode: TextureMode::Replace,
+                                texture_from_object: DAffine3::IDENTITY,
+                            },
+                            factor,
+                        });
+                        continue;
+                    }
                 };
                 if slot.is_some() {
                     return Err(x.token_error(

@@ -56,6 +56,17 @@ impl Texture {
         }
     }
 
+    /// The step in texture coordinates over which a height field's slope is taken: one
+    /// texel of an image, else a small fraction of the unit square.
+    pub fn uv_step(&self) -> Vec2 {
+        match &self.pattern {
+            Pattern::Image { image, .. } => {
+                Vec2::new(1.0 / image.width as f32, 1.0 / image.height as f32)
+            }
+            _ => Vec2::splat(1e-3),
+        }
+    }
+
     pub fn needs_object_point(&self) -> bool {
         matches!(
             self.pattern,
