@@ -87,6 +87,31 @@ pub(super) fn render_rgb(scene: &SceneDesc, options: &RenderOptions) -> (RgbImag
     (RgbImage::from_raw(film.width, film.height, pixels).unwrap(), seconds)
 }
 
+/// `scene` rendered on every compiled backend, with the seconds each took; the backends'
+/// images must agree (≥ 99.9 % of pixels within 3/255) whether or not there is a reference.
+pub(super) fn render_on_every_backend(
+    tag: &str,
+    scene: &SceneDesc,
+) -> Vec<(BackendKind, RgbImage, f64)> {
+    let images: Vec<(BackendKind, RgbImage, f64)> = BackendKind::compiled()
+        .into_iter()
+        .map(|backend| {
+            let (image, seconds) = render_rgb(scene, &course_options(scene, backend));
+            (backend, image, seconds)
+        })
+        .collect();
+    for (backend, image, _) in &images[1..] {
+        let c = compare_images(image, &images[0].1, 3).unwrap();
+        assert!(
+            c.fraction_within() >= 0.999,
+            "{tag}: {} vs {}: {c:?}",
+            backend.name(),
+            images[0].0.name()
+        );
+    }
+    images
+}
+
 /// Keeps a failing render and its heat map for inspection.
 pub(super) fn keep(tag: &str, image: &RgbImage, comparison: &PngComparison) -> PathBuf {
     let dir = std::env::temp_dir().join("embray-ceng795");

@@ -48,16 +48,12 @@ impl Materials {
         if let Some(why) = self.ids.get(id).and_then(|i| self.unusable.get(i)) {
             return Err(x.error(node, format!("material {} cannot be used: {why}", excerpt(id))));
         }
-        self.ids.get(id).copied().ok_or_else(|| {
-            let mut defined: Vec<&str> = self.ids.keys().map(String::as_str).collect();
-            defined.sort_by_key(|id| (id.parse::<u64>().unwrap_or(u64::MAX), *id));
-            SceneError::UnknownMaterial {
-                file: x.file.to_path_buf(),
-                field: super::xml::describe(node),
-                name: id.to_owned(),
-                defined: if defined.is_empty() { "(none)".to_owned() } else { defined.join(", ") },
-                line: x.line(node),
-            }
+        self.ids.get(id).copied().ok_or_else(|| SceneError::UnknownMaterial {
+            file: x.file.to_path_buf(),
+            field: super::xml::describe(node),
+            name: id.to_owned(),
+            defined: super::xml::id_list(self.ids.keys()),
+            line: x.line(node),
         })
     }
 }

@@ -17,7 +17,7 @@
 use super::materials::Materials;
 use super::textures::TextureMaps;
 use super::transforms::Transforms;
-use super::xml::{Xml, describe, tokens};
+use super::xml::{Xml, describe, id_list, tokens};
 use crate::scene::desc::{MaterialDesc, MeshData, ObjectDesc, ShapeDesc};
 use crate::scene::error::SceneError;
 use crate::scene::mesh_file::{MeshCache, area_weighted_normals};
@@ -413,9 +413,7 @@ impl Builder<'_, '_, '_> {
             .map(str::trim)
             .ok_or_else(|| x.error(node, "the instance has no baseMeshId attribute"))?;
         let Some(base) = self.meshes.get(base_id) else {
-            let mut defined: Vec<&str> = self.meshes.keys().map(String::as_str).collect();
-            defined.sort_by_key(|id| (id.parse::<u64>().unwrap_or(u64::MAX), *id));
-            let defined = if defined.is_empty() { "(none)".to_owned() } else { defined.join(", ") };
+            let defined = id_list(self.meshes.keys());
             return Err(x.error(
                 node,
                 format!("baseMeshId \"{base_id}\" is not a mesh id; meshes: {defined}"),

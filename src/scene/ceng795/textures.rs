@@ -11,7 +11,7 @@
 //! the normal map. The bump-map and background modes are refused with a clear error until
 //! they are built.
 
-use super::xml::{Xml, describe, tokens};
+use super::xml::{Xml, describe, id_list, tokens};
 use crate::choice::Choice;
 use crate::excerpt::excerpt;
 use crate::scene::desc::{
@@ -147,19 +147,12 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
                     Some(image) => Arc::clone(image),
                     None => {
                         let Some(&image_node) = image_nodes.get(image_id) else {
-                            let mut ids: Vec<&str> =
-                                image_nodes.keys().map(String::as_str).collect();
-                            ids.sort();
                             return Err(x.error(
                                 image_id_node,
                                 format!(
                                     "image id {} is not defined; images: {}",
                                     excerpt(image_id),
-                                    if ids.is_empty() {
-                                        "(none)".to_owned()
-                                    } else {
-                                        ids.join(", ")
-                                    }
+                                    id_list(image_nodes.keys())
                                 ),
                             ));
                         };
@@ -236,9 +229,7 @@ impl TextureMaps {
             for (id, pos) in tokens(list) {
                 listed = true;
                 let Some(map) = self.maps.get(id) else {
-                    let mut ids: Vec<&str> = self.maps.keys().map(String::as_str).collect();
-                    ids.sort_by_key(|id| (id.parse::<u64>().unwrap_or(u64::MAX), *id));
-                    let ids = if ids.is_empty() { "(none)".to_owned() } else { ids.join(", ") };
+                    let ids = id_list(self.maps.keys());
                     return Err(x.token_error(
                         list,
                         pos,

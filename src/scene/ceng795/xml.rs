@@ -29,6 +29,14 @@ pub(super) fn describe(node: Node) -> String {
     format!("<{}>", parts.join(" > "))
 }
 
+/// The ids in `ids` for a message: numbers first in numeric order, then the rest, joined by
+/// ", "; "(none)" when there are none.
+pub(super) fn id_list<'a>(ids: impl Iterator<Item = &'a String>) -> String {
+    let mut ids: Vec<&str> = ids.map(String::as_str).collect();
+    ids.sort_by_key(|id| (id.parse::<u64>().unwrap_or(u64::MAX), *id));
+    if ids.is_empty() { "(none)".to_owned() } else { ids.join(", ") }
+}
+
 /// The element's text split at whitespace, each token with its byte offset in the document.
 /// Text split by comments is read as one.
 pub(super) fn tokens<'a, 'input>(node: Node<'a, 'input>) -> impl Iterator<Item = (&'a str, usize)> {
