@@ -124,6 +124,40 @@ mod tests {
         std::fs::remove_file(path).unwrap();
     }
 
+    /// CRC-32 (PNG's chunk checksum), so that a test can write a valid header.
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut crc = !0u32;
+        for &b in bytes {
+            crc ^= u32::from(b);
+            for _ in 0..8 {
+                crc = if crc & 1 != 0 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+            }
+        }
+        !crc
+    }
+
+    #[test]
+    fn an_image_too_large_is_refused_from_its_header_before_decoding() {
+        // A PNG header claiming 100000 × 100000 texels (30 GB as RGB8), and no data.
+        let mut ihdr = b"IHDR".to_vec();
+        ihdr.extend(100_000u32.to_be_bytes());
+        ihdr.extend(100_000u32.to_be_bytes());
+        ihdr.extend([8, 2, 0, 0, 0]);
+        let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+        png.extend(13u32.to_be_bytes());
+        png.extend(&ihdr);
+        png.extend(crc32(&ihdr).to_be_bytes());
+        // An empty IDAT: the decoder reads the header up to the first data chunk.
+        png.extend(0u32.to_be_bytes());
+        png.extend(b"IDAT");
+        png.extend(crc32(b"IDAT").to_be_bytes());
+        let path = std::env::temp_dir().join(format!("embray-tex-{}-huge.png", std::process::id()));
+        std::fs::write(&path, &png).unwrap();
+        let err = load(&at(&path), false).unwrap_err().to_string();
+        std::fs::remove_file(&path).unwrap();
+        assert!(err.contains("100000 × 100000 texels") && err.contains("huge.png"), "{err}");
+    }
+
     #[test]
     fn broken_and_missing_images_name_the_file_and_the_texture() {
         let path = std::env::temp_dir().join(format!("embray-tex-{}-bad.png", std::process::id()));
