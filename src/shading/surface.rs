@@ -53,7 +53,15 @@ struct LocalHit {
     uv: Vec2,
 }
 
-fn local_hit(geometry: &Geometry, hit: &Hit, origin: Vec3, dir: Vec3) -> LocalHit {
+/// The hit in the space `origin` and `dir` are in. `uv_frame` turns a sphere's normal into
+/// the frame its texture coordinates are measured in (a baked sphere's own frame).
+fn local_hit(
+    geometry: &Geometry,
+    hit: &Hit,
+    origin: Vec3,
+    dir: Vec3,
+    uv_frame: Option<Mat3>,
+) -> LocalHit {
     match geometry {
         Geometry::Triangles(mesh) => {
             let tri = mesh.triangle(hit.prim_id);
@@ -81,7 +89,11 @@ fn local_hit(geometry: &Geometry, hit: &Hit, origin: Vec3, dir: Vec3) -> LocalHi
         Geometry::Sphere(s) => {
             let (point, error) = sphere_point(s.center, s.radius, origin, dir, hit.t);
             let n = ((point - s.center) / s.radius).normalize_or_zero();
-            LocalHit { point, error, geometric: n, shading: n, uv: sphere_uv(n) }
+            let uv = match uv_frame {
+                Some(frame) => sphere_uv((frame * n).normalize_or_zero()),
+                None => sphere_uv(n),
+            };
+            LocalHit { point, error, geometric: n, shading: n, uv }
         }
     }
 }
@@ -94,23 +106,22 @@ pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteract
         placement.render_from_object(ray.time).zip(placement.object_from_render(ray.time));
     let mut local = match transforms {
         None => {
-            let mut l = local_hit(geometry, hit, ray.origin, ray.dir);
             // A sphere baked into render space (rotated and uniformly scaled) keeps its
             // own frame for texture coordinates, so that textures turn with it.
-            if let (Geometry::Sphere(_), Placement::Baked { object_from_render }) =
-                (geometry, placement)
-            {
-                let own = Mat3::from(object_from_render.matrix3) * l.geometric;
-                l.uv = sphere_uv(own.normalize_or_zero());
-            }
-            l
+            let uv_frame = match (geometry, placement) {
+                (Geometry::Sphere(_), Placement::Baked { object_from_render }) => {
+                    Some(Mat3::from(object_from_render.matrix3))
+                }
+                _ => None,
+            };
+            local_hit(geometry, hit, ray.origin, ray.dir, uv_frame)
         }
         // The stored inverse (static instances), or the one the backends trace moving
         // instances with: the object-space ray is the one that found the hit.
         Some((render_from_object, object_from_render)) => {
             let origin = object_from_render.transform_point3(ray.origin);
             let dir = object_from_render.transform_vector3(ray.dir);
-            let mut l = local_hit(geometry, hit, origin, dir);
+            let mut l = local_hit(geometry, hit, origin, dir, None);
             (l.point, l.error) = transform_point_with_error(&render_from_object, l.point, l.error);
             let normal_from_object = Mat3::from(object_from_render.matrix3).transpose();
             l.geometric = (normal_from_object * l.geometric).normalize_or_zero();
