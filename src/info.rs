@@ -55,6 +55,21 @@ pub fn describe(scene: &SceneDesc) -> String {
     if area > 0 {
         out += &format!("area lights (invisible squares): {area}\n");
     }
+    for light in &scene.lights {
+        if let LightDesc::Environment { map, .. } = light {
+            out += &match map {
+                crate::scene::EnvironmentMap::Constant(c) => {
+                    format!("environment: constant {} {} {}\n", c.x, c.y, c.z)
+                }
+                crate::scene::EnvironmentMap::Image(image) => format!(
+                    "environment: {} ({} × {})\n",
+                    image.file.display(),
+                    image.width,
+                    image.height
+                ),
+            };
+        }
+    }
     let moving = scene.objects.iter().filter(|o| o.is_moving()).count();
     out += &format!("moving objects: {moving}\n");
     match to_render_scene(scene, RenderSpace::Cameraworld, EffectsMode::Auto) {

@@ -373,6 +373,7 @@ fn image_material() -> MaterialDesc {
         height: 4,
         texels,
         srgb_decoded: false,
+        hdr: false,
     };
     MaterialDesc {
         texture: Some(TextureDesc {

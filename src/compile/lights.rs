@@ -4,9 +4,10 @@
 
 use crate::render_scene::{Geometry, Instance, Placement, Prototype};
 use crate::scene::LightDesc;
+use crate::scene::EnvironmentMap;
 use crate::shading::light::{
-    DirectionalLight, Emitter, EmitterShape, InstanceEmitters, LightSet, NO_GEOMETRY, PointLight,
-    SpotCone,
+    DirectionalLight, Emitter, EmitterShape, EnvironmentLight, InstanceEmitters, LightSet,
+    NO_GEOMETRY, PointLight, SpotCone,
 };
 use crate::shading::material::Material;
 use crate::transform::course_square_axes;
@@ -105,6 +106,7 @@ pub(super) fn compile_lights(
     let mut directional = Vec::new();
     let mut ambient = Vec3::ZERO;
     let mut squares = Vec::new();
+    let mut environment = None;
     for light in descs {
         match light {
             LightDesc::Point { position, intensity } => points.push(PointLight {
@@ -140,6 +142,22 @@ pub(super) fn compile_lights(
                 })
             }
             LightDesc::Ambient { radiance } => ambient += *radiance,
+            LightDesc::Environment { map, scale } => {
+                // Directions are looked up in world space: render space only rotates back.
+                let world_from_render = render_from_world.matrix3.inverse().as_mat3();
+                environment = Some(match map {
+                    EnvironmentMap::Constant(radiance) => {
+                        EnvironmentLight::new(1, 1, &[*radiance], *scale, world_from_render)
+                    }
+                    EnvironmentMap::Image(image) => EnvironmentLight::new(
+                        image.width as usize,
+                        image.height as usize,
+                        &image.texels,
+                        *scale,
+                        world_from_render,
+                    ),
+                });
+            }
             LightDesc::Area { center, normal, size, radiance } => {
                 let (u, v) = course_square_axes(*normal);
                 let half = 0.5 * size;
@@ -183,5 +201,6 @@ pub(super) fn compile_lights(
     }
     let mut lights = LightSet::new(points, directional, instance_emitters, squares);
     lights.ambient = ambient;
+    lights.environment = environment;
     lights
 }

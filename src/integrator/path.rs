@@ -1,6 +1,7 @@
 //! Path tracing with next-event estimation and multiple importance sampling (power
-//! heuristic): at every non-specular hit, one shadow ray per point/directional light and
-//! `light_samples` to points sampled on emitters; then the BSDF picks the next direction.
+//! heuristic): at every non-specular hit, one shadow ray per point/directional light,
+//! `light_samples` to points sampled on emitters and `light_samples` towards the
+//! environment; then the BSDF picks the next direction.
 //! Only the random dimensions the scene's effects call for are drawn.
 
 use super::PathSample;
@@ -162,7 +163,36 @@ impl<'a> PathTracer<'a> {
                 sum += f_cos * sample.emission * (weight / (n * pdf_light));
             }
         }
+        if let Some(environment) = lights.environment.as_ref().filter(|e| e.is_lit()) {
+            let n = self.light_samples as f32;
+            for _ in 0..self.light_samples {
+                let Some(sample) = environment.sample(stream.next_2d()) else { continue };
+                if !faces(sample.wi) {
+                    continue;
+                }
+                let (f_cos, pdf_bsdf) = bsdf.eval(wo, sample.wi);
+                if f_cos == Vec3::ZERO
+                    || self.occluded(&self.tracer.spawn.ray(&si.surface, sample.wi, time), stats)
+                {
+                    continue;
+                }
+                let weight =
+                    if bsdf_continues { power_heuristic(n * sample.pdf, pdf_bsdf) } else { 1.0 };
+                sum += f_cos * sample.radiance * (weight / (n * sample.pdf));
+            }
+        }
         sum
+    }
+
+    /// MIS weight of the environment's radiance found by BSDF sampling (density `pdf_bsdf`)
+    /// along `dir`.
+    fn environment_weight(&self, dir: Vec3, pdf_bsdf: f32) -> f32 {
+        match &self.tracer.scene.lights.environment {
+            Some(environment) => {
+                power_heuristic(pdf_bsdf, self.light_samples as f32 * environment.pdf(dir))
+            }
+            None => 1.0,
+        }
     }
 
     /// MIS weight of emission found at `si` by BSDF sampling with density `pdf_bsdf` from
@@ -209,7 +239,9 @@ impl<'a> PathTracer<'a> {
             }
             let found = self.tracer.closest_hit(&ray, depth == 0, first_hit.take(), stats);
             let Some(hit) = found else {
-                result.radiance += throughput * self.tracer.scene.background;
+                let weight =
+                    if specular_bounce { 1.0 } else { self.environment_weight(ray.dir, pdf_bsdf) };
+                result.radiance += throughput * self.tracer.escaped(ray.dir) * weight;
                 break;
             };
             if absorption != Vec3::ZERO {

@@ -51,6 +51,15 @@ impl SceneTracer<'_> {
         hit
     }
 
+    /// Radiance arriving along a ray that leaves the scene in direction `dir`: the
+    /// environment light's, or the background colour.
+    pub fn escaped(&self, dir: Vec3) -> Vec3 {
+        match &self.scene.lights.environment {
+            Some(environment) => environment.radiance(dir),
+            None => self.scene.background,
+        }
+    }
+
     /// `texture`'s colour at `si` (solid patterns in the hit object's own space at `time`).
     pub fn texture_color(&self, texture: &Texture, si: &SurfaceInteraction, time: f32) -> Vec3 {
         let p_object = if texture.needs_object_point() {

@@ -139,6 +139,17 @@ impl<'a> WhittedTracer<'a> {
                 }
             }
         }
+        // One direction towards the environment (hw5.tex samples the hemisphere uniformly;
+        // sampling by the map's luminance converges to the same image with less noise).
+        if let Some(environment) = lights.environment.as_ref().filter(|e| e.is_lit()) {
+            if let Some(sample) = environment.sample(stream.next_2d()) {
+                let wi = sample.wi;
+                if faces(wi) && !self.occluded(&self.tracer.spawn.ray(&si.surface, wi, time), stats)
+                {
+                    color += shade(wi, sample.radiance / sample.pdf);
+                }
+            }
+        }
         color
     }
 
@@ -202,7 +213,7 @@ impl<'a> WhittedTracer<'a> {
             return;
         }
         let Some(hit) = self.tracer.closest_hit(&ray, camera_ray, None, stats) else {
-            values.push(self.tracer.scene.background);
+            values.push(self.tracer.escaped(ray.dir));
             return;
         };
         let si = interaction(self.tracer.scene, &ray, &hit);

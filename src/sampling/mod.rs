@@ -3,6 +3,7 @@
 //! see exactly the same rays.
 
 pub mod alias;
+pub mod piecewise;
 #[cfg(test)]
 pub(crate) mod chi_square;
 mod pixel;

@@ -243,6 +243,8 @@ pub struct TextureImage {
     pub texels: Vec<Vec3>,
     /// True if the texels were decoded from sRGB to linear [0, 1].
     pub srgb_decoded: bool,
+    /// True if the texels are an EXR file's linear values (high dynamic range).
+    pub hdr: bool,
 }
 
 /// Mesh data in object space. Positions are f64 so that no precision is lost before the
@@ -315,6 +317,19 @@ pub enum LightDesc {
     /// (unit length), emitting `radiance` (two-sided). It lights the scene (sampled by area)
     /// but has no geometry: rays never hit it, so the camera does not see it.
     Area { center: DVec3, normal: DVec3, size: f64, radiance: Vec3 },
+    /// Radiance from every direction far away: a latitude-longitude map (the course's
+    /// SphericalDirectionalLight; see `shading::light::EnvironmentLight` for the mapping)
+    /// times `scale`. Rays that leave the scene see it in place of the background.
+    Environment { map: EnvironmentMap, scale: Vec3 },
+}
+
+/// What an environment light's radiance comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EnvironmentMap {
+    /// The same radiance from every direction.
+    Constant(Vec3),
+    /// A latitude-longitude image of linear radiances.
+    Image(std::sync::Arc<TextureImage>),
 }
 
 /// Which light-transport algorithm renders the scene.

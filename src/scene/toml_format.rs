@@ -278,6 +278,9 @@ pub(crate) enum LightKind {
     /// The CENG795 area light: an invisible emitting square (`center`, `normal`, `size`,
     /// `radiance`).
     Area,
+    /// Light from every direction far away: a latitude-longitude `file` (EXR, PNG or JPEG)
+    /// or a constant `radiance`, times `scale`.
+    Environment,
 }
 
 #[derive(Debug, Deserialize)]
@@ -302,6 +305,8 @@ pub(crate) struct LightToml {
     pub size: Option<f64>,
     pub coverage_angle: Option<f64>,
     pub falloff_angle: Option<f64>,
+    pub scale: Option<Vec3>,
+    pub encoding: Option<ImageEncodingToml>,
 }
 
 /// One entry of a transform list as written: an inline table that should have exactly one

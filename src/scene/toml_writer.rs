@@ -11,7 +11,8 @@
 
 use super::desc::{CourseBrdf, IntegratorKind, TextureDesc, TextureMode};
 use super::desc::{
-    LensShape, LightDesc, MaterialDesc, MeshData, Pattern, SceneDesc, ShapeDesc, Specular,
+    EnvironmentMap, LensShape, LightDesc, MaterialDesc, MeshData, Pattern, SceneDesc, ShapeDesc,
+    Specular,
 };
 use glam::{DAffine3, DVec3, Vec3};
 use std::collections::HashMap;
@@ -201,6 +202,22 @@ impl TomlWriter {
                     f(*size),
                     c3(*radiance)
                 ),
+                LightDesc::Environment { map, scale } => {
+                    let source = match map {
+                        EnvironmentMap::Constant(radiance) => format!("radiance = {}", c3(*radiance)),
+                        EnvironmentMap::Image(image) => {
+                            let file = std::path::absolute(&image.file)
+                                .unwrap_or_else(|_| image.file.clone());
+                            let encoding = match (image.hdr, image.srgb_decoded) {
+                                (true, _) => "",
+                                (false, true) => "\nencoding = \"srgb\"",
+                                (false, false) => "\nencoding = \"raw\"",
+                            };
+                            format!("file = {}{encoding}", quoted(&file.to_string_lossy()))
+                        }
+                    };
+                    writeln!(out, "type = \"environment\"\n{source}\nscale = {}", c3(*scale))
+                }
             };
         }
         Ok(out)

@@ -3,25 +3,56 @@
 //! square of edge `Size` at `Position` facing `Normal`, emitting `Radiance`; it lights the
 //! scene but rays cannot hit it), DirectionalLight (`Direction`, and `Radiance`: the
 //! irradiance on a surface facing it, no distance attenuation) and SpotLight (a point light
-//! with `Direction`, `CoverageAngle` and `FalloffAngle` in degrees, full angles).
+//! with `Direction`, `CoverageAngle` and `FalloffAngle` in degrees, full angles), and
+//! SphericalDirectionalLight (an environment: the latitude-longitude image `ImageId`).
 
 use super::xml::Xml;
-use crate::scene::desc::LightDesc;
+use super::textures::TextureMaps;
+use crate::excerpt::excerpt;
+use crate::scene::desc::{EnvironmentMap, LightDesc};
 use crate::scene::error::SceneError;
 use roxmltree::Node;
 
 pub(super) fn lights<'a, 'i: 'a>(
     x: &Xml,
     lists: impl Iterator<Item = Node<'a, 'i>>,
+    textures: &TextureMaps,
 ) -> Result<Vec<LightDesc>, SceneError> {
     let mut out = Vec::new();
     for list in lists {
         x.check_children(
             list,
-            &["AmbientLight", "PointLight", "AreaLight", "DirectionalLight", "SpotLight"],
+            &[
+                "AmbientLight",
+                "PointLight",
+                "AreaLight",
+                "DirectionalLight",
+                "SpotLight",
+                "SphericalDirectionalLight",
+            ],
         )?;
         for node in list.children().filter(Node::is_element) {
             out.push(match node.tag_name().name() {
+                "SphericalDirectionalLight" => {
+                    x.check_children(node, &["ImageId"])?;
+                    if out.iter().any(|l| matches!(l, LightDesc::Environment { .. })) {
+                        return Err(x.error(node, "a scene takes one SphericalDirectionalLight"));
+                    }
+                    if let Some(kind) = node.attribute("type").map(str::trim) {
+                        if kind != "latlong" {
+                            let message = format!(
+                                "environment map type {} is not supported (expected latlong)",
+                                excerpt(kind)
+                            );
+                            return Err(x.error(node, message));
+                        }
+                    }
+                    let image = textures.radiance_map(x, x.required(node, "ImageId")?)?;
+                    LightDesc::Environment {
+                        map: EnvironmentMap::Image(image),
+                        scale: glam::Vec3::ONE,
+                    }
+                }
                 "AmbientLight" => LightDesc::Ambient { radiance: x.color(node)? },
                 "PointLight" => {
                     x.check_children(node, &["Position", "Intensity"])?;

@@ -137,9 +137,9 @@ pub fn load_str_with_warnings(
     let transforms = transforms::transforms(&x, all("Transformations"))?;
     let vertices = objects::vertex_data(&x, all("VertexData"))?;
     let texcoords = objects::texcoord_data(&x, all("TexCoordData"))?;
-    let lights = lights::lights(&x, all("Lights"))?;
     let base_dir = source.parent().unwrap_or(Path::new(""));
     let textures = textures::texture_maps(&x, base_dir, all("Textures"))?;
+    let lights = lights::lights(&x, all("Lights"), &textures)?;
     let refs = objects::Refs {
         base_dir,
         materials: &materials,

@@ -18,7 +18,7 @@ use crate::scene::desc::{
     Interpolation, MaterialDesc, NoiseConversion, Pattern, TextureDesc, TextureImage, TextureMode,
 };
 use crate::scene::error::SceneError;
-use crate::scene::texture_image::{ImageRef, load};
+use crate::scene::texture_image::{ImageRef, load, load_radiance};
 use glam::DAffine3;
 use roxmltree::Node;
 use std::collections::HashMap;
@@ -40,10 +40,18 @@ struct TextureMap {
     pattern: Pattern,
 }
 
-/// The file's texture maps by id.
+/// An `<Image>` element: where its file is and how to name it in messages.
+struct ImageSource {
+    path: std::path::PathBuf,
+    item: String,
+    line: crate::scene::error::Line,
+}
+
+/// The file's texture maps and images by id.
 #[derive(Default)]
 pub(super) struct TextureMaps {
     maps: HashMap<String, TextureMap>,
+    images: HashMap<String, ImageSource>,
 }
 
 const MAP_CHILDREN: [&str; 11] = [
@@ -70,7 +78,7 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
     base_dir: &Path,
     lists: impl Iterator<Item = Node<'a, 'i>>,
 ) -> Result<TextureMaps, SceneError> {
-    let mut image_nodes: HashMap<String, Node> = HashMap::new();
+    let mut image_sources: HashMap<String, ImageSource> = HashMap::new();
     let mut map_nodes = Vec::new();
     for list in lists {
         x.check_children(list, &["Images", "TextureMap"])?;
@@ -82,7 +90,12 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
             x.check_children(child, &["Image"])?;
             for image in child.children().filter(Node::is_element) {
                 let id = image.attribute("id").map(str::trim).unwrap_or("").to_owned();
-                if image_nodes.insert(id.clone(), image).is_some() {
+                let source = ImageSource {
+                    path: base_dir.join(x.text(image)),
+                    item: describe(image),
+                    line: x.line(image),
+                };
+                if image_sources.insert(id.clone(), source).is_some() {
                     return Err(
                         x.error(image, format!("image id {} is defined twice", excerpt(&id)))
                     );
@@ -146,22 +159,7 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
                 let image = match images.get(image_id) {
                     Some(image) => Arc::clone(image),
                     None => {
-                        let Some(&image_node) = image_nodes.get(image_id) else {
-                            return Err(x.error(
-                                image_id_node,
-                                format!(
-                                    "image id {} is not defined; images: {}",
-                                    excerpt(image_id),
-                                    id_list(image_nodes.keys())
-                                ),
-                            ));
-                        };
-                        let at = ImageRef {
-                            image: base_dir.join(x.text(image_node)),
-                            scene: x.file,
-                            item: describe(image_node),
-                            line: x.line(image_node),
-                        };
+                        let at = image_ref(x, &image_sources, image_id_node)?;
                         let image = load(&at, false)?;
                         images.insert(image_id.to_owned(), Arc::clone(&image));
                         image
@@ -211,10 +209,37 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
             return Err(x.error(node, format!("texture map id {} is defined twice", excerpt(&id))));
         }
     }
-    Ok(TextureMaps { maps })
+    Ok(TextureMaps { maps, images: image_sources })
+}
+
+/// The image `id_node` (an `<ImageId>`) names.
+fn image_ref<'x>(
+    x: &'x Xml,
+    images: &HashMap<String, ImageSource>,
+    id_node: Node,
+) -> Result<ImageRef<'x>, SceneError> {
+    let id = x.text(id_node);
+    let Some(source) = images.get(id) else {
+        return Err(x.error(
+            id_node,
+            format!("image id {} is not defined; images: {}", excerpt(id), id_list(images.keys())),
+        ));
+    };
+    Ok(ImageRef {
+        image: source.path.clone(),
+        scene: x.file,
+        item: source.item.clone(),
+        line: source.line,
+    })
 }
 
 impl TextureMaps {
+    /// The radiance map `id_node` (an `<ImageId>`) names: an EXR's linear values, or a
+    /// PNG/JPEG's 0–255 values as textures keep them.
+    pub fn radiance_map(&self, x: &Xml, id_node: Node) -> Result<Arc<TextureImage>, SceneError> {
+        load_radiance(&image_ref(x, &self.images, id_node)?, false)
+    }
+
     /// `material` with the texture maps listed in `node`'s `<Textures>` elements attached,
     /// or `None` if it lists none.
     pub fn textured(

@@ -3,11 +3,12 @@
 
 use super::repeat::Placement;
 use super::{Builder, dvec, mesh_ref};
-use crate::scene::desc::{LightDesc, ShapeDesc};
+use crate::scene::desc::{EnvironmentMap, LightDesc, ShapeDesc};
 use crate::scene::error::SceneError;
 use crate::scene::shapes::quad_mesh;
 use crate::scene::source_map::FieldPath;
-use crate::scene::toml_format::{LightKind, LightToml};
+use crate::scene::texture_image::{ImageRef, load_radiance};
+use crate::scene::toml_format::{ImageEncodingToml, LightKind, LightToml};
 use crate::scene::transform_list::fmt_vec;
 use crate::scene::validate::Ctx;
 use std::sync::Arc;
@@ -31,6 +32,9 @@ impl Builder<'_> {
             }
             LightKind::Mesh => ("mesh light", &["type", "file", "emission", "transform"]),
             LightKind::Area => ("area light", &["type", "center", "normal", "size", "radiance"]),
+            LightKind::Environment => {
+                ("environment light", &["type", "file", "radiance", "scale", "encoding"])
+            }
         };
         let item = format!("{path} ({kind})");
         let present = [
@@ -51,6 +55,8 @@ impl Builder<'_> {
             ("size", l.size.is_some()),
             ("coverage_angle", l.coverage_angle.is_some()),
             ("falloff_angle", l.falloff_angle.is_some()),
+            ("scale", l.scale.is_some()),
+            ("encoding", l.encoding.is_some()),
         ];
         let ctx = self.ctx;
         ctx.check_fields(&path, &item, &present, allowed)?;
@@ -125,6 +131,18 @@ impl Builder<'_> {
                 let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
                 self.lights.push(LightDesc::Area { center: dvec(center), normal, size, radiance });
             }
+            LightKind::Environment => {
+                let map = self.environment_map(&path, &item, l)?;
+                let scale = match l.scale {
+                    Some(scale) => ctx.color(&path.key("scale"), scale, false)?,
+                    None => glam::Vec3::ONE,
+                };
+                if self.lights.iter().any(|l| matches!(l, LightDesc::Environment { .. })) {
+                    let requirement = "at most one environment light per scene";
+                    return Err(ctx.out_of_range(&path.key("type"), "environment", requirement));
+                }
+                self.lights.push(LightDesc::Environment { map, scale });
+            }
             LightKind::Quad => {
                 let corner = ctx.required(&path, &item, "corner", l.corner)?;
                 let u = ctx.required(&path, &item, "u", l.u)?;
@@ -165,5 +183,41 @@ impl Builder<'_> {
             }
         }
         Ok(())
+    }
+
+    /// An environment light's `file` or `radiance` (exactly one of them).
+    fn environment_map(
+        &self,
+        path: &FieldPath,
+        item: &str,
+        l: &LightToml,
+    ) -> Result<EnvironmentMap, SceneError> {
+        let ctx = self.ctx;
+        match (&l.file, l.radiance) {
+            (Some(_), Some(_)) => Err(ctx.conflict(path, item, "file", "radiance")),
+            (None, None) => Err(ctx.missing(path, item, "file (or radiance)")),
+            (None, Some(radiance)) => {
+                if l.encoding.is_some() {
+                    let requirement = "given only with file";
+                    return Err(ctx.out_of_range(&path.key("encoding"), "given", requirement));
+                }
+                Ok(EnvironmentMap::Constant(ctx.color(&path.key("radiance"), radiance, false)?))
+            }
+            (Some(file), None) => {
+                let at = ImageRef {
+                    image: self.base_dir.join(file),
+                    scene: ctx.file,
+                    item: path.key("file").to_string(),
+                    line: ctx.line(&path.key("file")),
+                };
+                let srgb = l.encoding.unwrap_or(ImageEncodingToml::Srgb) == ImageEncodingToml::Srgb;
+                let image = load_radiance(&at, srgb)?;
+                if image.hdr && l.encoding.is_some() {
+                    let requirement = "given only for PNG and JPEG files (EXR values are linear)";
+                    return Err(ctx.out_of_range(&path.key("encoding"), "given", requirement));
+                }
+                Ok(EnvironmentMap::Image(image))
+            }
+        }
     }
 }

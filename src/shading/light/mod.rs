@@ -4,10 +4,12 @@
 //! the same way but never hit.
 
 mod emitter;
+mod environment;
 #[cfg(test)]
 mod tests;
 
 pub use emitter::{EmitterShape, ShapeSample};
+pub use environment::{EnvironmentLight, EnvironmentSample};
 
 use crate::color::luminance;
 use crate::sampling::alias::AliasTable;
@@ -122,6 +124,8 @@ pub struct LightSet {
     pub directional: Vec<DirectionalLight>,
     /// Ambient radiance (used by the Whitted integrator only).
     pub ambient: Vec3,
+    /// Light from every direction far away; rays that leave the scene see it.
+    pub environment: Option<EnvironmentLight>,
     pub emitters: Vec<Emitter>,
     /// Picks emitters in proportion to their power.
     selection: Option<AliasTable>,
@@ -164,6 +168,7 @@ impl LightSet {
             points,
             directional,
             ambient: Vec3::ZERO,
+            environment: None,
             emitters,
             selection: None,
             first_prim,
