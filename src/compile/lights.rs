@@ -3,8 +3,8 @@
 //! triangles that form a parallelogram, else one per primitive).
 
 use crate::render_scene::{Geometry, Instance, Placement, Prototype};
-use crate::scene::LightDesc;
 use crate::scene::EnvironmentMap;
+use crate::scene::LightDesc;
 use crate::shading::light::{
     DirectionalLight, Emitter, EmitterShape, EnvironmentLight, InstanceEmitters, LightSet,
     NO_GEOMETRY, PointLight, SpotCone,

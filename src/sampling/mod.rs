@@ -3,9 +3,9 @@
 //! see exactly the same rays.
 
 pub mod alias;
-pub mod piecewise;
 #[cfg(test)]
 pub(crate) mod chi_square;
+pub mod piecewise;
 mod pixel;
 pub mod spherical_rectangle;
 #[cfg(test)]

@@ -204,7 +204,9 @@ impl TomlWriter {
                 ),
                 LightDesc::Environment { map, scale } => {
                     let source = match map {
-                        EnvironmentMap::Constant(radiance) => format!("radiance = {}", c3(*radiance)),
+                        EnvironmentMap::Constant(radiance) => {
+                            format!("radiance = {}", c3(*radiance))
+                        }
                         EnvironmentMap::Image(image) => {
                             let file = std::path::absolute(&image.file)
                                 .unwrap_or_else(|_| image.file.clone());

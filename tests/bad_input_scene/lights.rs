@@ -60,3 +60,71 @@ fn mesh_light_needs_a_file_and_emission() {
     ));
     assert_contains(&err, &["PLY file '", "absent.ply'", "named by lights[0].file", "(line 8)"]);
 }
+
+#[test]
+fn environment_light_takes_a_file_or_a_radiance() {
+    let light = format!("{CAMERA}[[lights]]\ntype = \"environment\"\n");
+    let err = load_err(&light);
+    assert_contains(
+        &err,
+        &["lights[0] (environment light) is missing the field `file (or radiance)`"],
+    );
+    let err = load_err(&format!("{light}file = \"sky.exr\"\nradiance = [1, 1, 1]\n"));
+    assert_contains(&err, &["lights[0]", "file", "radiance"]);
+    let err = load_err(&format!("{light}radiance = [1, -1, 1]\n"));
+    assert_contains(&err, &["lights[0].radiance[1] is -1, but must be >= 0 (line 8)"]);
+    let err = load_err(&format!("{light}radiance = [1, 1, 1]\nencoding = \"raw\"\n"));
+    assert_contains(&err, &["lights[0].encoding", "given only with file"]);
+    let err = load_err(&format!("{light}radiance = [1, 1, 1]\nposition = [0, 0, 0]\n"));
+    assert_contains(
+        &err,
+        &["does not take the field `position` (it takes: type, file, radiance, scale, encoding)"],
+    );
+    let err = load_err(&format!("{light}radiance = [1, 1, 1]\nscale = [1, 1, -2]\n"));
+    assert_contains(&err, &["lights[0].scale[2] is -2"]);
+    let two = format!(
+        "{light}radiance = [1, 1, 1]\n\n[[lights]]\ntype = \"environment\"\nradiance = [1, 1, 1]\n"
+    );
+    assert_contains(&load_err(&two), &["lights[1].type", "at most one environment light"]);
+    let scene = load(&format!("{light}radiance = [1, 2, 3]\nscale = [2, 2, 2]\n"));
+    assert!(matches!(
+        &scene.lights[0],
+        LightDesc::Environment { map: embray::scene::EnvironmentMap::Constant(c), scale }
+            if *c == Vec3::new(1.0, 2.0, 3.0) && *scale == Vec3::splat(2.0)
+    ));
+}
+
+#[test]
+fn environment_maps_are_checked_when_read() {
+    let dir = common::command::temp_dir("bad-environment-maps");
+    let light = format!("{CAMERA}[[lights]]\ntype = \"environment\"\n");
+    let missing = dir.join("missing.exr");
+    let err = load_err(&format!("{light}file = \"{}\"\n", missing.display()));
+    assert_contains(&err, &["missing.exr", "lights[0].file", "line 8"]);
+    // A map with a NaN texel is refused, naming the texel.
+    let mut film = embray::film::Film::new(3, 2);
+    film.color.iter_mut().for_each(|c| *c = Vec3::ONE);
+    film.color[4] = Vec3::new(1.0, f32::NAN, 1.0);
+    let nan = dir.join("nan.exr");
+    embray::output::write_exr(&film, &nan).unwrap();
+    let err = load_err(&format!("{light}file = \"{}\"\n", nan.display()));
+    assert_contains(&err, &["nan.exr", "texel (1, 1) is not finite", "lights[0].file"]);
+    // EXR values are linear: an encoding makes no sense for them.
+    film.color[4] = Vec3::ONE;
+    let good = dir.join("good.exr");
+    embray::output::write_exr(&film, &good).unwrap();
+    let err = load_err(&format!("{light}file = \"{}\"\nencoding = \"srgb\"\n", good.display()));
+    assert_contains(&err, &["lights[0].encoding", "only for PNG and JPEG"]);
+    // Not an image at all.
+    let text = dir.join("sky.png");
+    std::fs::write(&text, "not an image").unwrap();
+    let err = load_err(&format!("{light}file = \"{}\"\n", text.display()));
+    assert_contains(&err, &["sky.png", "lights[0].file"]);
+    let scene = load(&format!("{light}file = \"{}\"\n", good.display()));
+    match &scene.lights[0] {
+        LightDesc::Environment { map: embray::scene::EnvironmentMap::Image(image), .. } => {
+            assert_eq!((image.width, image.height, image.hdr), (3, 2, true));
+        }
+        other => panic!("an environment light, got {other:?}"),
+    }
+}

@@ -109,6 +109,7 @@ fn course_options(scene: &SceneDesc, backend: BackendKind) -> RenderOptions {
     options
 }
 
+mod environment;
 mod hw4;
 mod hw6;
 mod inline_errors;

@@ -6,8 +6,8 @@
 //! with `Direction`, `CoverageAngle` and `FalloffAngle` in degrees, full angles), and
 //! SphericalDirectionalLight (an environment: the latitude-longitude image `ImageId`).
 
-use super::xml::Xml;
 use super::textures::TextureMaps;
+use super::xml::Xml;
 use crate::excerpt::excerpt;
 use crate::scene::desc::{EnvironmentMap, LightDesc};
 use crate::scene::error::SceneError;

@@ -273,8 +273,13 @@ mod tests {
         assert!(!light.is_lit());
         assert!(light.sample(Vec2::new(0.3, 0.3)).is_none());
         assert_eq!(light.pdf(Vec3::X), 0.0);
-        let light =
-            EnvironmentLight::new(1, 1, &[Vec3::new(f32::NAN, 1.0, 1.0)], Vec3::ONE, Mat3::IDENTITY);
+        let light = EnvironmentLight::new(
+            1,
+            1,
+            &[Vec3::new(f32::NAN, 1.0, 1.0)],
+            Vec3::ONE,
+            Mat3::IDENTITY,
+        );
         assert_eq!(light.radiance(Vec3::Y), Vec3::ZERO);
     }
 }

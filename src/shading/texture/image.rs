@@ -43,7 +43,14 @@ mod tests {
         // 4 × 2: texel value = column + 10 · row.
         let texels =
             (0..2).flat_map(|j| (0..4).map(move |i| Vec3::splat((i + 10 * j) as f32))).collect();
-        TextureImage { file: "ramp".into(), width: 4, height: 2, texels, srgb_decoded: false, hdr: false }
+        TextureImage {
+            file: "ramp".into(),
+            width: 4,
+            height: 2,
+            texels,
+            srgb_decoded: false,
+            hdr: false,
+        }
     }
 
     #[test]
