@@ -208,6 +208,34 @@ fn materials_and_lights_map_to_the_scene_description() {
     );
 }
 
+#[test]
+fn degamma_materials_read_their_reflectances_linearised() {
+    let materials = MATERIALS.replace(
+        "    </Materials>",
+        r#"    <Material id="2" degamma="true">
+            <AmbientReflectance>0.651 0.389 0.389</AmbientReflectance>
+            <DiffuseReflectance>0.651 0.389 1</DiffuseReflectance>
+            <SpecularReflectance>0.5 0.389 0.389</SpecularReflectance>
+            <MirrorReflectance>0.25 0.25 0.25</MirrorReflectance>
+        </Material>
+        <Material id="3" degamma="false">
+            <DiffuseReflectance>0.651 0.389 1</DiffuseReflectance>
+        </Material>
+    </Materials>"#,
+    );
+    let s = one(&scene_xml(TRIANGLE).replace(MATERIALS, &materials));
+    let linear = |c: f32| c.powf(2.2);
+    let m = &s.materials;
+    assert_eq!(m[1].albedo, glam::Vec3::new(linear(0.651), linear(0.389), 1.0));
+    let phong = m[1].phong.as_ref().unwrap();
+    assert_eq!(phong.ambient, glam::Vec3::new(linear(0.651), linear(0.389), linear(0.389)));
+    assert_eq!(phong.specular.x, linear(0.5));
+    assert_eq!(m[2].albedo, glam::Vec3::new(0.651, 0.389, 1.0));
+    let bad =
+        scene_xml(TRIANGLE).replace("<Material id=\"1\">", "<Material id=\"1\" degamma=\"yes\">");
+    assert_contains(&error_of(&bad), &["degamma is yes, but must be true or false", "line"]);
+}
+
 /// An invisible area light lights a floor under it (soft shadow sampling) without being
 /// seen: the camera looking straight at it sees the background.
 #[test]

@@ -9,6 +9,7 @@
 //! square in which the course perturbs reflected directions. A `BRDF` attribute names one
 //! of hw6's `<BRDFs>`: its model and exponent replace the Blinn-Phong highlight and
 //! PhongExponent; Torrance-Sparrow's Fresnel takes RefractionIndex and AbsorptionIndex.
+//! `degamma="true"` (hw5) raises the four reflectances to the power 2.2 first.
 
 use super::brdfs::{BrdfModel, BrdfSpec};
 use super::xml::Xml;
@@ -88,6 +89,9 @@ pub(super) fn materials<'a, 'i: 'a>(
     Ok(out)
 }
 
+/// The exponent of `degamma="true"` materials' reflectances.
+const DEGAMMA: f32 = 2.2;
+
 fn material(
     x: &Xml,
     node: Node,
@@ -95,8 +99,19 @@ fn material(
     brdfs: &HashMap<String, BrdfSpec>,
 ) -> Result<MaterialDesc, SceneError> {
     x.check_children(node, &ALLOWED)?;
+    let degamma = match node.attribute("degamma").map(str::trim) {
+        None | Some("false") => false,
+        Some("true") => true,
+        Some(other) => {
+            let message = format!("degamma is {}, but must be true or false", excerpt(other));
+            return Err(x.error(node, message));
+        }
+    };
+    // hw5's degamma: the reflectances are display values, made linear by the inverse of
+    // the tone mapper's standard gamma.
     let color = |name: &str| -> Result<Vec3, SceneError> {
-        x.child(node, name)?.map_or(Ok(Vec3::ZERO), |n| x.color(n))
+        let c = x.child(node, name)?.map_or(Ok(Vec3::ZERO), |n| x.color(n))?;
+        Ok(if degamma { c.powf(DEGAMMA) } else { c })
     };
     let scalar = |name: &str, default: Option<f64>| -> Result<f64, SceneError> {
         match x.child(node, name)? {
