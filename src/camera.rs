@@ -23,6 +23,8 @@ pub struct Camera {
     pub square_lens: bool,
     /// Lens shift: the window centre at unit distance (camera space x, y).
     pub shift: Vec2,
+    /// A pixel's width over its height (see `CameraDesc::pixel_aspect`).
+    pub pixel_aspect: f32,
 }
 
 impl Default for Camera {
@@ -38,6 +40,7 @@ impl Default for Camera {
             focus_distance: 1.0,
             square_lens: false,
             shift: Vec2::ZERO,
+            pixel_aspect: 1.0,
         }
     }
 }
@@ -50,7 +53,7 @@ impl Camera {
     /// Direction (camera space, not normalised, z = -1) through raster position `raster`
     /// (pixel centres at +0.5, y pointing down).
     fn camera_direction(&self, raster: Vec2) -> Vec3 {
-        let aspect = self.width as f32 / self.height as f32;
+        let aspect = self.width as f32 / self.height as f32 * self.pixel_aspect;
         let ndc_x = 2.0 * raster.x / self.width as f32 - 1.0;
         let ndc_y = 1.0 - 2.0 * raster.y / self.height as f32;
         Vec3::new(

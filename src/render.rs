@@ -15,7 +15,7 @@ use crate::scene::IntegratorKind;
 use crate::scene::SceneDesc;
 use crate::shading::spawn::SpawnMode;
 use crate::stats::RenderStats;
-use glam::{DVec3, Vec2};
+use glam::{DVec3, Vec2, Vec3};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -229,17 +229,18 @@ struct TileScratch {
     rays: Vec<Ray>,
     streams: Vec<SampleStream>,
     hits: Vec<Option<Hit>>,
+    backdrops: Vec<Option<Vec3>>,
 }
 
-/// The camera ray of sample `s` of pixel (`x`, `y`) and the random stream its path goes on
-/// with.
+/// The camera ray of sample `s` of pixel (`x`, `y`), the random stream its path goes on
+/// with, and the scene's backdrop behind it (if it has one).
 fn camera_sample(
     scene: &RenderScene,
     options: &RenderOptions,
     (x, y): (u32, u32),
     s: u32,
     spp: u32,
-) -> (Ray, SampleStream) {
+) -> (Ray, SampleStream, Option<Vec3>) {
     let camera = &scene.camera;
     let pixel = y as u64 * camera.width as u64 + x as u64;
     let mut stream = SampleStream::new(options.sampler, options.seed, pixel, s as u64);
@@ -251,7 +252,7 @@ fn camera_sample(
     if effects.motion_blur {
         ray.time = stream.reserved_1d(SLOT_TIME);
     }
-    (ray, stream)
+    (ray, stream, scene.backdrop_at(raster))
 }
 
 /// Renders the samples `samples` of every pixel of one tile. With the path tracer on a
@@ -286,8 +287,8 @@ fn render_tile(
     let Some(path) = batched else {
         for (i, sums) in result.sums.iter_mut().enumerate() {
             for s in samples.clone() {
-                let (ray, mut stream) = camera_sample(scene, options, pixel(i), s, spp);
-                add(sums, tracer.trace(ray, &mut stream, &mut result.stats));
+                let (ray, mut stream, backdrop) = camera_sample(scene, options, pixel(i), s, spp);
+                add(sums, tracer.trace(ray, backdrop, &mut stream, &mut result.stats));
             }
         }
         return result;
@@ -295,17 +296,21 @@ fn render_tile(
     for s in samples {
         scratch.rays.clear();
         scratch.streams.clear();
+        scratch.backdrops.clear();
         for i in 0..n {
-            let (ray, stream) = camera_sample(scene, options, pixel(i), s, spp);
+            let (ray, stream, backdrop) = camera_sample(scene, options, pixel(i), s, spp);
             scratch.rays.push(ray);
             scratch.streams.push(stream);
+            scratch.backdrops.push(backdrop);
         }
         scratch.hits.clear();
         scratch.hits.resize(n, None);
         path.accel().intersect_batch(&scratch.rays, &mut scratch.hits, &mut result.stats.traversal);
         let traced = scratch.rays.iter().zip(&scratch.hits).zip(&mut scratch.streams);
-        for (sums, ((ray, hit), stream)) in result.sums.iter_mut().zip(traced) {
-            add(sums, path.trace(*ray, Some(*hit), stream, &mut result.stats));
+        for ((sums, ((ray, hit), stream)), backdrop) in
+            result.sums.iter_mut().zip(traced).zip(&scratch.backdrops)
+        {
+            add(sums, path.trace(*ray, Some(*hit), *backdrop, stream, &mut result.stats));
         }
     }
     result

@@ -19,5 +19,6 @@ pub(super) fn place_camera(desc: &CameraDesc, camera_transform: &CameraTransform
         focus_distance: focus_distance as f32,
         square_lens: desc.lens_shape == LensShape::Square,
         shift: desc.shift.as_vec2(),
+        pixel_aspect: desc.pixel_aspect as f32,
     }
 }

@@ -12,6 +12,7 @@ use crate::render_scene::{Geometry, Instance, Placement, Prototype, RenderScene}
 use crate::render_space::{CameraTransform, RenderSpace};
 use crate::scene::SceneDesc;
 use crate::shading::material::Material;
+use crate::shading::texture::Texture;
 use effects::Effects;
 use glam::{Affine3A, DAffine3, Vec3};
 
@@ -76,6 +77,7 @@ pub fn to_render_scene(
         materials,
         lights,
         background: desc.settings.background,
+        backdrop: desc.settings.background_texture.as_ref().map(Texture::from_desc),
         effects,
     })
 }
@@ -106,6 +108,7 @@ pub fn baked_scene(
         materials,
         lights,
         background: Vec3::ZERO,
+        backdrop: None,
         effects: Effects::default(),
     }
 }

@@ -58,15 +58,18 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// One camera ray's sample; `backdrop`: what it sees if it leaves the scene, if the
+    /// scene has a backdrop (`RenderScene::backdrop_at`).
     pub fn trace(
         &self,
         ray: Ray,
+        backdrop: Option<Vec3>,
         stream: &mut SampleStream,
         stats: &mut RenderStats,
     ) -> PathSample {
         match self {
-            Tracer::Path(t) => t.trace(ray, None, stream, stats),
-            Tracer::Whitted(t) => t.trace(ray, stream, stats),
+            Tracer::Path(t) => t.trace(ray, None, backdrop, stream, stats),
+            Tracer::Whitted(t) => t.trace(ray, backdrop, stream, stats),
         }
     }
 }

@@ -215,11 +215,13 @@ impl<'a> PathTracer<'a> {
     /// Traces one camera path. `first_hit`, when given, is the camera ray's closest hit as
     /// `self.accel().intersect(&camera_ray, ..)` returns it (e.g. from
     /// `Accel::intersect_batch`); it is not looked up again, and is counted as `intersect`
-    /// would count it.
+    /// would count it. `backdrop` is what the camera ray sees if it leaves the scene (else
+    /// the environment or background, as for every ray).
     pub fn trace(
         &self,
         camera_ray: Ray,
         mut first_hit: Option<Option<Hit>>,
+        backdrop: Option<Vec3>,
         stream: &mut SampleStream,
         stats: &mut RenderStats,
     ) -> PathSample {
@@ -239,6 +241,10 @@ impl<'a> PathTracer<'a> {
             }
             let found = self.tracer.closest_hit(&ray, depth == 0, first_hit.take(), stats);
             let Some(hit) = found else {
+                if let (0, Some(backdrop)) = (depth, backdrop) {
+                    result.radiance += backdrop;
+                    break;
+                }
                 let weight =
                     if specular_bounce { 1.0 } else { self.environment_weight(ray.dir, pdf_bsdf) };
                 result.radiance += throughput * self.tracer.escaped(ray.dir) * weight;

@@ -5,7 +5,9 @@ use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::shading::material::Material;
-use crate::shading::normal_map::{bumped_normal, mapped_normal, uv_derivatives};
+use crate::shading::normal_map::{
+    bumped_normal, mapped_normal, solid_bumped_normal, uv_derivatives,
+};
 use crate::shading::spawn::SpawnMode;
 use crate::shading::surface::SurfaceInteraction;
 use crate::shading::texture::Texture;
@@ -74,12 +76,28 @@ impl SceneTracer<'_> {
     /// `si` with its shading normal replaced by `material`'s normal map, if it has one.
     pub fn with_normal_map(
         &self,
-        mut si: SurfaceInteraction,
+        si: SurfaceInteraction,
         material: &Material,
         time: f32,
     ) -> SurfaceInteraction {
         if material.normal_map.is_none() && material.bump_map.is_none() {
             return si;
+        }
+        if let (None, Some((map, factor))) = (&material.normal_map, &material.bump_map) {
+            if map.needs_object_point() {
+                // A solid height field: its gradient in render space, through the chain
+                // rule from the object point.
+                let placement = &self.scene.instances[si.geom_id as usize].placement;
+                let object_from_render = placement.texture_object_from_render(time);
+                let p_object = object_from_render.transform_point3(si.surface.point);
+                let in_object = glam::Vec3A::from(map.solid_gradient(p_object));
+                let gradient = Vec3::from(object_from_render.matrix3.transpose() * in_object);
+                // Heights rise along the outward normal, whichever side the ray is on.
+                let side = if si.front_face { 1.0 } else { -1.0 };
+                let outward = side * si.shading_normal;
+                let bumped = side * solid_bumped_normal(*factor * gradient, outward);
+                return Self::facing_the_ray(si, bumped);
+            }
         }
         let Some((dpdu, dpdv)) = uv_derivatives(self.scene, &si, time) else { return si };
         let mapped = match (&material.normal_map, &material.bump_map) {
@@ -95,7 +113,12 @@ impl SceneTracer<'_> {
             }
             (None, None) => return si,
         };
-        // Kept on the side the ray arrived from, as every shading normal is.
+        Self::facing_the_ray(si, mapped)
+    }
+
+    /// `si` with the shading normal `mapped`, kept on the side the ray arrived from, as
+    /// every shading normal is.
+    fn facing_the_ray(mut si: SurfaceInteraction, mapped: Vec3) -> SurfaceInteraction {
         si.shading_normal = if mapped.dot(si.surface.normal) < 0.0 {
             (mapped - 2.0 * mapped.dot(si.surface.normal) * si.surface.normal).normalize()
         } else {

@@ -164,6 +164,7 @@ impl<'a> WhittedTracer<'a> {
     fn radiance(
         &self,
         camera_ray: &Ray,
+        backdrop: Option<Vec3>,
         stream: &mut SampleStream,
         stats: &mut RenderStats,
         first: &mut PathSample,
@@ -178,7 +179,8 @@ impl<'a> WhittedTracer<'a> {
         while let Some(task) = tasks.pop() {
             match task {
                 Task::Trace(node) => {
-                    self.visit(node, &mut tasks, &mut values, stream, stats, first)
+                    let seen_behind = if node.camera_ray { backdrop } else { None };
+                    self.visit(node, seen_behind, &mut tasks, &mut values, stream, stats, first)
                 }
                 Task::Culled { t } => {
                     // The continued ray starts at the culled triangle.
@@ -198,9 +200,11 @@ impl<'a> WhittedTracer<'a> {
 
     /// One ray of the recursion: pushes its value when it needs no child, else the tasks
     /// that trace its children and then combine them.
+    #[allow(clippy::too_many_arguments)]
     fn visit(
         &self,
         node: Node,
+        backdrop: Option<Vec3>,
         tasks: &mut Vec<Task>,
         values: &mut Vec<Vec3>,
         stream: &mut SampleStream,
@@ -213,7 +217,7 @@ impl<'a> WhittedTracer<'a> {
             return;
         }
         let Some(hit) = self.tracer.closest_hit(&ray, camera_ray, None, stats) else {
-            values.push(self.tracer.escaped(ray.dir));
+            values.push(backdrop.unwrap_or_else(|| self.tracer.escaped(ray.dir)));
             return;
         };
         let si = interaction(self.tracer.scene, &ray, &hit);
@@ -332,15 +336,17 @@ impl<'a> WhittedTracer<'a> {
         (reflection, refraction)
     }
 
-    /// Traces one camera ray.
+    /// Traces one camera ray; `backdrop` is what it sees if it leaves the scene (else the
+    /// environment or background, as for every ray).
     pub fn trace(
         &self,
         camera_ray: Ray,
+        backdrop: Option<Vec3>,
         stream: &mut SampleStream,
         stats: &mut RenderStats,
     ) -> PathSample {
         let mut result = PathSample::default();
-        result.radiance = self.radiance(&camera_ray, stream, stats, &mut result);
+        result.radiance = self.radiance(&camera_ray, backdrop, stream, stats, &mut result);
         result
     }
 }

@@ -72,6 +72,14 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
             Some(LensToml::Square) => LensShape::Square,
         },
         shift: DVec2::from_array(cam.shift.unwrap_or([0.0; 2])),
+        pixel_aspect: match cam.pixel_aspect {
+            Some(a) => {
+                let field = path.key("pixel_aspect");
+                ctx.require((1e-3..=1e3).contains(&a), &field, a, "between 0.001 and 1000")?;
+                a
+            }
+            None => 1.0,
+        },
     })
 }
 

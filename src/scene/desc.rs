@@ -22,6 +22,10 @@ pub struct CameraDesc {
     /// the camera's right and up axes (0 = centred; an off-axis projection otherwise, as the
     /// course's off-centre near planes need).
     pub shift: DVec2,
+    /// A pixel's width over its height in the scene (1: square). The horizontal field of
+    /// view is the vertical one's extent times width / height × this: the course stretches
+    /// a near plane whose aspect differs from the resolution's over the image.
+    pub pixel_aspect: f64,
 }
 
 impl CameraDesc {
@@ -38,6 +42,7 @@ impl CameraDesc {
             focus_distance: None,
             lens_shape: LensShape::Disk,
             shift: DVec2::ZERO,
+            pixel_aspect: 1.0,
         }
     }
 }
@@ -360,6 +365,10 @@ pub struct RenderSettings {
     /// The photographic tone mapping the scene asks for its PNG (a CENG795 camera's
     /// `<Tonemap>`); `None`: the integrator's default curve.
     pub tonemap: Option<crate::output::Photographic>,
+    /// A picture behind the scene (the course's replace_background): camera rays that leave
+    /// the scene see it stretched over the image (u across, v down from the top), in place
+    /// of the background colour or the environment. Other rays that leave see those.
+    pub background_texture: Option<TextureDesc>,
 }
 
 impl Default for RenderSettings {
@@ -371,6 +380,7 @@ impl Default for RenderSettings {
             light_samples: 1,
             integrator: IntegratorKind::Path,
             tonemap: None,
+            background_texture: None,
         }
     }
 }

@@ -144,17 +144,6 @@ pub(crate) fn material(
         Some(t) => {
             let field = path.key("bump_map");
             let texture = texture_desc(&field, t, Use::Bump, ctx, base_dir)?;
-            if matches!(
-                texture.pattern,
-                Pattern::Perlin { .. } | Pattern::Checker3d { .. } | Pattern::CourseChecker { .. }
-            ) {
-                ctx.require(
-                    false,
-                    &field.key("type"),
-                    kind_name_of(t),
-                    "a pattern with texture coordinates (image or checker2d)",
-                )?;
-            }
             let factor = ctx.f32(&field.key("factor"), t.factor.unwrap_or(1.0))?;
             Some(super::desc::BumpMapDesc { texture, factor })
         }
@@ -222,6 +211,22 @@ enum Use {
     Normal,
     /// `bump_map`: as a normal map, with `factor`.
     Bump,
+    /// `[render] background_texture`: no `mode`; uv patterns only.
+    Background,
+}
+
+/// `[render] background_texture`: an image or a 2-D checkerboard over the image plane.
+pub(crate) fn background_texture(
+    t: &TextureToml,
+    ctx: &Ctx,
+    base_dir: &Path,
+) -> Result<TextureDesc, SceneError> {
+    let path = FieldPath::root("render").key("background_texture");
+    if !matches!(t.kind, TextureKind::Image | TextureKind::Checker2d) {
+        let requirement = "a pattern with texture coordinates (image or checker2d)";
+        return Err(ctx.out_of_range(&path.key("type"), kind_name_of(t), requirement));
+    }
+    texture_desc(&path, t, Use::Background, ctx, base_dir)
 }
 
 /// The `type` of a texture table, as written.

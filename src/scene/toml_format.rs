@@ -40,6 +40,8 @@ pub(crate) struct CameraToml {
     pub focus_distance: Option<f64>,
     /// Lens shift (off-axis projection): the window centre at unit distance.
     pub shift: Option<[f64; 2]>,
+    /// A pixel's width over its height (default 1, square pixels).
+    pub pixel_aspect: Option<f64>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -65,6 +67,7 @@ pub(crate) struct RenderToml {
     pub light_samples: Option<u32>,
     pub integrator: Option<IntegratorToml>,
     pub tonemap: Option<TonemapToml>,
+    pub background_texture: Option<TextureToml>,
 }
 
 /// `tonemap = { operator = "photographic", key = 0.18, burn_out = 1, saturation = 1,

@@ -130,7 +130,7 @@ impl TomlWriter {
         for line in note.lines() {
             let _ = writeln!(out, "# {line}");
         }
-        camera_and_render(scene, &mut out);
+        camera_and_render(scene, &mut out)?;
         let names = material_names(&scene.materials);
         for (material, name) in scene.materials.iter().zip(&names) {
             write_material(material, name, &mut out)?;
@@ -238,7 +238,7 @@ impl TomlWriter {
     }
 }
 
-fn camera_and_render(scene: &SceneDesc, out: &mut String) {
+fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWriteError> {
     let c = &scene.camera;
     let _ = writeln!(
         out,
@@ -262,6 +262,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) {
     if c.shift != glam::DVec2::ZERO {
         let _ = writeln!(out, "shift = [{}, {}]", f(c.shift.x), f(c.shift.y));
     }
+    if c.pixel_aspect != 1.0 {
+        let _ = writeln!(out, "pixel_aspect = {}", f(c.pixel_aspect));
+    }
     let s = &scene.settings;
     let integrator = match s.integrator {
         IntegratorKind::Path => "path",
@@ -275,6 +278,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) {
         c3(s.background),
         s.light_samples
     );
+    if let Some(t) = &s.background_texture {
+        let _ = writeln!(out, "background_texture = {}", texture_toml(t, false)?);
+    }
     if let Some(t) = &s.tonemap {
         let _ = writeln!(
             out,
@@ -285,6 +291,7 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) {
             f(f64::from(t.gamma))
         );
     }
+    Ok(())
 }
 
 /// A unique TOML key per material: its name, or with its index appended if taken.

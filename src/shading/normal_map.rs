@@ -112,9 +112,28 @@ pub fn bumped_normal(
     if bumped.dot(n) < 0.0 { -bumped } else { bumped }
 }
 
+/// The normal of a surface with normal `n` displaced along it by a solid height field
+/// whose gradient there is `gradient` (render space): the gradient's part along the
+/// surface tilts the normal away from rising height.
+pub fn solid_bumped_normal(gradient: Vec3, n: Vec3) -> Vec3 {
+    let along_surface = gradient - gradient.dot(n) * n;
+    let bumped = (n - along_surface).normalize_or_zero();
+    if bumped == Vec3::ZERO || !bumped.is_finite() { n } else { bumped }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_solid_slope_tilts_the_normal_downhill() {
+        let n = Vec3::Z;
+        // Height rising along +x with slope 1: the surface is tilted 45° towards −x.
+        let tilted = solid_bumped_normal(Vec3::new(1.0, 0.0, 0.3), n);
+        let expected = Vec3::new(-1.0, 0.0, 1.0).normalize();
+        assert!((tilted - expected).length() < 1e-6, "{tilted}");
+        assert_eq!(solid_bumped_normal(Vec3::new(0.0, 0.0, 5.0), n), n);
+    }
 
     #[test]
     fn triangle_derivatives_recover_a_planar_mapping() {

@@ -8,18 +8,8 @@ use embray::choice::Choice;
 
 /// Scenes that need a texture kind not built yet, with the message the loader gives. The
 /// test fails when one of them loads (update the list) or when another scene does not.
-const NOT_YET: &[(&str, &str)] = &[
-    (
-        "cube_perlin_bump.xml",
-        "bump maps from solid patterns (Perlin, checkerboard) are not supported yet",
-    ),
-    ("galactica_dynamic.xml", "DecalMode replace_background is not supported yet"),
-    ("galactica_static.xml", "DecalMode replace_background is not supported yet"),
-    (
-        "sphere_perlin_bump.xml",
-        "bump maps from solid patterns (Perlin, checkerboard) are not supported yet",
-    ),
-];
+/// (Empty now: every hw4 scene in the pack loads.)
+const NOT_YET: &[(&str, &str)] = &[];
 
 /// Scenes that cannot match pixel for pixel, with the fraction within 3/255 measured (both
 /// backends) and why; the test holds them at that level so that a regression shows.
@@ -32,11 +22,23 @@ const PARTIAL: &[(&str, f64, &str)] = &[
     ),
     ("sphere_perlin.xml", 0.72, "Perlin noise (measured 72.87 %)"),
     (
+        "cube_perlin_bump.xml",
+        0.60,
+        "Perlin bump map: another instance of the noise, as cube_perlin (measured 61.07 %)",
+    ),
+    ("sphere_perlin_bump.xml", 0.72, "Perlin bump map (measured 72.99 %)"),
+    (
         "sphere_nobump_bump.xml",
         0.965,
         "bump map: the bumps sit where the reference's do but come out about twice as steep \
          (halving the height gives 98.5 %); hw4.tex does not define the height scale \
          (measured 96.53 %)",
+    ),
+    (
+        "galactica_static.xml",
+        0.965,
+        "the backdrop (replace_background) matches texel for texel but for JPEG decoding's \
+         ±1–2; the hull's bump map has sphere_nobump_bump's steeper bumps (measured 96.88 %)",
     ),
     (
         "ellipsoids_texture.xml",

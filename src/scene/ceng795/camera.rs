@@ -111,7 +111,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
     let near_distance = optional_positive(x, node, "NearDistance")?;
 
     let mut notes = Vec::new();
-    let (gaze, vfov_deg, shift) = if look_at {
+    let (gaze, vfov_deg, shift, pixel_aspect) = if look_at {
         // A lookAt camera looks at a GazePoint or along a Gaze direction (hw6), not both.
         let gaze_point = match (x.child(node, "GazePoint")?, x.child(node, "Gaze")?) {
             (Some(point), None) => x.vec3(point)?,
@@ -130,7 +130,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         if gaze.try_normalize().is_none() {
             return Err(x.error(node, "<GazePoint> is the same point as <Position>"));
         }
-        (gaze, fov, DVec2::ZERO)
+        (gaze, fov, DVec2::ZERO, 1.0)
     } else {
         let gaze_node = x.required(node, "Gaze")?;
         let gaze = x.vec3(gaze_node)?;
@@ -150,8 +150,12 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
             return Err(x.missing(node, "NearDistance"));
         };
         let window = Window { l, r, b, t, d };
-        let (vfov, shift) = window.projection((width, height), &mut notes);
-        (gaze, vfov, shift)
+        let (vfov, shift, pixel_aspect) = window.projection((width, height));
+        if !(1e-3..=1e3).contains(&pixel_aspect) {
+            let requirement = "an aspect within 1000× of the resolution's";
+            return Err(x.out_of_range(plane_node, format!("{l} {r} {b} {t}"), requirement));
+        }
+        (gaze, vfov, shift, pixel_aspect)
     };
 
     let aperture = match x.child(node, "ApertureSize")? {
@@ -186,6 +190,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
             focus_distance,
             lens_shape: if aperture > 0.0 { LensShape::Square } else { LensShape::Disk },
             shift,
+            pixel_aspect,
         },
         spp,
         tonemap,
@@ -297,22 +302,21 @@ struct Window {
 }
 
 impl Window {
-    /// The vertical field of view (degrees) and the lens shift that reproduce this window
-    /// exactly, off-centre or not; notes a window whose aspect differs from the image's
-    /// (pixels stay square: the horizontal extent follows the resolution).
-    fn projection(&self, (width, height): (u32, u32), notes: &mut Vec<String>) -> (f64, DVec2) {
+    /// The vertical field of view (degrees), the lens shift and the pixel aspect that
+    /// reproduce this window exactly, off-centre or not: a window whose aspect differs from
+    /// the image's is stretched over it, as the course's pixel grid (r − l)/nx by
+    /// (t − b)/ny does (galactica_static's square plane on a 16:9 image).
+    fn projection(&self, (width, height): (u32, u32)) -> (f64, DVec2, f64) {
         let Window { l, r, b, t, d } = *self;
         let vfov = 2.0 * ((t - b) / (2.0 * d)).atan().to_degrees();
         let plane_aspect = (r - l) / (t - b);
         let image_aspect = width as f64 / height as f64;
-        if (plane_aspect - image_aspect).abs() > 1e-6 * image_aspect {
-            notes.push(format!(
-                "the near plane's aspect ({plane_aspect:.4}) differs from the resolution's \
-                 ({image_aspect:.4}); pixels are kept square, so the horizontal field of view \
-                 follows the resolution"
-            ));
-        }
-        (vfov, DVec2::new((l + r) / (2.0 * d), (b + t) / (2.0 * d)))
+        let pixel_aspect = if (plane_aspect - image_aspect).abs() > 1e-9 * image_aspect {
+            plane_aspect / image_aspect
+        } else {
+            1.0
+        };
+        (vfov, DVec2::new((l + r) / (2.0 * d), (b + t) / (2.0 * d)), pixel_aspect)
     }
 }
 

@@ -114,6 +114,7 @@ pub fn load_str_with_warnings(
         light_samples: 1,
         integrator: IntegratorKind::Whitted,
         tonemap: None,
+        background_texture: None,
     };
     if let Some(node) = x.child(root, "BackgroundColor")? {
         settings.background = x.color(node)?;
@@ -140,6 +141,8 @@ pub fn load_str_with_warnings(
     let base_dir = source.parent().unwrap_or(Path::new(""));
     let textures = textures::texture_maps(&x, base_dir, all("Textures"))?;
     let lights = lights::lights(&x, all("Lights"), &textures)?;
+    // hw4.tex: with a background texture, BackgroundColor is ignored.
+    settings.background_texture = textures.background.clone();
     let refs = objects::Refs {
         base_dir,
         materials: &materials,

@@ -8,8 +8,8 @@
 //! `NoiseConversion`) and the checkerboard (`Scale`, `Offset`, `BlackColor`, `WhiteColor`)
 //! are evaluated at the object-space point. Decal modes: `replace_kd`, `blend_kd`,
 //! `replace_all` set the diffuse texture, `replace_ks` the specular one, `replace_normal`
-//! the normal map. The bump-map and background modes are refused with a clear error until
-//! they are built.
+//! the normal map, `bump_normal` the bump map; `replace_background` makes an image the
+//! scene's backdrop (`RenderSettings::background_texture`).
 
 use super::xml::{Xml, describe, id_list, tokens};
 use crate::choice::Choice;
@@ -32,6 +32,8 @@ enum Role {
     Specular,
     Normal,
     Bump(f32),
+    /// The scene's backdrop (replace_background).
+    Background,
 }
 
 #[derive(Clone, Debug)]
@@ -52,6 +54,8 @@ struct ImageSource {
 pub(super) struct TextureMaps {
     maps: HashMap<String, TextureMap>,
     images: HashMap<String, ImageSource>,
+    /// The replace_background map, in display units (0–255, as BackgroundColor).
+    pub background: Option<TextureDesc>,
 }
 
 const MAP_CHILDREN: [&str; 11] = [
@@ -106,6 +110,7 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
     // Images are decoded once however many maps use them, and only if some map does.
     let mut images: HashMap<String, Arc<TextureImage>> = HashMap::new();
     let mut maps = HashMap::new();
+    let mut background = None;
     for node in map_nodes {
         x.check_children(node, &MAP_CHILDREN)?;
         let id = node.attribute("id").map(str::trim).unwrap_or("").to_owned();
@@ -126,9 +131,7 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
                 }
                 None => 1.0,
             }),
-            mode @ "replace_background" => {
-                return Err(x.error(decal, format!("DecalMode {mode} is not supported yet")));
-            }
+            "replace_background" => Role::Background,
             other => {
                 return Err(x.error(
                     decal,
@@ -205,11 +208,29 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
                 ));
             }
         };
+        if matches!(role, Role::Background) {
+            let Pattern::Image { image, interpolation, normalizer } = &pattern else {
+                return Err(x.error(node, "a replace_background texture map must be an image"));
+            };
+            if background.is_some() {
+                return Err(x.error(node, "a scene takes one replace_background texture map"));
+            }
+            // The backdrop is seen as it is: texels / Normalizer in BackgroundColor's units.
+            background = Some(TextureDesc {
+                pattern: Pattern::Image {
+                    image: Arc::clone(image),
+                    interpolation: *interpolation,
+                    normalizer: normalizer / 255.0,
+                },
+                mode: TextureMode::Replace,
+                texture_from_object: DAffine3::IDENTITY,
+            });
+        }
         if maps.insert(id.clone(), TextureMap { role, pattern }).is_some() {
             return Err(x.error(node, format!("texture map id {} is defined twice", excerpt(&id))));
         }
     }
-    Ok(TextureMaps { maps, images: image_sources })
+    Ok(TextureMaps { maps, images: image_sources, background })
 }
 
 /// The image `id_node` (an `<ImageId>`) names.
@@ -270,13 +291,18 @@ impl TextureMaps {
                         (&mut textured.specular_texture, TextureMode::Replace, "specular")
                     }
                     Role::Normal => (&mut textured.normal_map, TextureMode::Replace, "normal-map"),
+                    Role::Background => {
+                        return Err(x.token_error(
+                            list,
+                            pos,
+                            format!(
+                                "texture map {} is the scene's background (replace_background), \
+                                 not an object's texture",
+                                excerpt(id)
+                            ),
+                        ));
+                    }
                     Role::Bump(factor) => {
-                        if matches!(
-                            map.pattern,
-                            Pattern::Perlin { .. } | Pattern::CourseChecker { .. }
-                        ) {
-                            return Err(x.token_error(list, pos, format!("texture map {}: bump maps from solid patterns (Perlin, checkerboard) are not supported yet", excerpt(id))));
-                        }
                         if textured.bump_map.is_some() {
                             return Err(x.token_error(
                                 list,

@@ -28,23 +28,30 @@ impl Texture {
 
     /// The colour at object-space point `p_object` with texture coordinates `uv`.
     pub fn eval(&self, p_object: Vec3, uv: Vec2) -> Vec3 {
+        let p = match self.pattern {
+            Pattern::Checker2d { .. } | Pattern::Image { .. } => Vec3::ZERO,
+            _ => self.texture_from_object.transform_point3(p_object),
+        };
+        self.eval_at(p, uv)
+    }
+
+    /// The colour at pattern-space point `p` with texture coordinates `uv`.
+    fn eval_at(&self, p: Vec3, uv: Vec2) -> Vec3 {
         let parity = |cells: &[f32]| cells.iter().map(|c| c.floor() as i64).sum::<i64>() & 1;
-        let p = || self.texture_from_object.transform_point3(p_object);
         match &self.pattern {
             Pattern::Checker2d { scale, even, odd } => {
                 if parity(&[uv.x * scale, uv.y * scale]) == 0 { *even } else { *odd }
             }
             Pattern::Checker3d { scale, even, odd } => {
-                let p = p() * *scale;
+                let p = p * *scale;
                 if parity(&[p.x, p.y, p.z]) == 0 { *even } else { *odd }
             }
             Pattern::CourseChecker { scale, offset, black, white } => {
                 let odd = |c: f32| ((c + offset) * scale) as i64 % 2 != 0;
-                let p = p();
                 if (odd(p.x) != odd(p.y)) != odd(p.z) { *black } else { *white }
             }
             Pattern::Perlin { scale, conversion } => {
-                let n = perlin::noise(p() * *scale);
+                let n = perlin::noise(p * *scale);
                 Vec3::splat(match conversion {
                     NoiseConversion::Absolute => n.abs(),
                     NoiseConversion::Linear => (n + 1.0) * 0.5,
@@ -54,6 +61,25 @@ impl Texture {
                 image::lookup(image, *interpolation, uv) / *normalizer
             }
         }
+    }
+
+    /// The gradient of this solid pattern's mean channel at `p_object`, with respect to
+    /// the object-space point (central differences a thousandth of the pattern's period
+    /// apart).
+    pub fn solid_gradient(&self, p_object: Vec3) -> Vec3 {
+        let period = match &self.pattern {
+            Pattern::Perlin { scale, .. } => 1.0 / scale,
+            Pattern::Checker3d { scale, .. } | Pattern::CourseChecker { scale, .. } => 1.0 / scale,
+            _ => 1.0,
+        };
+        let h = 1e-3 * period;
+        let linear = self.texture_from_object.matrix3;
+        let p = self.texture_from_object.transform_point3(p_object);
+        let height = |q: Vec3| self.eval_at(q, Vec2::ZERO).element_sum() / 3.0;
+        let along = |axis: Vec3| (height(p + h * axis) - height(p - h * axis)) / (2.0 * h);
+        let in_pattern = Vec3::new(along(Vec3::X), along(Vec3::Y), along(Vec3::Z));
+        // Heights are a function of the pattern point, which is linear in the object point.
+        Vec3::from(linear.transpose() * glam::Vec3A::from(in_pattern))
     }
 
     /// The step in texture coordinates over which a height field's slope is taken: one
@@ -80,6 +106,42 @@ impl Texture {
         match self.mode {
             TextureMode::Replace | TextureMode::ReplaceAll => color,
             TextureMode::Blend => (albedo + color) * 0.5,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::TextureDesc;
+
+    fn perlin(texture_from_object: glam::DAffine3) -> Texture {
+        Texture::from_desc(&TextureDesc {
+            pattern: Pattern::Perlin { scale: 3.0, conversion: NoiseConversion::Linear },
+            mode: TextureMode::Replace,
+            texture_from_object,
+        })
+    }
+
+    #[test]
+    fn solid_gradients_are_directional_derivatives_in_object_space() {
+        let scaled = glam::DAffine3::from_scale(glam::DVec3::new(2.0, 1.0, 0.5))
+            * glam::DAffine3::from_rotation_z(0.4);
+        for texture in [perlin(glam::DAffine3::IDENTITY), perlin(scaled)] {
+            let height = |p: Vec3| texture.eval(p, Vec2::ZERO).x;
+            for p in [Vec3::new(0.13, 0.71, -0.4), Vec3::new(-1.2, 0.05, 0.33)] {
+                let g = texture.solid_gradient(p);
+                for dir in [Vec3::X, Vec3::new(0.3, -0.8, 0.5).normalize()] {
+                    // A wider central difference of the same field, in object space.
+                    let h = 2e-3;
+                    let slope = (height(p + h * dir) - height(p - h * dir)) / (2.0 * h);
+                    let along = g.dot(dir);
+                    assert!(
+                        (along - slope).abs() < 0.02 * g.length().max(0.1),
+                        "{p}: gradient gives {along}, differences {slope}"
+                    );
+                }
+            }
         }
     }
 }
