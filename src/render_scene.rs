@@ -184,7 +184,10 @@ impl RenderScene {
     pub fn backdrop_at(&self, raster: Vec2) -> Option<Vec3> {
         let texture = self.backdrop.as_ref()?;
         let size = Vec2::new(self.camera.width as f32, self.camera.height as f32);
-        Some(texture.eval(Vec3::ZERO, (raster - Vec2::splat(0.5)) / size))
+        // Clamped, not repeated: the film's edges must not wrap to the image's far side.
+        let uv =
+            ((raster - Vec2::splat(0.5)) / size).clamp(Vec2::ZERO, Vec2::splat(1.0f32.next_down()));
+        Some(texture.eval(Vec3::ZERO, uv))
     }
 
     pub fn prototype_of(&self, instance: u32) -> &Prototype {

@@ -112,3 +112,122 @@ fn an_image_texture_shows_on_its_quad_and_normal_maps_bend_the_shading() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// An empty scene of `resolution` whose `[render]` table holds `render`.
+fn backdrop_scene(dir: &Path, resolution: [u32; 2], render: &str) -> embray::scene::SceneDesc {
+    let text = format!(
+        r#"
+[camera]
+lookfrom = [0.0, 0.0, 2.0]
+lookat = [0.0, 0.0, 0.0]
+vfov = 30.0
+resolution = [{}, {}]
+
+[render]
+max_depth = 2
+background = [0.5, 0.5, 0.5]
+{render}
+
+[materials.grey]
+albedo = [0.5, 0.5, 0.5]
+
+[[objects]]
+type = "sphere"
+material = "grey"
+center = [0.0, 0.0, -50.0]
+radius = 1.0
+"#,
+        resolution[0], resolution[1]
+    );
+    embray::scene::load_str(&text, &dir.join("scene.toml")).expect("scene loads")
+}
+
+#[test]
+fn a_background_texture_is_seen_texel_for_texel_behind_the_scene() {
+    let dir = common::command::temp_dir("texture-toml-backdrop");
+    let texel = |x: u32, y: u32| [(x * 20) as u8, (y * 30) as u8, ((x + y) * 9) as u8];
+    write_png(&dir.join("backdrop.png"), 12, 8, texel);
+    let render = "background_texture = { type = \"image\", file = \"backdrop.png\", \
+                  interpolation = \"bilinear\", encoding = \"raw\", normalizer = 255 }";
+    let scene = backdrop_scene(&dir, [12, 8], render);
+    for integrator in [embray::scene::IntegratorKind::Path, embray::scene::IntegratorKind::Whitted]
+    {
+        for backend in backends() {
+            let mut options = options(&scene, backend, 4);
+            options.integrator = integrator;
+            let film = render_ok(&scene, &options).film;
+            for y in 0..8 {
+                for x in 0..12 {
+                    if (5..7).contains(&x) && (3..5).contains(&y) {
+                        continue; // the far sphere, at the centre
+                    }
+                    let expected = glam::Vec3::from_array(texel(x, y).map(|c| c as f32 / 255.0));
+                    // Jittered samples blend neighbours bilinearly; the mean stays close.
+                    let got = film.pixel(x, y);
+                    assert!(
+                        (got - expected).abs().max_element() < 0.06,
+                        "{integrator:?} {backend:?} ({x}, {y}): {got} vs {expected}"
+                    );
+                }
+            }
+        }
+    }
+    // Pixel centres sample texel centres exactly: at 1 spp without jitter, equality.
+    let mut options = options(&scene, embray::accel::BackendKind::default_compiled(), 1);
+    options.jitter = false;
+    let film = render_ok(&scene, &options).film;
+    let expected = glam::Vec3::from_array(texel(2, 1).map(|c| c as f32 / 255.0));
+    assert!((film.pixel(2, 1) - expected).abs().max_element() < 1e-6);
+    // The TOML round trip keeps it.
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
+    writer.write(&scene, &dir.join("back.toml"), "round trip").unwrap();
+    let back = embray::scene::load(&dir.join("back.toml")).unwrap();
+    assert_eq!(back.settings, scene.settings);
+    // Solid patterns have no place on the image plane.
+    let err = embray::scene::load_str(
+        "[camera]\nlookfrom = [0, 0, 2]\nlookat = [0, 0, 0]\nvfov = 30\nresolution = [4, 4]\n\n[render]\n\
+         background_texture = { type = \"perlin\", scale = 2 }\n",
+        &dir.join("bad.toml"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("render.background_texture.type is perlin")
+            && err.contains("image or checker2d"),
+        "{err}"
+    );
+}
+
+#[test]
+fn pixel_aspect_stretches_the_horizontal_field_of_view() {
+    let dir = common::command::temp_dir("texture-toml-pixel-aspect");
+    let square = backdrop_scene(&dir, [16, 8], "");
+    let mut stretched = square.clone();
+    stretched.camera.pixel_aspect = 0.5;
+    let camera = |scene: &embray::scene::SceneDesc| {
+        embray::compile::to_render_scene(
+            scene,
+            embray::render_space::RenderSpace::Cameraworld,
+            embray::compile::EffectsMode::Auto,
+        )
+        .unwrap()
+        .camera
+    };
+    // The right edge's ray: at half the pixel aspect it is half as far off the axis.
+    let edge = glam::Vec2::new(16.0, 4.0);
+    let (a, b) =
+        (camera(&square).generate_ray(edge, None), camera(&stretched).generate_ray(edge, None));
+    let slope = |d: glam::Vec3| d.x / -d.z;
+    assert!(
+        (slope(b.dir) - 0.5 * slope(a.dir)).abs() < 1e-6,
+        "{} vs {}",
+        slope(b.dir),
+        slope(a.dir)
+    );
+    let toml = "[camera]\nlookfrom = [0, 0, 2]\nlookat = [0, 0, 0]\nvfov = 30\nresolution = [4, 4]\npixel_aspect = 0\n";
+    let err = embray::scene::load_str(toml, &dir.join("bad.toml")).unwrap_err().to_string();
+    assert!(err.contains("camera.pixel_aspect is 0, but must be between 0.001 and 1000"), "{err}");
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
+    writer.write(&stretched, &dir.join("back.toml"), "round trip").unwrap();
+    assert_eq!(embray::scene::load(&dir.join("back.toml")).unwrap().camera, stretched.camera);
+}

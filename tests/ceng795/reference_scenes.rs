@@ -354,6 +354,7 @@ fn converted_toml_renders_like_the_xml() {
         "2022/hw4/inputs/cube_waves.xml",
         "2022/hw4/inputs/ellipsoids_texture.xml",
         "2022/hw4/inputs/sphere_nearest_bilinear.xml",
+        "2022/hw4/inputs/galactica_static.xml",
         "2022/hw5/inputs/cube_directional.xml",
         "2022/hw6/brdf/inputs/brdf_torrancesparrow.xml",
         "2022/hw6/brdf/inputs/brdf_phong_modified_normalized.xml",
