@@ -215,3 +215,27 @@ fn the_map_is_seen_where_the_course_mapping_puts_it() {
         }
     }
 }
+
+#[test]
+fn a_constant_light_probe_is_a_white_furnace_too() {
+    // The angular map's solid angle per texel varies across the disc: only the right
+    // Jacobian in the sampling density keeps the furnace exact.
+    let radiance = Vec3::splat(1.5);
+    let map = write_map("environment-probe-furnace", 16, 16, |_, _| radiance);
+    let sky = format!("file = \"{}\"\nmapping = \"probe\"", map.display());
+    for max_depth in [1, 6] {
+        let scene = scene_from_str(&furnace(&sky, max_depth));
+        for backend in backends() {
+            let film = render_ok(&scene, &options(&scene, backend, 64)).film;
+            let pixels = sphere_pixels();
+            let mean = pixels.iter().map(|&(x, y)| film.pixel(x, y).as_dvec3()).sum::<DVec3>()
+                / pixels.len() as f64;
+            let expected = (Vec3::from_array(ALBEDO) * radiance).as_dvec3();
+            println!("probe, depth {max_depth}, {backend:?}: {mean:.4} (expected {expected:.4})");
+            assert!(
+                ((mean - expected) / expected).abs().max_element() < 0.015,
+                "{backend:?}: {mean} vs {expected}"
+            );
+        }
+    }
+}

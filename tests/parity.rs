@@ -28,6 +28,25 @@ fn bundled_scenes() -> Vec<(String, SceneDesc)> {
     scenes
 }
 
+/// Whether Embree picks its AVX-512 kernels on this CPU (it needs AVX-512 F, CD, BW, DQ and
+/// VL). Their triangle test rounds differently from the AVX2 kernels', so a ray through an
+/// edge can hit one triangle or the other: measured on the bundled Cornell box, 3 of 31,689
+/// shadow rays end differently from obvhs with AVX-512 and none with `isa=avx2`.
+fn embree_runs_avx512_kernels() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        is_x86_feature_detected!("avx512f")
+            && is_x86_feature_detected!("avx512cd")
+            && is_x86_feature_detected!("avx512bw")
+            && is_x86_feature_detected!("avx512dq")
+            && is_x86_feature_detected!("avx512vl")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
 #[test]
 #[cfg_attr(
     not(all(feature = "embree", feature = "obvhs")),
@@ -43,7 +62,8 @@ fn every_bundled_scene_renders_alike_on_both_backends() {
         let (e, o) = (embree.stats, obvhs.stats);
         println!("{name}: {error:?}");
         println!("  embree {e:?}\n  obvhs  {o:?}");
-        // Observed: static scenes agree to a relative MSE of 1e-15 with equal counts, but for
+        // Observed (AVX2 kernels): static scenes agree to a relative MSE of 1e-15 with equal
+        // counts, but for
         // one pixel of glossy_plates (2e-9, a path diverging at a triangle edge: Embree's
         // triangle test is not ours); moving_boxes to 2e-6 with one shadow ray of 7515
         // ending differently (Embree interpolates instance motion in its own last bits).
@@ -51,12 +71,13 @@ fn every_bundled_scene_renders_alike_on_both_backends() {
         assert!(error.fraction_off < 1e-3, "{name}: {error:?}");
         assert_eq!(error.non_finite, 0);
         let moving = scene.objects.iter().any(|o| o.is_moving());
+        let edge_rays_may_differ = moving || embree_runs_avx512_kernels();
         for (kind, a, b) in [
             ("camera", e.camera, o.camera),
             ("shadow", e.shadow, o.shadow),
             ("indirect", e.indirect, o.indirect),
         ] {
-            let allowed = if moving { 1 + a.rays / 5000 } else { 0 };
+            let allowed = if edge_rays_may_differ { 1 + a.rays / 5000 } else { 0 };
             assert!(
                 a.rays.abs_diff(b.rays) <= allowed && a.hits.abs_diff(b.hits) <= allowed,
                 "{name} {kind}: {a:?} vs {b:?} (at most {allowed} may differ)"

@@ -3,8 +3,8 @@
 //! triangles that form a parallelogram, else one per primitive).
 
 use crate::render_scene::{Geometry, Instance, Placement, Prototype};
-use crate::scene::EnvironmentMap;
 use crate::scene::LightDesc;
+use crate::scene::{EnvironmentMap, EnvironmentMapping};
 use crate::shading::light::{
     DirectionalLight, Emitter, EmitterShape, EnvironmentLight, InstanceEmitters, LightSet,
     NO_GEOMETRY, PointLight, SpotCone,
@@ -142,18 +142,24 @@ pub(super) fn compile_lights(
                 })
             }
             LightDesc::Ambient { radiance } => ambient += *radiance,
-            LightDesc::Environment { map, scale } => {
+            LightDesc::Environment { map, scale, mapping } => {
                 // Directions are looked up in world space: render space only rotates back.
                 let world_from_render = render_from_world.matrix3.inverse().as_mat3();
                 environment = Some(match map {
-                    EnvironmentMap::Constant(radiance) => {
-                        EnvironmentLight::new(1, 1, &[*radiance], *scale, world_from_render)
-                    }
+                    EnvironmentMap::Constant(radiance) => EnvironmentLight::new(
+                        1,
+                        1,
+                        &[*radiance],
+                        *scale,
+                        EnvironmentMapping::LatLong,
+                        world_from_render,
+                    ),
                     EnvironmentMap::Image(image) => EnvironmentLight::new(
                         image.width as usize,
                         image.height as usize,
                         &image.texels,
                         *scale,
+                        *mapping,
                         world_from_render,
                     ),
                 });

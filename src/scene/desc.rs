@@ -325,8 +325,24 @@ pub enum LightDesc {
     /// Radiance from every direction far away: a latitude-longitude map (the course's
     /// SphericalDirectionalLight; see `shading::light::EnvironmentLight` for the mapping)
     /// times `scale`. Rays that leave the scene see it in place of the background.
-    Environment { map: EnvironmentMap, scale: Vec3 },
+    Environment { map: EnvironmentMap, scale: Vec3, mapping: EnvironmentMapping },
 }
+
+/// How an environment image covers the sphere of directions (see
+/// `shading::light::env_mapping`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EnvironmentMapping {
+    /// Latitude-longitude (equirectangular), hw5.tex's mapping.
+    #[default]
+    LatLong,
+    /// Debevec's light probe (angular map).
+    Probe,
+}
+
+crate::choice::named_choices!(EnvironmentMapping, "environment mapping", {
+    LatLong => "latlong",
+    Probe => "probe",
+});
 
 /// What an environment light's radiance comes from.
 #[derive(Clone, Debug, PartialEq)]

@@ -339,7 +339,7 @@ fn texture_desc(
                 line: ctx.line(&path.key("file")),
             };
             Pattern::Image {
-                image: super::texture_image::load(&at, srgb)?,
+                image: super::texture_image::load_radiance(&at, srgb)?,
                 interpolation: match t.interpolation.unwrap_or(InterpolationToml::Bilinear) {
                     InterpolationToml::Nearest => Interpolation::Nearest,
                     InterpolationToml::Bilinear => Interpolation::Bilinear,

@@ -310,6 +310,14 @@ pub(crate) struct LightToml {
     pub falloff_angle: Option<f64>,
     pub scale: Option<Vec3>,
     pub encoding: Option<ImageEncodingToml>,
+    pub mapping: Option<EnvironmentMappingToml>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum EnvironmentMappingToml {
+    Latlong,
+    Probe,
 }
 
 /// One entry of a transform list as written: an inline table that should have exactly one

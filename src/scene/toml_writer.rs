@@ -202,7 +202,7 @@ impl TomlWriter {
                     f(*size),
                     c3(*radiance)
                 ),
-                LightDesc::Environment { map, scale } => {
+                LightDesc::Environment { map, scale, mapping } => {
                     let source = match map {
                         EnvironmentMap::Constant(radiance) => {
                             format!("radiance = {}", c3(*radiance))
@@ -215,7 +215,10 @@ impl TomlWriter {
                                 (false, true) => "\nencoding = \"srgb\"",
                                 (false, false) => "\nencoding = \"raw\"",
                             };
-                            format!("file = {}{encoding}", quoted(&file.to_string_lossy()))
+                            format!(
+                                "file = {}{encoding}\nmapping = \"{mapping}\"",
+                                quoted(&file.to_string_lossy())
+                            )
                         }
                     };
                     writeln!(out, "type = \"environment\"\n{source}\nscale = {}", c3(*scale))

@@ -78,7 +78,9 @@ fn environment_light_takes_a_file_or_a_radiance() {
     let err = load_err(&format!("{light}radiance = [1, 1, 1]\nposition = [0, 0, 0]\n"));
     assert_contains(
         &err,
-        &["does not take the field `position` (it takes: type, file, radiance, scale, encoding)"],
+        &[
+            "does not take the field `position` (it takes: type, file, radiance, scale, encoding, mapping)",
+        ],
     );
     let err = load_err(&format!("{light}radiance = [1, 1, 1]\nscale = [1, 1, -2]\n"));
     assert_contains(&err, &["lights[0].scale[2] is -2"]);
@@ -89,7 +91,7 @@ fn environment_light_takes_a_file_or_a_radiance() {
     let scene = load(&format!("{light}radiance = [1, 2, 3]\nscale = [2, 2, 2]\n"));
     assert!(matches!(
         &scene.lights[0],
-        LightDesc::Environment { map: embray::scene::EnvironmentMap::Constant(c), scale }
+        LightDesc::Environment { map: embray::scene::EnvironmentMap::Constant(c), scale, .. }
             if *c == Vec3::new(1.0, 2.0, 3.0) && *scale == Vec3::splat(2.0)
     ));
 }
@@ -120,6 +122,15 @@ fn environment_maps_are_checked_when_read() {
     std::fs::write(&text, "not an image").unwrap();
     let err = load_err(&format!("{light}file = \"{}\"\n", text.display()));
     assert_contains(&err, &["sky.png", "lights[0].file"]);
+    let err = load_err(&format!("{light}radiance = [1, 1, 1]\nmapping = \"probe\"\n"));
+    assert_contains(&err, &["lights[0].mapping", "given only with file"]);
+    let err = load_err(&format!("{light}file = \"{}\"\nmapping = \"cube\"\n", good.display()));
+    assert_contains(&err, &["mapping", "cube"]);
+    let scene = load(&format!("{light}file = \"{}\"\nmapping = \"probe\"\n", good.display()));
+    assert!(matches!(
+        scene.lights[0],
+        LightDesc::Environment { mapping: embray::scene::EnvironmentMapping::Probe, .. }
+    ));
     let scene = load(&format!("{light}file = \"{}\"\n", good.display()));
     match &scene.lights[0] {
         LightDesc::Environment { map: embray::scene::EnvironmentMap::Image(image), .. } => {

@@ -76,7 +76,8 @@ fn a_mirror_sphere_reflects_the_map_where_the_course_mapping_puts_it() {
     let (cameras, _) = ceng795::load_with_warnings(&path).unwrap();
     let scene = &cameras[0].scene;
     match &scene.lights[..] {
-        [LightDesc::Environment { map: EnvironmentMap::Image(image), scale }] => {
+        [LightDesc::Environment { map: EnvironmentMap::Image(image), scale, mapping }] => {
+            assert_eq!(*mapping, embray::scene::EnvironmentMapping::LatLong);
             assert_eq!((image.width, image.height, image.hdr), (9, 5, true));
             assert_eq!(*scale, Vec3::ONE);
         }
@@ -103,8 +104,36 @@ fn a_mirror_sphere_reflects_the_map_where_the_course_mapping_puts_it() {
 }
 
 #[test]
+fn a_light_probe_is_read_as_an_angular_map() {
+    let probe = "<SphericalDirectionalLight id=\"1\" type=\"probe\"><ImageId>3</ImageId></SphericalDirectionalLight>";
+    let path = environment_scene("environment-probe", probe);
+    let (cameras, _) = ceng795::load_with_warnings(&path).unwrap();
+    let scene = &cameras[0].scene;
+    assert!(matches!(
+        &scene.lights[..],
+        [LightDesc::Environment { mapping: embray::scene::EnvironmentMapping::Probe, .. }]
+    ));
+    for backend in BackendKind::compiled() {
+        let film = render(scene, &course_options(scene, backend)).unwrap().film;
+        // The reflection goes back along −x: a quarter turn from the probe's centre (−z),
+        // half-way to its rim on the left: (a, b) = (−1/2, 0) → u = 1/4 → column 2 of 9,
+        // v = 1/2 → row 2 of 5.
+        assert_eq!(film.pixel(4, 4), texel(2, 2), "{backend:?}: the reflection");
+    }
+}
+
+#[test]
 fn environment_scenes_convert_to_toml_unchanged() {
-    let path = environment_scene("environment-convert", SKY);
+    for (name, lights) in [
+        ("environment-convert", SKY.to_owned()),
+        ("environment-convert-probe", SKY.replace("id=\"1\"", "id=\"1\" type=\"probe\"")),
+    ] {
+        convert_round_trip(name, &lights);
+    }
+}
+
+fn convert_round_trip(name: &str, lights: &str) {
+    let path = environment_scene(name, lights);
     let (cameras, _) = ceng795::load_with_warnings(&path).unwrap();
     let scene = &cameras[0].scene;
     let toml = path.with_file_name("scene.toml");
@@ -129,10 +158,13 @@ fn environment_light_errors_name_the_element() {
     let twice = environment_scene("environment-twice", &format!("{SKY}\n{SKY}"));
     let err = ceng795::load_with_warnings(&twice).unwrap_err().to_string();
     assert_contains(&err, &["scene.xml", "one SphericalDirectionalLight"]);
-    let probe = environment_scene(
-        "environment-probe",
-        "<SphericalDirectionalLight id=\"1\" type=\"probe\"><ImageId>3</ImageId></SphericalDirectionalLight>",
+    let cube = environment_scene(
+        "environment-cube",
+        "<SphericalDirectionalLight id=\"1\" type=\"cube\"><ImageId>3</ImageId></SphericalDirectionalLight>",
     );
-    let err = ceng795::load_with_warnings(&probe).unwrap_err().to_string();
-    assert_contains(&err, &["environment map type probe is not supported (expected latlong)"]);
+    let err = ceng795::load_with_warnings(&cube).unwrap_err().to_string();
+    assert_contains(
+        &err,
+        &["environment map type cube is not supported (expected latlong or probe)"],
+    );
 }

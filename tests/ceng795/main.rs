@@ -111,6 +111,7 @@ fn course_options(scene: &SceneDesc, backend: BackendKind) -> RenderOptions {
 
 mod environment;
 mod hw4;
+mod hw5;
 mod hw6;
 mod inline_errors;
 mod inline_scenes;

@@ -9,7 +9,7 @@
 use super::textures::TextureMaps;
 use super::xml::Xml;
 use crate::excerpt::excerpt;
-use crate::scene::desc::{EnvironmentMap, LightDesc};
+use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc};
 use crate::scene::error::SceneError;
 use roxmltree::Node;
 
@@ -38,19 +38,23 @@ pub(super) fn lights<'a, 'i: 'a>(
                     if out.iter().any(|l| matches!(l, LightDesc::Environment { .. })) {
                         return Err(x.error(node, "a scene takes one SphericalDirectionalLight"));
                     }
-                    if let Some(kind) = node.attribute("type").map(str::trim) {
-                        if kind != "latlong" {
+                    let mapping = match node.attribute("type").map(str::trim) {
+                        None | Some("latlong") => EnvironmentMapping::LatLong,
+                        Some("probe") => EnvironmentMapping::Probe,
+                        Some(kind) => {
                             let message = format!(
-                                "environment map type {} is not supported (expected latlong)",
+                                "environment map type {} is not supported (expected latlong or \
+                                 probe)",
                                 excerpt(kind)
                             );
                             return Err(x.error(node, message));
                         }
-                    }
+                    };
                     let image = textures.radiance_map(x, x.required(node, "ImageId")?)?;
                     LightDesc::Environment {
                         map: EnvironmentMap::Image(image),
                         scale: glam::Vec3::ONE,
+                        mapping,
                     }
                 }
                 "AmbientLight" => LightDesc::Ambient { radiance: x.color(node)? },

@@ -18,7 +18,7 @@ use crate::scene::desc::{
     Interpolation, MaterialDesc, NoiseConversion, Pattern, TextureDesc, TextureImage, TextureMode,
 };
 use crate::scene::error::SceneError;
-use crate::scene::texture_image::{ImageRef, load, load_radiance};
+use crate::scene::texture_image::{ImageRef, load_radiance};
 use glam::DAffine3;
 use roxmltree::Node;
 use std::collections::HashMap;
@@ -163,7 +163,7 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
                     Some(image) => Arc::clone(image),
                     None => {
                         let at = image_ref(x, &image_sources, image_id_node)?;
-                        let image = load(&at, false)?;
+                        let image = load_radiance(&at, false)?;
                         images.insert(image_id.to_owned(), Arc::clone(&image));
                         image
                     }

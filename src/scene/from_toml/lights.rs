@@ -3,12 +3,12 @@
 
 use super::repeat::Placement;
 use super::{Builder, dvec, mesh_ref};
-use crate::scene::desc::{EnvironmentMap, LightDesc, ShapeDesc};
+use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc, ShapeDesc};
 use crate::scene::error::SceneError;
 use crate::scene::shapes::quad_mesh;
 use crate::scene::source_map::FieldPath;
 use crate::scene::texture_image::{ImageRef, load_radiance};
-use crate::scene::toml_format::{ImageEncodingToml, LightKind, LightToml};
+use crate::scene::toml_format::{EnvironmentMappingToml, ImageEncodingToml, LightKind, LightToml};
 use crate::scene::transform_list::fmt_vec;
 use crate::scene::validate::Ctx;
 use std::sync::Arc;
@@ -33,7 +33,7 @@ impl Builder<'_> {
             LightKind::Mesh => ("mesh light", &["type", "file", "emission", "transform"]),
             LightKind::Area => ("area light", &["type", "center", "normal", "size", "radiance"]),
             LightKind::Environment => {
-                ("environment light", &["type", "file", "radiance", "scale", "encoding"])
+                ("environment light", &["type", "file", "radiance", "scale", "encoding", "mapping"])
             }
         };
         let item = format!("{path} ({kind})");
@@ -57,6 +57,7 @@ impl Builder<'_> {
             ("falloff_angle", l.falloff_angle.is_some()),
             ("scale", l.scale.is_some()),
             ("encoding", l.encoding.is_some()),
+            ("mapping", l.mapping.is_some()),
         ];
         let ctx = self.ctx;
         ctx.check_fields(&path, &item, &present, allowed)?;
@@ -141,7 +142,15 @@ impl Builder<'_> {
                     let requirement = "at most one environment light per scene";
                     return Err(ctx.out_of_range(&path.key("type"), "environment", requirement));
                 }
-                self.lights.push(LightDesc::Environment { map, scale });
+                let mapping = match l.mapping {
+                    None | Some(EnvironmentMappingToml::Latlong) => EnvironmentMapping::LatLong,
+                    Some(EnvironmentMappingToml::Probe) => EnvironmentMapping::Probe,
+                };
+                if l.mapping.is_some() && l.file.is_none() {
+                    let requirement = "given only with file";
+                    return Err(ctx.out_of_range(&path.key("mapping"), "given", requirement));
+                }
+                self.lights.push(LightDesc::Environment { map, scale, mapping });
             }
             LightKind::Quad => {
                 let corner = ctx.required(&path, &item, "corner", l.corner)?;

@@ -1,14 +1,13 @@
-//! Light from infinitely far away in every direction: a latitude-longitude radiance map
-//! (the course's SphericalDirectionalLight), importance-sampled by luminance. Directions map
-//! to the image as hw5.tex defines it, in world space (y up): u = (1 + atan2(x, −z)/π)/2,
-//! v = acos(y)/π, so the image's centre is seen looking along −z and its top row is
-//! straight up. Texels are looked up nearest, so the radiance is exactly the piecewise-
-//! constant function the sampling density follows.
+//! Light from infinitely far away in every direction: a latitude-longitude or light-probe
+//! radiance map (the course's SphericalDirectionalLight; `env_mapping` has the mappings),
+//! importance-sampled by luminance × solid angle. Texels are looked up nearest, so the
+//! radiance is exactly the piecewise-constant function the sampling density follows.
 
+use super::env_mapping;
 use crate::color::luminance;
 use crate::sampling::piecewise::Piecewise2D;
+use crate::scene::EnvironmentMapping;
 use glam::{Mat3, Vec2, Vec3};
-use std::f32::consts::PI;
 use std::sync::Arc;
 
 /// Sampling grids have at least this many cells across (and half as many down).
@@ -21,6 +20,7 @@ pub struct EnvironmentLight {
     height: usize,
     /// Radiance per texel, row 0 at the top (straight up), already scaled.
     texels: Arc<[Vec3]>,
+    mapping: EnvironmentMapping,
     /// Render space's rotation back to world space (identity for translation-only spaces).
     world_from_render: Mat3,
     /// Over the image, in proportion to luminance × sin θ; `None` for a black map.
@@ -45,6 +45,7 @@ impl EnvironmentLight {
         height: usize,
         texels: &[Vec3],
         scale: Vec3,
+        mapping: EnvironmentMapping,
         world_from_render: Mat3,
     ) -> Self {
         assert_eq!(texels.len(), width * height, "a texel per pixel");
@@ -56,7 +57,7 @@ impl EnvironmentLight {
             })
             .collect();
         // Tiny maps (a constant sky is one texel) are sampled on a finer grid, so that the
-        // sin θ factor varies little within a cell and sampling stays close to uniform in
+        // solid angle per cell varies little within it and sampling stays close to uniform in
         // solid angle; each texel is a whole block of cells, so the radiance is still
         // constant on every cell.
         let (across, down) = (width.max(MIN_CELLS_ACROSS), height.max(MIN_CELLS_ACROSS / 2));
@@ -65,29 +66,14 @@ impl EnvironmentLight {
             .map(|i| {
                 let (col, row) = (i % across, i / across);
                 let texel = texels[row * height / down * width + col * width / across];
-                let theta = (row as f32 + 0.5) / down as f32 * PI;
-                luminance(texel) * theta.sin()
+                let centre =
+                    Vec2::new((col as f32 + 0.5) / across as f32, (row as f32 + 0.5) / down as f32);
+                let half = Vec2::new(0.5 / across as f32, 0.5 / down as f32);
+                luminance(texel) * env_mapping::cell_solid_angle(mapping, centre, half)
             })
             .collect();
         let distribution = Piecewise2D::new(&weights, across, down);
-        EnvironmentLight { width, height, texels, world_from_render, distribution }
-    }
-
-    /// Image coordinates in [0, 1]² of the unit world direction `d`, and sin θ.
-    fn uv_of(d: Vec3) -> (Vec2, f32) {
-        let u = 0.5 * (1.0 + d.x.atan2(-d.z) / PI);
-        // sin θ from the horizontal components stays accurate near the poles, where
-        // 1 − cos² θ cancels.
-        let sin_theta = d.x.hypot(d.z);
-        let v = sin_theta.atan2(d.y) / PI;
-        (Vec2::new(u, v), sin_theta)
-    }
-
-    /// The unit world direction at image coordinates `uv`, and sin θ.
-    fn direction_of(uv: Vec2) -> (Vec3, f32) {
-        let (sin_theta, cos_theta) = (uv.y * PI).sin_cos();
-        let (sin_phi, cos_phi) = ((2.0 * uv.x - 1.0) * PI).sin_cos();
-        (Vec3::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi), sin_theta)
+        EnvironmentLight { width, height, texels, mapping, world_from_render, distribution }
     }
 
     fn texel(&self, uv: Vec2) -> Vec3 {
@@ -103,7 +89,7 @@ impl EnvironmentLight {
         if !d.is_finite() {
             return Vec3::ZERO;
         }
-        self.texel(Self::uv_of(d).0)
+        self.texel(env_mapping::uv_of(self.mapping, d).0)
     }
 
     /// Density per unit solid angle with which `sample` picks the render-space direction
@@ -111,28 +97,24 @@ impl EnvironmentLight {
     pub fn pdf(&self, dir: Vec3) -> f32 {
         let Some(distribution) = &self.distribution else { return 0.0 };
         let d = (self.world_from_render * dir).normalize();
-        let (uv, sin_theta) = Self::uv_of(d);
-        if !(sin_theta > 0.0) {
+        let (uv, solid_angle) = env_mapping::uv_of(self.mapping, d);
+        if !(solid_angle > 0.0) {
             return 0.0;
         }
-        let uv = uv.min(Vec2::splat(1.0_f32.next_down()));
-        distribution.pdf(uv) / (2.0 * PI * PI * sin_theta)
+        let uv = uv.clamp(Vec2::ZERO, Vec2::splat(1.0_f32.next_down()));
+        distribution.pdf(uv) / solid_angle
     }
 
     /// A direction drawn in proportion to luminance with `u`; `None` for a black map.
     pub fn sample(&self, u: Vec2) -> Option<EnvironmentSample> {
         let distribution = self.distribution.as_ref()?;
         let (uv, pdf_uv) = distribution.sample(u);
-        let (d, sin_theta) = Self::direction_of(uv);
-        if !(sin_theta > 0.0) || !(pdf_uv > 0.0) {
+        let (d, solid_angle) = env_mapping::direction_of(self.mapping, uv)?;
+        if !(solid_angle > 0.0) || !(pdf_uv > 0.0) {
             return None;
         }
         let wi = self.world_from_render.transpose() * d;
-        Some(EnvironmentSample {
-            wi,
-            radiance: self.texel(uv),
-            pdf: pdf_uv / (2.0 * PI * PI * sin_theta),
-        })
+        Some(EnvironmentSample { wi, radiance: self.texel(uv), pdf: pdf_uv / solid_angle })
     }
 
     /// Whether the map sends any light (a black one is only a background).
@@ -146,6 +128,10 @@ mod tests {
     use super::*;
     use crate::sampling::chi_square::assert_fits;
     use crate::splitmix::SplitMix64;
+    use env_mapping::{direction_of, uv_of};
+    use std::f32::consts::PI;
+
+    const LAT_LONG: EnvironmentMapping = EnvironmentMapping::LatLong;
 
     /// A dim sky with a small bright sun, `width` × `height`.
     pub(crate) fn sun_map(width: usize, height: usize) -> Vec<Vec3> {
@@ -166,21 +152,27 @@ mod tests {
     #[test]
     fn directions_map_as_the_course_defines() {
         // Looking along −z sees the image centre; +x is u = 3/4; straight up is the top.
-        let (uv, _) = EnvironmentLight::uv_of(Vec3::NEG_Z);
+        let (uv, _) = uv_of(LAT_LONG, Vec3::NEG_Z);
         assert!((uv - Vec2::new(0.5, 0.5)).length() < 1e-6, "{uv}");
-        let (uv, _) = EnvironmentLight::uv_of(Vec3::X);
+        let (uv, _) = uv_of(LAT_LONG, Vec3::X);
         assert!((uv - Vec2::new(0.75, 0.5)).length() < 1e-6, "{uv}");
-        assert!(EnvironmentLight::uv_of(Vec3::Y).0.y.abs() < 1e-6);
+        assert!(uv_of(LAT_LONG, Vec3::Y).0.y.abs() < 1e-6);
         for uv in [Vec2::new(0.1, 0.2), Vec2::new(0.7, 0.9), Vec2::new(0.5, 0.5)] {
-            let (d, _) = EnvironmentLight::direction_of(uv);
-            assert!((EnvironmentLight::uv_of(d).0 - uv).length() < 1e-5, "round trip {uv}");
+            let (d, _) = direction_of(LAT_LONG, uv).unwrap();
+            assert!((uv_of(LAT_LONG, d).0 - uv).length() < 1e-5, "round trip {uv}");
         }
     }
 
     #[test]
     fn sampling_density_matches_pdf_by_chi_square() {
+        for mapping in [EnvironmentMapping::LatLong, EnvironmentMapping::Probe] {
+            sampling_matches_pdf(mapping);
+        }
+    }
+
+    fn sampling_matches_pdf(mapping: EnvironmentMapping) {
         let (w, h) = (16, 8);
-        let light = EnvironmentLight::new(w, h, &sun_map(w, h), Vec3::ONE, rotation());
+        let light = EnvironmentLight::new(w, h, &sun_map(w, h), Vec3::ONE, mapping, rotation());
         // Cells: 12 bands of cos θ × 24 of φ, in world space, each of equal solid angle.
         let (bands, sectors) = (12usize, 24usize);
         let cell_of = |d: Vec3| {
@@ -203,21 +195,26 @@ mod tests {
             }
             *e *= 4.0 * std::f64::consts::PI / (bands * sectors * grid * grid) as f64;
         }
+        // A probe's rim cells reach past the disc: draws landing there return `None` (they
+        // carry no light, so the estimate stays unbiased), and the last bin counts them.
         let total: f64 = expected.iter().sum();
-        assert!((total - 1.0).abs() < 0.01, "the pdf integrates to {total}");
+        assert!(total <= 1.0 + 1e-3 && total > 0.97, "the pdf integrates to {total}");
+        expected.push((1.0 - total).max(0.0));
         let mut rng = SplitMix64(7);
         let samples = 300_000u64;
-        let mut counts = vec![0u64; bands * sectors];
+        let mut counts = vec![0u64; bands * sectors + 1];
         for _ in 0..samples {
-            let s = light.sample(Vec2::new(rng.unit(), rng.unit())).unwrap();
+            let Some(s) = light.sample(Vec2::new(rng.unit(), rng.unit())) else {
+                counts[bands * sectors] += 1;
+                continue;
+            };
             assert!((s.wi.length() - 1.0).abs() < 1e-5);
             let pdf = light.pdf(s.wi);
             assert!((pdf - s.pdf).abs() <= 1e-3 * s.pdf, "pdf {pdf} vs sampled {}", s.pdf);
             assert_eq!(light.radiance(s.wi), s.radiance);
             counts[cell_of(rotation() * s.wi)] += 1;
         }
-        let normalised: Vec<f64> = expected.iter().map(|e| e / total).collect();
-        assert_fits("environment sampling", &counts, &normalised, samples);
+        assert_fits(&format!("environment sampling ({mapping:?})"), &counts, &expected, samples);
     }
 
     /// Irradiance at a surface facing `n` estimated with `samples` directions: by the
@@ -250,7 +247,7 @@ mod tests {
     #[test]
     fn importance_sampling_beats_uniform_sampling_on_a_sun() {
         let (w, h) = (64, 32);
-        let light = EnvironmentLight::new(w, h, &sun_map(w, h), Vec3::ONE, rotation());
+        let light = EnvironmentLight::new(w, h, &sun_map(w, h), Vec3::ONE, LAT_LONG, rotation());
         // A surface that faces the sun's general direction.
         let sun = light.sample(Vec2::new(0.5, 0.5)).unwrap().wi;
         let n = (sun + Vec3::new(0.2, 0.1, 0.0)).normalize();
@@ -269,7 +266,8 @@ mod tests {
 
     #[test]
     fn a_black_map_is_not_sampled_and_sends_nothing() {
-        let light = EnvironmentLight::new(2, 1, &[Vec3::ZERO; 2], Vec3::ONE, Mat3::IDENTITY);
+        let light =
+            EnvironmentLight::new(2, 1, &[Vec3::ZERO; 2], Vec3::ONE, LAT_LONG, Mat3::IDENTITY);
         assert!(!light.is_lit());
         assert!(light.sample(Vec2::new(0.3, 0.3)).is_none());
         assert_eq!(light.pdf(Vec3::X), 0.0);
@@ -278,6 +276,7 @@ mod tests {
             1,
             &[Vec3::new(f32::NAN, 1.0, 1.0)],
             Vec3::ONE,
+            LAT_LONG,
             Mat3::IDENTITY,
         );
         assert_eq!(light.radiance(Vec3::Y), Vec3::ZERO);

@@ -4,6 +4,7 @@
 //! the same way but never hit.
 
 mod emitter;
+mod env_mapping;
 mod environment;
 #[cfg(test)]
 mod tests;
