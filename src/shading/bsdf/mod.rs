@@ -1,5 +1,7 @@
 //! Scattering at a surface: a Lambertian lobe plus at most one specular lobe (mirror,
-//! conductor with Fresnel, or glass), GGX microfacets for rough mirrors and metals.
+//! conductor with Fresnel, or glass), GGX microfacets for rough mirrors and metals, plus the
+//! specular term of a course material's reflectance model (`phong.specular` with its
+//! `CourseBrdf`), which the course adds on top of the rest, glass included.
 //! Directions are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
 mod fresnel;
@@ -8,7 +10,8 @@ mod ggx;
 pub use fresnel::{fresnel_conductor, fresnel_dielectric};
 
 use crate::color::luminance;
-use crate::scene::Specular;
+use crate::scene::{CourseBrdf, Specular};
+use crate::shading::course_brdf::{CourseTerms, cos_weighted};
 use crate::shading::material::Material;
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
@@ -38,8 +41,11 @@ pub struct Bsdf {
     delta_specular: bool,
     /// Whether the incoming ray arrived on the side the surface normal points to.
     front_face: bool,
-    /// Probability of choosing the specular lobe.
+    /// Probability of choosing the specular lobe (among the lobes other than `course`).
     p_specular: f32,
+    /// The course model's specular term, sampled by the cosine with probability `p_course`.
+    course: Option<(CourseBrdf, CourseTerms)>,
+    p_course: f32,
 }
 
 impl Bsdf {
@@ -75,6 +81,29 @@ impl Bsdf {
         } else {
             0.0
         };
+        // The course's specular term is added to whatever else the material does, without
+        // energy coupling (the course's glass reflects ks on top of Fresnel's share).
+        let course = material
+            .phong
+            .as_ref()
+            .filter(|p| p.specular.max_element() > 0.0 && p.specular.is_finite())
+            .map(|p| {
+                let terms =
+                    CourseTerms { diffuse: Vec3::ZERO, specular: p.specular, exponent: p.exponent };
+                (p.brdf, terms)
+            });
+        let p_course = match &course {
+            None => 0.0,
+            Some((_, terms)) => {
+                let others = if specular_weight.is_infinite() {
+                    1.0
+                } else {
+                    (specular_weight + diffuse_weight).min(1.0)
+                };
+                let weight = luminance(terms.specular).max(1e-3);
+                weight / (weight + others)
+            }
+        };
         Bsdf {
             frame,
             diffuse,
@@ -83,12 +112,14 @@ impl Bsdf {
             delta_specular: material.specular_is_delta(),
             front_face,
             p_specular,
+            course,
+            p_course,
         }
     }
 
     /// True if light sampling can contribute (some lobe is not a delta distribution).
     pub fn has_smooth_lobe(&self) -> bool {
-        self.p_specular < 1.0 || !self.delta_specular
+        self.p_course > 0.0 || self.p_specular < 1.0 || !self.delta_specular
     }
 
     fn local_from_render(&self, w: Vec3) -> Vec3 {
@@ -121,6 +152,10 @@ impl Bsdf {
             value += f * (d * ggx::g2(wo, wi, self.alpha) / (4.0 * wo.z));
             pdf += self.p_specular * ggx::pdf_reflect(wo, h, self.alpha);
         }
+        if let Some((brdf, terms)) = &self.course {
+            value += cos_weighted(brdf, terms, Vec3::Z, wi, wo);
+            pdf = self.p_course * wi.z * FRAC_1_PI + (1.0 - self.p_course) * pdf;
+        }
         (value, pdf)
     }
 
@@ -130,15 +165,25 @@ impl Bsdf {
         if wo.z <= 0.0 {
             return None;
         }
+        if u_lobe < self.p_course {
+            let wi = crate::sampling::cosine_hemisphere(u);
+            return self.mixture_sample(wo_render, self.frame * wi);
+        }
+        // The rest of [0, 1) chooses among the other lobes; a delta lobe's weight counts the
+        // probability of not having chosen the course lobe.
+        let u_lobe = (u_lobe - self.p_course) / (1.0 - self.p_course);
+        let not_course = 1.0 - self.p_course;
         if u_lobe < self.p_specular {
             if let Specular::Dielectric { ior, .. } = self.specular {
-                return Some(self.sample_dielectric(wo, ior, u.x));
+                let mut sample = self.sample_dielectric(wo, ior, u.x);
+                sample.weight /= not_course;
+                return Some(sample);
             }
             if self.delta_specular {
                 let wi = Vec3::new(-wo.x, -wo.y, wo.z);
                 return Some(BsdfSample {
                     wi: self.frame * wi,
-                    weight: self.specular_tint(wo.z) / self.p_specular,
+                    weight: self.specular_tint(wo.z) / (self.p_specular * not_course),
                     pdf: 0.0,
                     delta: true,
                     transmitted: false,

@@ -113,6 +113,7 @@ fn every_smooth_lobe_samples_its_own_density() {
         ("ggx conductor α 0.3", conductor(0.3, Vec3::ONE)),
         ("ggx conductor α 0.05", conductor(0.05, Vec3::ONE)),
         ("lambert + ggx mirror α 0.2", rough_mirror(0.2, Vec3::splat(0.8))),
+        ("lambert + course modified Phong", with_course_lobe(Material::diffuse(Vec3::splat(0.5)))),
     ];
     for (m, (name, material)) in materials.iter().enumerate() {
         let bsdf = Bsdf::new(material, material.albedo, Mat3::IDENTITY, true);
@@ -206,4 +207,71 @@ fn fresnel_limits() {
     assert_eq!(fresnel_dielectric(0.1, 1.0 / 1.5), 1.0);
     let gold = fresnel_conductor(1.0, Vec3::new(0.143, 0.374, 1.442), Vec3::new(3.98, 2.38, 1.60));
     assert!(gold.x > gold.z && gold.x > 0.9);
+}
+
+/// `material` plus the course's specular term: ks 0.3, normalized modified Phong, exponent 20.
+fn with_course_lobe(material: Material) -> Material {
+    let phong = crate::scene::PhongDesc {
+        ambient: Vec3::ZERO,
+        specular: Vec3::splat(0.3),
+        exponent: 20.0,
+        brdf: CourseBrdf::ModifiedPhong { normalized: true },
+    };
+    Material { phong: Some(phong), ..material }
+}
+
+/// The course's glass: Fresnel reflection and refraction plus its specular term on top. The
+/// sampled estimator must give each part its own integral: the smooth samples the course
+/// lobe's directional albedo (by quadrature), reflection Fresnel's share, refraction the rest.
+#[test]
+fn course_glass_adds_its_specular_term_to_fresnel() {
+    let glass = with_course_lobe(Material {
+        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+        ..Default::default()
+    });
+    let bsdf = Bsdf::new(&glass, Vec3::ZERO, Mat3::IDENTITY, true);
+    assert!(bsdf.has_smooth_lobe(), "next-event estimation sees the course lobe");
+    let (brdf, terms) = bsdf.course.unwrap();
+    for wo in directions() {
+        let (rings, sectors) = (1000, 180);
+        let mut lobe = 0.0f64;
+        for i in 0..rings {
+            let cos_theta = (i as f32 + 0.5) / rings as f32;
+            for j in 0..sectors {
+                let phi = 2.0 * PI * (j as f32 + 0.5) / sectors as f32;
+                let sin_theta = (1.0 - cos_theta * cos_theta).sqrt();
+                let wi = Vec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta);
+                lobe += f64::from(cos_weighted(&brdf, &terms, Vec3::Z, wi, wo).x);
+            }
+        }
+        lobe *= 2.0 * std::f64::consts::PI / (rings * sectors) as f64;
+        let mut rng = SplitMix64(17);
+        let n = 400_000;
+        let (mut smooth, mut smooth2, mut reflected, mut transmitted) = (0.0, 0.0, 0.0, 0.0);
+        for _ in 0..n {
+            let Some(s) = bsdf.sample(wo, rng.unit(), Vec2::new(rng.unit(), rng.unit())) else {
+                continue;
+            };
+            let w = f64::from(s.weight.x);
+            match (s.delta, s.transmitted) {
+                (false, _) => {
+                    smooth += w;
+                    smooth2 += w * w;
+                }
+                (true, false) => reflected += w,
+                (true, true) => transmitted += w * 2.25, // radiance compression (η²) undone
+            }
+        }
+        let n = n as f64;
+        let (smooth, reflected, transmitted) = (smooth / n, reflected / n, transmitted / n);
+        let sigma = ((smooth2 / n - smooth * smooth) / n).sqrt();
+        let fresnel = f64::from(fresnel_dielectric(wo.z, 1.5));
+        println!(
+            "wo {wo}: course lobe {smooth:.4} vs {lobe:.4} (σ {sigma:.4}), reflected \
+             {reflected:.4} vs {fresnel:.4}, transmitted {transmitted:.4}"
+        );
+        assert!((smooth - lobe).abs() < 4.0 * sigma + 1e-3, "{smooth} vs {lobe}");
+        assert!((reflected - fresnel).abs() < 0.01, "{reflected} vs {fresnel}");
+        assert!((transmitted - (1.0 - fresnel)).abs() < 0.01, "{transmitted}");
+    }
 }
