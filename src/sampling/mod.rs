@@ -16,7 +16,10 @@ mod warps;
 use crate::splitmix::mix64;
 use glam::Vec2;
 pub use pixel::pixel_sample;
-pub use warps::{concentric_disk, cosine_hemisphere, frame_from_normal, uniform_triangle};
+pub use warps::{
+    concentric_disk, cosine_hemisphere, cosine_power_hemisphere, cosine_power_pdf,
+    frame_from_normal, uniform_triangle,
+};
 
 /// Hash of the four counters.
 pub fn hash4(seed: u64, pixel: u64, sample: u64, dimension: u64) -> u64 {

@@ -9,6 +9,23 @@ pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
     Vec3::new(d.x, d.y, z)
 }
 
+/// Direction about +Z with density ∝ cos^p θ over the hemisphere (Phong lobes): pdf =
+/// (p + 1)/(2π) cos^p θ (`cosine_power_pdf`).
+pub fn cosine_power_hemisphere(u: Vec2, exponent: f32) -> Vec3 {
+    let cos_theta = u.x.powf(1.0 / (exponent + 1.0));
+    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+    let (sin_phi, cos_phi) = (2.0 * std::f32::consts::PI * u.y).sin_cos();
+    Vec3::new(sin_theta * cos_phi, sin_theta * sin_phi, cos_theta)
+}
+
+/// The density of `cosine_power_hemisphere` at a direction `cos_theta` from +Z.
+pub fn cosine_power_pdf(cos_theta: f32, exponent: f32) -> f32 {
+    if cos_theta <= 0.0 {
+        return 0.0;
+    }
+    (exponent + 1.0) / (2.0 * std::f32::consts::PI) * cos_theta.powf(exponent)
+}
+
 /// Uniform point on the unit disk (Shirley–Chiu concentric map).
 pub fn concentric_disk(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;

@@ -12,6 +12,7 @@ pub use fresnel::{fresnel_conductor, fresnel_dielectric};
 use crate::color::luminance;
 use crate::scene::{CourseBrdf, Specular};
 use crate::shading::course_brdf::{CourseTerms, cos_weighted};
+use crate::shading::course_lobe;
 use crate::shading::material::Material;
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
@@ -43,7 +44,8 @@ pub struct Bsdf {
     front_face: bool,
     /// Probability of choosing the specular lobe (among the lobes other than `course`).
     p_specular: f32,
-    /// The course model's specular term, sampled by the cosine with probability `p_course`.
+    /// The course model's specular term, sampled by its lobe (`course_lobe`) with
+    /// probability `p_course`.
     course: Option<(CourseBrdf, CourseTerms)>,
     p_course: f32,
 }
@@ -154,7 +156,8 @@ impl Bsdf {
         }
         if let Some((brdf, terms)) = &self.course {
             value += cos_weighted(brdf, terms, Vec3::Z, wi, wo);
-            pdf = self.p_course * wi.z * FRAC_1_PI + (1.0 - self.p_course) * pdf;
+            let lobe = course_lobe::pdf(brdf, terms.exponent, wo, wi);
+            pdf = self.p_course * lobe + (1.0 - self.p_course) * pdf;
         }
         (value, pdf)
     }
@@ -165,8 +168,8 @@ impl Bsdf {
         if wo.z <= 0.0 {
             return None;
         }
-        if u_lobe < self.p_course {
-            let wi = crate::sampling::cosine_hemisphere(u);
+        if let (Some((brdf, terms)), true) = (&self.course, u_lobe < self.p_course) {
+            let wi = course_lobe::sample(brdf, terms.exponent, wo, u)?;
             return self.mixture_sample(wo_render, self.frame * wi);
         }
         // The rest of [0, 1) chooses among the other lobes; a delta lobe's weight counts the

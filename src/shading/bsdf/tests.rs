@@ -113,8 +113,35 @@ fn every_smooth_lobe_samples_its_own_density() {
         ("ggx conductor α 0.3", conductor(0.3, Vec3::ONE)),
         ("ggx conductor α 0.05", conductor(0.05, Vec3::ONE)),
         ("lambert + ggx mirror α 0.2", rough_mirror(0.2, Vec3::splat(0.8))),
-        ("lambert + course modified Phong", with_course_lobe(Material::diffuse(Vec3::splat(0.5)))),
     ];
+    let course_models = [
+        CourseBrdf::OriginalBlinnPhong,
+        CourseBrdf::OriginalPhong,
+        CourseBrdf::ModifiedBlinnPhong { normalized: false },
+        CourseBrdf::ModifiedBlinnPhong { normalized: true },
+        CourseBrdf::ModifiedPhong { normalized: false },
+        CourseBrdf::ModifiedPhong { normalized: true },
+        CourseBrdf::TorranceSparrow {
+            kd_fresnel: true,
+            eta: Vec3::splat(0.4),
+            k: Vec3::splat(2.8),
+        },
+    ];
+    let lambert = || Material::diffuse(Vec3::splat(0.5));
+    let course = course_models
+        .iter()
+        .map(|m| (format!("lambert + {m:?}, p 20"), course_lobe(lambert(), *m, 20.0)));
+    let sharp = CourseBrdf::ModifiedPhong { normalized: true };
+    let sharp = [(
+        "glossy black + ModifiedPhong, p 200".to_owned(),
+        course_lobe(Material::diffuse(Vec3::ZERO), sharp, 200.0),
+    )];
+    let materials: Vec<(String, Material)> = materials
+        .into_iter()
+        .map(|(name, m)| (name.to_owned(), m))
+        .chain(course)
+        .chain(sharp)
+        .collect();
     for (m, (name, material)) in materials.iter().enumerate() {
         let bsdf = Bsdf::new(material, material.albedo, Mat3::IDENTITY, true);
         for (d, wo) in directions().into_iter().enumerate() {
@@ -209,14 +236,10 @@ fn fresnel_limits() {
     assert!(gold.x > gold.z && gold.x > 0.9);
 }
 
-/// `material` plus the course's specular term: ks 0.3, normalized modified Phong, exponent 20.
-fn with_course_lobe(material: Material) -> Material {
-    let phong = crate::scene::PhongDesc {
-        ambient: Vec3::ZERO,
-        specular: Vec3::splat(0.3),
-        exponent: 20.0,
-        brdf: CourseBrdf::ModifiedPhong { normalized: true },
-    };
+/// `material` plus the course's specular term of `brdf`: ks 0.3, exponent `exponent`.
+fn course_lobe(material: Material, brdf: CourseBrdf, exponent: f32) -> Material {
+    let phong =
+        crate::scene::PhongDesc { ambient: Vec3::ZERO, specular: Vec3::splat(0.3), exponent, brdf };
     Material { phong: Some(phong), ..material }
 }
 
@@ -225,10 +248,11 @@ fn with_course_lobe(material: Material) -> Material {
 /// lobe's directional albedo (by quadrature), reflection Fresnel's share, refraction the rest.
 #[test]
 fn course_glass_adds_its_specular_term_to_fresnel() {
-    let glass = with_course_lobe(Material {
+    let glass = Material {
         specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
         ..Default::default()
-    });
+    };
+    let glass = course_lobe(glass, CourseBrdf::ModifiedPhong { normalized: true }, 20.0);
     let bsdf = Bsdf::new(&glass, Vec3::ZERO, Mat3::IDENTITY, true);
     assert!(bsdf.has_smooth_lobe(), "next-event estimation sees the course lobe");
     let (brdf, terms) = bsdf.course.unwrap();

@@ -1,0 +1,57 @@
+//! Importance sampling of the specular term of the course's reflectance models
+//! (`course_brdf`): directions drawn in proportion to the lobe's cos^p factor, in the local
+//! shading frame (normal = +Z).
+//!
+//! * Phong models (`cos α_r`, α_r between wi and the mirror direction of wo): wi about the
+//!   mirror direction with density (p+1)/(2π) cos^p α_r.
+//! * Blinn-Phong models and Torrance-Sparrow (`cos α_h`, α_h between n and the half vector):
+//!   h about n with density (p+1)/(2π) cos^p α_h, wi the reflection of wo about h; the
+//!   density of wi is that of h over 4 (wo · h).
+//!
+//! Directions that end below the surface are returned as `None` (the lobe has nothing
+//! there); the densities count them, so they integrate to at most 1 over the hemisphere.
+
+use crate::sampling::{cosine_power_hemisphere, cosine_power_pdf, frame_from_normal};
+use crate::scene::CourseBrdf;
+use glam::{Vec2, Vec3};
+
+/// Whether the model's lobe is about the mirror direction (else about the half vector).
+fn about_mirror_direction(brdf: &CourseBrdf) -> bool {
+    matches!(brdf, CourseBrdf::OriginalPhong | CourseBrdf::ModifiedPhong { .. })
+}
+
+fn mirror(wo: Vec3) -> Vec3 {
+    Vec3::new(-wo.x, -wo.y, wo.z)
+}
+
+/// A direction for `wo` (local, wo.z > 0) drawn in proportion to the lobe of exponent `p`.
+pub fn sample(brdf: &CourseBrdf, p: f32, wo: Vec3, u: Vec2) -> Option<Vec3> {
+    let local = cosine_power_hemisphere(u, p);
+    let wi = if about_mirror_direction(brdf) {
+        frame_from_normal(mirror(wo)) * local
+    } else {
+        let h = local;
+        let wo_h = wo.dot(h);
+        if wo_h <= 0.0 {
+            return None;
+        }
+        2.0 * wo_h * h - wo
+    };
+    (wi.z > 0.0 && wi.is_finite()).then(|| wi.normalize())
+}
+
+/// The density with which `sample` draws `wi` for `wo` (both local).
+pub fn pdf(brdf: &CourseBrdf, p: f32, wo: Vec3, wi: Vec3) -> f32 {
+    if wi.z <= 0.0 || wo.z <= 0.0 {
+        return 0.0;
+    }
+    if about_mirror_direction(brdf) {
+        return cosine_power_pdf(mirror(wo).dot(wi), p);
+    }
+    let h = (wo + wi).normalize_or_zero();
+    let wo_h = wo.dot(h);
+    if wo_h <= 0.0 {
+        return 0.0;
+    }
+    cosine_power_pdf(h.z, p) / (4.0 * wo_h)
+}
