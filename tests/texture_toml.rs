@@ -231,3 +231,34 @@ fn pixel_aspect_stretches_the_horizontal_field_of_view() {
     writer.write(&stretched, &dir.join("back.toml"), "round trip").unwrap();
     assert_eq!(embray::scene::load(&dir.join("back.toml")).unwrap().camera, stretched.camera);
 }
+
+/// The path tracer's course lobe takes its reflectance from `specular_texture` where given:
+/// a constant texture of ks renders exactly as `phong.specular = ks`, and both add a
+/// highlight to the lobe-less quad.
+#[test]
+fn a_specular_texture_drives_the_path_tracers_course_lobe() {
+    let dir = std::env::temp_dir().join(format!("embray-specular-toml-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = "albedo = [0.3, 0.3, 0.3]\nbrdf = { model = \"modified_phong\", normalized = true }";
+    for backend in backends() {
+        let render = |material: String| {
+            let scene = quad_scene(&dir, &material);
+            render_ok(&scene, &options(&scene, backend, 4)).film
+        };
+        let given =
+            render(format!("{base}\nphong = {{ specular = [0.5, 0.5, 0.5], exponent = 20 }}"));
+        let textured = render(format!(
+            "{base}\nphong = {{ specular = [0, 0, 0], exponent = 20 }}\n\
+             specular_texture = {{ type = \"checker2d\", scale = 1, even = [0.5, 0.5, 0.5], \
+             odd = [0.5, 0.5, 0.5] }}"
+        ));
+        let matte = render(format!("{base}\nphong = {{ specular = [0, 0, 0], exponent = 20 }}"));
+        let same = image_error(&textured, &given);
+        assert!(same.max_abs < 1e-6, "{}: {same:?}", backend.name());
+        let sum =
+            |f: &embray::film::Film| f.color.iter().map(|c| c.element_sum() as f64).sum::<f64>();
+        let ratio = sum(&given) / sum(&matte);
+        assert!(ratio > 1.05, "{}: the lobe adds only {ratio}", backend.name());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

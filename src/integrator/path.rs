@@ -271,8 +271,13 @@ impl<'a> PathTracer<'a> {
                 break;
             }
             let albedo = self.albedo(material, &si, ray.time);
+            let course_specular = match (&material.specular_texture, &material.phong) {
+                (Some(t), Some(_)) => self.tracer.texture_color(t, &si, ray.time),
+                (_, phong) => phong.as_ref().map_or(Vec3::ZERO, |p| p.specular),
+            };
+            let frame = self.shading_frame(si.shading_normal);
             let bsdf =
-                Bsdf::new(material, albedo, self.shading_frame(si.shading_normal), si.front_face);
+                Bsdf::with_reflectances(material, albedo, course_specular, frame, si.front_face);
             let wo = -ray.dir.normalize();
             let last = depth + 1 >= self.max_depth;
             if bsdf.has_smooth_lobe() {

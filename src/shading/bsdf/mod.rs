@@ -59,6 +59,19 @@ impl Bsdf {
     /// `albedo · (1 − reflectance)`, and albedos above 1 (allowed by the course's Whitted
     /// model) are clamped to 1. Glass has no Lambertian part.
     pub fn new(material: &Material, albedo: Vec3, frame: Mat3, front_face: bool) -> Self {
+        let course_specular = material.phong.as_ref().map_or(Vec3::ZERO, |p| p.specular);
+        Self::with_reflectances(material, albedo, course_specular, frame, front_face)
+    }
+
+    /// `new` with the course model's specular reflectance given (a `specular_texture`'s
+    /// value here) instead of the material's `phong.specular`.
+    pub fn with_reflectances(
+        material: &Material,
+        albedo: Vec3,
+        course_specular: Vec3,
+        frame: Mat3,
+        front_face: bool,
+    ) -> Self {
         let albedo = albedo.clamp(Vec3::ZERO, Vec3::ONE);
         let diffuse = match material.specular {
             Specular::None => albedo,
@@ -85,13 +98,13 @@ impl Bsdf {
         };
         // The course's specular term is added to whatever else the material does, without
         // energy coupling (the course's glass reflects ks on top of Fresnel's share).
+        let specular = course_specular.max(Vec3::ZERO);
         let course = material
             .phong
             .as_ref()
-            .filter(|p| p.specular.max_element() > 0.0 && p.specular.is_finite())
+            .filter(|_| specular.max_element() > 0.0 && specular.is_finite())
             .map(|p| {
-                let terms =
-                    CourseTerms { diffuse: Vec3::ZERO, specular: p.specular, exponent: p.exponent };
+                let terms = CourseTerms { diffuse: Vec3::ZERO, specular, exponent: p.exponent };
                 (p.brdf, terms)
             });
         let p_course = match &course {
