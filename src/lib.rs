@@ -15,6 +15,7 @@ pub mod camera;
 pub mod choice;
 pub mod color;
 pub mod compare;
+pub mod compare_linear;
 pub mod compile;
 pub mod distributed;
 pub mod excerpt;

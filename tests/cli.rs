@@ -251,3 +251,39 @@ fn tonemap_maps_an_exr_like_render_does() {
     assert!(std::fs::metadata(dir.join("a.exr")).unwrap().len() > 0, "a.exr destroyed");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `embray compare` on two EXRs gives the linear figures: identical renders agree exactly,
+/// renders with different seeds differ by a small RMSE; an EXR against a PNG, or a heat map
+/// of EXRs, is refused with a clear message.
+#[test]
+fn compare_reads_two_exrs_linearly() {
+    let dir = temp_dir("compare-exr");
+    std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
+    for (name, seed) in [("a", "1"), ("b", "1"), ("c", "2")] {
+        let out = embray(
+            &["render", "scene.toml", "-o", &format!("{name}.exr"), "--seed", seed, "--quiet"],
+            &dir,
+        );
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    }
+    let same = embray(&["compare", "a.exr", "b.exr"], &dir);
+    let text = String::from_utf8_lossy(&same.stdout);
+    assert!(same.status.success(), "{}", String::from_utf8_lossy(&same.stderr));
+    assert!(text.contains("16x12 linear") && text.contains("RMSE 0.000000,"), "{text}");
+    assert!(text.contains("(largest difference 0.0000 %)"), "{text}");
+    let other = embray(&["compare", "a.exr", "c.exr"], &dir);
+    let text = String::from_utf8_lossy(&other.stdout);
+    assert!(other.status.success() && !text.contains("RMSE 0.000000,"), "{text}");
+    for (args, needle) in [
+        (&["compare", "a.exr", "a.png"][..], "compare an EXR with an EXR"),
+        (&["compare", "a.exr", "b.exr", "--heatmap", "h.png"][..], "--heatmap is for 8-bit"),
+        (&["compare", "a.exr", "missing.exr"][..], "missing.exr"),
+    ] {
+        let out = embray(args, &dir);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && stderr.contains(needle), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+    assert!(!dir.join("h.png").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,10 +1,11 @@
-//! `embray compare`: two images' difference in 1/255 steps, and optionally a heat map.
+//! `embray compare`: two 8-bit images' difference in 1/255 steps, and optionally a heat map;
+//! two EXRs' channel means, RMSE and relative error.
 
 use anyhow::Result;
 use clap::Args;
 use embray::compare::{compare_images, read_rgb};
 use embray::output::{OutputPlan, OutputSet, encode_rgb8};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use super::console::{note, out};
 
@@ -30,10 +31,23 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     plan.input("the second image", &args.b);
     let heatmap =
         args.heatmap.as_deref().map(|p| plan.output("--heatmap", p, false)).transpose()?;
+    match (is_exr(&args.a), is_exr(&args.b)) {
+        (true, true) if heatmap.is_some() => {
+            anyhow::bail!("--heatmap is for 8-bit images (PNG, JPEG), not EXRs")
+        }
+        (true, true) => return compare_linear(&args.a, &args.b),
+        (false, false) => {}
+        _ => anyhow::bail!(
+            "'{}' and '{}': compare an EXR with an EXR, or an 8-bit image with an 8-bit image \
+             (`embray tonemap` makes a PNG of an EXR)",
+            args.a.display(),
+            args.b.display()
+        ),
+    }
     let c = compare_images(&read_rgb(&args.a)?, &read_rgb(&args.b)?, args.tolerance)?;
     out(format!(
         "{}x{}: mean abs error {:.4}/255, max {}/255; {:.4} % of pixels off by more than {}/255 \
-         ({:.4} % within)",
+         ({:.4} % within)\n",
         c.width,
         c.height,
         c.mean_abs_error,
@@ -49,5 +63,35 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         files.commit()?;
         note(format!("wrote {}", target.path.display()));
     }
+    Ok(())
+}
+
+/// Whether `path` names an OpenEXR file (by its extension; the reader checks the contents).
+fn is_exr(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"))
+}
+
+fn compare_linear(a: &Path, b: &Path) -> Result<()> {
+    use embray::bench::convergence::read_reference;
+    let c = embray::compare_linear::compare_films(&read_reference(a)?, &read_reference(b)?)?;
+    let [ra, ga, ba] = c.mean_a.to_array();
+    let [rb, gb, bb] = c.mean_b.to_array();
+    out(format!(
+        "{}x{} linear: channel means [{ra:.6}, {ga:.6}, {ba:.6}] vs [{rb:.6}, {gb:.6}, {bb:.6}] \
+         (largest difference {:.4} %); RMSE {:.6}, relative MSE {:.4e}, max abs {:.6}; \
+         {:.4} % of pixels off by more than 1 % of the second's mean{}\n",
+        c.width,
+        c.height,
+        100.0 * c.mean_relative_difference(),
+        c.rmse,
+        c.error.relative_mse,
+        c.error.max_abs,
+        100.0 * c.error.fraction_off,
+        if c.error.non_finite > 0 {
+            format!("; {} non-finite pixels in the first", c.error.non_finite)
+        } else {
+            String::new()
+        }
+    ))?;
     Ok(())
 }

@@ -53,9 +53,10 @@ pub enum Command {
     /// files into OUT_meshes/ beside it. A file with several cameras gives one TOML per
     /// camera, OUT_<image name>.toml, sharing the meshes.
     Convert(ConvertArgs),
-    /// Compare two images: mean absolute error (in 1/255 units), the fraction of pixels with
-    /// some channel off by more than the tolerance, and optionally a heat map of the
-    /// per-pixel largest channel difference.
+    /// Compare two images. 8-bit images (PNG, JPEG): mean absolute error (in 1/255 units),
+    /// the fraction of pixels with some channel off by more than the tolerance, and
+    /// optionally a heat map of the per-pixel largest channel difference. Two EXRs: each
+    /// channel's mean, RMSE, relative MSE and the largest difference.
     Compare(CompareArgs),
     /// Tone-map a linear EXR to PNG with the photographic operator (Reinhard et al. 2002, as
     /// the CENG795 course specifies it), without rendering.

@@ -1,0 +1,83 @@
+//! Comparing two linear (EXR) images: the mean of each channel, the RMSE, and `image_error`'s
+//! relative figures. Used by `embray compare` when both images are EXRs.
+
+use crate::compare::CompareError;
+use crate::film::Film;
+use crate::image_error::{ImageError, image_error};
+use glam::DVec3;
+
+/// How two linear images differ.
+#[derive(Clone, Debug)]
+pub struct LinearComparison {
+    pub width: u32,
+    pub height: u32,
+    /// Mean of each channel over the finite pixels of each image.
+    pub mean_a: DVec3,
+    pub mean_b: DVec3,
+    /// √(mean over channels and pixels of (a − b)²), over pixels finite in both.
+    pub rmse: f64,
+    /// Relative MSE, largest difference and the fraction of pixels off by 1 % of `b`'s mean.
+    pub error: ImageError,
+}
+
+impl LinearComparison {
+    /// The largest relative difference of a channel mean, |a − b| / b.
+    pub fn mean_relative_difference(&self) -> f64 {
+        ((self.mean_a - self.mean_b).abs() / self.mean_b.abs().max(DVec3::splat(1e-30)))
+            .max_element()
+    }
+}
+
+fn mean(film: &Film) -> DVec3 {
+    let finite: Vec<DVec3> =
+        film.color.iter().filter(|c| c.is_finite()).map(|c| c.as_dvec3()).collect();
+    finite.iter().sum::<DVec3>() / finite.len().max(1) as f64
+}
+
+/// Compares `a` with the reference `b` (same size, else an error).
+pub fn compare_films(a: &Film, b: &Film) -> Result<LinearComparison, CompareError> {
+    if (a.width, a.height) != (b.width, b.height) {
+        return Err(CompareError::Size {
+            a_width: a.width,
+            a_height: a.height,
+            b_width: b.width,
+            b_height: b.height,
+        });
+    }
+    let (mut sum2, mut n) = (0.0f64, 0usize);
+    for (x, y) in a.color.iter().zip(&b.color) {
+        if x.is_finite() && y.is_finite() {
+            sum2 += (x.as_dvec3() - y.as_dvec3()).length_squared();
+            n += 3;
+        }
+    }
+    Ok(LinearComparison {
+        width: a.width,
+        height: a.height,
+        mean_a: mean(a),
+        mean_b: mean(b),
+        rmse: (sum2 / n.max(1) as f64).sqrt(),
+        error: image_error(a, b),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn figures_of_a_known_difference() {
+        let mut a = Film::new(2, 1);
+        let mut b = Film::new(2, 1);
+        a.color = vec![Vec3::splat(1.0), Vec3::splat(3.0)];
+        b.color = vec![Vec3::splat(1.0), Vec3::splat(1.0)];
+        let c = compare_films(&a, &b).unwrap();
+        assert_eq!(c.mean_a, DVec3::splat(2.0));
+        assert_eq!(c.mean_b, DVec3::splat(1.0));
+        assert!((c.mean_relative_difference() - 1.0).abs() < 1e-12);
+        // Half the samples differ by 2: RMSE √(4/2).
+        assert!((c.rmse - 2f64.sqrt()).abs() < 1e-12, "{}", c.rmse);
+        assert!(matches!(compare_films(&a, &Film::new(1, 2)), Err(CompareError::Size { .. })));
+    }
+}
