@@ -274,7 +274,17 @@ fn compare_reads_two_exrs_linearly() {
     let other = embray(&["compare", "a.exr", "c.exr"], &dir);
     let text = String::from_utf8_lossy(&other.stdout);
     assert!(other.status.success() && !text.contains("RMSE 0.000000,"), "{text}");
+    // An EXR whose header claims 100000² pixels is refused before anything is allocated.
+    let mut huge = std::fs::read(dir.join("a.exr")).unwrap();
+    for name in [&b"dataWindow\0box2i\0"[..], &b"displayWindow\0box2i\0"[..]] {
+        let at = huge.windows(name.len()).position(|w| w == name).unwrap() + name.len() + 4;
+        let corners = [0i32, 0, 99_999, 99_999].map(i32::to_le_bytes).concat();
+        huge[at..at + 16].copy_from_slice(&corners);
+    }
+    std::fs::write(dir.join("huge.exr"), huge).unwrap();
     for (args, needle) in [
+        (&["compare", "huge.exr", "a.exr"][..], "100000 × 100000 pixels"),
+        (&["tonemap", "huge.exr", "-o", "h.png"][..], "100000 × 100000 pixels"),
         (&["compare", "a.exr", "a.png"][..], "compare an EXR with an EXR"),
         (&["compare", "a.exr", "b.exr", "--heatmap", "h.png"][..], "--heatmap is for 8-bit"),
         (&["compare", "a.exr", "missing.exr"][..], "missing.exr"),

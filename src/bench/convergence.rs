@@ -38,6 +38,19 @@ pub fn read_reference(path: &Path) -> Result<Film, ConvergenceError> {
     // Through the capped reader: only a regular file, of bounded size, recorded as an input
     // so that no output of the run may overwrite it.
     let bytes = crate::scene::input_file::read_bytes(path).map_err(|e| error(e.to_string()))?;
+    // The header's size is checked before the reader allocates for it: a render's size at
+    // most, as any image embray wrote is.
+    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(&bytes), false)
+        .map_err(|e| error(e.to_string()))?;
+    let max = crate::scene::MAX_RESOLUTION as usize;
+    for header in &meta.headers {
+        let (w, h) = (header.layer_size.width(), header.layer_size.height());
+        if w == 0 || h == 0 || w > max || h > max {
+            return Err(error(format!(
+                "{w} × {h} pixels; images of 1 to {max} on a side are read"
+            )));
+        }
+    }
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
