@@ -19,6 +19,7 @@ pub mod compare_linear;
 pub mod compile;
 pub mod distributed;
 pub mod excerpt;
+pub mod exr_rgb;
 pub mod film;
 pub mod float_error;
 pub mod image_error;

@@ -32,7 +32,6 @@ pub enum ConvergenceError {
 
 /// The linear RGB of an EXR (its `R`, `G`, `B` channels) as a film.
 pub fn read_reference(path: &Path) -> Result<Film, ConvergenceError> {
-    use exr::prelude::*;
     let error =
         |message: String| ConvergenceError::Reference { path: path.display().to_string(), message };
     // Through the capped reader: only a regular file, of bounded size, recorded as an input
@@ -40,41 +39,14 @@ pub fn read_reference(path: &Path) -> Result<Film, ConvergenceError> {
     let bytes = crate::scene::input_file::read_bytes(path).map_err(|e| error(e.to_string()))?;
     // The header's size is checked before the reader allocates for it: a render's size at
     // most, as any image embray wrote is.
-    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(&bytes), false)
-        .map_err(|e| error(e.to_string()))?;
-    let max = crate::scene::MAX_RESOLUTION as usize;
-    for header in &meta.headers {
-        let (w, h) = (header.layer_size.width(), header.layer_size.height());
-        if w == 0 || h == 0 || w > max || h > max {
-            return Err(error(format!(
-                "{w} × {h} pixels; images of 1 to {max} on a side are read"
-            )));
-        }
+    let (w, h) = crate::exr_rgb::size(&bytes).map_err(error)?;
+    let max = u64::from(crate::scene::MAX_RESOLUTION);
+    if w == 0 || h == 0 || w > max || h > max {
+        return Err(error(format!("{w} × {h} pixels; images of 1 to {max} on a side are read")));
     }
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(std::io::Cursor::new(bytes))
-        .map_err(|e| error(e.to_string()))?;
-    let layer = image.layer_data;
-    let (w, h) = (layer.size.width() as u32, layer.size.height() as u32);
-    let channel = |name: &str| {
-        layer
-            .channel_data
-            .list
-            .iter()
-            .find(|c| c.name.to_string() == name)
-            .map(|c| c.sample_data.values_as_f32().collect::<Vec<f32>>())
-            .ok_or_else(|| error(format!("it has no '{name}' channel")))
-    };
-    let (r, g, b) = (channel("R")?, channel("G")?, channel("B")?);
+    let (w, h, pixels) = crate::exr_rgb::read(&bytes).map_err(error)?;
     let mut film = Film::new(w, h);
-    for (i, c) in film.color.iter_mut().enumerate() {
-        *c = glam::Vec3::new(r[i], g[i], b[i]);
-    }
+    film.color = pixels;
     Ok(film)
 }
 

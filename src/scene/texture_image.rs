@@ -101,50 +101,23 @@ pub fn load_radiance(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImag
     if !bytes.starts_with(&EXR_MAGIC) {
         return load(at, decode_srgb);
     }
-    use exr::prelude::*;
-    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(&bytes), false)
-        .map_err(|e| at.error(e.to_string()))?;
-    let header = meta.headers.first().ok_or_else(|| at.error("an EXR file without layers"))?;
-    let (width, height) = (header.layer_size.width() as u64, header.layer_size.height() as u64);
+    let (width, height) = crate::exr_rgb::size(&bytes).map_err(|e| at.error(e))?;
     let texels = width * height;
     if texels == 0 || texels > MAX_TEXTURE_TEXELS {
         return Err(at.error(format!(
             "{width} × {height} texels; a radiance map takes 1 to {MAX_TEXTURE_TEXELS} texels"
         )));
     }
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(std::io::Cursor::new(&bytes))
-        .map_err(|e| at.error(e.to_string()))?;
-    let layer = image.layer_data;
-    let channel = |name: &str| {
-        layer
-            .channel_data
-            .list
-            .iter()
-            .find(|c| c.name.to_string() == name)
-            .map(|c| c.sample_data.values_as_f32().collect::<Vec<f32>>())
-    };
-    let (r, g, b) = match (channel("R"), channel("G"), channel("B"), channel("Y")) {
-        (Some(r), Some(g), Some(b), _) => (r, g, b),
-        (_, _, _, Some(y)) => (y.clone(), y.clone(), y),
-        _ => return Err(at.error("it has neither R, G, B channels nor a Y channel")),
-    };
-    let mut out = Vec::with_capacity(texels as usize);
-    for (i, ((r, g), b)) in r.iter().zip(&g).zip(&b).enumerate() {
-        let c = glam::Vec3::new(*r, *g, *b);
+    let (_, _, pixels) = crate::exr_rgb::read(&bytes).map_err(|e| at.error(e))?;
+    let mut out = Vec::with_capacity(pixels.len());
+    for (i, c) in pixels.into_iter().enumerate() {
         if !c.is_finite() {
             let (x, y) = (i as u64 % width, i as u64 / width);
-            return Err(at.error(format!("texel ({x}, {y}) is not finite: {r} {g} {b}")));
+            return Err(
+                at.error(format!("texel ({x}, {y}) is not finite: {} {} {}", c.x, c.y, c.z))
+            );
         }
         out.push(c.max(glam::Vec3::ZERO));
-    }
-    if out.len() as u64 != texels {
-        return Err(at.error("its channels hold fewer values than its size"));
     }
     Ok(Arc::new(TextureImage {
         file: at.image.clone(),

@@ -74,23 +74,25 @@ pub fn cos_weighted(brdf: &CourseBrdf, terms: &CourseTerms, n: Vec3, wi: Vec3, w
     }
 }
 
+/// Every model, for the tests of evaluation and sampling.
+#[cfg(test)]
+pub(crate) const MODELS: [CourseBrdf; 7] = [
+    CourseBrdf::OriginalBlinnPhong,
+    CourseBrdf::OriginalPhong,
+    CourseBrdf::ModifiedBlinnPhong { normalized: false },
+    CourseBrdf::ModifiedBlinnPhong { normalized: true },
+    CourseBrdf::ModifiedPhong { normalized: false },
+    CourseBrdf::ModifiedPhong { normalized: true },
+    CourseBrdf::TorranceSparrow {
+        kd_fresnel: true,
+        eta: Vec3::new(0.37, 0.37, 0.37),
+        k: Vec3::new(2.82, 2.82, 2.82),
+    },
+];
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    const MODELS: [CourseBrdf; 7] = [
-        CourseBrdf::OriginalBlinnPhong,
-        CourseBrdf::OriginalPhong,
-        CourseBrdf::ModifiedBlinnPhong { normalized: false },
-        CourseBrdf::ModifiedBlinnPhong { normalized: true },
-        CourseBrdf::ModifiedPhong { normalized: false },
-        CourseBrdf::ModifiedPhong { normalized: true },
-        CourseBrdf::TorranceSparrow {
-            kd_fresnel: true,
-            eta: Vec3::new(0.37, 0.37, 0.37),
-            k: Vec3::new(2.82, 2.82, 2.82),
-        },
-    ];
 
     fn direction(theta: f32, phi: f32) -> Vec3 {
         Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())

@@ -114,19 +114,7 @@ fn every_smooth_lobe_samples_its_own_density() {
         ("ggx conductor α 0.05", conductor(0.05, Vec3::ONE)),
         ("lambert + ggx mirror α 0.2", rough_mirror(0.2, Vec3::splat(0.8))),
     ];
-    let course_models = [
-        CourseBrdf::OriginalBlinnPhong,
-        CourseBrdf::OriginalPhong,
-        CourseBrdf::ModifiedBlinnPhong { normalized: false },
-        CourseBrdf::ModifiedBlinnPhong { normalized: true },
-        CourseBrdf::ModifiedPhong { normalized: false },
-        CourseBrdf::ModifiedPhong { normalized: true },
-        CourseBrdf::TorranceSparrow {
-            kd_fresnel: true,
-            eta: Vec3::splat(0.4),
-            k: Vec3::splat(2.8),
-        },
-    ];
+    let course_models = crate::shading::course_brdf::MODELS;
     let lambert = || Material::diffuse(Vec3::splat(0.5));
     let course = course_models
         .iter()

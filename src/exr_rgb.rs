@@ -1,0 +1,49 @@
+//! The linear RGB of an OpenEXR file held in memory (R, G, B channels, or Y for grey
+//! images), for every reader of EXRs that are not embray's own part files: radiance maps,
+//! reference images, `compare` and `tonemap`. Callers check `size` against their own limit
+//! before `read` allocates for the pixels.
+
+use glam::Vec3;
+
+/// An EXR's first layer's width and height, from its header alone.
+pub fn size(bytes: &[u8]) -> Result<(u64, u64), String> {
+    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
+        .map_err(|e| e.to_string())?;
+    let header = meta.headers.first().ok_or("an EXR file without layers")?;
+    Ok((header.layer_size.width() as u64, header.layer_size.height() as u64))
+}
+
+/// The first layer's pixels, row-major from the top, as they are (not clamped, not checked
+/// for finiteness); its width and height.
+pub fn read(bytes: &[u8]) -> Result<(u32, u32, Vec<Vec3>), String> {
+    use exr::prelude::*;
+    let image = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(std::io::Cursor::new(bytes))
+        .map_err(|e| e.to_string())?;
+    let layer = image.layer_data;
+    let (width, height) = (layer.size.width(), layer.size.height());
+    let channel = |name: &str| {
+        layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == name)
+            .map(|c| c.sample_data.values_as_f32().collect::<Vec<f32>>())
+    };
+    let (r, g, b) = match (channel("R"), channel("G"), channel("B"), channel("Y")) {
+        (Some(r), Some(g), Some(b), _) => (r, g, b),
+        (_, _, _, Some(y)) => (y.clone(), y.clone(), y),
+        _ => return Err("it has neither R, G, B channels nor a Y channel".to_owned()),
+    };
+    let pixels = width * height;
+    if [r.len(), g.len(), b.len()].iter().any(|&n| n != pixels) {
+        return Err("its channels hold fewer values than its size".to_owned());
+    }
+    let rgb = r.iter().zip(&g).zip(&b).map(|((r, g), b)| Vec3::new(*r, *g, *b)).collect();
+    Ok((width as u32, height as u32, rgb))
+}
