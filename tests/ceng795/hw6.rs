@@ -229,3 +229,63 @@ fn hw5_directional_light_scene_matches_the_course_image() {
         assert!(c.fraction_within() >= 0.999, "{}: {c:?}", backend.name());
     }
 }
+
+/// hw6's Veach Ajar (Bitterli's door scene, 382,624 triangles, an area light behind the
+/// door): the direct-lighting camera (1280×720, 1 spp) against the instructor's image on every
+/// backend, and the 2500-spp path-traced camera, which has no reference in the pack, rendered
+/// small (160×90, 4 spp) on every backend, which must agree.
+#[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
+fn hw6_veach_ajar_direct_lighting_matches_and_the_path_camera_renders() {
+    let data = data_dir().join("2022/hw6/veach-ajar");
+    let cameras = ceng795::load(&data.join("inputs/scene.xml")).unwrap();
+    assert_eq!(cameras.len(), 2, "the direct and the path-traced camera");
+    let direct = &cameras[0];
+    assert_eq!(direct.image_name, "VeachAjar_direct.png");
+    let reference = read_rgb(&data.join("outputs/VeachAjar_direct.png")).unwrap();
+    for (backend, image, seconds) in render_on_every_backend("VeachAjar_direct", &direct.scene) {
+        let c = compare_images(&image, &reference, 3).unwrap();
+        // Direct light reaches little of the room (a strip of floor and the door's edge), so
+        // the image is mostly black, and at 1 spp each lit pixel sees one random point of the
+        // area light in both renders: judge the lit region by the total light it receives
+        // and by 16×16 block means.
+        let total = |i: &RgbImage| {
+            i.pixels().map(|p| p.0.iter().map(|&v| v as f64).sum::<f64>()).sum::<f64>()
+        };
+        let ratio = total(&image) / total(&reference);
+        let blocks = |i: &RgbImage| embray::compare::downsample_box(i, 16);
+        let b = compare_images(&blocks(&image), &blocks(&reference), 3).unwrap();
+        println!(
+            "VeachAjar_direct on {}: {:.3} % of pixels within 3/255, total light {ratio:.4} × \
+             the reference's, 16×16 blocks {:.3} % within 3/255 (max {}), {seconds:.2} s",
+            backend.name(),
+            100.0 * c.fraction_within(),
+            100.0 * b.fraction_within(),
+            b.max_abs_error
+        );
+        assert!(c.fraction_within() >= MIN_WITHIN, "{}: {c:?}", backend.name());
+        // Measured 0.933. Both images are single samples (our linear mean moves 3 % between
+        // 1 and 64 spp), and truncation to integers takes more from a less noisy estimator:
+        // our solid-angle light samples lose more to it than the course's area samples.
+        assert!((ratio - 1.0).abs() < 0.15, "{}: total light {ratio}", backend.name());
+        assert!(b.fraction_within() >= 0.99, "{}: {b:?}", backend.name());
+    }
+    let mut path = cameras[1].scene.clone();
+    assert_eq!(path.settings.integrator, embray::scene::IntegratorKind::Path);
+    path.camera.width = 160;
+    path.camera.height = 90;
+    path.settings.spp = 4;
+    render_on_every_backend("VeachAjar_path (160×90, 4 spp)", &path);
+    // Same viewpoint, same radiance units: indirect light only adds to the direct light.
+    let mut small_direct = direct.scene.clone();
+    small_direct.camera.width = 160;
+    small_direct.camera.height = 90;
+    small_direct.settings.spp = 4;
+    let mean = |scene: &SceneDesc| {
+        let film = render(scene, &course_options(scene, BackendKind::compiled()[0])).unwrap().film;
+        film.color.iter().map(|c| c.as_dvec3()).sum::<DVec3>() / film.color.len() as f64
+    };
+    let (direct_mean, path_mean) = (mean(&small_direct), mean(&path));
+    println!("VeachAjar means at 160×90: direct {direct_mean:.4}, path traced {path_mean:.4}");
+    assert!(path_mean.cmpgt(direct_mean).all(), "{path_mean} vs {direct_mean}");
+}
