@@ -98,12 +98,16 @@ fn exr_means_match(pack: &str, skip: fn(&str) -> bool, tolerance: fn(&str) -> f6
             for backend in BackendKind::compiled() {
                 let mut options = course_options(&camera.scene, backend);
                 options.spp = 4;
+                let start = Instant::now();
                 let got = mean(&render(&camera.scene, &options).unwrap().film.color);
+                let seconds = start.elapsed().as_secs_f64();
                 let relative = (got - expected).abs() / expected;
                 println!(
-                    "{tag} on {}: mean {got:.4} vs {expected:.4}, off by {:.2} %",
+                    "{tag} on {}: mean {got:.4} vs {expected:.4}, off by {:.2} % ({} spp, \
+                     {seconds:.2} s)",
                     backend.name(),
-                    100.0 * relative.max_element()
+                    100.0 * relative.max_element(),
+                    options.spp
                 );
                 let limit = tolerance(&name);
                 assert!(relative.max_element() <= limit, "{tag} on {}", backend.name());
