@@ -90,3 +90,27 @@ fn an_offset_of_1e11_renders_in_cameraworld_and_is_refused_in_world() {
         &["s.toml", "±1e8 (world render space", "render in cameraworld"],
     );
 }
+
+/// A mesh whose file holds a vertex out of range: the message names the mesh file as well as
+/// the object (found by the loader property test, which once had only `objects[0]`).
+#[test]
+fn an_obj_vertex_at_4e10_names_the_mesh_file() {
+    let scratch = Scratch::new();
+    scratch.write("far.obj", "v 0 0 0\nv 1 0 0\nv 0 42949672960 0\nf 1 2 3\n");
+    scratch.write(
+        "s.toml",
+        "[camera]\nlookfrom = [0.0, 0.0, 4.0]\nlookat = [0.0, 0.0, 0.0]\nvfov = 40.0\n\
+         resolution = [8, 8]\n\n[[objects]]\ntype = \"mesh\"\nfile = \"far.obj\"\n",
+    );
+    refused_in(
+        &scratch,
+        &["render", "s.toml"],
+        &[
+            "s.toml",
+            "objects[0] is 4.29",
+            "(at the farthest corner of objects[0] (far.obj",
+            "coordinate range",
+            "line 7",
+        ],
+    );
+}

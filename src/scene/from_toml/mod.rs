@@ -5,6 +5,7 @@
 mod lights;
 mod repeat;
 
+use crate::excerpt::excerpt;
 use crate::scene::camera_settings::{camera, settings};
 use crate::scene::desc::{LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use crate::scene::error::SceneError;
@@ -75,17 +76,21 @@ pub(crate) fn scene_desc(
             let reach = crate::limits::object_reach(placed, &mut bounds);
             let (max, world_max) =
                 (crate::limits::MAX_COORDINATE, crate::limits::MAX_WORLD_COORDINATE);
-            // A `repeat` copy is named by its grid index; the object itself by `path`.
-            let which = match placed.name.contains("copy") {
-                true => format!(" of {}", placed.name),
-                false => String::new(),
+            // A `repeat` copy is named by its grid index and a mesh by its file (and model),
+            // so that the message names the file whose vertices are out of range; a plain
+            // object is named by `path` alone. The name goes into the requirement, which is
+            // not shortened as the value is.
+            let which = match placed.name == path.to_string() {
+                true => String::new(),
+                false => format!(" (at the farthest corner of {})", excerpt(&placed.name)),
             };
             let requirement =
-                format!("within the supported coordinate range ±{max:e} of the camera");
-            let value = format!("{from_camera:e} from the camera at the farthest corner{which}");
+                format!("within the supported coordinate range ±{max:e} of the camera{which}");
+            let value = format!("{from_camera:e} from the camera");
             ctx.require(from_camera <= max, &path, value, &requirement)?;
-            let requirement = format!("within the supported world coordinate range ±{world_max:e}");
-            let value = format!("{reach:e} at the farthest corner{which}");
+            let requirement =
+                format!("within the supported world coordinate range ±{world_max:e}{which}");
+            let value = format!("{reach:e} from the origin");
             ctx.require(reach <= world_max, &path, value, &requirement)?;
         }
     }
