@@ -23,7 +23,7 @@ pub struct EnvironmentLight {
     mapping: EnvironmentMapping,
     /// Render space's rotation back to world space (identity for translation-only spaces).
     world_from_render: Mat3,
-    /// Over the image, in proportion to luminance × sin θ; `None` for a black map.
+    /// Over the image, in proportion to luminance × solid angle per cell; `None` for a black map.
     distribution: Option<Piecewise2D>,
 }
 
