@@ -116,3 +116,4 @@ mod hw6;
 mod inline_errors;
 mod inline_scenes;
 mod reference_scenes;
+mod renderer_params;
