@@ -6,8 +6,8 @@ use crate::render_scene::{Geometry, Instance, Placement, Prototype};
 use crate::scene::LightDesc;
 use crate::scene::{EnvironmentMap, EnvironmentMapping};
 use crate::shading::light::{
-    DirectionalLight, Emitter, EmitterShape, EnvironmentLight, InstanceEmitters, LightSet,
-    NO_GEOMETRY, PointLight, SpotCone,
+    DirectionalLight, Ellipsoid, Emitter, EmitterShape, EnvironmentLight, InstanceEmitters,
+    LightSet, NO_GEOMETRY, PointLight, SpotCone,
 };
 use crate::shading::material::Material;
 use crate::transform::course_square_axes;
@@ -84,11 +84,12 @@ fn emitters_of_instance(
             Some((emitters, of_prim))
         }
         Geometry::Sphere(s) => {
-            if transform.is_some() {
-                // Ellipsoids are not sampled either (no closed-form area sampling).
-                return None;
-            }
-            let shape = EmitterShape::Sphere { center: s.center, radius: s.radius };
+            let shape = match transform {
+                None => EmitterShape::Sphere { center: s.center, radius: s.radius },
+                Some(m) => {
+                    EmitterShape::Ellipsoid(Box::new(Ellipsoid::new(s.center, s.radius, m)?))
+                }
+            };
             Some((vec![Emitter::new(geom_id, shape, emission, false)], vec![0]))
         }
     }

@@ -27,7 +27,7 @@ pub struct SurfaceInteraction {
 
 /// Applies `m` to a point with error bound `error`, returning the point and its new bound
 /// (pbrt-v4's interval transform).
-fn transform_point_with_error(m: &Affine3A, p: Vec3, error: Vec3) -> (Vec3, Vec3) {
+pub(crate) fn transform_point_with_error(m: &Affine3A, p: Vec3, error: Vec3) -> (Vec3, Vec3) {
     let linear = Mat3::from(m.matrix3);
     let abs = Mat3::from_cols(linear.x_axis.abs(), linear.y_axis.abs(), linear.z_axis.abs());
     let point = m.transform_point3(p);

@@ -192,3 +192,48 @@ fn the_convergence_check_sees_a_truncated_depth() {
         );
     }
 }
+
+/// A `LightSphere` under a non-uniform `<Scaling>` (hw6's ellipsoid light) is sampled like
+/// any emitter. Its sampling goes through the sphere's own space
+/// (`src/shading/light/ellipsoid.rs`, whose tests check the density against a brute-force
+/// solid angle); here a sphere scaled by 1 1 1.0001 must light the box as the plain sphere
+/// does (paired by seed), and one stretched 3× must light it, and more.
+#[test]
+fn scaled_light_spheres_light_the_box() {
+    let light = |scaling: &str| {
+        let (cameras, _) = cameras(8, 512);
+        let first = &cameras[..cameras.find("</Camera>").unwrap() + "</Camera>".len()];
+        let objects = BOX.replace(
+            r#"<LightMesh id="1">"#,
+            r#"<LightSphere id="1"><Material>1</Material><Center>9</Center><Radius>0.15</Radius>
+               <Radiance>30 30 30</Radiance><Transformations>s1 t1</Transformations></LightSphere>
+               <LightMesh id="1">"#,
+        );
+        let objects = objects.replace("<Radiance>6 6 6</Radiance>", "<Radiance>0 0 0</Radiance>");
+        let transforms = format!(
+            "<Transformations><Translation id=\"1\">0.3 0 1.7</Translation>\
+             <Scaling id=\"1\">{scaling}</Scaling></Transformations>"
+        );
+        let text = format!("<Scene>{first}</Cameras>{transforms}{objects}</Scene>");
+        let mut scenes = load_text(&text).unwrap_or_else(|e| panic!("{e}"));
+        scenes.remove(0)
+    };
+    let scenes = [light("1 1 1"), light("1 1 1.0001"), light("3 1 1")];
+    let means = image_means(&scenes, 6);
+    let [sphere, nearly, stretched] = [0, 1, 2].map(|i| mean_and_error(&means[i]).0);
+    let (apart, apart_error) = paired_difference(&means, 1, 0);
+    println!(
+        "box lit by a sphere {sphere}, scaled 1 1 1.0001 {nearly} (paired difference {apart} ± \
+         {apart_error}), 3 1 1 {stretched}"
+    );
+    assert!(sphere.min_element() > 0.01, "the sphere lights the box: {sphere}");
+    assert!(
+        (apart_error / sphere).max_element() < 0.005,
+        "too noisy to compare: {apart_error} of {sphere}"
+    );
+    assert!(
+        apart.abs().cmple(apart_error * 4.0 + sphere * 1e-3).all(),
+        "a sphere scaled by 1.0001 lights the box as the sphere does: {nearly} vs {sphere}"
+    );
+    assert!((stretched - sphere).min_element() > 0.2 * sphere.min_element(), "{stretched}");
+}

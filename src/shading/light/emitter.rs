@@ -5,6 +5,7 @@
 //! wastes samples on the parts seen at grazing angles. Densities are per unit solid angle at
 //! the shading point, so both strategies enter MIS alike.
 
+use super::ellipsoid::Ellipsoid;
 use crate::float_error::{TrianglePlane, sphere_point_from_local, triangle_point};
 use crate::sampling::{frame_from_normal, spherical_rectangle::SphericalRectangle};
 use crate::sampling::{spherical_triangle, uniform_triangle};
@@ -44,6 +45,8 @@ pub enum EmitterShape {
         center: Vec3,
         radius: f32,
     },
+    /// A sphere under an affine map (see `Ellipsoid`).
+    Ellipsoid(Box<Ellipsoid>),
 }
 
 impl EmitterShape {
@@ -78,7 +81,7 @@ impl EmitterShape {
             EmitterShape::Quad { vertices: [v0, ..], planes, .. } => {
                 (reference - *v0).dot(planes[0].normal) > 0.0
             }
-            EmitterShape::Sphere { .. } => true,
+            EmitterShape::Sphere { .. } | EmitterShape::Ellipsoid(_) => true,
         }
     }
 
@@ -89,6 +92,7 @@ impl EmitterShape {
             }
             EmitterShape::Quad { vertices: v, .. } => (v[1] - v[0]).cross(v[3] - v[0]).length(),
             EmitterShape::Sphere { radius, .. } => 4.0 * PI * radius * radius,
+            EmitterShape::Ellipsoid(e) => e.area(),
         }
     }
 }
@@ -107,7 +111,12 @@ pub struct ShapeSample {
 
 /// Density per unit solid angle at `reference` of a density per unit area `pdf_area` at
 /// `point` (normal `normal`).
-fn solid_angle_density(pdf_area: f32, reference: Vec3, point: Vec3, normal: Vec3) -> f32 {
+pub(super) fn solid_angle_density(
+    pdf_area: f32,
+    reference: Vec3,
+    point: Vec3,
+    normal: Vec3,
+) -> f32 {
     let to_point = point - reference;
     let dist2 = to_point.length_squared();
     let cos = normal.dot(to_point).abs() / dist2.sqrt();
@@ -170,6 +179,7 @@ impl EmitterShape {
                 let sin2_max = radius * radius / (*center - reference).length_squared();
                 (sin2_max < 0.9999).then_some(Spherical::Cone { sin2_max })
             }
+            EmitterShape::Ellipsoid(_) => None,
         }
     }
 
@@ -185,7 +195,7 @@ impl EmitterShape {
                 let radius2 = (*v0 - *v2).length_squared().max((*v1 - *v3).length_squared());
                 ((*v0 + *v2) * 0.5, radius2 * 0.25)
             }
-            EmitterShape::Sphere { .. } => return true,
+            EmitterShape::Sphere { .. } | EmitterShape::Ellipsoid(_) => return true,
         };
         (center - reference).length_squared() < NEAR_RADII * NEAR_RADII * radius2
     }
@@ -193,6 +203,9 @@ impl EmitterShape {
     /// A point sampled from `reference` with `u`; `None` where nothing can be sampled (a
     /// degenerate shape, or one seen exactly edge-on).
     pub fn sample_from(&self, reference: Vec3, u: Vec2) -> Option<ShapeSample> {
+        if let EmitterShape::Ellipsoid(e) = self {
+            return e.sample_from(reference, u);
+        }
         let Some(spherical) = self.spherical(reference) else {
             return self.sample_by_area(reference, u);
         };
@@ -234,6 +247,8 @@ impl EmitterShape {
                 let (point, error) = sphere_point(*center, *radius, normal);
                 (point, error, normal)
             }
+            // Not uniform by area: the sphere's uniform points carried over by the map.
+            EmitterShape::Ellipsoid(e) => return e.sample_from(reference, u),
         };
         let pdf = solid_angle_density(1.0 / self.area(), reference, point, normal);
         (pdf > 0.0).then_some(ShapeSample { point, error, normal, pdf })
@@ -255,6 +270,9 @@ impl EmitterShape {
     /// The density per unit solid angle with which `sample_from(reference, ..)` picks
     /// `point` (normal `normal`), a point on this shape.
     pub fn pdf_from(&self, reference: Vec3, point: Vec3, normal: Vec3) -> f32 {
+        if let EmitterShape::Ellipsoid(e) = self {
+            return e.pdf_from(reference, point, normal);
+        }
         match self.spherical(reference) {
             Some(spherical) => spherical.pdf(),
             None => solid_angle_density(1.0 / self.area(), reference, point, normal),

@@ -3,12 +3,14 @@
 //! point (see `emitter`). Emitters without geometry (the course's area lights) are sampled
 //! the same way but never hit.
 
+mod ellipsoid;
 mod emitter;
 mod env_mapping;
 mod environment;
 #[cfg(test)]
 mod tests;
 
+pub use ellipsoid::Ellipsoid;
 pub use emitter::{EmitterShape, ShapeSample};
 pub use environment::{EnvironmentLight, EnvironmentSample};
 
