@@ -5,7 +5,7 @@
 //! An affine map keeps tangency, so the object-space visible cap is exactly the visible part
 //! of the ellipsoid.
 
-use super::emitter::{EmitterShape, ShapeSample, solid_angle_density};
+use super::emitter::{EmitterShape, ShapeSample, solid_angle_density, solid_angle_per_area};
 use crate::shading::surface::transform_point_with_error;
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 use std::f32::consts::PI;
@@ -81,13 +81,8 @@ impl Ellipsoid {
         point: Vec3,
         normal: Vec3,
     ) -> f32 {
-        let to_point = p_object - reference_object;
-        let dist2 = to_point.length_squared();
-        let cos = n_object.dot(to_point).abs() / dist2.sqrt();
-        if !(cos > 0.0 && dist2 > 0.0) {
-            return 0.0;
-        }
-        let pdf_object_area = pdf_object * cos / dist2;
+        let pdf_object_area =
+            pdf_object * solid_angle_per_area(reference_object, p_object, n_object);
         solid_angle_density(pdf_object_area / self.area_scale(n_object), reference, point, normal)
     }
 
