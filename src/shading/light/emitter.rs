@@ -109,15 +109,6 @@ pub struct ShapeSample {
     pub pdf: f32,
 }
 
-/// Solid angle per unit area at `point` (normal `normal`) seen from `reference`: |cos| /
-/// distance², or 0 where that is degenerate (seen edge-on, or at the reference itself).
-pub(super) fn solid_angle_per_area(reference: Vec3, point: Vec3, normal: Vec3) -> f32 {
-    let to_point = point - reference;
-    let dist2 = to_point.length_squared();
-    let cos = normal.dot(to_point).abs() / dist2.sqrt();
-    if cos > 0.0 && dist2 > 0.0 { cos / dist2 } else { 0.0 }
-}
-
 /// Density per unit solid angle at `reference` of a density per unit area `pdf_area` at
 /// `point` (normal `normal`).
 pub(super) fn solid_angle_density(
@@ -126,8 +117,10 @@ pub(super) fn solid_angle_density(
     point: Vec3,
     normal: Vec3,
 ) -> f32 {
-    let per_area = solid_angle_per_area(reference, point, normal);
-    if per_area > 0.0 { pdf_area / per_area } else { 0.0 }
+    let to_point = point - reference;
+    let dist2 = to_point.length_squared();
+    let cos = normal.dot(to_point).abs() / dist2.sqrt();
+    if cos > 0.0 && dist2 > 0.0 { pdf_area * dist2 / cos } else { 0.0 }
 }
 
 /// Whether solid-angle sampling is stable for this solid angle.
