@@ -29,15 +29,14 @@ impl Ray {
     /// (by both backends, so they agree).
     #[inline]
     pub fn is_valid(&self) -> bool {
-        const LIMIT: f32 = Ray::COORDINATE_LIMIT;
-        self.origin.is_finite()
-            && self.dir.is_finite()
-            && self.origin.abs().max_element() < LIMIT
-            && self.dir.abs().max_element() < LIMIT
+        // Every ray is checked twice (path and backend): comparisons that are false for NaN
+        // do the finiteness tests too.
+        const LIMIT: Vec3 = Vec3::splat(Ray::COORDINATE_LIMIT);
+        self.origin.abs().cmplt(LIMIT).all()
+            && self.dir.abs().cmplt(LIMIT).all()
             && self.dir != Vec3::ZERO
-            && self.tmin.is_finite()
             && self.tmin >= 0.0
-            && !self.tmax.is_nan()
+            && self.tmin < f32::INFINITY
             && self.tmax >= self.tmin
             && self.time.is_finite()
     }
@@ -56,4 +55,45 @@ pub struct Hit {
     pub prim_id: u32,
     pub u: f32,
     pub v: f32,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rays_embree_would_abort_on_are_invalid() {
+        let good = Ray::new(Vec3::new(1.0, -2.0, 3.0), Vec3::new(0.0, 0.0, -1.0), f32::INFINITY);
+        assert!(good.is_valid());
+        let big = Ray::COORDINATE_LIMIT;
+        let bad_vectors = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, big, -big, f32::MAX];
+        for bad in bad_vectors {
+            for axis in 0..3 {
+                let mut r = good;
+                r.origin[axis] = bad;
+                assert!(!r.is_valid(), "origin {:?}", r.origin);
+                let mut r = good;
+                r.dir[axis] = bad;
+                assert!(!r.is_valid(), "dir {:?}", r.dir);
+            }
+        }
+        let mut r = good;
+        r.origin.x = big * (1.0 - f32::EPSILON);
+        assert!(r.is_valid(), "just inside the limit");
+        let invalid = [
+            Ray { dir: Vec3::ZERO, ..good },
+            Ray { tmin: -1e-30, ..good },
+            Ray { tmin: f32::NAN, ..good },
+            Ray { tmin: f32::INFINITY, tmax: f32::INFINITY, ..good },
+            Ray { tmax: f32::NAN, ..good },
+            Ray { tmin: 2.0, tmax: 1.0, ..good },
+            Ray { time: f32::NAN, ..good },
+            Ray { time: f32::INFINITY, ..good },
+        ];
+        for r in invalid {
+            assert!(!r.is_valid(), "{r:?}");
+        }
+        assert!(Ray { tmin: 0.0, tmax: 0.0, ..good }.is_valid(), "an empty interval is valid");
+        assert!(Ray { dir: Vec3::new(0.0, -0.0, 1e-40), ..good }.is_valid(), "subnormal direction");
+    }
 }

@@ -7,6 +7,7 @@ pub mod alias;
 pub(crate) mod chi_square;
 pub mod piecewise;
 mod pixel;
+mod sobol;
 pub mod spherical_rectangle;
 #[cfg(test)]
 mod spherical_tests;
@@ -106,7 +107,7 @@ impl SampleStream {
         if self.kind == SamplerKind::Sobol && self.sample < SOBOL_SAMPLES {
             // One scrambled sequence per (seed, pixel, draw).
             let scramble = hash_dimension(self.scramble_prefix, d) as u32;
-            let values = sobol_burley::sample_4d(self.sample as u32, 0, scramble);
+            let values = sobol::sample_4d(self.sample as u32, scramble);
             std::array::from_fn(|k| values[k])
         } else {
             std::array::from_fn(|k| to_unit_f32(hash_dimension(self.sample_prefix, d + k as u64)))
