@@ -39,19 +39,22 @@ pub struct TrianglePlane {
     /// Each component of e1 × e2 is off by γ(3)·|e1||e2|, which is large against |e1 × e2|
     /// for a sliver; normalising adds γ(3). 0 for a degenerate triangle (no plane).
     pub tilt: f32,
+    /// The longer edge times `tilt`: how far the tilt can move the plane over the triangle.
+    pub edge_tilt: f32,
 }
 
 impl TrianglePlane {
     pub fn new(tri: &[Vec3; 3]) -> Self {
         let (e1, e2) = (tri[1] - tri[0], tri[2] - tri[0]);
+        let (e1_length, e2_length) = (e1.length(), e2.length());
         let cross = e1.cross(e2);
         let area2 = cross.length();
-        let tilt = if area2 > 0.0 {
-            gamma(3) * (e1.length() * e2.length()) / area2 + gamma(3)
-        } else {
-            0.0
-        };
-        TrianglePlane { e1, e2, normal: cross.normalize_or_zero(), tilt }
+        let tilt =
+            if area2 > 0.0 { gamma(3) * (e1_length * e2_length) / area2 + gamma(3) } else { 0.0 };
+        // `normalize_or_zero` without computing the length again (one per hit).
+        let recip = 1.0 / area2;
+        let normal = if recip.is_finite() && recip > 0.0 { cross * recip } else { Vec3::ZERO };
+        TrianglePlane { e1, e2, normal, tilt, edge_tilt: e1_length.max(e2_length) * tilt }
     }
 }
 
@@ -72,8 +75,7 @@ pub fn triangle_point(tri: &[Vec3; 3], plane: &TrianglePlane, b1: f32, b2: f32) 
     let point = terms[0] + terms[1] + terms[2];
     let abs_sum = terms[0].abs() + terms[1].abs() + terms[2].abs();
     let edges = plane.e1.abs() + plane.e2.abs();
-    let tilted = plane.e1.length().max(plane.e2.length()) * plane.tilt;
-    (point, abs_sum * gamma(7) + edges * gamma(8) + Vec3::splat(tilted + MIN_OFFSET))
+    (point, abs_sum * gamma(7) + edges * gamma(8) + Vec3::splat(plane.edge_tilt + MIN_OFFSET))
 }
 
 /// Hit point on a triangle from the ray (`origin + t·dir`) projected onto the triangle's

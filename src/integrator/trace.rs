@@ -74,6 +74,8 @@ impl SceneTracer<'_> {
     }
 
     /// `si` with its shading normal replaced by `material`'s normal map, if it has one.
+    /// Inlined for the common case (no map: `si` unchanged, not copied through a call).
+    #[inline]
     pub fn with_normal_map(
         &self,
         si: SurfaceInteraction,
@@ -83,6 +85,16 @@ impl SceneTracer<'_> {
         if material.normal_map.is_none() && material.bump_map.is_none() {
             return si;
         }
+        self.apply_normal_map(si, material, time)
+    }
+
+    #[inline(never)]
+    fn apply_normal_map(
+        &self,
+        si: SurfaceInteraction,
+        material: &Material,
+        time: f32,
+    ) -> SurfaceInteraction {
         if let (None, Some((map, factor))) = (&material.normal_map, &material.bump_map) {
             if map.needs_object_point() {
                 // A solid height field: its gradient in render space, through the chain

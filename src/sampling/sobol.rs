@@ -4,19 +4,23 @@
 //! bounce, so this loop was ~4 % of a Cornell box render's instructions. The crate stays
 //! the definition: the tables are built from its `sobol_rev`, and the tests compare.
 
-use sobol_burley::parts::{hash, owen_scramble_rev, sobol_rev, u32_to_f32_norm};
+use sobol_burley::parts::{
+    Int4, hash, hash_int4, owen_scramble_int4_rev, owen_scramble_rev, sobol_rev,
+};
 use std::sync::LazyLock;
 
 /// The first dimension set's four Sobol dimensions for the top and the next byte of a
 /// bit-reversed index (the sequence uses only the top 16 bits: 2¹⁶ samples). The matrix is
 /// linear over XOR, so the value of the whole index is the XOR of the two entries.
 struct ByteTables {
-    top: [[u32; 4]; 256],
-    next: [[u32; 4]; 256],
+    top: [Int4; 256],
+    next: [Int4; 256],
 }
 
 static TABLES: LazyLock<ByteTables> = LazyLock::new(|| {
-    let row = |index_rev: u32| std::array::from_fn(|d| sobol_rev(index_rev, d as u32));
+    let row = |index_rev: u32| {
+        Int4::from(std::array::from_fn::<u32, 4, _>(|d| sobol_rev(index_rev, d as u32)))
+    };
     ByteTables {
         top: std::array::from_fn(|b| row((b as u32) << 24)),
         next: std::array::from_fn(|b| row((b as u32) << 16)),
@@ -29,16 +33,13 @@ pub fn sample_4d(index: u32, seed: u32) -> [f32; 4] {
     // The index is shuffled per seed (a nested uniform scramble), then the matrix applied.
     let shuffled_rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
     let tables = &*TABLES;
-    let top = &tables.top[(shuffled_rev >> 24) as usize];
-    let next = &tables.next[((shuffled_rev >> 16) & 0xff) as usize];
-    // The crate's per-dimension scramble seeds (for dimension set 0).
-    const DIMENSION_KEYS: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
-    let seed = seed.wrapping_mul(0x9c8f_2d3b);
-    std::array::from_fn(|d| {
-        let sobol_rev = top[d] ^ next[d];
-        let scrambled = owen_scramble_rev(sobol_rev, hash(seed ^ DIMENSION_KEYS[d]));
-        u32_to_f32_norm(scrambled.reverse_bits())
-    })
+    let sobol_rev = tables.top[(shuffled_rev >> 24) as usize]
+        ^ tables.next[((shuffled_rev >> 16) & 0xff) as usize];
+    // Then each dimension is Owen-scrambled with the crate's per-dimension seeds (for
+    // dimension set 0), four lanes at once as the crate does.
+    let dimension_keys = Int4::from([0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8]);
+    let scramble = Int4::from([seed.wrapping_mul(0x9c8f_2d3b); 4]) ^ dimension_keys;
+    owen_scramble_int4_rev(sobol_rev, hash_int4(scramble)).reverse_bits().to_f32_norm()
 }
 
 #[cfg(test)]
