@@ -31,6 +31,8 @@ pub enum EmitterShape {
     Triangle {
         vertices: [Vec3; 3],
         plane: TrianglePlane,
+        /// Kept: the density of area sampling (every far light sample) divides by it.
+        area: f32,
     },
     /// A parallelogram made of two triangles, (v0, v1, v3) and (v2, v3, v1), with v2
     /// opposite v0: the point with parameters (s, t) is v0 + s·(v1 − v0) + t·(v3 − v0), and
@@ -40,6 +42,7 @@ pub enum EmitterShape {
         vertices: [Vec3; 4],
         planes: [TrianglePlane; 2],
         rectangle: bool,
+        area: f32,
     },
     Sphere {
         center: Vec3,
@@ -51,7 +54,9 @@ pub enum EmitterShape {
 
 impl EmitterShape {
     pub fn triangle(vertices: [Vec3; 3]) -> Self {
-        EmitterShape::Triangle { vertices, plane: TrianglePlane::new(&vertices) }
+        let [v0, v1, v2] = vertices;
+        let area = 0.5 * (v1 - v0).cross(v2 - v0).length();
+        EmitterShape::Triangle { vertices, plane: TrianglePlane::new(&vertices), area }
     }
 
     /// The quad v0 v1 v2 v3 (in order around it); `None` unless it is a parallelogram
@@ -68,14 +73,15 @@ impl EmitterShape {
             return None;
         }
         let rectangle = edge_u.dot(edge_v).abs() <= 1e-5 * edge_u.length() * edge_v.length();
-        Some(EmitterShape::Quad { vertices, planes, rectangle })
+        let area = edge_u.cross(edge_v).length();
+        Some(EmitterShape::Quad { vertices, planes, rectangle, area })
     }
 
     /// Whether `reference` lies on the side a flat shape's normal points to (always, for a
     /// sphere).
     pub fn faces(&self, reference: Vec3) -> bool {
         match self {
-            EmitterShape::Triangle { vertices: [v0, ..], plane } => {
+            EmitterShape::Triangle { vertices: [v0, ..], plane, .. } => {
                 (reference - *v0).dot(plane.normal) > 0.0
             }
             EmitterShape::Quad { vertices: [v0, ..], planes, .. } => {
@@ -87,10 +93,7 @@ impl EmitterShape {
 
     pub fn area(&self) -> f32 {
         match self {
-            EmitterShape::Triangle { vertices: v, .. } => {
-                0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length()
-            }
-            EmitterShape::Quad { vertices: v, .. } => (v[1] - v[0]).cross(v[3] - v[0]).length(),
+            EmitterShape::Triangle { area, .. } | EmitterShape::Quad { area, .. } => *area,
             EmitterShape::Sphere { radius, .. } => 4.0 * PI * radius * radius,
             EmitterShape::Ellipsoid(e) => e.area(),
         }
@@ -211,7 +214,7 @@ impl EmitterShape {
         };
         let pdf = spherical.pdf();
         match (self, spherical) {
-            (EmitterShape::Triangle { vertices, plane }, Spherical::Triangle { .. }) => {
+            (EmitterShape::Triangle { vertices, plane, .. }, Spherical::Triangle { .. }) => {
                 let b = spherical_triangle::sample(vertices, reference, u)?;
                 let (point, error) = triangle_point(vertices, plane, b.x, b.y);
                 Some(ShapeSample { point, error, normal: plane.normal, pdf })
@@ -233,7 +236,7 @@ impl EmitterShape {
     /// at `reference`).
     pub(super) fn sample_by_area(&self, reference: Vec3, u: Vec2) -> Option<ShapeSample> {
         let (point, error, normal) = match self {
-            EmitterShape::Triangle { vertices, plane } => {
+            EmitterShape::Triangle { vertices, plane, .. } => {
                 let b = uniform_triangle(u);
                 let (point, error) = triangle_point(vertices, plane, b.x, b.y);
                 (point, error, plane.normal)
