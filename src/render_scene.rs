@@ -8,6 +8,7 @@
 
 use crate::camera::Camera;
 use crate::compile::effects::Effects;
+use crate::float_error::TrianglePlane;
 use crate::shading::light::LightSet;
 use crate::shading::material::Material;
 use crate::shading::texture::Texture;
@@ -22,12 +23,48 @@ pub struct TriangleMesh {
     pub normals: Option<Vec<Vec3>>,
     /// Per-vertex texture coordinates, if the mesh has them.
     pub uvs: Option<Vec<Vec2>>,
+    /// Each triangle's plane, kept for small meshes (see `CACHED_PLANES`); empty otherwise.
+    planes: Vec<TrianglePlane>,
 }
 
+/// Meshes up to this many triangles keep their planes: every hit on them then skips three
+/// square roots and two divisions. 44 bytes a triangle, so at most 1.4 MB a mesh, which
+/// stays in cache; a larger mesh's planes would cost a cache miss per hit, more than
+/// recomputing them.
+const CACHED_PLANES: usize = 1 << 15;
+
 impl TriangleMesh {
+    pub fn new(
+        positions: Vec<Vec3>,
+        indices: Vec<[u32; 3]>,
+        normals: Option<Vec<Vec3>>,
+        uvs: Option<Vec<Vec2>>,
+    ) -> Self {
+        let mut mesh = TriangleMesh { positions, indices, normals, uvs, planes: Vec::new() };
+        // A bad index keeps no planes: the backends report it when they build.
+        let vertex = |i: u32| mesh.positions.get(i as usize).copied();
+        if mesh.indices.len() <= CACHED_PLANES {
+            mesh.planes = mesh
+                .indices
+                .iter()
+                .map(|&[a, b, c]| Some(TrianglePlane::new(&[vertex(a)?, vertex(b)?, vertex(c)?])))
+                .collect::<Option<_>>()
+                .unwrap_or_default();
+        }
+        mesh
+    }
+
     pub fn triangle(&self, prim: u32) -> [Vec3; 3] {
         let [a, b, c] = self.indices[prim as usize];
         [self.positions[a as usize], self.positions[b as usize], self.positions[c as usize]]
+    }
+
+    /// The plane of triangle `prim`, as `TrianglePlane::new` of its vertices.
+    pub fn plane(&self, prim: u32, triangle: &[Vec3; 3]) -> TrianglePlane {
+        match self.planes.get(prim as usize) {
+            Some(plane) => *plane,
+            None => TrianglePlane::new(triangle),
+        }
     }
 }
 
@@ -192,5 +229,30 @@ impl RenderScene {
 
     pub fn prototype_of(&self, instance: u32) -> &Prototype {
         &self.prototypes[self.instances[instance as usize].prototype as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kept_planes_are_the_triangles_planes() {
+        let positions =
+            vec![Vec3::ZERO, Vec3::X, Vec3::new(0.3, 2.0, -1.0), Vec3::new(5.0, -1.0, 0.5)];
+        let mesh = TriangleMesh::new(positions, vec![[0, 1, 2], [1, 3, 2], [3, 0, 2]], None, None);
+        assert_eq!(mesh.planes.len(), 3);
+        for prim in 0..3 {
+            let triangle = mesh.triangle(prim);
+            let (kept, fresh) = (mesh.plane(prim, &triangle), TrianglePlane::new(&triangle));
+            assert_eq!(format!("{kept:?}"), format!("{fresh:?}"), "triangle {prim}");
+            assert_eq!(kept.normal, fresh.normal);
+        }
+        // A mesh built field by field (no kept planes) computes them.
+        let bare = TriangleMesh { planes: Vec::new(), ..mesh.clone() };
+        assert_eq!(
+            bare.plane(1, &bare.triangle(1)).normal,
+            mesh.plane(1, &mesh.triangle(1)).normal
+        );
     }
 }

@@ -53,12 +53,12 @@ fn random_scene(rng: &mut Rng) -> RenderScene {
         } else {
             (rng.in_box(2.0), rng.in_box(2.0))
         };
-        let mesh = TriangleMesh {
-            positions: vec![corner, corner + u, corner + u + v, corner + v],
-            indices: vec![[0, 1, 2], [0, 2, 3]],
-            normals: None,
-            uvs: None,
-        };
+        let mesh = TriangleMesh::new(
+            vec![corner, corner + u, corner + u + v, corner + v],
+            vec![[0, 1, 2], [0, 2, 3]],
+            None,
+            None,
+        );
         shapes.push((Geometry::Triangles(mesh), 0));
     }
     for _ in 0..15 {

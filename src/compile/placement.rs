@@ -47,7 +47,7 @@ fn place_mesh(
     } else {
         mesh.indices.clone()
     };
-    Ok(TriangleMesh { positions, indices, normals, uvs: mesh.uvs.clone() })
+    Ok(TriangleMesh::new(positions, indices, normals, mesh.uvs.clone()))
 }
 
 /// Translation · rotation · scale of `m`, or `None` if `m` shears.

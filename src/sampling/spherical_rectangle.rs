@@ -5,9 +5,90 @@
 use glam::{DVec3, Vec2, Vec3};
 use std::f64::consts::TAU;
 
-/// A rectangle `corner + s·edge_u + t·edge_v` (s, t in [0, 1], edges perpendicular) as
-/// seen from a reference point, in the rectangle's own frame with the reference point at
-/// the origin.
+/// The frame of a rectangle `corner + s·edge_u + t·edge_v` (s, t in [0, 1], edges
+/// perpendicular), fixed for the rectangle: an emitter keeps it, so each shading point only
+/// projects itself into it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RectangleFrame {
+    corner: DVec3,
+    /// Unit vectors along the edges, and their cross product.
+    x: DVec3,
+    y: DVec3,
+    z: DVec3,
+    edge_u_length: f64,
+    edge_v_length: f64,
+}
+
+impl RectangleFrame {
+    /// `None` when an edge is empty.
+    pub fn new(corner: Vec3, edge_u: Vec3, edge_v: Vec3) -> Option<Self> {
+        let (edge_u, edge_v) = (edge_u.as_dvec3(), edge_v.as_dvec3());
+        let x = edge_u.try_normalize()?;
+        let y = edge_v.try_normalize()?;
+        let z = x.cross(y);
+        (z.length_squared() > 0.0).then_some(RectangleFrame {
+            corner: corner.as_dvec3(),
+            x,
+            y,
+            z,
+            edge_u_length: edge_u.length(),
+            edge_v_length: edge_v.length(),
+        })
+    }
+
+    /// The rectangle as seen from `reference`; `None` when `reference` lies in its plane.
+    pub fn seen_from(&self, reference: Vec3) -> Option<SphericalRectangle> {
+        let d = self.corner - reference.as_dvec3();
+        // The side the point is on does not matter: the plane is put below it (z0 < 0).
+        let height = d.dot(self.z).abs();
+        if !(height > 0.0) {
+            return None;
+        }
+        let (x0, y0) = (d.dot(self.x), d.dot(self.y));
+        let (x1, y1) = (x0 + self.edge_u_length, y0 + self.edge_v_length);
+        let z0 = -height;
+        let h2 = height * height;
+        // The interior angles g0..g3 between the planes through the origin and consecutive
+        // edges, as arguments of (cos, sin) pairs with the common positive factors dropped:
+        // the planes' normals have closed forms in this frame (as in pbrt-v4), and
+        // cos g = −n_a·n_b, sin g = |n_a × n_b| reduce to a corner's coordinates and its
+        // distance. Pairs of angles are summed by multiplying the pairs as complex numbers:
+        // two `atan2` instead of four `acos`, and no precision lost near 0 and π.
+        let distance = |cx: f64, cy: f64| (cx * cx + cy * cy + h2).sqrt();
+        let g0 = (x1 * y0, height * distance(x1, y0));
+        let g1 = (-x1 * y1, height * distance(x1, y1));
+        let g2 = (x0 * y1, height * distance(x0, y1));
+        let g3 = (-x0 * y0, height * distance(x0, y0));
+        let g01 = angle_sum(g0, g1);
+        let g23 = angle_sum(g2, g3);
+        let k = TAU - g23;
+        let solid_angle = g01 - k;
+        Some(SphericalRectangle {
+            x0,
+            x1,
+            y0,
+            y1,
+            z0,
+            edge_u_length: self.edge_u_length,
+            edge_v_length: self.edge_v_length,
+            // The z components of the unit normals of the planes through the first and the
+            // third edge.
+            b0: -y0 / (y0 * y0 + h2).sqrt(),
+            b1: y1 / (y1 * y1 + h2).sqrt(),
+            k,
+            solid_angle,
+        })
+    }
+}
+
+/// The sum, in [0, 2π), of two angles in [0, π] given as (cos, sin) up to positive factors.
+fn angle_sum((c0, s0): (f64, f64), (c1, s1): (f64, f64)) -> f64 {
+    let angle = (c0 * s1 + s0 * c1).atan2(c0 * c1 - s0 * s1);
+    if angle < 0.0 { angle + TAU } else { angle }
+}
+
+/// A rectangle as seen from a reference point, in the rectangle's own frame with the
+/// reference point at the origin.
 #[derive(Clone, Copy, Debug)]
 pub struct SphericalRectangle {
     /// Extent of the rectangle along its edges, relative to the reference point.
@@ -26,50 +107,10 @@ pub struct SphericalRectangle {
 }
 
 impl SphericalRectangle {
-    /// `None` when the reference point lies in the rectangle's plane or an edge is empty.
+    /// The rectangle `corner + s·edge_u + t·edge_v` seen from `reference`; `None` when
+    /// `reference` lies in the rectangle's plane or an edge is empty.
     pub fn new(reference: Vec3, corner: Vec3, edge_u: Vec3, edge_v: Vec3) -> Option<Self> {
-        let (edge_u, edge_v) = (edge_u.as_dvec3(), edge_v.as_dvec3());
-        let (edge_u_length, edge_v_length) = (edge_u.length(), edge_v.length());
-        let x = edge_u.try_normalize()?;
-        let y = edge_v.try_normalize()?;
-        let mut z = x.cross(y);
-        let d = corner.as_dvec3() - reference.as_dvec3();
-        let mut z0 = d.dot(z);
-        if z0 > 0.0 {
-            z = -z;
-            z0 = -z0;
-        }
-        if !(z0 < 0.0) || z.length_squared() == 0.0 {
-            return None;
-        }
-        let (x0, y0) = (d.dot(x), d.dot(y));
-        let (x1, y1) = (x0 + edge_u_length, y0 + edge_v_length);
-        let corner_at = |cx: f64, cy: f64| DVec3::new(cx, cy, z0);
-        let (v00, v01, v10, v11) =
-            (corner_at(x0, y0), corner_at(x0, y1), corner_at(x1, y0), corner_at(x1, y1));
-        // Normals of the planes through the origin and each edge.
-        let n0 = v00.cross(v10).try_normalize()?;
-        let n1 = v10.cross(v11).try_normalize()?;
-        let n2 = v11.cross(v01).try_normalize()?;
-        let n3 = v01.cross(v00).try_normalize()?;
-        let interior = |a: DVec3, b: DVec3| (-a.dot(b)).clamp(-1.0, 1.0).acos();
-        let (g0, g1, g2, g3) =
-            (interior(n0, n1), interior(n1, n2), interior(n2, n3), interior(n3, n0));
-        let k = TAU - g2 - g3;
-        let solid_angle = g0 + g1 - k;
-        Some(SphericalRectangle {
-            x0,
-            x1,
-            y0,
-            y1,
-            z0,
-            edge_u_length,
-            edge_v_length,
-            b0: n0.z,
-            b1: n2.z,
-            k,
-            solid_angle,
-        })
+        RectangleFrame::new(corner, edge_u, edge_v)?.seen_from(reference)
     }
 
     pub fn solid_angle(&self) -> f64 {
@@ -122,6 +163,51 @@ mod tests {
         .unwrap();
         let expected = 4.0 * (1.0f64 / 3.0f64.sqrt()).atan();
         assert!((r.solid_angle() - expected).abs() < 1e-12, "{}", r.solid_angle());
+    }
+
+    /// The solid angle the textbook way: the angles between the planes through the
+    /// reference point and consecutive edges, each from generic cross products and `acos`.
+    fn solid_angle_from_planes(reference: Vec3, corner: Vec3, u: Vec3, v: Vec3) -> f64 {
+        let c = corner.as_dvec3() - reference.as_dvec3();
+        let (u, v) = (u.as_dvec3(), v.as_dvec3());
+        let corners = [c, c + u, c + u + v, c + v];
+        let normal = |i: usize| corners[i].cross(corners[(i + 1) % 4]).normalize();
+        let angle = |i: usize| (-normal(i).dot(normal((i + 1) % 4))).clamp(-1.0, 1.0).acos();
+        (0..4).map(angle).sum::<f64>() - TAU
+    }
+
+    #[test]
+    fn solid_angles_agree_with_the_planes_construction() {
+        let mut rng = crate::splitmix::SplitMix64(11);
+        for _ in 0..2000 {
+            let corner = rng.vec3(-2.0, 2.0);
+            // Exactly perpendicular edges (as the construction assumes), in any orientation.
+            let [a, b, c] = rng.vec3(-2.0, 2.0).to_array();
+            let axes = [[0, 1, 2], [1, 2, 0], [2, 0, 1], [0, 2, 1]][(rng.unit() * 3.99) as usize];
+            let permute = |w: [f32; 3]| Vec3::new(w[axes[0]], w[axes[1]], w[axes[2]]);
+            let (u, v) = (permute([a, b, c]), permute([-b, a, 0.0]));
+            let reference = rng.vec3(-1.5, 1.5);
+            let Some(r) = SphericalRectangle::new(reference, corner, u, v) else { continue };
+            let expected = solid_angle_from_planes(reference, corner, u, v);
+            assert!(
+                (r.solid_angle() - expected).abs() <= 1e-9 * expected.max(1e-3),
+                "{reference} {corner} {u} {v}: {} vs {expected}",
+                r.solid_angle()
+            );
+            // Either side of the plane sees the same solid angle (away from the plane, where
+            // the f32 mirror point's rounding barely moves it).
+            let normal = u.cross(v).normalize();
+            let height = (corner - reference).dot(normal);
+            if height.abs() > 0.05 {
+                let m = SphericalRectangle::new(reference + 2.0 * height * normal, corner, u, v)
+                    .expect("off the plane");
+                assert!(
+                    (m.solid_angle() - expected).abs() < 1e-4 * expected,
+                    "mirror of {reference}: {} vs {expected}",
+                    m.solid_angle()
+                );
+            }
+        }
     }
 
     #[test]

@@ -2,9 +2,7 @@
 //! incoming ray, material and texture coordinates. Computed from the backend's `Hit` the same
 //! way for every backend.
 
-use crate::float_error::{
-    TrianglePlane, gamma, sphere_point, triangle_point, triangle_point_from_ray,
-};
+use crate::float_error::{gamma, sphere_point, triangle_point, triangle_point_from_ray};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{Geometry, Placement, RenderScene};
 use crate::shading::spawn::SurfacePoint;
@@ -65,7 +63,7 @@ fn local_hit(
     match geometry {
         Geometry::Triangles(mesh) => {
             let tri = mesh.triangle(hit.prim_id);
-            let plane = TrianglePlane::new(&tri);
+            let plane = mesh.plane(hit.prim_id, &tri);
             let geometric = plane.normal;
             let (mut point, mut error) = triangle_point(&tri, &plane, hit.u, hit.v);
             if let Some((p, e)) = triangle_point_from_ray(&tri, &plane, origin, dir, hit.t) {

@@ -36,7 +36,7 @@ pub(super) fn shape(name: &str, geometry: render_scene::Geometry) -> Shape {
 }
 
 pub(super) fn mesh(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> render_scene::Geometry {
-    render_scene::Geometry::Triangles(TriangleMesh { positions, indices, normals: None, uvs: None })
+    render_scene::Geometry::Triangles(TriangleMesh::new(positions, indices, None, None))
 }
 
 pub(super) fn sphere(center: Vec3, radius: f32) -> render_scene::Geometry {

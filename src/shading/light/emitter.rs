@@ -7,7 +7,8 @@
 
 use super::ellipsoid::Ellipsoid;
 use crate::float_error::{TrianglePlane, sphere_point_from_local, triangle_point};
-use crate::sampling::{frame_from_normal, spherical_rectangle::SphericalRectangle};
+use crate::sampling::frame_from_normal;
+use crate::sampling::spherical_rectangle::{RectangleFrame, SphericalRectangle};
 use crate::sampling::{spherical_triangle, uniform_triangle};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -41,7 +42,9 @@ pub enum EmitterShape {
     Quad {
         vertices: [Vec3; 4],
         planes: [TrianglePlane; 2],
-        rectangle: bool,
+        /// A rectangle's frame (sampled by solid angle from near points); `None` for other
+        /// parallelograms.
+        rectangle: Option<RectangleFrame>,
         area: f32,
     },
     Sphere {
@@ -72,7 +75,9 @@ impl EmitterShape {
         if planes[0].normal == Vec3::ZERO || planes[0].normal.dot(planes[1].normal) < 0.999_999 {
             return None;
         }
-        let rectangle = edge_u.dot(edge_v).abs() <= 1e-5 * edge_u.length() * edge_v.length();
+        let rectangle = (edge_u.dot(edge_v).abs() <= 1e-5 * edge_u.length() * edge_v.length())
+            .then(|| RectangleFrame::new(v0, edge_u, edge_v))
+            .flatten();
         let area = edge_u.cross(edge_v).length();
         Some(EmitterShape::Quad { vertices, planes, rectangle, area })
     }
@@ -172,11 +177,10 @@ impl EmitterShape {
                 let solid_angle = spherical_triangle::solid_angle(vertices, reference);
                 by_solid_angle(solid_angle).then_some(Spherical::Triangle { solid_angle })
             }
-            EmitterShape::Quad { vertices: [v0, v1, _, v3], rectangle: true, .. } => {
-                SphericalRectangle::new(reference, *v0, *v1 - *v0, *v3 - *v0)
-                    .filter(|r| by_solid_angle(r.solid_angle()))
-                    .map(Spherical::Rectangle)
-            }
+            EmitterShape::Quad { rectangle: Some(frame), .. } => frame
+                .seen_from(reference)
+                .filter(|r| by_solid_angle(r.solid_angle()))
+                .map(Spherical::Rectangle),
             EmitterShape::Quad { .. } => None,
             EmitterShape::Sphere { center, radius } => {
                 let sin2_max = radius * radius / (*center - reference).length_squared();

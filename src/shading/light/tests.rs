@@ -82,7 +82,7 @@ fn a_close_rectangle_is_sampled_alike_but_with_less_noise_by_solid_angle() {
         Vec3::new(1.0, 1.0, -1.0),
     ])
     .expect("a square is a parallelogram");
-    assert!(matches!(quad, EmitterShape::Quad { rectangle: true, .. }));
+    assert!(matches!(quad, EmitterShape::Quad { rectangle: Some(_), .. }));
     let reference = Vec3::new(0.0, 0.75, 0.0);
     let ratio = compare_strategies("square", &quad, reference, Vec3::Y);
     assert!(ratio > 3.0, "solid-angle sampling should be far less noisy here: {ratio}");
@@ -146,7 +146,7 @@ fn only_parallelograms_become_quads() {
     sheared[3].x += 0.5;
     assert!(matches!(
         EmitterShape::quad(sheared),
-        Some(EmitterShape::Quad { rectangle: false, .. })
+        Some(EmitterShape::Quad { rectangle: None, .. })
     ));
 }
 
