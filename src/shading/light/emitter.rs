@@ -34,6 +34,7 @@ pub enum EmitterShape {
         plane: TrianglePlane,
         /// Kept: the density of area sampling (every far light sample) divides by it.
         area: f32,
+        near: NearSphere,
     },
     /// A parallelogram made of two triangles, (v0, v1, v3) and (v2, v3, v1), with v2
     /// opposite v0: the point with parameters (s, t) is v0 + s·(v1 − v0) + t·(v3 − v0), and
@@ -46,6 +47,7 @@ pub enum EmitterShape {
         /// parallelograms.
         rectangle: Option<RectangleFrame>,
         area: f32,
+        near: NearSphere,
     },
     Sphere {
         center: Vec3,
@@ -59,7 +61,10 @@ impl EmitterShape {
     pub fn triangle(vertices: [Vec3; 3]) -> Self {
         let [v0, v1, v2] = vertices;
         let area = 0.5 * (v1 - v0).cross(v2 - v0).length();
-        EmitterShape::Triangle { vertices, plane: TrianglePlane::new(&vertices), area }
+        let center = (v0 + v1 + v2) / 3.0;
+        let radius2 = vertices.map(|v| (v - center).length_squared());
+        let near = NearSphere::around(center, radius2[0].max(radius2[1]).max(radius2[2]));
+        EmitterShape::Triangle { vertices, plane: TrianglePlane::new(&vertices), area, near }
     }
 
     /// The quad v0 v1 v2 v3 (in order around it); `None` unless it is a parallelogram
@@ -79,7 +84,9 @@ impl EmitterShape {
             .then(|| RectangleFrame::new(v0, edge_u, edge_v))
             .flatten();
         let area = edge_u.cross(edge_v).length();
-        Some(EmitterShape::Quad { vertices, planes, rectangle, area })
+        let radius2 = (v0 - v2).length_squared().max((v1 - v3).length_squared()) * 0.25;
+        let near = NearSphere::around((v0 + v2) * 0.5, radius2);
+        Some(EmitterShape::Quad { vertices, planes, rectangle, area, near })
     }
 
     /// Whether `reference` lies on the side a flat shape's normal points to (always, for a
@@ -141,6 +148,21 @@ fn one_minus_cos(sin2: f32) -> f32 {
     sin2 / (1.0 + (1.0 - sin2).sqrt())
 }
 
+/// Where solid-angle sampling of a flat shape pays: within `NEAR_RADII` bounding radii of
+/// its centre (kept, since every light sample asks).
+#[derive(Clone, Copy, Debug)]
+pub struct NearSphere {
+    center: Vec3,
+    /// The square of `NEAR_RADII` bounding radii.
+    radius2: f32,
+}
+
+impl NearSphere {
+    fn around(center: Vec3, bounding_radius2: f32) -> Self {
+        NearSphere { center, radius2: NEAR_RADII * NEAR_RADII * bounding_radius2 }
+    }
+}
+
 /// How a shape is sampled by solid angle from one shading point.
 #[derive(Clone, Copy, Debug)]
 enum Spherical {
@@ -192,19 +214,12 @@ impl EmitterShape {
 
     /// Whether `reference` is close enough for solid-angle sampling to pay for itself.
     fn is_near(&self, reference: Vec3) -> bool {
-        let (center, radius2) = match self {
-            EmitterShape::Triangle { vertices: [a, b, c], .. } => {
-                let center = (*a + *b + *c) / 3.0;
-                let radius2 = [a, b, c].map(|v| (*v - center).length_squared());
-                (center, radius2[0].max(radius2[1]).max(radius2[2]))
+        match self {
+            EmitterShape::Triangle { near, .. } | EmitterShape::Quad { near, .. } => {
+                (near.center - reference).length_squared() < near.radius2
             }
-            EmitterShape::Quad { vertices: [v0, v1, v2, v3], .. } => {
-                let radius2 = (*v0 - *v2).length_squared().max((*v1 - *v3).length_squared());
-                ((*v0 + *v2) * 0.5, radius2 * 0.25)
-            }
-            EmitterShape::Sphere { .. } | EmitterShape::Ellipsoid(_) => return true,
-        };
-        (center - reference).length_squared() < NEAR_RADII * NEAR_RADII * radius2
+            EmitterShape::Sphere { .. } | EmitterShape::Ellipsoid(_) => true,
+        }
     }
 
     /// A point sampled from `reference` with `u`; `None` where nothing can be sampled (a
