@@ -40,8 +40,9 @@ pub const BYTES_PER_PIXEL: u64 = 96;
 /// Bytes per object placement: the scene description, its render-space instance and its
 /// share of the top-level BVH (measured: 540 per `repeat` copy).
 pub const BYTES_PER_OBJECT: u64 = 640;
-/// Bytes per mesh triangle: f64 positions and indices, the render-space copy and the BVH
-/// (Embree 67, obvhs 93 bytes per triangle).
+/// Bytes per mesh triangle: f64 positions and indices, the render-space copy, the BVH
+/// (Embree 67, obvhs 93 bytes per triangle) and, for meshes up to 32k triangles, the kept
+/// triangle planes (44).
 pub const BYTES_PER_TRIANGLE: u64 = 200;
 
 #[derive(Debug, thiserror::Error)]
