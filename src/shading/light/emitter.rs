@@ -44,8 +44,9 @@ pub enum EmitterShape {
         vertices: [Vec3; 4],
         planes: [TrianglePlane; 2],
         /// A rectangle's frame (sampled by solid angle from near points); `None` for other
-        /// parallelograms.
-        rectangle: Option<RectangleFrame>,
+        /// parallelograms. Boxed: it is larger than the rest of an emitter, and every
+        /// triangle of an emissive mesh is an emitter of the same size.
+        rectangle: Option<Box<RectangleFrame>>,
         area: f32,
         near: NearSphere,
     },
@@ -81,7 +82,7 @@ impl EmitterShape {
             return None;
         }
         let rectangle = (edge_u.dot(edge_v).abs() <= 1e-5 * edge_u.length() * edge_v.length())
-            .then(|| RectangleFrame::new(v0, edge_u, edge_v))
+            .then(|| RectangleFrame::new(v0, edge_u, edge_v).map(Box::new))
             .flatten();
         let area = edge_u.cross(edge_v).length();
         let radius2 = (v0 - v2).length_squared().max((v1 - v3).length_squared()) * 0.25;

@@ -182,3 +182,11 @@ fn spot_cone_falls_off_from_full_to_nothing_between_its_angles() {
     let point = PointLight { spot: None, ..light.clone() };
     assert_eq!(point.intensity_towards(Vec3::X), Vec3::splat(100.0));
 }
+
+#[test]
+fn an_emitter_stays_small() {
+    // Every triangle of an emissive mesh is one; a rectangle's frame is boxed.
+    let size = std::mem::size_of::<EmitterShape>();
+    println!("EmitterShape: {size} bytes");
+    assert!(size <= 176, "EmitterShape is {size} bytes");
+}
