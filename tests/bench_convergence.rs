@@ -1,5 +1,5 @@
 //! `embray bench convergence`: the reference round-trips through EXR, the error falls with
-//! spp, and a reference of the wrong size is refused.
+//! spp, and a reference of the wrong size or with non-finite values is refused.
 
 mod common;
 
@@ -30,5 +30,20 @@ fn error_falls_with_spp_against_an_exr_reference() {
     let wrong = cornell(10, 12);
     let refused = measure(&wrong, &options(&wrong, backend, 1), &read, &[4], &path);
     assert!(matches!(refused, Err(ConvergenceError::Size { .. })), "{refused:?}");
+
+    // A reference with a NaN or an infinity is refused before anything renders.
+    let mut broken = reference.clone();
+    broken.color[12 + 3].x = f32::NAN;
+    broken.color[12 * 5 + 7].y = f32::INFINITY;
+    let broken_path = dir.join("broken.exr");
+    write_exr(&broken, &broken_path).unwrap();
+    let broken = read_reference(&broken_path).unwrap();
+    let refused = measure(&scene, &options(&scene, backend, 1), &broken, &[4], &broken_path);
+    match refused {
+        Err(e @ ConvergenceError::NonFinite { count: 2, x: 3, y: 1, .. }) => {
+            assert!(e.to_string().contains("broken.exr"), "{e}")
+        }
+        other => panic!("{other:?}"),
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -26,6 +26,11 @@ pub enum ConvergenceError {
     Reference { path: String, message: String },
     #[error("the reference '{path}' is {got_w}×{got_h}, the scene renders {want_w}×{want_h}")]
     Size { path: String, got_w: u32, got_h: u32, want_w: u32, want_h: u32 },
+    #[error(
+        "the reference '{path}' has {count} pixel(s) with a NaN or infinite value (the first \
+         at x {x}, y {y}); an error measured against it would be meaningless"
+    )]
+    NonFinite { path: String, count: usize, x: u32, y: u32 },
     #[error(transparent)]
     Render(#[from] RenderError),
 }
@@ -77,6 +82,16 @@ pub fn measure(
             got_h: reference.height,
             want_w: w,
             want_h: h,
+        });
+    }
+    // Checked before any render: a NaN in the reference would make every row NaN.
+    let mut non_finite = reference.color.iter().enumerate().filter(|(_, c)| !c.is_finite());
+    if let Some((first, _)) = non_finite.next() {
+        return Err(ConvergenceError::NonFinite {
+            path: reference_path.display().to_string(),
+            count: 1 + non_finite.count(),
+            x: (first % w as usize) as u32,
+            y: (first / w as usize) as u32,
         });
     }
     let mut rows = Vec::new();

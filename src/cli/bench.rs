@@ -313,6 +313,15 @@ fn bench_spaces(args: &BenchArgs) -> Result<()> {
     Ok(())
 }
 
+/// The sentence `--target-rmse` prints; numbers too large or too small to read as plain
+/// digits (a target of 1e-30 needs ~1e58 spp) are written in scientific notation.
+fn spp_needed_line(target: f64, spp: f64) -> String {
+    let target =
+        if (1e-4..1e9).contains(&target) { format!("{target}") } else { format!("{target:e}") };
+    let spp = if spp < 1e9 { format!("{spp:.0}") } else { format!("{spp:.2e}") };
+    format!("RMSE {target} needs about {spp} spp\n")
+}
+
 fn bench_convergence(args: &ConvergenceArgs) -> Result<()> {
     use embray::bench::convergence;
     anyhow::ensure!(!args.spps.is_empty(), "--spps needs at least one value");
@@ -336,10 +345,21 @@ fn bench_convergence(args: &ConvergenceArgs) -> Result<()> {
     out(convergence::markdown(&rows))?;
     let needed = args.target_rmse.and_then(|t| Some((t, convergence::spp_for_rmse(&rows, t)?)));
     if let Some((target, spp)) = needed {
-        out(format!("RMSE {target} needs about {spp:.0} spp\n"))?;
+        out(spp_needed_line(target, spp))?;
     }
     if let Some(csv) = &csv {
         write_csv(csv, &convergence::csv(&rows))?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::spp_needed_line;
+
+    #[test]
+    fn spp_needed_reads_as_plain_digits_unless_extreme() {
+        assert_eq!(spp_needed_line(0.005, 1234.4), "RMSE 0.005 needs about 1234 spp\n");
+        assert_eq!(spp_needed_line(1e-30, 3.39e58), "RMSE 1e-30 needs about 3.39e58 spp\n");
+    }
 }
