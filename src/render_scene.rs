@@ -14,7 +14,10 @@ use crate::shading::material::Material;
 use crate::shading::texture::Texture;
 use glam::{Affine3A, Mat3, Quat, Vec2, Vec3};
 
-/// A triangle mesh (in render space when baked, else in object space).
+/// A triangle mesh (in render space when baked, else in object space). Build it with
+/// [`TriangleMesh::new`] and leave its positions and indices as they are: the kept triangle
+/// planes are derived from them once (a mesh built field by field keeps none and computes
+/// each plane per hit, which is always right).
 #[derive(Clone, Debug, Default)]
 pub struct TriangleMesh {
     pub positions: Vec<Vec3>,
