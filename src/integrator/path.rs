@@ -228,6 +228,12 @@ impl<'a> PathTracer<'a> {
         let mut result = PathSample::default();
         let mut ray = camera_ray;
         let mut throughput = Vec3::ONE;
+        // The product of the (η_t/η_i)² of the refractions so far: `throughput * eta_scale`
+        // is the path's energy, without the radiance compression inside glass that it
+        // undoes on the way out (roulette judged by throughput alone kills paths inside
+        // glass too often and multiplies the survivors by up to 2.25 on leaving, which
+        // compounded into pixels of 1e11 on the course's glass box).
+        let mut eta_scale = 1.0f32;
         // Camera rays and specular bounces see emission in full (nothing else sampled it).
         let mut specular_bounce = true;
         let mut pdf_bsdf = 0.0;
@@ -296,7 +302,13 @@ impl<'a> PathTracer<'a> {
             if below != sample.transmitted || sample.weight == Vec3::ZERO {
                 break;
             }
+            debug_assert!(
+                bsdf.albedo_bound().max_element() <= 1.0 + 1e-4,
+                "a BSDF that reflects more than it receives: {:?}",
+                bsdf.albedo_bound()
+            );
             throughput *= sample.weight;
+            eta_scale *= sample.eta_scale;
             specular_bounce = sample.delta;
             pdf_bsdf = sample.pdf;
             if sample.transmitted {
@@ -306,7 +318,7 @@ impl<'a> PathTracer<'a> {
                 };
             }
             if depth >= 3 {
-                let survive = throughput.max_element().min(0.95);
+                let survive = (throughput * eta_scale).max_element().min(0.95);
                 if u_survive >= survive {
                     break;
                 }

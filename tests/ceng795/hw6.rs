@@ -206,13 +206,16 @@ fn photographic_tone_mapping_reproduces_the_course_pngs() {
 /// RussianRoulette are rendered but not compared: the course's roulette has no depth limit
 /// and its references carry fireflies (RMSE 9–86 against means near 1) that make their
 /// means unreliable. The glass sphere's material adds the course's specular term (ks 0.3,
-/// normalized modified Phong) on top of Fresnel reflection and refraction; without it the
-/// glass box came out 2.0–2.5 % darker (the sphere itself at half the reference).
+/// normalized modified Phong) to Fresnel reflection and refraction. The course adds it on
+/// top, so its glass returns up to 1.3 times what arrives; ours gives the lobe's share from
+/// Fresnel's (glass keeps 1 − ks), which made the long paths of roulette finite and leaves
+/// the glass box 2.4 % darker than the course's depth-4 references (3 % allowed there).
 #[test]
 #[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn hw6_path_tracing_means_match_the_course_exrs() {
+    let tolerance = |xml: &str| if xml.contains("glass") { 0.03 } else { 0.01 };
     let compared =
-        exr_means_match("2022/hw6/pathTracing", |image| image.contains("russian"), |_| 0.01);
+        exr_means_match("2022/hw6/pathTracing", |image| image.contains("russian"), tolerance);
     assert!(compared >= 4, "expected the path-tracing references, compared {compared}");
 }
 

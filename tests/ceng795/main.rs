@@ -110,6 +110,7 @@ fn course_options(scene: &SceneDesc, backend: BackendKind) -> RenderOptions {
 }
 
 mod environment;
+mod glass_energy;
 mod hw4;
 mod hw5;
 mod hw6;

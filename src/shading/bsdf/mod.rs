@@ -1,7 +1,8 @@
 //! Scattering at a surface: a Lambertian lobe plus at most one specular lobe (mirror,
 //! conductor with Fresnel, or glass), GGX microfacets for rough mirrors and metals, plus the
 //! specular term of a course material's reflectance model (`phong.specular` with its
-//! `CourseBrdf`), which the course adds on top of the rest, glass included.
+//! `CourseBrdf`), which the course adds on top of the rest, glass included (the rest then
+//! gives up what the lobe may take, so that no material reflects more than it receives).
 //! Directions are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
 mod fresnel;
@@ -23,6 +24,9 @@ pub struct BsdfSample {
     pub wi: Vec3,
     /// f · |cos θ| / pdf.
     pub weight: Vec3,
+    /// (η_t/η_i)² for a refraction, else 1: undoes the radiance compression `weight`
+    /// includes, so that Russian roulette can judge a path by its energy (pbrt's etaScale).
+    pub eta_scale: f32,
     /// Density of `wi` (0 for a delta lobe).
     pub pdf: f32,
     pub delta: bool,
@@ -38,6 +42,10 @@ pub struct Bsdf {
     /// Lambertian reflectance, after the energy coupling of `Bsdf::new`.
     diffuse: Vec3,
     specular: Specular,
+    /// What the mirror, conductor or glass lobe keeps of its reflectance (per channel) so
+    /// that the course's lobe on top of it does not make the material reflect more than
+    /// it receives; 1 where the sum already stays within bounds.
+    specular_scale: Vec3,
     alpha: f32,
     delta_specular: bool,
     /// Whether the incoming ray arrived on the side the surface normal points to.
@@ -80,11 +88,41 @@ impl Bsdf {
             }
             Specular::Dielectric { .. } => Vec3::ZERO,
         };
+        // The course's specular term is added to whatever else the material does, as the
+        // course adds it; where the sum could reflect more than arrives (glass reflects or
+        // transmits everything by itself, so its lobe of ks 0.3 made every bounce return up
+        // to 1.3), the other lobes give up what the course lobe can take. Materials that
+        // already conserve energy (kd + ks ≤ 1) are left as they are.
+        let course_lobe = material
+            .phong
+            .as_ref()
+            .filter(|_| course_specular.max_element() > 0.0 && course_specular.is_finite())
+            .map(|p| (p, course_lobe::albedo_bound(&p.brdf, p.exponent)));
+        let lobe_albedo =
+            course_lobe.map_or(Vec3::ZERO, |(_, bound)| course_specular.max(Vec3::ZERO) * bound);
+        // A lobe that alone could reflect more than arrives is scaled to reflect at most that.
+        let lobe_scale = Vec3::ONE / lobe_albedo.max(Vec3::ONE);
+        let rest_albedo = diffuse
+            + match material.specular {
+                Specular::None => Vec3::ZERO,
+                Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
+                    reflectance.clamp(Vec3::ZERO, Vec3::ONE)
+                }
+                Specular::Dielectric { .. } => Vec3::ONE,
+            };
+        let room = (Vec3::ONE - lobe_albedo * lobe_scale).max(Vec3::ZERO);
+        let rest_scale = Vec3::select(
+            rest_albedo.cmpgt(room),
+            room / rest_albedo.max(Vec3::splat(f32::MIN_POSITIVE)),
+            Vec3::ONE,
+        );
+        let diffuse = diffuse * rest_scale;
+        let specular_scale = rest_scale;
         let specular_weight = match material.specular {
             Specular::None => 0.0,
-            Specular::Mirror { reflectance } => luminance(reflectance),
+            Specular::Mirror { reflectance } => luminance(reflectance * specular_scale),
             Specular::Conductor { eta, k, reflectance } => {
-                luminance(fresnel_conductor(1.0, eta, k) * reflectance)
+                luminance(fresnel_conductor(1.0, eta, k) * reflectance * specular_scale)
             }
             Specular::Dielectric { .. } => f32::INFINITY,
         };
@@ -96,17 +134,10 @@ impl Bsdf {
         } else {
             0.0
         };
-        // The course's specular term is added to whatever else the material does, without
-        // energy coupling (the course's glass reflects ks on top of Fresnel's share).
-        let specular = course_specular.max(Vec3::ZERO);
-        let course = material
-            .phong
-            .as_ref()
-            .filter(|_| specular.max_element() > 0.0 && specular.is_finite())
-            .map(|p| {
-                let terms = CourseTerms { diffuse: Vec3::ZERO, specular, exponent: p.exponent };
-                (p.brdf, terms)
-            });
+        let course = course_lobe.map(|(p, _)| {
+            let specular = course_specular.max(Vec3::ZERO) * lobe_scale;
+            (p.brdf, CourseTerms { diffuse: Vec3::ZERO, specular, exponent: p.exponent })
+        });
         let p_course = match &course {
             None => 0.0,
             Some((_, terms)) => {
@@ -123,6 +154,7 @@ impl Bsdf {
             frame,
             diffuse,
             specular: material.specular,
+            specular_scale,
             alpha: material.ggx_alpha.max(1e-4),
             delta_specular: material.specular_is_delta(),
             front_face,
@@ -142,13 +174,31 @@ impl Bsdf {
     }
 
     fn specular_tint(&self, cos: f32) -> Vec3 {
-        match self.specular {
+        let tint = match self.specular {
             Specular::Mirror { reflectance } => reflectance,
             Specular::Conductor { eta, k, reflectance } => {
                 fresnel_conductor(cos, eta, k) * reflectance
             }
             _ => Vec3::ZERO,
-        }
+        };
+        tint * self.specular_scale
+    }
+
+    /// An upper bound of the fraction of arriving energy this BSDF reflects or transmits
+    /// (its directional albedo, per channel, over every wo): at most 1 by construction.
+    pub fn albedo_bound(&self) -> Vec3 {
+        let rest = self.diffuse
+            + match self.specular {
+                Specular::None => Vec3::ZERO,
+                Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
+                    reflectance.clamp(Vec3::ZERO, Vec3::ONE) * self.specular_scale
+                }
+                Specular::Dielectric { .. } => self.specular_scale,
+            };
+        let lobe = self.course.as_ref().map_or(Vec3::ZERO, |(brdf, terms)| {
+            terms.specular * course_lobe::albedo_bound(brdf, terms.exponent)
+        });
+        rest + lobe
     }
 
     /// f · |cos θi| and the density of sampling `wi`, for the non-delta lobes.
@@ -192,7 +242,7 @@ impl Bsdf {
         if u_lobe < self.p_specular {
             if let Specular::Dielectric { ior, .. } = self.specular {
                 let mut sample = self.sample_dielectric(wo, ior, u.x);
-                sample.weight /= not_course;
+                sample.weight *= self.specular_scale / not_course;
                 return Some(sample);
             }
             if self.delta_specular {
@@ -200,6 +250,7 @@ impl Bsdf {
                 return Some(BsdfSample {
                     wi: self.frame * wi,
                     weight: self.specular_tint(wo.z) / (self.p_specular * not_course),
+                    eta_scale: 1.0,
                     pdf: 0.0,
                     delta: true,
                     transmitted: false,
@@ -225,6 +276,7 @@ impl Bsdf {
         (pdf > 0.0).then(|| BsdfSample {
             wi,
             weight: value / pdf,
+            eta_scale: 1.0,
             pdf,
             delta: false,
             transmitted: false,
@@ -240,6 +292,7 @@ impl Bsdf {
             return BsdfSample {
                 wi: self.frame * wi,
                 weight: Vec3::ONE,
+                eta_scale: 1.0,
                 pdf: 0.0,
                 delta: true,
                 transmitted: false,
@@ -253,6 +306,7 @@ impl Bsdf {
             wi: self.frame * wi.normalize(),
             // Radiance is compressed entering a denser medium: (η_i/η_t)².
             weight: Vec3::splat(1.0 / (eta * eta)),
+            eta_scale: eta * eta,
             pdf: 0.0,
             delta: true,
             transmitted: true,
