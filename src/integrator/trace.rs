@@ -4,9 +4,10 @@
 use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
+use crate::scene::BumpScale;
 use crate::shading::material::Material;
 use crate::shading::normal_map::{
-    bumped_normal, mapped_normal, solid_bumped_normal, uv_derivatives,
+    bumped_normal, course_bumped_normal, mapped_normal, solid_bumped_normal, uv_derivatives,
 };
 use crate::shading::spawn::SpawnMode;
 use crate::shading::surface::SurfaceInteraction;
@@ -95,7 +96,7 @@ impl SceneTracer<'_> {
         material: &Material,
         time: f32,
     ) -> SurfaceInteraction {
-        if let (None, Some((map, factor))) = (&material.normal_map, &material.bump_map) {
+        if let (None, Some((map, factor, _))) = (&material.normal_map, &material.bump_map) {
             if map.needs_object_point() {
                 // A solid height field: its gradient in render space, through the chain
                 // rule from the object point.
@@ -111,17 +112,29 @@ impl SceneTracer<'_> {
                 return Self::facing_the_ray(si, bumped);
             }
         }
-        let Some((dpdu, dpdv)) = uv_derivatives(self.scene, &si, time) else { return si };
+        let Some(derivatives) = uv_derivatives(self.scene, &si, time) else { return si };
+        let (dpdu, dpdv) = (derivatives.dpdu, derivatives.dpdv);
+        let n = si.shading_normal;
         let mapped = match (&material.normal_map, &material.bump_map) {
-            (Some(map), _) => {
-                mapped_normal(self.texture_color(map, &si, time), si.shading_normal, dpdu, dpdv)
-            }
-            (None, Some((map, factor))) => {
+            (Some(map), _) => mapped_normal(self.texture_color(map, &si, time), n, dpdu, dpdv),
+            (None, Some((map, factor, scale))) => {
                 let height = |uv: glam::Vec2| {
                     let at = SurfaceInteraction { uv, ..si };
-                    self.texture_color(map, &at, time).element_sum() / 3.0 * factor
+                    self.texture_color(map, &at, time).element_sum() / 3.0
                 };
-                bumped_normal(height, map.uv_step(), si.uv, si.shading_normal, dpdu, dpdv)
+                let step = map.uv_step();
+                let h = height(si.uv);
+                let rise = glam::Vec2::new(
+                    height(si.uv + glam::Vec2::new(step.x, 0.0)) - h,
+                    height(si.uv + glam::Vec2::new(0.0, step.y)) - h,
+                );
+                match scale {
+                    BumpScale::Scene => bumped_normal(rise / step * *factor, n, dpdu, dpdv, n),
+                    // Texel differences in the image's 0–255 units.
+                    BumpScale::CourseTexels => {
+                        course_bumped_normal(rise * map.value_scale() * *factor, n, &derivatives)
+                    }
+                }
             }
             (None, None) => return si,
         };

@@ -171,6 +171,21 @@ pub struct BumpMapDesc {
     pub texture: TextureDesc,
     /// Height per unit of the texture's value.
     pub factor: f32,
+    pub scale: BumpScale,
+}
+
+/// What a bump map's heights and slopes are measured in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BumpScale {
+    /// Heights in scene units (texture value × factor), slopes per unit of texture
+    /// coordinate, the surface displaced in render space: the bumps keep their size in the
+    /// scene whatever the texture's resolution.
+    #[default]
+    Scene,
+    /// The CENG795 course's `bump_normal`: heights in the image's own 0–255 units (× the
+    /// `BumpFactor`), differenced between neighbouring texels (not divided by the texel's
+    /// size), displacing the object in its own space before its transformation.
+    CourseTexels,
 }
 
 /// How a colour texture combines with the material (the course's decal modes).

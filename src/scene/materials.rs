@@ -145,7 +145,7 @@ pub(crate) fn material(
             let field = path.key("bump_map");
             let texture = texture_desc(&field, t, Use::Bump, ctx, base_dir)?;
             let factor = ctx.f32(&field.key("factor"), t.factor.unwrap_or(1.0))?;
-            Some(super::desc::BumpMapDesc { texture, factor })
+            Some(super::desc::BumpMapDesc { texture, factor, scale: Default::default() })
         }
     };
     let mut phong = m.phong.as_ref().map(|p| phong(&path.key("phong"), p, ctx)).transpose()?;

@@ -29,7 +29,8 @@ pub struct Material {
     /// A tangent-space normal map (`shading::normal_map`).
     pub normal_map: Option<Texture>,
     /// A height field and its scale (`shading::normal_map`).
-    pub bump_map: Option<(Texture, f32)>,
+    /// The height texture, its factor and what its heights are measured in.
+    pub bump_map: Option<(Texture, f32, crate::scene::BumpScale)>,
     pub phong: Option<PhongDesc>,
 }
 
@@ -68,7 +69,10 @@ impl Material {
             texture: desc.texture.as_ref().map(Texture::from_desc),
             specular_texture: desc.specular_texture.as_ref().map(Texture::from_desc),
             normal_map: desc.normal_map.as_ref().map(Texture::from_desc),
-            bump_map: desc.bump_map.as_ref().map(|b| (Texture::from_desc(&b.texture), b.factor)),
+            bump_map: desc
+                .bump_map
+                .as_ref()
+                .map(|b| (Texture::from_desc(&b.texture), b.factor, b.scale)),
             phong: desc.phong.clone(),
         }
     }

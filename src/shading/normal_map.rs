@@ -32,16 +32,25 @@ fn sphere_derivatives(n: Vec3, r: f32) -> (Vec3, Vec3) {
     (dpdu, dpdv)
 }
 
-/// ∂p/∂u and ∂p/∂v at `si` in render space (at `time`), if the surface has them.
+/// ∂p/∂u and ∂p/∂v at a hit, in render space, and the linear map to the object's own
+/// space (the space its file describes it in, before its transformation).
+#[derive(Clone, Copy, Debug)]
+pub struct UvDerivatives {
+    pub dpdu: Vec3,
+    pub dpdv: Vec3,
+    pub object_from_render: Mat3,
+}
+
+/// ∂p/∂u and ∂p/∂v at `si` (at `time`), if the surface has them.
 pub fn uv_derivatives(
     scene: &RenderScene,
     si: &SurfaceInteraction,
     time: f32,
-) -> Option<(Vec3, Vec3)> {
+) -> Option<UvDerivatives> {
     let instance = &scene.instances[si.geom_id as usize];
     let geometry = &scene.prototypes[instance.prototype as usize].geometry;
     let placement = &instance.placement;
-    // Object-space derivatives and the linear map that takes them to render space.
+    // Derivatives in the prototype's space and the linear map that takes them to render space.
     let (dpdu, dpdv, render_from_object) = match geometry {
         Geometry::Triangles(mesh) => {
             let [i0, i1, i2] = mesh.indices[si.prim_id as usize].map(|i| i as usize);
@@ -75,7 +84,12 @@ pub fn uv_derivatives(
         Some(m) => (m * dpdu, m * dpdv),
         None => (dpdu, dpdv),
     };
-    (dpdu.is_finite() && dpdv.is_finite()).then_some((dpdu, dpdv))
+    let object_from_render = Mat3::from(placement.texture_object_from_render(time).matrix3);
+    (dpdu.is_finite() && dpdv.is_finite()).then_some(UvDerivatives {
+        dpdu,
+        dpdv,
+        object_from_render,
+    })
 }
 
 /// The shading normal a normal map's `color` (in [0, 1]³) gives at a surface with shading
@@ -89,23 +103,31 @@ pub fn mapped_normal(color: Vec3, n: Vec3, dpdu: Vec3, dpdv: Vec3) -> Vec3 {
     if mapped == Vec3::ZERO { n } else { mapped }
 }
 
-/// The shading normal of the surface displaced along `n` by `height(uv)`: with
-/// q = p + h·n, ∂q/∂u ≈ ∂p/∂u + (∂h/∂u)·n (likewise v), the slopes taken by forward
-/// differences over `step`; the new normal ∂q/∂u × ∂q/∂v is turned to `n`'s side.
-pub fn bumped_normal(
-    height: impl Fn(Vec2) -> f32,
-    step: Vec2,
-    uv: Vec2,
-    n: Vec3,
-    dpdu: Vec3,
-    dpdv: Vec3,
-) -> Vec3 {
-    let h = height(uv);
-    let dhdu = (height(uv + Vec2::new(step.x, 0.0)) - h) / step.x;
-    let dhdv = (height(uv + Vec2::new(0.0, step.y)) - h) / step.y;
-    let qu = dpdu + dhdu * n;
-    let qv = dpdv + dhdv * n;
+/// The normal of the surface p + h·d displaced by a height field h(u, v) along `along`
+/// (the surface normal, in whatever units `along` carries): with slopes (∂h/∂u, ∂h/∂v),
+/// ∂q/∂u = ∂p/∂u + (∂h/∂u)·d (likewise v), and the new normal ∂q/∂u × ∂q/∂v is turned to
+/// `n`'s side.
+pub fn bumped_normal(slopes: Vec2, n: Vec3, dpdu: Vec3, dpdv: Vec3, along: Vec3) -> Vec3 {
+    let qu = dpdu + slopes.x * along;
+    let qv = dpdv + slopes.y * along;
     let bumped = qu.cross(qv).normalize_or_zero();
+    if bumped == Vec3::ZERO || !bumped.is_finite() {
+        return n;
+    }
+    if bumped.dot(n) < 0.0 { -bumped } else { bumped }
+}
+
+/// The CENG795 course's bump mapping (`BumpScale::CourseTexels`): the object is displaced
+/// in its own space, by `rise` (the height's differences to the next texel in u and in v)
+/// along its own unit normal, over its own ∂p/∂u and ∂p/∂v; the new normal is taken to
+/// render space as normals are (by the transpose of `object_from_render`), on `n`'s side.
+pub fn course_bumped_normal(rise: Vec2, n: Vec3, d: &UvDerivatives) -> Vec3 {
+    let to_object = d.object_from_render;
+    let normal_to_object = to_object.inverse().transpose();
+    let n_object = (normal_to_object * n).normalize_or_zero();
+    let bumped_object =
+        bumped_normal(rise, n_object, to_object * d.dpdu, to_object * d.dpdv, n_object);
+    let bumped = (to_object.transpose() * bumped_object).normalize_or_zero();
     if bumped == Vec3::ZERO || !bumped.is_finite() {
         return n;
     }
@@ -160,6 +182,15 @@ mod tests {
         let fd_v = (point(u, v + h) - point(u, v - h)) / (2.0 * h);
         assert!((dpdu - fd_u).length() < 1e-2 * fd_u.length(), "{dpdu} vs {fd_u}");
         assert!((dpdv - fd_v).length() < 1e-2 * fd_v.length(), "{dpdv} vs {fd_v}");
+    }
+
+    #[test]
+    fn a_uv_slope_tilts_the_normal_downhill() {
+        // p = (2u, 3v, 0); h rising by 2 per unit of u: ∂q/∂u = (2, 0, 2), a 45° tilt.
+        let n = Vec3::Z;
+        let tilted = bumped_normal(Vec2::new(2.0, 0.0), n, 2.0 * Vec3::X, 3.0 * Vec3::Y, n);
+        assert!((tilted - Vec3::new(-1.0, 0.0, 1.0).normalize()).length() < 1e-6, "{tilted}");
+        assert_eq!(bumped_normal(Vec2::ZERO, n, Vec3::X, Vec3::Y, n), n);
     }
 
     #[test]

@@ -320,6 +320,7 @@ impl TextureMaps {
                                 texture_from_object: DAffine3::IDENTITY,
                             },
                             factor,
+                            scale: crate::scene::desc::BumpScale::CourseTexels,
                         });
                         continue;
                     }

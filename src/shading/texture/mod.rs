@@ -93,6 +93,15 @@ impl Texture {
         }
     }
 
+    /// What one unit of this texture's value is in the image's own units (its
+    /// normalizer, 255 for 8-bit images by default); 1 for patterns.
+    pub fn value_scale(&self) -> f32 {
+        match &self.pattern {
+            Pattern::Image { normalizer, .. } => *normalizer,
+            _ => 1.0,
+        }
+    }
+
     pub fn needs_object_point(&self) -> bool {
         matches!(
             self.pattern,
