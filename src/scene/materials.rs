@@ -10,7 +10,7 @@ use super::toml_format::{
     BrdfModelToml, BrdfToml, ImageEncodingToml, InterpolationToml, MaterialKind, MaterialToml,
     MetalPreset, NoiseConversionToml, PhongToml, TextureKind, TextureModeToml,
 };
-use super::toml_format::{TextureToml, Vec3};
+use super::toml_format::{BumpHeightsToml, TextureToml, Vec3};
 use super::validate::Ctx;
 use glam::DAffine3;
 use std::path::Path;
@@ -145,7 +145,11 @@ pub(crate) fn material(
             let field = path.key("bump_map");
             let texture = texture_desc(&field, t, Use::Bump, ctx, base_dir)?;
             let factor = ctx.f32(&field.key("factor"), t.factor.unwrap_or(1.0))?;
-            Some(super::desc::BumpMapDesc { texture, factor, scale: Default::default() })
+            let scale = match t.heights {
+                None | Some(BumpHeightsToml::Scene) => super::desc::BumpScale::Scene,
+                Some(BumpHeightsToml::CourseTexels) => super::desc::BumpScale::CourseTexels,
+            };
+            Some(super::desc::BumpMapDesc { texture, factor, scale })
         }
     };
     let mut phong = m.phong.as_ref().map(|p| phong(&path.key("phong"), p, ctx)).transpose()?;
@@ -261,7 +265,7 @@ fn texture_desc(
         allowed.push("mode");
     }
     if usage == Use::Bump {
-        allowed.push("factor");
+        allowed.extend(["factor", "heights"]);
     }
     allowed.extend(own);
     let present = [
@@ -278,6 +282,7 @@ fn texture_desc(
         ("encoding", t.encoding.is_some()),
         ("normalizer", t.normalizer.is_some()),
         ("factor", t.factor.is_some()),
+        ("heights", t.heights.is_some()),
     ];
     ctx.check_fields(path, &item, &present, &allowed)?;
     let scale = |ctx: &Ctx| -> Result<f32, SceneError> {

@@ -220,6 +220,17 @@ pub(crate) struct TextureToml {
     pub normalizer: Option<f64>,
     /// A bump map's height per unit of texture value.
     pub factor: Option<f64>,
+    /// What a bump map's heights are measured in.
+    pub heights: Option<BumpHeightsToml>,
+}
+
+/// `heights` of a bump map: `scene` (scene units, slopes per unit of texture coordinate) or
+/// `course_texels` (the CENG795 course's `bump_normal`; see `BumpScale`).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum BumpHeightsToml {
+    Scene,
+    CourseTexels,
 }
 
 #[derive(Debug, Deserialize)]

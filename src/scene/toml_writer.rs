@@ -371,7 +371,12 @@ fn write_material(m: &MaterialDesc, name: &str, out: &mut String) -> Result<(), 
     }
     if let Some(b) = &m.bump_map {
         let table = texture_toml(&b.texture, false)?;
-        let table = format!("{}, factor = {:?} }}", table.trim_end_matches(" }"), b.factor);
+        let heights = match b.scale {
+            crate::scene::BumpScale::Scene => "",
+            crate::scene::BumpScale::CourseTexels => ", heights = \"course_texels\"",
+        };
+        let table =
+            format!("{}, factor = {:?}{heights} }}", table.trim_end_matches(" }"), b.factor);
         let _ = writeln!(out, "bump_map = {table}");
     }
     if let Some(p) = &m.phong {
