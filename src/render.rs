@@ -51,6 +51,9 @@ pub struct RenderOptions {
     pub integrator: IntegratorKind,
     pub spawn: SpawnMode,
     pub sampler: SamplerKind,
+    /// How the path tracer combines a material's lobes (conserving, or the course's
+    /// additive model).
+    pub energy: crate::shading::bsdf::Energy,
 }
 
 impl RenderOptions {
@@ -73,6 +76,7 @@ impl RenderOptions {
             integrator: scene.settings.integrator,
             spawn: SpawnMode::Robust,
             sampler: SamplerKind::default(),
+            energy: Default::default(),
         }
     }
 }
@@ -343,6 +347,7 @@ pub fn render_sums(
         options.max_depth,
         options.light_samples,
         options.spawn,
+        options.energy,
     );
     let camera = &scene.camera;
     let all_tiles = part.tiles(&tiles(camera.width, camera.height, TILE_SIZE));

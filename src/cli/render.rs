@@ -19,6 +19,7 @@ use embray::render::{RenderOptions, RenderOutput, render};
 use embray::render_space::RenderSpace;
 use embray::sampling::SamplerKind;
 use embray::scene::{SceneDesc, ceng795};
+use embray::shading::bsdf::Energy;
 use embray::shading::spawn::SpawnMode;
 use glam::DVec3;
 use std::path::{Path, PathBuf};
@@ -105,6 +106,11 @@ pub struct RenderArgs {
     /// all independent (for comparisons).
     #[arg(long, value_parser = choice::<SamplerKind>(), default_value_t = SamplerKind::Sobol)]
     pub sampler: SamplerKind,
+    /// How the path tracer combines a material's lobes: `conserving` (no material reflects
+    /// more than it receives) or `additive` (the CENG795 course's renderer: kd, mirror and
+    /// the specular lobe added as they are, to reproduce its images).
+    #[arg(long, value_parser = choice::<Energy>(), default_value_t = Energy::Conserving)]
+    pub energy: Energy,
     /// How rays leave surfaces: `robust` (error-bound offsets) or `epsilon=VALUE`.
     #[arg(long, value_parser = SpawnMode::parse, default_value = "robust")]
     pub spawn: SpawnMode,
@@ -190,6 +196,7 @@ impl RenderArgs {
         }
         options.spawn = self.spawn;
         options.sampler = self.sampler;
+        options.energy = self.energy;
         if self.force_all_effects {
             options.effects_mode = EffectsMode::ForceAll;
         }

@@ -43,10 +43,13 @@ impl<'a> Tracer<'a> {
         max_depth: u32,
         light_samples: u32,
         spawn: SpawnMode,
+        energy: crate::shading::bsdf::Energy,
     ) -> Self {
         let tracer = SceneTracer { scene, accel, spawn };
         match kind {
-            IntegratorKind::Path => Tracer::Path(PathTracer::new(tracer, max_depth, light_samples)),
+            IntegratorKind::Path => {
+                Tracer::Path(PathTracer::new(tracer, max_depth, light_samples, energy))
+            }
             IntegratorKind::Whitted => Tracer::Whitted(WhittedTracer::new(tracer, max_depth)),
         }
     }

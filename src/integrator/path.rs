@@ -10,7 +10,7 @@ use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::sampling::{SampleStream, frame_from_normal};
-use crate::shading::bsdf::Bsdf;
+use crate::shading::bsdf::{Bsdf, Energy};
 use crate::shading::material::Material;
 use crate::shading::spawn::SurfacePoint;
 use crate::shading::surface::{SurfaceInteraction, interaction};
@@ -25,6 +25,7 @@ pub struct PathTracer<'a> {
     light_samples: u32,
     /// Rotation into the space where directions are sampled (see `sampling_from_world`).
     sampling_from_render: Mat3,
+    energy: Energy,
 }
 
 /// A fixed rotation of world space in which no common surface normal lies on the
@@ -50,10 +51,16 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 }
 
 impl<'a> PathTracer<'a> {
-    pub(crate) fn new(tracer: SceneTracer<'a>, max_depth: u32, light_samples: u32) -> Self {
+    pub(crate) fn new(
+        tracer: SceneTracer<'a>,
+        max_depth: u32,
+        light_samples: u32,
+        energy: Energy,
+    ) -> Self {
         let sampling_from_render =
             sampling_from_world() * tracer.scene.camera.world_from_render_rotation;
-        PathTracer { tracer, max_depth, light_samples: light_samples.max(1), sampling_from_render }
+        let light_samples = light_samples.max(1);
+        PathTracer { tracer, max_depth, light_samples, sampling_from_render, energy }
     }
 
     pub fn scene(&self) -> &RenderScene {
@@ -282,8 +289,14 @@ impl<'a> PathTracer<'a> {
                 (_, phong) => phong.as_ref().map_or(Vec3::ZERO, |p| p.specular),
             };
             let frame = self.shading_frame(si.shading_normal);
-            let bsdf =
-                Bsdf::with_reflectances(material, albedo, course_specular, frame, si.front_face);
+            let bsdf = Bsdf::with_reflectances(
+                material,
+                albedo,
+                course_specular,
+                frame,
+                si.front_face,
+                self.energy,
+            );
             let wo = -ray.dir.normalize();
             let last = depth + 1 >= self.max_depth;
             if bsdf.has_smooth_lobe() {
@@ -303,9 +316,10 @@ impl<'a> PathTracer<'a> {
                 break;
             }
             debug_assert!(
-                bsdf.albedo_bound().max_element() <= 1.0 + 1e-4,
+                self.energy == Energy::Additive
+                    || bsdf.albedo_bound(wo).max_element() <= 1.0 + 1e-4,
                 "a BSDF that reflects more than it receives: {:?}",
-                bsdf.albedo_bound()
+                bsdf.albedo_bound(wo)
             );
             throughput *= sample.weight;
             eta_scale *= sample.eta_scale;

@@ -80,3 +80,57 @@ pub fn albedo_bound(brdf: &CourseBrdf, p: f32) -> f32 {
         }
     }
 }
+
+/// The lobe's directional albedo per unit of specular reflectance, ∫ f cos θi dωi / ks, as
+/// a function of cos θo: tabulated once per material, by stratified sampling of the lobe's
+/// own density (its weights f cos θi / pdf vary slowly, so 32² strata give it to about 0.1 %).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LobeAlbedo {
+    /// At cos θo = i / (ENTRIES − 1).
+    table: [f32; LobeAlbedo::ENTRIES],
+}
+
+impl LobeAlbedo {
+    const ENTRIES: usize = 17;
+    const STRATA: usize = 32;
+
+    pub fn new(brdf: &CourseBrdf, p: f32) -> Self {
+        use crate::shading::course_brdf::{CourseTerms, cos_weighted};
+        let terms = CourseTerms { diffuse: Vec3::ZERO, specular: Vec3::ONE, exponent: p };
+        let mut table = [0.0; Self::ENTRIES];
+        for (i, entry) in table.iter_mut().enumerate() {
+            // Exactly grazing views see nothing; take the nearest view that sees something.
+            let cos_o = (i as f32 / (Self::ENTRIES - 1) as f32).max(1e-3);
+            let wo = Vec3::new((1.0 - cos_o * cos_o).sqrt(), 0.0, cos_o);
+            let mut sum = 0.0f64;
+            for a in 0..Self::STRATA {
+                for b in 0..Self::STRATA {
+                    let u = Vec2::new(
+                        (a as f32 + 0.5) / Self::STRATA as f32,
+                        (b as f32 + 0.5) / Self::STRATA as f32,
+                    );
+                    let Some(wi) = sample(brdf, p, wo, u) else { continue };
+                    let density = pdf(brdf, p, wo, wi);
+                    if density > 0.0 {
+                        sum += f64::from(cos_weighted(brdf, &terms, Vec3::Z, wi, wo).x / density);
+                    }
+                }
+            }
+            *entry = (sum / (Self::STRATA * Self::STRATA) as f64) as f32;
+        }
+        LobeAlbedo { table }
+    }
+
+    /// The albedo for a view at cos θo (clamped to [0, 1]), interpolated linearly.
+    pub fn at(&self, cos_o: f32) -> f32 {
+        let x = cos_o.clamp(0.0, 1.0) * (Self::ENTRIES - 1) as f32;
+        let i = (x as usize).min(Self::ENTRIES - 2);
+        let t = x - i as f32;
+        self.table[i] * (1.0 - t) + self.table[i + 1] * t
+    }
+
+    /// The largest albedo over every view.
+    pub fn max(&self) -> f32 {
+        self.table.iter().copied().fold(0.0, f32::max)
+    }
+}

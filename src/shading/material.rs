@@ -5,6 +5,7 @@
 
 pub use super::texture::Texture;
 use crate::scene::{MaterialDesc, PhongDesc, Specular};
+use crate::shading::course_lobe::LobeAlbedo;
 use glam::Vec3;
 
 /// Below this GGX α a lobe is treated as perfectly smooth (a delta distribution).
@@ -28,10 +29,14 @@ pub struct Material {
     pub specular_texture: Option<Texture>,
     /// A tangent-space normal map (`shading::normal_map`).
     pub normal_map: Option<Texture>,
-    /// A height field and its scale (`shading::normal_map`).
-    /// The height texture, its factor and what its heights are measured in.
+    /// A height field, its factor and what its heights are measured in
+    /// (`shading::normal_map`).
     pub bump_map: Option<(Texture, f32, crate::scene::BumpScale)>,
     pub phong: Option<PhongDesc>,
+    /// The directional albedo of `phong`'s lobe (set with it by `from_desc` and
+    /// `with_phong`), by which the path tracer keeps the material from reflecting more
+    /// than it receives.
+    pub course_lobe_albedo: Option<LobeAlbedo>,
 }
 
 impl Default for Material {
@@ -47,6 +52,7 @@ impl Default for Material {
             normal_map: None,
             bump_map: None,
             phong: None,
+            course_lobe_albedo: None,
         }
     }
 }
@@ -73,8 +79,16 @@ impl Material {
                 .bump_map
                 .as_ref()
                 .map(|b| (Texture::from_desc(&b.texture), b.factor, b.scale)),
-            phong: desc.phong.clone(),
+            phong: None,
+            course_lobe_albedo: None,
         }
+        .with_phong(desc.phong.clone())
+    }
+
+    /// This material with the course's reflectance model `phong`.
+    pub fn with_phong(self, phong: Option<PhongDesc>) -> Self {
+        let course_lobe_albedo = phong.as_ref().map(|p| LobeAlbedo::new(&p.brdf, p.exponent));
+        Material { phong, course_lobe_albedo, ..self }
     }
 
     pub fn is_emissive(&self) -> bool {

@@ -66,6 +66,13 @@ fn white_furnace_through_course_glass_gains_no_energy() {
 </Scene>"#;
     let cameras = load_text(xml).unwrap();
     let scene = &cameras[0].scene;
+    // The course's own model adds the lobe to Fresnel's full share: the same furnace runs away.
+    let mut additive = course_options(scene, BackendKind::compiled()[0]);
+    additive.energy = embray::shading::bsdf::Energy::Additive;
+    let film = render(scene, &additive).unwrap().film;
+    let gained = film.color.iter().map(|c| f64::from(c.x)).sum::<f64>() / film.color.len() as f64;
+    println!("furnace with --energy additive: mean {gained:.2}");
+    assert!(gained > 2.0, "the additive model should gain energy here: {gained}");
     assert_eq!(scene.settings.max_depth, 1000, "the path depth the furnace is meant to test");
     for backend in BackendKind::compiled() {
         let options = course_options(scene, backend);
@@ -74,12 +81,10 @@ fn white_furnace_through_course_glass_gains_no_energy() {
         let mean = film.color.iter().map(|c| c.as_dvec3()).sum::<DVec3>() / n;
         let brightest = film.color.iter().map(|c| c.max_element()).fold(0.0f32, f32::max);
         println!("furnace on {}: mean {mean:.4}, brightest pixel {brightest:.4}", backend.name());
-        // Every pixel sees the sphere (its disc covers the 0.6-wide window at distance 3).
-        // The mean of 144 × 256 paths: a gain of a few % per bounce would show far above 1.
-        assert!(mean.max_element() <= 1.01, "{}: mean {mean}", backend.name());
-        assert!(brightest <= 1.1, "{}: brightest {brightest}", backend.name());
-        // The sphere keeps most of the light it receives (glass loses only what its lobe
-        // cannot return), so a furnace that came out dark would be a fault too.
-        assert!(mean.min_element() >= 0.6, "{}: mean {mean}", backend.name());
+        // Every pixel sees the sphere (its disc covers the 0.6-wide window at distance 3),
+        // which loses nothing (no absorption) and gains nothing: the mean of 144 × 256
+        // paths is 1 within its noise, and a gain of a few % a bounce would show far above.
+        assert!((mean.max_element() - 1.0).abs() <= 0.01, "{}: mean {mean}", backend.name());
+        assert!(brightest <= 1.25, "{}: brightest {brightest}", backend.name());
     }
 }

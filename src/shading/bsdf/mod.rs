@@ -5,8 +5,12 @@
 //! gives up what the lobe may take, so that no material reflects more than it receives).
 //! Directions are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
+mod coupling;
 mod fresnel;
 mod ggx;
+
+use coupling::Coupling;
+pub use coupling::Energy;
 
 pub use fresnel::{fresnel_conductor, fresnel_dielectric};
 
@@ -42,10 +46,8 @@ pub struct Bsdf {
     /// Lambertian reflectance, after the energy coupling of `Bsdf::new`.
     diffuse: Vec3,
     specular: Specular,
-    /// What the mirror, conductor or glass lobe keeps of its reflectance (per channel) so
-    /// that the course's lobe on top of it does not make the material reflect more than
-    /// it receives; 1 where the sum already stays within bounds.
-    specular_scale: Vec3,
+    /// How the course's lobe and the other lobes share what arrives (`coupling`).
+    coupling: Option<Coupling>,
     alpha: f32,
     delta_specular: bool,
     /// Whether the incoming ray arrived on the side the surface normal points to.
@@ -68,61 +70,55 @@ impl Bsdf {
     /// model) are clamped to 1. Glass has no Lambertian part.
     pub fn new(material: &Material, albedo: Vec3, frame: Mat3, front_face: bool) -> Self {
         let course_specular = material.phong.as_ref().map_or(Vec3::ZERO, |p| p.specular);
-        Self::with_reflectances(material, albedo, course_specular, frame, front_face)
+        let energy = Energy::Conserving;
+        Self::with_reflectances(material, albedo, course_specular, frame, front_face, energy)
     }
 
     /// `new` with the course model's specular reflectance given (a `specular_texture`'s
-    /// value here) instead of the material's `phong.specular`.
+    /// value here) instead of the material's `phong.specular`, and the `energy` model.
     pub fn with_reflectances(
         material: &Material,
         albedo: Vec3,
         course_specular: Vec3,
         frame: Mat3,
         front_face: bool,
+        energy: Energy,
     ) -> Self {
-        let albedo = albedo.clamp(Vec3::ZERO, Vec3::ONE);
+        let conserving = energy == Energy::Conserving;
+        let albedo =
+            if conserving { albedo.clamp(Vec3::ZERO, Vec3::ONE) } else { albedo.max(Vec3::ZERO) };
         let diffuse = match material.specular {
             Specular::None => albedo,
             Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
-                albedo * (Vec3::ONE - reflectance.clamp(Vec3::ZERO, Vec3::ONE))
+                if conserving {
+                    albedo * (Vec3::ONE - reflectance.clamp(Vec3::ZERO, Vec3::ONE))
+                } else {
+                    albedo
+                }
             }
             Specular::Dielectric { .. } => Vec3::ZERO,
         };
-        // The course's specular term is added to whatever else the material does, as the
-        // course adds it; where the sum could reflect more than arrives (glass reflects or
-        // transmits everything by itself, so its lobe of ks 0.3 made every bounce return up
-        // to 1.3), the other lobes give up what the course lobe can take. Materials that
-        // already conserve energy (kd + ks ≤ 1) are left as they are.
         let course_lobe = material
             .phong
             .as_ref()
-            .filter(|_| course_specular.max_element() > 0.0 && course_specular.is_finite())
-            .map(|p| (p, course_lobe::albedo_bound(&p.brdf, p.exponent)));
-        let lobe_albedo =
-            course_lobe.map_or(Vec3::ZERO, |(_, bound)| course_specular.max(Vec3::ZERO) * bound);
-        // A lobe that alone could reflect more than arrives is scaled to reflect at most that.
-        let lobe_scale = Vec3::ONE / lobe_albedo.max(Vec3::ONE);
-        let rest_albedo = diffuse
-            + match material.specular {
-                Specular::None => Vec3::ZERO,
-                Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
-                    reflectance.clamp(Vec3::ZERO, Vec3::ONE)
-                }
-                Specular::Dielectric { .. } => Vec3::ONE,
-            };
-        let room = (Vec3::ONE - lobe_albedo * lobe_scale).max(Vec3::ZERO);
-        let rest_scale = Vec3::select(
-            rest_albedo.cmpgt(room),
-            room / rest_albedo.max(Vec3::splat(f32::MIN_POSITIVE)),
-            Vec3::ONE,
-        );
-        let diffuse = diffuse * rest_scale;
-        let specular_scale = rest_scale;
+            .filter(|_| course_specular.max_element() > 0.0 && course_specular.is_finite());
+        let coupling = course_lobe.filter(|_| conserving).map(|p| {
+            let rest = diffuse
+                + match material.specular {
+                    Specular::None => Vec3::ZERO,
+                    Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
+                        reflectance.clamp(Vec3::ZERO, Vec3::ONE)
+                    }
+                    Specular::Dielectric { .. } => Vec3::ONE,
+                };
+            let ks = course_specular.max(Vec3::ZERO);
+            Coupling::new(rest, ks, &p.brdf, p.exponent, material.course_lobe_albedo)
+        });
         let specular_weight = match material.specular {
             Specular::None => 0.0,
-            Specular::Mirror { reflectance } => luminance(reflectance * specular_scale),
+            Specular::Mirror { reflectance } => luminance(reflectance),
             Specular::Conductor { eta, k, reflectance } => {
-                luminance(fresnel_conductor(1.0, eta, k) * reflectance * specular_scale)
+                luminance(fresnel_conductor(1.0, eta, k) * reflectance)
             }
             Specular::Dielectric { .. } => f32::INFINITY,
         };
@@ -134,8 +130,8 @@ impl Bsdf {
         } else {
             0.0
         };
-        let course = course_lobe.map(|(p, _)| {
-            let specular = course_specular.max(Vec3::ZERO) * lobe_scale;
+        let course = course_lobe.map(|p| {
+            let specular = coupling.map_or(course_specular.max(Vec3::ZERO), |c| c.ks());
             (p.brdf, CourseTerms { diffuse: Vec3::ZERO, specular, exponent: p.exponent })
         });
         let p_course = match &course {
@@ -154,7 +150,7 @@ impl Bsdf {
             frame,
             diffuse,
             specular: material.specular,
-            specular_scale,
+            coupling,
             alpha: material.ggx_alpha.max(1e-4),
             delta_specular: material.specular_is_delta(),
             front_face,
@@ -174,31 +170,34 @@ impl Bsdf {
     }
 
     fn specular_tint(&self, cos: f32) -> Vec3 {
-        let tint = match self.specular {
+        match self.specular {
             Specular::Mirror { reflectance } => reflectance,
             Specular::Conductor { eta, k, reflectance } => {
                 fresnel_conductor(cos, eta, k) * reflectance
             }
             _ => Vec3::ZERO,
-        };
-        tint * self.specular_scale
+        }
     }
 
-    /// An upper bound of the fraction of arriving energy this BSDF reflects or transmits
-    /// (its directional albedo, per channel, over every wo): at most 1 by construction.
-    pub fn albedo_bound(&self) -> Vec3 {
+    /// The factor on the lobes other than the course's for a view at `cos_o`
+    /// (`coupling`).
+    fn rest_scale(&self, cos_o: f32) -> Vec3 {
+        self.coupling.as_ref().map_or(Vec3::ONE, |c| c.rest_scale(cos_o))
+    }
+
+    /// An upper bound of the fraction of energy arriving from `wo` (render space) that this
+    /// BSDF reflects or transmits, per channel: at most 1 by construction.
+    pub fn albedo_bound(&self, wo: Vec3) -> Vec3 {
+        let cos_o = self.local_from_render(wo).z;
         let rest = self.diffuse
             + match self.specular {
                 Specular::None => Vec3::ZERO,
                 Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
-                    reflectance.clamp(Vec3::ZERO, Vec3::ONE) * self.specular_scale
+                    reflectance.clamp(Vec3::ZERO, Vec3::ONE)
                 }
-                Specular::Dielectric { .. } => self.specular_scale,
+                Specular::Dielectric { .. } => Vec3::ONE,
             };
-        let lobe = self.course.as_ref().map_or(Vec3::ZERO, |(brdf, terms)| {
-            terms.specular * course_lobe::albedo_bound(brdf, terms.exponent)
-        });
-        rest + lobe
+        self.coupling.as_ref().map_or(rest, |c| c.total_albedo(cos_o))
     }
 
     /// f · |cos θi| and the density of sampling `wi`, for the non-delta lobes.
@@ -208,12 +207,13 @@ impl Bsdf {
             return (Vec3::ZERO, 0.0);
         }
         let p_diffuse = 1.0 - self.p_specular;
-        let mut value = self.diffuse * FRAC_1_PI * wi.z;
+        let rest_scale = self.rest_scale(wo.z);
+        let mut value = self.diffuse * rest_scale * FRAC_1_PI * wi.z;
         let mut pdf = p_diffuse * wi.z * FRAC_1_PI;
         if self.p_specular > 0.0 && !self.delta_specular {
             let h = (wo + wi).normalize();
             let d = ggx::d(h, self.alpha);
-            let f = self.specular_tint(wo.dot(h));
+            let f = self.specular_tint(wo.dot(h)) * rest_scale;
             value += f * (d * ggx::g2(wo, wi, self.alpha) / (4.0 * wo.z));
             pdf += self.p_specular * ggx::pdf_reflect(wo, h, self.alpha);
         }
@@ -242,14 +242,15 @@ impl Bsdf {
         if u_lobe < self.p_specular {
             if let Specular::Dielectric { ior, .. } = self.specular {
                 let mut sample = self.sample_dielectric(wo, ior, u.x);
-                sample.weight *= self.specular_scale / not_course;
+                sample.weight = sample.weight * self.rest_scale(wo.z) / not_course;
                 return Some(sample);
             }
             if self.delta_specular {
                 let wi = Vec3::new(-wo.x, -wo.y, wo.z);
                 return Some(BsdfSample {
                     wi: self.frame * wi,
-                    weight: self.specular_tint(wo.z) / (self.p_specular * not_course),
+                    weight: self.specular_tint(wo.z) * self.rest_scale(wo.z)
+                        / (self.p_specular * not_course),
                     eta_scale: 1.0,
                     pdf: 0.0,
                     delta: true,
