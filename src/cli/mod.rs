@@ -9,6 +9,7 @@ mod convert;
 mod info;
 mod merge;
 mod render;
+mod render_args;
 mod render_part;
 mod slurm;
 mod tonemap;
@@ -22,7 +23,7 @@ pub use bench::BenchCommand;
 pub use compare::CompareArgs;
 pub use convert::ConvertArgs;
 pub use merge::MergeArgs;
-pub use render::RenderArgs;
+pub use render_args::RenderArgs;
 pub use tonemap::TonemapArgs;
 
 #[derive(Parser, Debug)]

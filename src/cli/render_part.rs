@@ -2,7 +2,7 @@
 //! `embray merge`.
 
 use super::console::note;
-use super::render::RenderArgs;
+use super::render_args::RenderArgs;
 use anyhow::{Result, bail};
 use embray::distributed::{
     Part, PartMeta, PartTiming, PngSettings, encode_part, hash_files, options_fingerprint,

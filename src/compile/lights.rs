@@ -7,7 +7,7 @@ use crate::scene::LightDesc;
 use crate::scene::{EnvironmentMap, EnvironmentMapping};
 use crate::shading::light::{
     DirectionalLight, Ellipsoid, Emitter, EmitterShape, EnvironmentLight, InstanceEmitters,
-    LightSet, NO_GEOMETRY, PointLight, SpotCone,
+    LightSet, NO_GEOMETRY, PointLight, SphereShape, SpotCone,
 };
 use crate::shading::material::Material;
 use crate::transform::course_square_axes;
@@ -85,7 +85,7 @@ fn emitters_of_instance(
         }
         Geometry::Sphere(s) => {
             let shape = match transform {
-                None => EmitterShape::Sphere { center: s.center, radius: s.radius },
+                None => EmitterShape::Sphere(SphereShape { center: s.center, radius: s.radius }),
                 Some(m) => {
                     EmitterShape::Ellipsoid(Box::new(Ellipsoid::new(s.center, s.radius, m)?))
                 }

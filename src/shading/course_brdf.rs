@@ -19,7 +19,7 @@
 //! OriginalBlinnPhong reproduces the shading of the earlier homeworks exactly. Nothing is
 //! reflected from a light below the horizon (`cos θi ≤ 0`) or towards a viewer below it.
 
-use super::bsdf::fresnel_conductor;
+use super::fresnel::fresnel_conductor;
 use crate::scene::CourseBrdf;
 use glam::Vec3;
 use std::f32::consts::PI;

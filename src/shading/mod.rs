@@ -4,6 +4,7 @@
 pub mod bsdf;
 pub mod course_brdf;
 pub mod course_lobe;
+pub mod fresnel;
 pub mod light;
 pub mod material;
 pub mod normal_map;

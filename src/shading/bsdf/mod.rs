@@ -6,13 +6,12 @@
 //! Directions are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
 mod coupling;
-mod fresnel;
 mod ggx;
 
 use coupling::Coupling;
 pub use coupling::Energy;
 
-pub use fresnel::{fresnel_conductor, fresnel_dielectric};
+pub use crate::shading::fresnel::{fresnel_conductor, fresnel_dielectric};
 
 use crate::color::luminance;
 use crate::scene::{CourseBrdf, Specular};

@@ -5,7 +5,8 @@
 //! An affine map keeps tangency, so the object-space visible cap is exactly the visible part
 //! of the ellipsoid.
 
-use super::emitter::{EmitterShape, ShapeSample, solid_angle_density};
+use super::shape_sample::{ShapeSample, solid_angle_density};
+use super::sphere_shape::SphereShape;
 use crate::shading::surface::transform_point_with_error;
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 use std::f32::consts::PI;
@@ -47,8 +48,8 @@ impl Ellipsoid {
         Some(ellipsoid)
     }
 
-    fn sphere(&self) -> EmitterShape {
-        EmitterShape::Sphere { center: self.center, radius: self.radius }
+    fn sphere(&self) -> SphereShape {
+        SphereShape { center: self.center, radius: self.radius }
     }
 
     /// Render-space area per object-space area at the point with unit object normal `n`.

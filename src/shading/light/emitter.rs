@@ -6,19 +6,12 @@
 //! the shading point, so both strategies enter MIS alike.
 
 use super::ellipsoid::Ellipsoid;
-use crate::float_error::{TrianglePlane, sphere_point_from_local, triangle_point};
-use crate::sampling::frame_from_normal;
+use super::shape_sample::{ShapeSample, by_solid_angle, solid_angle_density};
+use super::sphere_shape::SphereShape;
+use crate::float_error::{TrianglePlane, triangle_point};
 use crate::sampling::spherical_rectangle::{RectangleFrame, SphericalRectangle};
 use crate::sampling::{spherical_triangle, uniform_triangle};
 use glam::{Vec2, Vec3};
-use std::f32::consts::PI;
-
-/// Below this solid angle (sr) a light is sampled by area: the spherical excess loses
-/// precision and the light is far enough that area sampling is as good (pbrt-v4's bound).
-const MIN_SOLID_ANGLE: f64 = 3e-4;
-/// Above it, by area too: a triangle covering nearly a hemisphere makes Arvo's construction
-/// unstable.
-const MAX_SOLID_ANGLE: f64 = 6.22;
 
 /// Solid-angle sampling costs several trigonometric functions per sample and gains little
 /// beyond a few bounding radii from the light, where the density over it is nearly uniform
@@ -50,10 +43,7 @@ pub enum EmitterShape {
         area: f32,
         near: NearSphere,
     },
-    Sphere {
-        center: Vec3,
-        radius: f32,
-    },
+    Sphere(SphereShape),
     /// A sphere under an affine map (see `Ellipsoid`).
     Ellipsoid(Box<Ellipsoid>),
 }
@@ -100,53 +90,17 @@ impl EmitterShape {
             EmitterShape::Quad { vertices: [v0, ..], planes, .. } => {
                 (reference - *v0).dot(planes[0].normal) > 0.0
             }
-            EmitterShape::Sphere { .. } | EmitterShape::Ellipsoid(_) => true,
+            EmitterShape::Sphere(_) | EmitterShape::Ellipsoid(_) => true,
         }
     }
 
     pub fn area(&self) -> f32 {
         match self {
             EmitterShape::Triangle { area, .. } | EmitterShape::Quad { area, .. } => *area,
-            EmitterShape::Sphere { radius, .. } => 4.0 * PI * radius * radius,
+            EmitterShape::Sphere(sphere) => sphere.area(),
             EmitterShape::Ellipsoid(e) => e.area(),
         }
     }
-}
-
-/// A point sampled on an emitter's surface, and its density per unit solid angle at the
-/// shading point it was sampled from.
-#[derive(Clone, Copy, Debug)]
-pub struct ShapeSample {
-    pub point: Vec3,
-    /// Rounding-error bound of `point`.
-    pub error: Vec3,
-    /// Unit normal at `point`.
-    pub normal: Vec3,
-    pub pdf: f32,
-}
-
-/// Density per unit solid angle at `reference` of a density per unit area `pdf_area` at
-/// `point` (normal `normal`).
-pub(super) fn solid_angle_density(
-    pdf_area: f32,
-    reference: Vec3,
-    point: Vec3,
-    normal: Vec3,
-) -> f32 {
-    let to_point = point - reference;
-    let dist2 = to_point.length_squared();
-    let cos = normal.dot(to_point).abs() / dist2.sqrt();
-    if cos > 0.0 && dist2 > 0.0 { pdf_area * dist2 / cos } else { 0.0 }
-}
-
-/// Whether solid-angle sampling is stable for this solid angle.
-fn by_solid_angle(omega: f64) -> bool {
-    (MIN_SOLID_ANGLE..=MAX_SOLID_ANGLE).contains(&omega)
-}
-
-/// 1 − cos θ for the cone of half-angle θ, without cancellation for tiny cones.
-fn one_minus_cos(sin2: f32) -> f32 {
-    sin2 / (1.0 + (1.0 - sin2).sqrt())
 }
 
 /// Where solid-angle sampling of a flat shape pays: within `NEAR_RADII` bounding radii of
@@ -167,14 +121,8 @@ impl NearSphere {
 /// How a shape is sampled by solid angle from one shading point.
 #[derive(Clone, Copy, Debug)]
 enum Spherical {
-    Triangle {
-        solid_angle: f64,
-    },
+    Triangle { solid_angle: f64 },
     Rectangle(SphericalRectangle),
-    /// The cone of a sphere, by the sine² of its half-angle.
-    Cone {
-        sin2_max: f32,
-    },
 }
 
 impl Spherical {
@@ -182,7 +130,6 @@ impl Spherical {
         match self {
             Spherical::Triangle { solid_angle } => (1.0 / solid_angle) as f32,
             Spherical::Rectangle(r) => (1.0 / r.solid_angle()) as f32,
-            Spherical::Cone { sin2_max } => 1.0 / (2.0 * PI * one_minus_cos(*sin2_max)),
         }
     }
 }
@@ -204,12 +151,9 @@ impl EmitterShape {
                 .seen_from(reference)
                 .filter(|r| by_solid_angle(r.solid_angle()))
                 .map(Spherical::Rectangle),
-            EmitterShape::Quad { .. } => None,
-            EmitterShape::Sphere { center, radius } => {
-                let sin2_max = radius * radius / (*center - reference).length_squared();
-                (sin2_max < 0.9999).then_some(Spherical::Cone { sin2_max })
+            EmitterShape::Quad { .. } | EmitterShape::Sphere(_) | EmitterShape::Ellipsoid(_) => {
+                None
             }
-            EmitterShape::Ellipsoid(_) => None,
         }
     }
 
@@ -219,15 +163,17 @@ impl EmitterShape {
             EmitterShape::Triangle { near, .. } | EmitterShape::Quad { near, .. } => {
                 (near.center - reference).length_squared() < near.radius2
             }
-            EmitterShape::Sphere { .. } | EmitterShape::Ellipsoid(_) => true,
+            EmitterShape::Sphere(_) | EmitterShape::Ellipsoid(_) => true,
         }
     }
 
     /// A point sampled from `reference` with `u`; `None` where nothing can be sampled (a
     /// degenerate shape, or one seen exactly edge-on).
     pub fn sample_from(&self, reference: Vec3, u: Vec2) -> Option<ShapeSample> {
-        if let EmitterShape::Ellipsoid(e) = self {
-            return e.sample_from(reference, u);
+        match self {
+            EmitterShape::Sphere(sphere) => return sphere.sample_from(reference, u),
+            EmitterShape::Ellipsoid(e) => return e.sample_from(reference, u),
+            _ => {}
         }
         let Some(spherical) = self.spherical(reference) else {
             return self.sample_by_area(reference, u);
@@ -241,11 +187,6 @@ impl EmitterShape {
             }
             (EmitterShape::Quad { .. }, Spherical::Rectangle(r)) => {
                 let (point, error, normal) = self.quad_point(r.sample(u));
-                Some(ShapeSample { point, error, normal, pdf })
-            }
-            (EmitterShape::Sphere { center, radius }, Spherical::Cone { sin2_max }) => {
-                let normal = cone_normal(*center, reference, sin2_max, u);
-                let (point, error) = sphere_point(*center, *radius, normal);
                 Some(ShapeSample { point, error, normal, pdf })
             }
             _ => unreachable!("`spherical` matches the shape"),
@@ -262,14 +203,7 @@ impl EmitterShape {
                 (point, error, plane.normal)
             }
             EmitterShape::Quad { .. } => self.quad_point(u),
-            EmitterShape::Sphere { center, radius } => {
-                let z = 1.0 - 2.0 * u.x;
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let (sin_phi, cos_phi) = (2.0 * PI * u.y).sin_cos();
-                let normal = Vec3::new(r * cos_phi, r * sin_phi, z);
-                let (point, error) = sphere_point(*center, *radius, normal);
-                (point, error, normal)
-            }
+            EmitterShape::Sphere(sphere) => return sphere.sample_by_area(reference, u),
             // Not uniform by area: the sphere's uniform points carried over by the map.
             EmitterShape::Ellipsoid(e) => return e.sample_from(reference, u),
         };
@@ -293,33 +227,14 @@ impl EmitterShape {
     /// The density per unit solid angle with which `sample_from(reference, ..)` picks
     /// `point` (normal `normal`), a point on this shape.
     pub fn pdf_from(&self, reference: Vec3, point: Vec3, normal: Vec3) -> f32 {
-        if let EmitterShape::Ellipsoid(e) = self {
-            return e.pdf_from(reference, point, normal);
+        match self {
+            EmitterShape::Sphere(sphere) => return sphere.pdf_from(reference, point, normal),
+            EmitterShape::Ellipsoid(e) => return e.pdf_from(reference, point, normal),
+            _ => {}
         }
         match self.spherical(reference) {
             Some(spherical) => spherical.pdf(),
             None => solid_angle_density(1.0 / self.area(), reference, point, normal),
         }
     }
-}
-
-/// The point at unit normal `normal` of a sphere, with its rounding-error bound.
-fn sphere_point(center: Vec3, radius: f32, normal: Vec3) -> (Vec3, Vec3) {
-    sphere_point_from_local(center, radius, radius * normal)
-}
-
-/// Uniform direction in the cone a sphere subtends from `reference`, returned as the
-/// sphere's unit normal at the visible point it reaches (the angle at the centre follows
-/// from the angle at the shading point, as in pbrt-v4).
-fn cone_normal(center: Vec3, reference: Vec3, sin2_max: f32, u: Vec2) -> Vec3 {
-    let sin_max = sin2_max.sqrt();
-    let one_minus_cos_theta = u.x * one_minus_cos(sin2_max);
-    let cos_theta = 1.0 - one_minus_cos_theta;
-    let sin2_theta = one_minus_cos_theta * (2.0 - one_minus_cos_theta);
-    let cos_alpha =
-        sin2_theta / sin_max + cos_theta * (1.0 - sin2_theta / sin2_max).max(0.0).sqrt();
-    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
-    let (sin_phi, cos_phi) = (2.0 * PI * u.y).sin_cos();
-    let frame = frame_from_normal((center - reference).normalize());
-    (frame * Vec3::new(sin_alpha * cos_phi, sin_alpha * sin_phi, -cos_alpha)).normalize()
 }

@@ -7,12 +7,16 @@ mod ellipsoid;
 mod emitter;
 mod env_mapping;
 mod environment;
+mod shape_sample;
+mod sphere_shape;
 #[cfg(test)]
 mod tests;
 
 pub use ellipsoid::Ellipsoid;
-pub use emitter::{EmitterShape, ShapeSample};
+pub use emitter::EmitterShape;
 pub use environment::{EnvironmentLight, EnvironmentSample};
+pub use shape_sample::ShapeSample;
+pub use sphere_shape::SphereShape;
 
 use crate::color::luminance;
 use crate::sampling::alias::AliasTable;

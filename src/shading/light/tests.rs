@@ -2,7 +2,8 @@
 //! estimate the same irradiance, solid-angle sampling with less variance close to the
 //! light; the density the sampler reports is the one `pdf_from` computes for the same point.
 
-use super::emitter::{EmitterShape, ShapeSample};
+use super::emitter::EmitterShape;
+use super::shape_sample::ShapeSample;
 use crate::splitmix::SplitMix64;
 use glam::{Vec2, Vec3};
 
@@ -49,7 +50,7 @@ fn assert_consistent_pdf(name: &str, shape: &EmitterShape, reference: Vec3) {
 /// angle).
 fn compare_strategies(name: &str, shape: &EmitterShape, reference: Vec3, receiver: Vec3) -> f64 {
     assert_consistent_pdf(name, shape, reference);
-    let flat = !matches!(shape, EmitterShape::Sphere { .. });
+    let flat = !matches!(shape, EmitterShape::Sphere(_));
     let sample = |u| shape.sample_from(reference, u);
     let (mean_sa, var_sa) = irradiance(sample, reference, receiver, flat, 1);
     let by_area = |u| shape.sample_by_area(reference, u);
@@ -110,7 +111,10 @@ fn a_close_triangle_is_sampled_alike_but_with_less_noise_by_solid_angle() {
 
 #[test]
 fn a_close_sphere_is_sampled_alike_but_with_less_noise_by_its_cone() {
-    let sphere = EmitterShape::Sphere { center: Vec3::new(0.0, 1.5, 0.0), radius: 0.5 };
+    let sphere = EmitterShape::Sphere(super::sphere_shape::SphereShape {
+        center: Vec3::new(0.0, 1.5, 0.0),
+        radius: 0.5,
+    });
     let ratio = compare_strategies("sphere", &sphere, Vec3::new(0.2, 0.9, 0.0), Vec3::Y);
     assert!(ratio > 3.0, "{ratio}");
     // A sphere straight above the horizon: E = π sin²θ_max.

@@ -1,0 +1,198 @@
+//! `embray render`'s arguments and their validation into `RenderOptions`.
+
+use super::choices::{PhotographicArgs, TonemapArg, choice, tonemap};
+use anyhow::{Result, bail};
+use clap::Args;
+use embray::accel::{BackendKind, BatchMode, BuildQuality};
+use embray::compile::EffectsMode;
+use embray::distributed::Split;
+use embray::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SPP, MAX_THREADS};
+use embray::render::RenderOptions;
+use embray::render_space::RenderSpace;
+use embray::sampling::SamplerKind;
+use embray::scene::SceneDesc;
+use embray::shading::bsdf::Energy;
+use embray::shading::spawn::SpawnMode;
+use glam::DVec3;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file: .toml (native) or .xml (CENG795, every camera rendered to its ImageName
+    /// in --out-dir); the built-in Cornell box if omitted.
+    pub scene: Option<PathBuf>,
+    /// EXR output (linear RGB, Z, N.X/N.Y/N.Z) [default: render.exr; for a one-camera .xml
+    /// scene: the ImageName with .exr in --out-dir].
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// PNG output (tone-mapped sRGB); defaults to the EXR path with a .png extension.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+    /// Folder for the images of a CENG795 .xml scene: each camera's ImageName (PNG) and an
+    /// EXR with the same stem. Not used with -o.
+    #[arg(long, default_value = ".")]
+    pub out_dir: PathBuf,
+    /// Samples per pixel (default: the scene's, else 16).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Maximum number of surface interactions per path (1 = direct light only).
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+    /// Worker threads (default: all cores). The image does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Space the committed scene lives in.
+    #[arg(long, value_parser = choice::<RenderSpace>(), default_value_t = RenderSpace::Cameraworld)]
+    pub render_space: RenderSpace,
+    /// Move the whole scene and camera by X,Y,Z (e.g. 1e7,1e7,1e7) to test precision.
+    #[arg(long, value_parser = parse_offset, allow_hyphen_values = true)]
+    pub offset: Option<DVec3>,
+    /// Put samples at stratum centres instead of jittering them.
+    #[arg(long)]
+    pub no_jitter: bool,
+    /// Intersection backend.
+    #[arg(long, value_parser = choice::<BackendKind>())]
+    pub backend: Option<BackendKind>,
+    /// BVH build quality (both backends; medium was fastest overall when measured).
+    #[arg(long, value_parser = choice::<BuildQuality>(), default_value_t = BuildQuality::Medium)]
+    pub build_quality: BuildQuality,
+    /// Embree: build a compact BVH (less memory, slower traversal).
+    #[arg(long)]
+    pub compact: bool,
+    /// Embree: how camera rays are traced — single rays, or packets of 8 or 16.
+    #[arg(long, value_parser = choice::<BatchMode>(), default_value_t = BatchMode::Packets8)]
+    pub batch: BatchMode,
+    /// PNG tone curve.
+    /// auto: photographic for a CENG795 camera with a <Tonemap>, clamp255 for other Whitted
+    /// (CENG795) scenes, aces otherwise; none: clamp to [0, 1]; reinhard: x / (1 + x); aces:
+    /// Narkowicz's ACES fit (all sRGB encoded); clamp255: values in 0–255 units clamped and
+    /// truncated, no curve, no sRGB (the CENG795 output); photographic: Reinhard et al.'s
+    /// global operator over the whole image (--key, --burn-out, --saturation, --gamma).
+    #[arg(long, value_parser = tonemap(), default_value = "auto")]
+    pub tonemap: TonemapArg,
+    #[command(flatten)]
+    pub photographic: PhotographicArgs,
+    /// A 3-D LUT (.cube, Adobe/Resolve format) applied to the PNG last, as a grading look.
+    #[arg(long, value_name = "FILE.cube")]
+    pub lut: Option<PathBuf>,
+    /// Exposure adjustment in stops, applied before tone mapping (PNG only).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub exposure: f32,
+    /// Print ray and traversal counters as a table (counting node visits and primitive
+    /// tests costs time; the summary's Mrays/s is then not representative).
+    #[arg(long)]
+    pub stats: bool,
+    /// Write the counters as JSON to this file (implies counting, like --stats).
+    #[arg(long)]
+    pub stats_json: Option<PathBuf>,
+    /// Shadow rays to area lights per shading point (default: the scene's, else 1).
+    #[arg(long)]
+    pub light_samples: Option<u32>,
+    /// Sample every effect (time, lens) and build motion BVHs even where the scene needs
+    /// none: measures what the effects machinery would cost a static scene.
+    #[arg(long)]
+    pub force_all_effects: bool,
+    /// Random numbers: Owen-scrambled Sobol, stratified pixels with hashed dimensions, or
+    /// all independent (for comparisons).
+    #[arg(long, value_parser = choice::<SamplerKind>(), default_value_t = SamplerKind::Sobol)]
+    pub sampler: SamplerKind,
+    /// How the path tracer combines a material's lobes: `conserving` (no material reflects
+    /// more than it receives) or `additive` (the CENG795 course's renderer: kd, mirror and
+    /// the specular lobe added as they are, to reproduce its images).
+    #[arg(long, value_parser = choice::<Energy>(), default_value_t = Energy::Conserving)]
+    pub energy: Energy,
+    /// How rays leave surfaces: `robust` (error-bound offsets) or `epsilon=VALUE`.
+    #[arg(long, value_parser = SpawnMode::parse, default_value = "robust")]
+    pub spawn: SpawnMode,
+    /// Render only part I of N (counting from 0) into a part file of exact sample sums
+    /// (-o, default part-I-of-N.exr); `embray merge` joins the N parts into the image the
+    /// whole render would give, bit for bit.
+    #[arg(long, value_name = "I/N")]
+    pub part: Option<String>,
+    /// How --part divides the render: each part gets whole tiles (spread over the image), or
+    /// a range of every pixel's samples.
+    #[arg(long, value_parser = choice::<Split>(), default_value_t = Split::Tiles, requires = "part")]
+    pub split: Split,
+    /// No progress bar or summary line.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn parse_offset(text: &str) -> Result<DVec3, String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("expected X,Y,Z, got '{text}'"));
+    }
+    let mut v = [0.0; 3];
+    for (slot, part) in v.iter_mut().zip(&parts) {
+        let value: f64 = part.trim().parse().map_err(|_| format!("'{part}' is not a number"))?;
+        if !value.is_finite() {
+            return Err(format!("'{part}' is not finite"));
+        }
+        *slot = value;
+    }
+    Ok(DVec3::from_array(v))
+}
+
+impl RenderArgs {
+    /// The EXR path (`-o`, default render.exr).
+    pub fn output_path(&self) -> PathBuf {
+        self.output.clone().unwrap_or_else(|| PathBuf::from("render.exr"))
+    }
+
+    pub fn png_path(&self) -> PathBuf {
+        self.png.clone().unwrap_or_else(|| self.output_path().with_extension("png"))
+    }
+
+    pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {
+        let mut options = RenderOptions::for_scene(scene);
+        if let Some(spp) = self.spp {
+            if !(1..=MAX_SPP).contains(&spp) {
+                bail!("--spp is {spp}, but must be between 1 and {MAX_SPP}");
+            }
+            options.spp = spp;
+        }
+        if let Some(depth) = self.max_depth {
+            if depth > MAX_DEPTH {
+                bail!("--max-depth is {depth}, but must be at most {MAX_DEPTH}");
+            }
+            options.max_depth = depth;
+        }
+        if let Some(threads) = self.threads {
+            if !(1..=MAX_THREADS).contains(&threads) {
+                bail!("--threads is {threads}, but must be between 1 and {MAX_THREADS}");
+            }
+            options.threads = Some(threads);
+        }
+        if !self.exposure.is_finite() {
+            bail!("--exposure must be a finite number");
+        }
+        options.seed = self.seed;
+        options.jitter = !self.no_jitter;
+        options.render_space = self.render_space;
+        options.offset = self.offset.unwrap_or(DVec3::ZERO);
+        if let Some(backend) = self.backend {
+            options.backend = backend;
+        }
+        options.count_traversal = self.stats || self.stats_json.is_some();
+        options.accel.build_quality = self.build_quality;
+        options.accel.compact = self.compact;
+        options.accel.batch = self.batch;
+        if let Some(n) = self.light_samples {
+            if !(1..=MAX_LIGHT_SAMPLES).contains(&n) {
+                bail!("--light-samples is {n}, but must be between 1 and {MAX_LIGHT_SAMPLES}");
+            }
+            options.light_samples = n;
+        }
+        options.spawn = self.spawn;
+        options.sampler = self.sampler;
+        options.energy = self.energy;
+        if self.force_all_effects {
+            options.effects_mode = EffectsMode::ForceAll;
+        }
+        options.progress = !self.quiet;
+        Ok(options)
+    }
+}
