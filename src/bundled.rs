@@ -1,6 +1,6 @@
 //! The scenes shipped with embray, embedded in the binary so an installed `embray` finds
 //! them wherever it runs. They live under a virtual folder, [`ROOT`]: a path below it is read
-//! from the binary (by the scene loaders, through `scene::input_file`), so bundled scenes
+//! from the binary (by the scene loaders, through `input_file`), so bundled scenes
 //! name their meshes by relative paths exactly as files on disk do.
 
 use std::path::{Path, PathBuf};

@@ -24,6 +24,7 @@ pub mod film;
 pub mod float_error;
 pub mod image_error;
 pub mod info;
+pub mod input_file;
 pub mod integrator;
 pub mod intersect;
 pub mod limits;

@@ -97,7 +97,7 @@ pub enum RenderError {
     #[error(transparent)]
     Accel(#[from] AccelError),
     #[error(transparent)]
-    Limit(#[from] crate::limits::LimitError),
+    Limit(#[from] crate::scene::budget::LimitError),
     #[error("{what} is {value}, but must be at most {max}")]
     Option { what: &'static str, value: u64, max: u64 },
     #[error(transparent)]
@@ -127,7 +127,7 @@ pub fn prepare_scene(
         desc.translate(options.offset);
     }
     // Checked here, before either backend sees the scene, so both refuse the same scenes.
-    crate::limits::check_coordinates(&desc, options.render_space)?;
+    crate::scene::budget::check_coordinates(&desc, options.render_space)?;
     Ok(to_render_scene(&desc, options.render_space, options.effects_mode)?)
 }
 
@@ -169,7 +169,7 @@ pub fn render_part(
         return Err(RenderError::Option { what: "pixels × spp", value: samples, max });
     }
     part.check((desc.camera.width, desc.camera.height), TILE_SIZE, options.spp.max(1))?;
-    crate::limits::check_memory(desc)?;
+    crate::scene::budget::check_memory(desc)?;
     let run = || -> Result<PartOutput, RenderError> {
         let scene = prepare_scene(desc, options)?;
         let build_start = Instant::now();

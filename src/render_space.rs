@@ -7,9 +7,8 @@
 //! a scene at the origin.
 
 use crate::choice::named_choices;
-use crate::scene::CameraDesc;
 use crate::transform::camera_basis;
-use glam::{DAffine3, DMat3};
+use glam::{DAffine3, DMat3, DVec3};
 
 /// The space the committed scene lives in.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -64,17 +63,18 @@ pub struct CameraTransform {
 }
 
 impl CameraTransform {
-    pub fn new(space: RenderSpace, camera: &CameraDesc) -> Self {
-        let world_from_camera_rotation = camera_basis(camera.lookat - camera.lookfrom, camera.up);
+    /// For a camera at `lookfrom` looking at `lookat` with `up` (all world space).
+    pub fn new(space: RenderSpace, lookfrom: DVec3, lookat: DVec3, up: DVec3) -> Self {
+        let world_from_camera_rotation = camera_basis(lookat - lookfrom, up);
         let render_from_world = match space {
             RenderSpace::World => DAffine3::IDENTITY,
-            RenderSpace::Cameraworld => DAffine3::from_translation(-camera.lookfrom),
+            RenderSpace::Cameraworld => DAffine3::from_translation(-lookfrom),
             RenderSpace::Camera => {
                 // Inverse of a rigid transform: Rᵀ · translate(-origin).
                 let camera_from_world_rotation = world_from_camera_rotation.transpose();
                 DAffine3 {
                     matrix3: camera_from_world_rotation,
-                    translation: camera_from_world_rotation * -camera.lookfrom,
+                    translation: camera_from_world_rotation * -lookfrom,
                 }
             }
         };
@@ -94,24 +94,24 @@ impl CameraTransform {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
 
-    fn camera_at(lookfrom: DVec3) -> CameraDesc {
-        CameraDesc::pinhole(lookfrom, lookfrom + DVec3::new(1.0, -0.5, 2.0), 40.0, 8, 8)
+    /// A camera at `lookfrom` looking along (1, −0.5, 2), y up.
+    fn transform_at(space: RenderSpace, lookfrom: DVec3) -> (CameraTransform, DVec3) {
+        let lookat = lookfrom + DVec3::new(1.0, -0.5, 2.0);
+        (CameraTransform::new(space, lookfrom, lookat, DVec3::Y), lookat)
     }
 
     #[test]
     fn cameraworld_puts_the_camera_at_the_origin_without_rotation() {
-        let t = CameraTransform::new(RenderSpace::Cameraworld, &camera_at(DVec3::splat(1e7)));
+        let (t, _) = transform_at(RenderSpace::Cameraworld, DVec3::splat(1e7));
         assert_eq!(t.render_from_world.transform_point3(DVec3::splat(1e7)), DVec3::ZERO);
         assert_eq!(t.render_from_world.matrix3, DMat3::IDENTITY);
     }
 
     #[test]
     fn camera_space_maps_the_view_direction_to_minus_z() {
-        let desc = camera_at(DVec3::new(3.0, 4.0, 5.0));
-        let t = CameraTransform::new(RenderSpace::Camera, &desc);
-        let ahead = t.render_from_world.transform_point3(desc.lookat);
+        let (t, lookat) = transform_at(RenderSpace::Camera, DVec3::new(3.0, 4.0, 5.0));
+        let ahead = t.render_from_world.transform_point3(lookat);
         assert!(ahead.x.abs() < 1e-12 && ahead.y.abs() < 1e-12 && ahead.z < 0.0);
         assert!(
             (t.render_from_camera_rotation() - DMat3::IDENTITY).abs_diff_eq(DMat3::ZERO, 1e-12)
@@ -121,9 +121,8 @@ mod tests {
     #[test]
     fn far_translation_cancels_exactly_in_f64() {
         let offset = DVec3::new(1e7, -1e7, 1e7);
-        let desc = camera_at(offset);
         let world_from_object = DAffine3::from_translation(offset + DVec3::new(0.25, 1.5, 3.0));
-        let t = CameraTransform::new(RenderSpace::Cameraworld, &desc);
+        let (t, _) = transform_at(RenderSpace::Cameraworld, offset);
         let render_from_object = t.render_from_world * world_from_object;
         assert_eq!(render_from_object.translation, DVec3::new(0.25, 1.5, 3.0));
     }

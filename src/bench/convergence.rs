@@ -41,7 +41,7 @@ pub fn read_reference(path: &Path) -> Result<Film, ConvergenceError> {
         |message: String| ConvergenceError::Reference { path: path.display().to_string(), message };
     // Through the capped reader: only a regular file, of bounded size, recorded as an input
     // so that no output of the run may overwrite it.
-    let bytes = crate::scene::input_file::read_bytes(path).map_err(|e| error(e.to_string()))?;
+    let bytes = crate::input_file::read_bytes(path).map_err(|e| error(e.to_string()))?;
     // The header's size is checked before the reader allocates for it: a render's size at
     // most, as any image embray wrote is.
     let (w, h) = crate::exr_rgb::size(&bytes).map_err(error)?;

@@ -160,7 +160,7 @@ fn plan_csv(path: &std::path::Path, named_inputs: &[(&str, &std::path::Path)]) -
     for (what, input) in named_inputs {
         plan.input(what, input);
     }
-    plan.inputs_read();
+    plan.inputs_read(&embray::input_file::files_read());
     Ok(plan.output("--csv", path, false)?)
 }
 

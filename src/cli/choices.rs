@@ -25,7 +25,7 @@ impl TonemapArg {
     pub fn resolve(self, settings: &RenderSettings) -> ToneMap {
         match self {
             TonemapArg::Auto if settings.tonemap.is_some() => ToneMap::Photographic,
-            TonemapArg::Auto => ToneMap::for_integrator(settings.integrator),
+            TonemapArg::Auto => settings.integrator.default_tone_map(),
             TonemapArg::Curve(curve) => curve,
         }
     }

@@ -56,7 +56,7 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
     }
     let mut plan = OutputPlan::new();
     plan.input("the input scene", &args.input);
-    plan.inputs_read();
+    plan.inputs_read(&embray::input_file::files_read());
     let mut files = OutputSet::new();
     for (what, path, text) in &texts {
         let target = plan.output(what, path, true)?;

@@ -44,7 +44,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                 );
             }
             let scene = load_scene(args.scene.as_deref())?;
-            plan.inputs_read();
+            plan.inputs_read(&embray::input_file::files_read());
             let exr_what = if args.output.is_some() { "-o" } else { "the EXR (default)" };
             let exr = plan.output(exr_what, &args.output_path(), false)?;
             let png = png_target(args, &exr, &args.png_path(), false, &mut plan)?;
@@ -114,7 +114,7 @@ fn png_target(
 /// the same stem, or, for a one-camera file, to -o/--png when given.
 fn ceng795_jobs(args: &RenderArgs, path: &Path, plan: &mut OutputPlan) -> Result<Vec<Job>> {
     let cameras = ceng795::load(path)?;
-    plan.inputs_read();
+    plan.inputs_read(&embray::input_file::files_read());
     if cameras.len() > 1 {
         for (flag, given) in [
             ("-o", args.output.is_some()),

@@ -48,7 +48,7 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         }
         path => super::load_scene(path)?,
     };
-    plan.inputs_read();
+    plan.inputs_read(&embray::input_file::files_read());
     let output = args.output.clone().unwrap_or_else(|| default_part_path(part));
     let target = plan.output(
         if args.output.is_some() { "-o" } else { "the part file (default)" },

@@ -46,7 +46,8 @@ pub fn to_render_scene(
     space: RenderSpace,
     mode: EffectsMode,
 ) -> Result<RenderScene, CompileError> {
-    let camera_transform = CameraTransform::new(space, &desc.camera);
+    let camera = &desc.camera;
+    let camera_transform = CameraTransform::new(space, camera.lookfrom, camera.lookat, camera.up);
     let render_from_world = camera_transform.render_from_world;
     let mut placer =
         placement::Placer::new(&desc.objects, render_from_world, mode == EffectsMode::ForceAll);

@@ -49,8 +49,10 @@ fn three(fields: &[&str], what: &str) -> Result<[f32; 3], String> {
 impl Lut3d {
     /// Reads and parses the `.cube` file `path`.
     pub fn read(path: &Path) -> Result<Lut3d, LutError> {
-        let bytes = crate::scene::input_file::read_capped(path, MAX_BYTES).map_err(|e| {
-            LutError { path: path.to_path_buf(), line: None, message: e.to_string() }
+        let bytes = crate::input_file::read_capped(path, MAX_BYTES).map_err(|e| LutError {
+            path: path.to_path_buf(),
+            line: None,
+            message: e.to_string(),
         })?;
         let text = String::from_utf8_lossy(&bytes);
         Self::parse(&text).map_err(|(line, message)| LutError {

@@ -36,10 +36,10 @@ impl OutputPlan {
         });
     }
 
-    /// Records every file the process has read so far (the scene's meshes and material
-    /// libraries): none may be overwritten either.
-    pub fn inputs_read(&mut self) {
-        for path in crate::scene::files_read() {
+    /// Records the files a run has read (the scene's meshes and material libraries, as
+    /// `input_file::files_read` lists them): none may be overwritten either.
+    pub fn inputs_read(&mut self, paths: &[PathBuf]) {
+        for path in paths.iter().cloned() {
             if !self.inputs.iter().any(|i| i.path == path) {
                 self.input("a file the scene reads,", &path);
             }

@@ -1,7 +1,6 @@
 //! Tone curves from linear radiance to display values, and the sRGB encoding.
 
 use crate::choice::named_choices;
-use crate::scene::IntegratorKind;
 use glam::Vec3;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -30,17 +29,6 @@ named_choices!(ToneMap, "tone curve", {
     Clamp255 => "clamp255",
     Photographic => "photographic",
 });
-
-impl ToneMap {
-    /// The curve a scene gets unless one is asked for: the course's clamp for Whitted
-    /// (CENG795) scenes, ACES otherwise.
-    pub fn for_integrator(integrator: IntegratorKind) -> Self {
-        match integrator {
-            IntegratorKind::Whitted => ToneMap::Clamp255,
-            IntegratorKind::Path => ToneMap::Aces,
-        }
-    }
-}
 
 /// Both curves are flat (white) long before their inputs overflow f32, so inputs are
 /// clamped to `SATURATED` first: without it a pixel of 1e20 (or inf) computes inf / inf = NaN

@@ -384,6 +384,17 @@ crate::choice::named_choices!(IntegratorKind, "integrator", {
     Whitted => "whitted",
 });
 
+impl IntegratorKind {
+    /// The curve a scene gets unless one is asked for: the course's clamp for Whitted
+    /// (CENG795) scenes, ACES otherwise.
+    pub fn default_tone_map(self) -> crate::output::ToneMap {
+        match self {
+            IntegratorKind::Whitted => crate::output::ToneMap::Clamp255,
+            IntegratorKind::Path => crate::output::ToneMap::Aces,
+        }
+    }
+}
+
 /// Defaults for the renderer that a scene may carry; command-line options override them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderSettings {

@@ -113,7 +113,7 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
         }
         Some("ply") => {
             let bytes =
-                super::input_file::read_bytes(path).map_err(|error| SceneError::PlyRead {
+                crate::input_file::read_bytes(path).map_err(|error| SceneError::PlyRead {
                     ply: path.clone(),
                     scene: mesh_ref.scene.to_path_buf(),
                     item: mesh_ref.item.clone(),

@@ -7,6 +7,7 @@
 //!
 //! `ceng795` reads the METU CENG795 course's XML format (one `SceneDesc` per camera), and
 //! `toml_writer` writes a `SceneDesc` back as TOML with OBJ meshes.
+pub mod budget;
 pub mod ceng795;
 pub mod desc;
 pub use desc::*;
@@ -14,8 +15,7 @@ pub use desc::*;
 mod camera_settings;
 mod error;
 mod from_toml;
-pub(crate) mod input_file;
-pub use input_file::{MAX_INPUT_BYTES, files_read, read_bytes as read_input_bytes};
+pub use crate::input_file::{MAX_INPUT_BYTES, files_read, read_bytes as read_input_bytes};
 mod materials;
 mod mesh_file;
 mod obj;
@@ -59,7 +59,7 @@ pub fn load_with_warnings(path: &Path) -> Result<(SceneDesc, Vec<String>), Scene
 
 /// The text of a scene file, or an error naming it.
 pub(crate) fn read_scene_file(path: &Path) -> Result<String, SceneError> {
-    input_file::read_text(path)
+    crate::input_file::read_text(path)
         .map_err(|error| SceneError::Read { path: path.to_path_buf(), error })
 }
 

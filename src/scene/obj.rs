@@ -61,7 +61,7 @@ pub(crate) struct LoadedObj {
 /// Loads the OBJ file; a missing MTL file adds a warning and leaves its materials undefined.
 pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<LoadedObj, SceneError> {
     let obj = obj_ref.obj.as_path();
-    let text = super::input_file::read_text(obj).map_err(|error| SceneError::ObjRead {
+    let text = crate::input_file::read_text(obj).map_err(|error| SceneError::ObjRead {
         obj: obj.to_path_buf(),
         scene: obj_ref.scene.to_path_buf(),
         item: obj_ref.item.clone(),
@@ -79,7 +79,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     let mtl_of_material: RefCell<HashMap<String, PathBuf>> = RefCell::new(HashMap::new());
     let material_loader = |mtl_name: &Path| -> tobj::MTLLoadResult {
         let mtl = obj_dir.join(mtl_name);
-        let mtl_text = match super::input_file::read_text(&mtl) {
+        let mtl_text = match crate::input_file::read_text(&mtl) {
             Ok(text) => text,
             // A missing library is a warning (exporters often name one they do not ship);
             // one that exists but cannot be read (a device, too large) is an error.

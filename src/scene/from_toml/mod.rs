@@ -62,7 +62,7 @@ pub(crate) fn scene_desc(
         let index = builder.add_material(material);
         builder.named.insert(name.clone(), index);
     }
-    let mut bounds = crate::limits::MeshBounds::default();
+    let mut bounds = super::budget::MeshBounds::default();
     for (i, object) in file.objects.iter().enumerate() {
         let first = builder.objects.len();
         builder.object(i, object)?;
@@ -72,8 +72,8 @@ pub(crate) fn scene_desc(
         let path = FieldPath::root("objects").index(i);
         for placed in &builder.objects[first..] {
             let from_camera =
-                crate::limits::object_reach_from(placed, &mut bounds, camera.lookfrom);
-            let reach = crate::limits::object_reach(placed, &mut bounds);
+                super::budget::object_reach_from(placed, &mut bounds, camera.lookfrom);
+            let reach = super::budget::object_reach(placed, &mut bounds);
             let (max, world_max) =
                 (crate::limits::MAX_COORDINATE, crate::limits::MAX_WORLD_COORDINATE);
             // A `repeat` copy is named by its grid index and a mesh by its file (and model),

@@ -31,7 +31,8 @@ pub fn read_bytes(path: &Path) -> io::Result<Vec<u8>> {
 pub(crate) fn read_capped(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
     use std::os::unix::fs::FileTypeExt;
     // Checked before opening: opening a FIFO blocks until someone writes to it.
-    let kind = std::fs::metadata(path)?.file_type();
+    let metadata = std::fs::metadata(path)?;
+    let kind = metadata.file_type();
     let what = if kind.is_dir() {
         Some("a directory")
     } else if kind.is_fifo() {
@@ -49,16 +50,18 @@ pub(crate) fn read_capped(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
             format!("is {what}, not a regular file; embray reads its inputs from regular files"),
         ));
     }
+    // The length the file system gives, before reading a byte: a 3 GiB file is refused at
+    // once, not after 2 GiB were read (the read below still stops at the cap if it grows).
+    if metadata.len() > cap {
+        return Err(too_large(cap));
+    }
     let file = std::fs::File::open(path)?;
     FILES_READ.lock().unwrap_or_else(PoisonError::into_inner).push(path.to_path_buf());
     let mut bytes = Vec::new();
     // One byte more than the cap tells a file at the cap from a longer one (it may grow).
     file.take(cap + 1).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > cap {
-        return Err(io::Error::new(
-            io::ErrorKind::InvalidInput,
-            format!("is larger than {} MiB, the most embray reads from one file", cap >> 20),
-        ));
+        return Err(too_large(cap));
     }
     Ok(bytes)
 }
@@ -68,6 +71,14 @@ pub(crate) fn read_text(path: &Path) -> io::Result<String> {
     String::from_utf8(read_bytes(path)?).map_err(|_| {
         io::Error::new(io::ErrorKind::InvalidData, "stream did not contain valid UTF-8")
     })
+}
+
+/// The error for a file longer than `cap` bytes.
+fn too_large(cap: u64) -> io::Error {
+    io::Error::new(
+        io::ErrorKind::InvalidInput,
+        format!("is larger than {} MiB, the most embray reads from one file", cap >> 20),
+    )
 }
 
 #[cfg(test)]
@@ -83,6 +94,20 @@ mod tests {
         assert!(read_capped(&path, 11).is_ok());
         let err = read_capped(&path, 10).unwrap_err().to_string();
         assert!(err.contains("larger than"), "{err}");
+        std::fs::remove_file(&path).unwrap();
+    }
+
+    #[test]
+    fn a_file_over_the_cap_is_refused_by_its_length_before_any_read() {
+        // A sparse 3 GiB file: reading it up to the cap would take 2 GiB of memory.
+        let path = std::env::temp_dir().join(format!("embray-sparse-{}", std::process::id()));
+        let file = std::fs::File::create(&path).unwrap();
+        file.set_len(3 << 30).unwrap();
+        drop(file);
+        let err = read_bytes(&path).unwrap_err().to_string();
+        assert!(err.contains("larger than 2048 MiB"), "{err}");
+        // Refused before it was opened, so it is not among the files read.
+        assert!(!files_read().contains(&path));
         std::fs::remove_file(&path).unwrap();
     }
 }

@@ -1,0 +1,225 @@
+//! A scene against the limits (`crate::limits`), before a render allocates anything: the
+//! coordinate range and the memory the render will need against the memory the machine has.
+
+use super::{LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
+use crate::limits::{
+    BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_TRIANGLE, MAX_COORDINATE, MAX_WORLD_COORDINATE,
+    memory_available,
+};
+use crate::render_space::RenderSpace;
+use glam::DVec3;
+use std::collections::HashSet;
+
+#[derive(Debug, thiserror::Error)]
+pub enum LimitError {
+    #[error(
+        "{}: rendering it needs about {:.1} GiB of memory ({width}x{height} pixels at \
+         {BYTES_PER_PIXEL} bytes each, {objects} object placements, {triangles} mesh \
+         triangles), but only {:.1} GiB are available; lower camera.resolution (or the \
+         CENG795 ImageResolution), or the number of objects and repeat copies",
+        .file.display(), gib(*.needed), gib(*.available)
+    )]
+    Memory {
+        file: std::path::PathBuf,
+        needed: u64,
+        available: u64,
+        width: u32,
+        height: u32,
+        objects: usize,
+        triangles: u64,
+    },
+    #[error(
+        "{}: {what} reaches the coordinate {value:e}, beyond the supported range ±{limit:e} \
+         ({frame}, after --offset); {advice}",
+        .file.display()
+    )]
+    Coordinate {
+        file: std::path::PathBuf,
+        what: String,
+        value: f64,
+        limit: f64,
+        frame: &'static str,
+        advice: &'static str,
+    },
+}
+
+fn gib(bytes: u64) -> f64 {
+    bytes as f64 / (1u64 << 30) as f64
+}
+
+/// The memory a render of `desc` needs, in bytes (an estimate from the counts above).
+pub fn memory_needed(desc: &SceneDesc) -> (u64, usize, u64) {
+    let pixels = u64::from(desc.camera.width) * u64::from(desc.camera.height);
+    let mut meshes = HashSet::new();
+    let mut triangles = 0u64;
+    for object in &desc.objects {
+        if let ShapeDesc::Mesh(mesh) = &object.shape {
+            if meshes.insert(std::sync::Arc::as_ptr(mesh)) {
+                triangles += mesh.indices.len() as u64;
+            }
+        }
+    }
+    let bytes = pixels * BYTES_PER_PIXEL
+        + desc.objects.len() as u64 * BYTES_PER_OBJECT
+        + triangles * BYTES_PER_TRIANGLE;
+    (bytes, desc.objects.len(), triangles)
+}
+
+/// Refuses a render whose estimated memory exceeds what the machine has.
+pub fn check_memory(desc: &SceneDesc) -> Result<(), LimitError> {
+    let (needed, objects, triangles) = memory_needed(desc);
+    match memory_available() {
+        Some(available) if needed > available => Err(LimitError::Memory {
+            file: desc.source.clone(),
+            needed,
+            available,
+            width: desc.camera.width,
+            height: desc.camera.height,
+            objects,
+            triangles,
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Object-space bounds of the meshes seen so far, by `Arc` identity (the scene holds the
+/// `Arc`s, so an address is not reused while the map lives).
+#[derive(Default)]
+pub struct MeshBounds(std::collections::HashMap<*const super::MeshData, (DVec3, DVec3)>);
+
+/// The largest world-space coordinate `object` reaches: its bounds' corners at both
+/// shutter ends (NaN or inf if they overflow).
+/// `bounds` keeps each shared mesh's object-space bounds, so a mesh placed a million times
+/// is scanned once.
+pub fn object_reach(object: &ObjectDesc, bounds: &mut MeshBounds) -> f64 {
+    object_reach_from(object, bounds, DVec3::ZERO)
+}
+
+/// As [`object_reach`], measured from `origin` (the render-space origin).
+pub fn object_reach_from(object: &ObjectDesc, bounds: &mut MeshBounds, origin: DVec3) -> f64 {
+    let mut reach = 0.0f64;
+    for (lo, hi) in world_bounds(object, bounds) {
+        let far = (lo - origin).abs().max_element().max((hi - origin).abs().max_element());
+        if !(far <= reach) || lo.is_nan() || hi.is_nan() {
+            reach = if far.is_nan() || lo.is_nan() || hi.is_nan() { f64::NAN } else { far };
+        }
+    }
+    reach
+}
+
+/// `object`'s world-space bounding box at each shutter end (NaN if a corner is NaN).
+fn world_bounds(object: &ObjectDesc, bounds: &mut MeshBounds) -> Vec<(DVec3, DVec3)> {
+    let (lo, hi) = match &object.shape {
+        ShapeDesc::Sphere { center, radius } => (*center - *radius, *center + *radius),
+        ShapeDesc::Mesh(mesh) => {
+            *bounds.0.entry(std::sync::Arc::as_ptr(mesh)).or_insert_with(|| {
+                mesh.positions.iter().fold(
+                    (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+                )
+            })
+        }
+    };
+    let placements = std::iter::once(object.world_from_object).chain(object.world_from_object_end);
+    placements
+        .map(|placement| {
+            let mut box_lo = DVec3::splat(f64::INFINITY);
+            let mut box_hi = DVec3::splat(f64::NEG_INFINITY);
+            for corner in 0..8 {
+                let pick = |bit: usize, lo: f64, hi: f64| if corner & bit != 0 { hi } else { lo };
+                let local =
+                    DVec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
+                let world = placement.transform_point3(local);
+                if world.is_nan() {
+                    return (DVec3::NAN, DVec3::NAN);
+                }
+                (box_lo, box_hi) = (box_lo.min(world), box_hi.max(world));
+            }
+            (box_lo, box_hi)
+        })
+        .collect()
+}
+
+/// Refuses a scene (already moved by any offset) that reaches beyond `MAX_WORLD_COORDINATE`
+/// in world space, or beyond `MAX_COORDINATE` from the origin of `space`: the camera, the
+/// lights, and each object's bounds at both shutter ends.
+pub fn check_coordinates(desc: &SceneDesc, space: RenderSpace) -> Result<(), LimitError> {
+    let render_origin = match space {
+        RenderSpace::World => DVec3::ZERO,
+        RenderSpace::Cameraworld | RenderSpace::Camera => desc.camera.lookfrom,
+    };
+    let frames = [
+        (DVec3::ZERO, MAX_WORLD_COORDINATE, "world space", "move the scene nearer the origin"),
+        (render_origin, MAX_COORDINATE, space.frame(), space.advice()),
+    ];
+    for (origin, limit, frame, advice) in frames {
+        let refuse = |what: String, value: f64| LimitError::Coordinate {
+            file: desc.source.clone(),
+            what,
+            value,
+            limit,
+            frame,
+            advice,
+        };
+        let far = |p: DVec3| if p.is_nan() { f64::NAN } else { (p - origin).abs().max_element() };
+        for (what, p) in
+            [("camera.lookfrom", desc.camera.lookfrom), ("camera.lookat", desc.camera.lookat)]
+        {
+            if !(far(p) <= limit) {
+                return Err(refuse(what.to_owned(), far(p)));
+            }
+        }
+        for (i, light) in desc.lights.iter().enumerate() {
+            let reach = match light {
+                LightDesc::Point { position, .. } | LightDesc::Spot { position, .. } => {
+                    far(*position)
+                }
+                LightDesc::Area { center, size, .. } => far(*center) + size,
+                _ => 0.0,
+            };
+            if !(reach <= limit) {
+                return Err(refuse(format!("lights[{i}]"), reach));
+            }
+        }
+        let mut bounds = MeshBounds::default();
+        for object in &desc.objects {
+            let reach = object_reach_from(object, &mut bounds, origin);
+            if !(reach <= limit) {
+                return Err(refuse(object.name.clone(), reach));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_bundled_scene_fits_and_far_scenes_do_not() {
+        let mut scene = crate::scene::load(&crate::bundled::default_scene()).unwrap();
+        for space in [RenderSpace::World, RenderSpace::Cameraworld, RenderSpace::Camera] {
+            check_coordinates(&scene, space).unwrap();
+        }
+        check_memory(&scene).unwrap();
+        scene.translate(DVec3::new(1e9, 0.0, 0.0));
+        // Far out, the camera-relative spaces still hold it; f32 world space cannot.
+        check_coordinates(&scene, RenderSpace::Cameraworld).unwrap();
+        check_coordinates(&scene, RenderSpace::Camera).unwrap();
+        let err = check_coordinates(&scene, RenderSpace::World).unwrap_err().to_string();
+        assert!(err.contains("cornell.toml") && err.contains("±1e8 (world render space"), "{err}");
+        // Past 1e12 not even f64 world space keeps the scene's detail.
+        scene.translate(DVec3::new(2e12, 0.0, 0.0));
+        let err = check_coordinates(&scene, RenderSpace::Cameraworld).unwrap_err().to_string();
+        assert!(err.contains("±1e12 (world space"), "{err}");
+    }
+
+    #[test]
+    fn the_largest_resolution_needs_more_than_this_machine_has() {
+        let mut scene = crate::scene::load(&crate::bundled::default_scene()).unwrap();
+        (scene.camera.width, scene.camera.height) = (16384, 16384);
+        let (needed, _, _) = memory_needed(&scene);
+        assert!(needed > 24 << 30, "{needed}");
+    }
+}
