@@ -1,12 +1,12 @@
 //! A scene against the limits (`crate::limits`), before a render allocates anything: the
 //! coordinate range and the memory the render will need against the memory the machine has.
 
-use super::{LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use crate::limits::{
     BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_TRIANGLE, MAX_COORDINATE, MAX_WORLD_COORDINATE,
     memory_available,
 };
 use crate::render_space::RenderSpace;
+use crate::scene::{LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use glam::DVec3;
 use std::collections::HashSet;
 
@@ -85,7 +85,7 @@ pub fn check_memory(desc: &SceneDesc) -> Result<(), LimitError> {
 /// Object-space bounds of the meshes seen so far, by `Arc` identity (the scene holds the
 /// `Arc`s, so an address is not reused while the map lives).
 #[derive(Default)]
-pub struct MeshBounds(std::collections::HashMap<*const super::MeshData, (DVec3, DVec3)>);
+pub struct MeshBounds(std::collections::HashMap<*const crate::scene::MeshData, (DVec3, DVec3)>);
 
 /// The largest world-space coordinate `object` reaches: its bounds' corners at both
 /// shutter ends (NaN or inf if they overflow).

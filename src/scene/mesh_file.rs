@@ -3,10 +3,10 @@
 //! gets the same `Arc<MeshData>` and becomes an instance of one prototype. The `smooth`
 //! variant of a model (normals computed, or dropped) is also made once.
 
-use super::desc::MeshData;
-use super::error::SceneError;
-use super::obj::{self, ObjMaterial, ObjRef};
-use super::ply;
+use crate::scene::desc::MeshData;
+use crate::scene::error::SceneError;
+use crate::scene::formats::obj::{self, ObjMaterial, ObjRef};
+use crate::scene::formats::ply;
 use glam::DVec3;
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -122,7 +122,7 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
                 })?;
             let mesh = ply::parse(&bytes).map_err(|problem| SceneError::PlyData {
                 ply: path.clone(),
-                ply_line: super::error::Line(problem.line),
+                ply_line: crate::scene::error::Line(problem.line),
                 scene: mesh_ref.scene.to_path_buf(),
                 item: mesh_ref.item.clone(),
                 problem: problem.message,

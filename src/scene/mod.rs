@@ -8,31 +8,22 @@
 //! `ceng795` reads the METU CENG795 course's XML format (one `SceneDesc` per camera), and
 //! `toml_writer` writes a `SceneDesc` back as TOML with OBJ meshes.
 pub mod budget;
-pub mod ceng795;
 pub mod desc;
 pub use desc::*;
 
-mod camera_settings;
 mod error;
-mod from_toml;
+pub mod formats;
 pub use crate::input_file::{MAX_INPUT_BYTES, files_read, read_bytes as read_input_bytes};
-mod materials;
 mod mesh_file;
-mod obj;
-mod obj_scan;
-mod ply;
 mod shapes;
-mod source_map;
 pub mod texture_image;
-mod toml_format;
-pub mod toml_writer;
-mod transform_list;
-mod validate;
 
-pub use camera_settings::MAX_RESOLUTION;
 pub use error::{Line, SceneError};
-pub use from_toml::MAX_REPEAT_COPIES;
-pub use materials::with_texture_space;
+pub use formats::ceng795;
+pub use formats::toml::MAX_REPEAT_COPIES;
+pub use formats::toml::camera::MAX_RESOLUTION;
+pub use formats::toml::materials::with_texture_space;
+pub use formats::toml::write as toml_writer;
 pub use mesh_file::area_weighted_normals;
 
 use std::io::Write;
@@ -68,15 +59,7 @@ pub fn load_str_with_warnings(
     text: &str,
     source: &Path,
 ) -> Result<(SceneDesc, Vec<String>), SceneError> {
-    let map = source_map::SourceMap::parse(text, source)?;
-    map.check_finite(source)?;
-    let file: toml_format::SceneFile =
-        toml::from_str(text).map_err(|e| source_map::toml_error(source, &e))?;
-    let ctx = validate::Ctx { file: source, map };
-    let base_dir = source.parent().unwrap_or(Path::new(""));
-    let mut warnings = Vec::new();
-    let scene = from_toml::scene_desc(file, &ctx, base_dir, &mut warnings)?;
-    Ok((scene, warnings))
+    formats::toml::load_str_with_warnings(text, source)
 }
 
 fn print_warnings(warnings: &[String]) {

@@ -1,8 +1,8 @@
 //! Built-in shapes that become triangle meshes: the quad (parallelogram) and the
 //! axis-aligned box.
 
-use super::desc::MeshData;
-use super::transform_list::fmt_vec;
+use crate::scene::desc::MeshData;
+use crate::scene::formats::toml::transform_list::fmt_vec;
 use glam::{DVec3, Vec2};
 
 /// The parallelogram corner, corner+u, corner+u+v, corner+v as two triangles with uvs

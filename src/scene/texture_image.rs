@@ -1,8 +1,8 @@
 //! Reading a texture's image (PNG or JPEG, through the `image` crate) into `TextureImage`,
 //! its size checked against `MAX_TEXTURE_TEXELS` before any texel is decoded.
 
-use super::desc::TextureImage;
-use super::error::{Line, SceneError};
+use crate::scene::desc::TextureImage;
+use crate::scene::error::{Line, SceneError};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -39,7 +39,7 @@ fn srgb_to_linear(c: f32) -> f32 {
 /// The image `at` names. `decode_srgb`: texels become linear [0, 1] through sRGB's curve;
 /// otherwise they keep the file's own units (0–255 for 8-bit files, 0–65535 for 16-bit).
 pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
-    let bytes = super::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
+    let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
     let reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
         .with_guessed_format()
         .map_err(|e| at.error(e.to_string()))?;
@@ -97,7 +97,7 @@ const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 /// images), or a PNG/JPEG read as `load` reads textures. Non-finite values are refused;
 /// negative ones (left by some HDR tools' filtering) become 0.
 pub fn load_radiance(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
-    let bytes = super::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
+    let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
     if !bytes.starts_with(&EXR_MAGIC) {
         return load(at, decode_srgb);
     }

@@ -1,11 +1,11 @@
 //! The `[camera]` and `[render]` tables → `CameraDesc` and `RenderSettings`, validated.
 
-use super::desc::{CameraDesc, IntegratorKind, LensShape, RenderSettings};
-use super::error::SceneError;
-use super::source_map::FieldPath;
-use super::toml_format::{CameraToml, IntegratorToml, LensToml, RenderToml};
-use super::transform_list::fmt_vec;
-use super::validate::Ctx;
+use crate::scene::desc::{CameraDesc, IntegratorKind, LensShape, RenderSettings};
+use crate::scene::error::SceneError;
+use crate::scene::formats::toml::format::{CameraToml, IntegratorToml, LensToml, RenderToml};
+use crate::scene::formats::toml::source_map::FieldPath;
+use crate::scene::formats::toml::transform_list::fmt_vec;
+use crate::scene::formats::toml::validate::Ctx;
 use glam::{DVec2, DVec3};
 
 /// The largest width or height accepted.
@@ -162,7 +162,7 @@ pub(crate) fn settings(
     if let Some(t) = &render.tonemap {
         let path = path.key("tonemap");
         // The one operator there is; the field makes the choice explicit in the file.
-        let super::toml_format::TonemapOperatorToml::Photographic = t.operator;
+        let crate::scene::formats::toml::format::TonemapOperatorToml::Photographic = t.operator;
         let mut p = crate::output::Photographic::default();
         for (field, value, target) in [
             ("key", t.key, &mut p.key),

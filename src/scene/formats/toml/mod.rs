@@ -2,28 +2,34 @@
 //! repeat grids) and lights, each checked with its field path and line (camera and settings:
 //! `camera_settings`; materials: `materials`).
 
+pub(crate) mod camera;
+pub(crate) mod format;
 mod lights;
+pub(crate) mod materials;
 mod repeat;
+pub(crate) mod source_map;
+pub(crate) mod transform_list;
+pub(crate) mod validate;
+pub mod write;
 
 use crate::excerpt::excerpt;
-use crate::scene::camera_settings::{camera, settings};
 use crate::scene::desc::{LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use crate::scene::error::SceneError;
-use crate::scene::materials;
-use crate::scene::mesh_file::MeshCache;
-use crate::scene::obj::ObjRef;
-use crate::scene::shapes::{box_mesh, quad_mesh};
-use crate::scene::source_map::FieldPath;
-use crate::scene::toml_format::{
+use crate::scene::formats::obj::ObjRef;
+use crate::scene::formats::toml::camera::{camera, settings};
+use crate::scene::formats::toml::format::{
     ObjectKind, ObjectToml, RepeatToml, SceneFile, TransformEntry, Vec3,
 };
-use crate::scene::transform_list::{self, fmt_vec};
-use crate::scene::validate::Ctx;
+use crate::scene::formats::toml::source_map::FieldPath;
+use crate::scene::formats::toml::validate::Ctx;
+use crate::scene::mesh_file::MeshCache;
+use crate::scene::shapes::{box_mesh, quad_mesh};
 use glam::{DAffine3, DVec3};
 use repeat::{Grid, Placement};
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use transform_list::fmt_vec;
 
 /// The most copies one `repeat` may make (each costs about `limits::BYTES_PER_OBJECT`).
 pub const MAX_REPEAT_COPIES: u64 = 1_000_000;
@@ -31,6 +37,22 @@ pub const MAX_REPEAT_COPIES: u64 = 1_000_000;
 /// Copies of a `repeat` grid up to this many are named `... copy (i,j,k)`; those of larger
 /// grids are all named `... copy`.
 const NAMED_COPIES: usize = 1_000_000;
+
+/// Parses TOML scene text read from `source` (messages name it; relative paths resolve from
+/// its folder) into the model, with the warnings.
+pub(crate) fn load_str_with_warnings(
+    text: &str,
+    source: &Path,
+) -> Result<(SceneDesc, Vec<String>), SceneError> {
+    let map = source_map::SourceMap::parse(text, source)?;
+    map.check_finite(source)?;
+    let file: SceneFile = ::toml::from_str(text).map_err(|e| source_map::toml_error(source, &e))?;
+    let ctx = Ctx { file: source, map };
+    let base_dir = source.parent().unwrap_or(Path::new(""));
+    let mut warnings = Vec::new();
+    let scene = scene_desc(file, &ctx, base_dir, &mut warnings)?;
+    Ok((scene, warnings))
+}
 
 /// Builds the scene; `base_dir` resolves relative mesh paths, `warnings` collects non-fatal
 /// problems (a missing MTL file).
@@ -62,7 +84,7 @@ pub(crate) fn scene_desc(
         let index = builder.add_material(material);
         builder.named.insert(name.clone(), index);
     }
-    let mut bounds = super::budget::MeshBounds::default();
+    let mut bounds = crate::scene::budget::MeshBounds::default();
     for (i, object) in file.objects.iter().enumerate() {
         let first = builder.objects.len();
         builder.object(i, object)?;
@@ -72,8 +94,8 @@ pub(crate) fn scene_desc(
         let path = FieldPath::root("objects").index(i);
         for placed in &builder.objects[first..] {
             let from_camera =
-                super::budget::object_reach_from(placed, &mut bounds, camera.lookfrom);
-            let reach = super::budget::object_reach(placed, &mut bounds);
+                crate::scene::budget::object_reach_from(placed, &mut bounds, camera.lookfrom);
+            let reach = crate::scene::budget::object_reach(placed, &mut bounds);
             let (max, world_max) =
                 (crate::limits::MAX_COORDINATE, crate::limits::MAX_WORLD_COORDINATE);
             // A `repeat` copy is named by its grid index and a mesh by its file (and model),

@@ -2,7 +2,7 @@
 //! Entries apply in the listed order, so for [A, B, C] the result is C * B * A, composed in
 //! f64.
 
-use super::toml_format::{Rotate, TransformOp};
+use crate::scene::formats::toml::format::{Rotate, TransformOp};
 use glam::{DAffine3, DMat3, DVec3};
 
 /// Why a transform list was rejected; `entry` is the index of the offending entry, or
@@ -89,7 +89,7 @@ pub(crate) fn fmt_vec(values: &[f64]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::toml_format::Scale;
+    use crate::scene::formats::toml::format::Scale;
 
     fn close(a: DVec3, b: DVec3) -> bool {
         (a - b).length() < 1e-12 * (1.0 + b.length())

@@ -9,8 +9,8 @@
 //! an albedo or mirror reflectance above 1, a Phong exponent of 0 with a non-zero specular
 //! colour, a texture mapped through a non-identity transform.
 
-use super::desc::{CourseBrdf, IntegratorKind, TextureDesc, TextureMode};
-use super::desc::{
+use crate::scene::desc::{CourseBrdf, IntegratorKind, TextureDesc, TextureMode};
+use crate::scene::desc::{
     EnvironmentMap, LensShape, LightDesc, MaterialDesc, MeshData, Pattern, SceneDesc, ShapeDesc,
     Specular,
 };

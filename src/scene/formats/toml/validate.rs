@@ -1,7 +1,7 @@
 //! Range checks shared by the converters; each failure names the field, value and line.
 
-use super::error::{Line, SceneError};
-use super::source_map::{FieldPath, SourceMap};
+use crate::scene::error::{Line, SceneError};
+use crate::scene::formats::toml::source_map::{FieldPath, SourceMap};
 use glam::{DVec3, Vec3};
 use std::fmt::Display;
 use std::path::Path;

@@ -14,7 +14,7 @@
 mod header;
 mod values;
 
-use super::desc::MeshData;
+use crate::scene::desc::MeshData;
 use glam::{DVec3, Vec2};
 use header::{Element, Encoding, Kind, parse_header, type_name};
 use values::{Ascii, Binary, ReadError, Values};

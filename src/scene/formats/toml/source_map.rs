@@ -1,7 +1,7 @@
 //! Where things are in the scene text: field paths (`objects[2].transform[0].scale`), the
 //! line a path starts on, and the scan that rejects every NaN or infinite float.
 
-use super::error::{Line, SceneError};
+use crate::scene::error::{Line, SceneError};
 use std::fmt;
 use std::path::Path;
 use toml::Spanned;

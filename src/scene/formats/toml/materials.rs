@@ -2,16 +2,16 @@
 //! specular lobe chosen by `type`, emission, and the course's Phong terms. Each type takes
 //! only its own fields.
 
-use super::desc::{CourseBrdf, MaterialDesc, Pattern, PhongDesc, Specular, TextureDesc};
-use super::desc::{Interpolation, NoiseConversion, TextureMode};
-use super::error::SceneError;
-use super::source_map::FieldPath;
-use super::toml_format::{
+use crate::scene::desc::{CourseBrdf, MaterialDesc, Pattern, PhongDesc, Specular, TextureDesc};
+use crate::scene::desc::{Interpolation, NoiseConversion, TextureMode};
+use crate::scene::error::SceneError;
+use crate::scene::formats::toml::format::{
     BrdfModelToml, BrdfToml, ImageEncodingToml, InterpolationToml, MaterialKind, MaterialToml,
     MetalPreset, NoiseConversionToml, PhongToml, TextureKind, TextureModeToml,
 };
-use super::toml_format::{BumpHeightsToml, TextureToml, Vec3};
-use super::validate::Ctx;
+use crate::scene::formats::toml::format::{BumpHeightsToml, TextureToml, Vec3};
+use crate::scene::formats::toml::source_map::FieldPath;
+use crate::scene::formats::toml::validate::Ctx;
 use glam::DAffine3;
 use std::path::Path;
 
@@ -146,10 +146,10 @@ pub(crate) fn material(
             let texture = texture_desc(&field, t, Use::Bump, ctx, base_dir)?;
             let factor = ctx.f32(&field.key("factor"), t.factor.unwrap_or(1.0))?;
             let scale = match t.heights {
-                None | Some(BumpHeightsToml::Scene) => super::desc::BumpScale::Scene,
-                Some(BumpHeightsToml::CourseTexels) => super::desc::BumpScale::CourseTexels,
+                None | Some(BumpHeightsToml::Scene) => crate::scene::desc::BumpScale::Scene,
+                Some(BumpHeightsToml::CourseTexels) => crate::scene::desc::BumpScale::CourseTexels,
             };
-            Some(super::desc::BumpMapDesc { texture, factor, scale })
+            Some(crate::scene::desc::BumpMapDesc { texture, factor, scale })
         }
     };
     let mut phong = m.phong.as_ref().map(|p| phong(&path.key("phong"), p, ctx)).transpose()?;
@@ -337,14 +337,14 @@ fn texture_desc(
             let field = path.key("normalizer");
             let normalizer =
                 if srgb { 1.0 } else { ctx.positive(&field, t.normalizer.unwrap_or(255.0))? };
-            let at = super::texture_image::ImageRef {
+            let at = crate::scene::texture_image::ImageRef {
                 image: base_dir.join(file),
                 scene: ctx.file,
                 item: path.key("file").to_string(),
                 line: ctx.line(&path.key("file")),
             };
             Pattern::Image {
-                image: super::texture_image::load_radiance(&at, srgb)?,
+                image: crate::scene::texture_image::load_radiance(&at, srgb)?,
                 interpolation: match t.interpolation.unwrap_or(InterpolationToml::Bilinear) {
                     InterpolationToml::Nearest => Interpolation::Nearest,
                     InterpolationToml::Bilinear => Interpolation::Bilinear,

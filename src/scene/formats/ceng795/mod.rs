@@ -19,8 +19,8 @@ mod textures;
 mod transforms;
 mod xml;
 
-use super::desc::{IntegratorKind, LightDesc, RenderSettings, SceneDesc};
-use super::error::{Line, SceneError};
+use crate::scene::desc::{IntegratorKind, LightDesc, RenderSettings, SceneDesc};
+use crate::scene::error::{Line, SceneError};
 use glam::Vec3;
 use roxmltree::{Document, Node};
 use std::io::Write;

@@ -5,12 +5,14 @@ use super::repeat::Placement;
 use super::{Builder, dvec, mesh_ref};
 use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc, ShapeDesc};
 use crate::scene::error::SceneError;
+use crate::scene::formats::toml::format::{
+    EnvironmentMappingToml, ImageEncodingToml, LightKind, LightToml,
+};
+use crate::scene::formats::toml::source_map::FieldPath;
+use crate::scene::formats::toml::transform_list::fmt_vec;
+use crate::scene::formats::toml::validate::Ctx;
 use crate::scene::shapes::quad_mesh;
-use crate::scene::source_map::FieldPath;
 use crate::scene::texture_image::{ImageRef, load_radiance};
-use crate::scene::toml_format::{EnvironmentMappingToml, ImageEncodingToml, LightKind, LightToml};
-use crate::scene::transform_list::fmt_vec;
-use crate::scene::validate::Ctx;
 use std::sync::Arc;
 
 impl Builder<'_> {

@@ -1,8 +1,10 @@
 //! OBJ files (through tobj) → meshes, one per OBJ model/material, with their MTL colours.
 
-use super::desc::MeshData;
-use super::error::{Line, SceneError};
-use super::obj_scan::{ScanProblem, scan_mtl, scan_obj};
+mod scan;
+
+use crate::scene::desc::MeshData;
+use crate::scene::error::{Line, SceneError};
+use crate::scene::formats::obj::scan::{ScanProblem, scan_mtl, scan_obj};
 use glam::{DVec3, Vec2, Vec3};
 use std::cell::RefCell;
 use std::collections::HashMap;
