@@ -1,0 +1,203 @@
+//! Materials and their textures as TOML tables.
+
+use super::TomlWriteError;
+use super::values::{c3, f, quoted};
+use crate::scene::desc::{CourseBrdf, MaterialDesc, Pattern, Specular, TextureDesc, TextureMode};
+use glam::{DAffine3, Vec3};
+use std::fmt::Write as _;
+
+/// A unique TOML key per material: its name, or with its index appended if taken.
+pub(super) fn material_names(materials: &[MaterialDesc]) -> Vec<String> {
+    let mut used = std::collections::HashSet::new();
+    materials
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let base = if m.name.is_empty() { format!("material_{i}") } else { m.name.clone() };
+            let name = if used.contains(&base) { format!("{base} ({i})") } else { base };
+            used.insert(name.clone());
+            name
+        })
+        .collect()
+}
+
+pub(super) fn write_material(
+    m: &MaterialDesc,
+    name: &str,
+    out: &mut String,
+) -> Result<(), TomlWriteError> {
+    let unsupported = |problem: String| TomlWriteError::Unsupported {
+        item: format!("material '{name}'"),
+        problem,
+    };
+    let at_most_one = |what: &str, c: Vec3| {
+        if c.max_element() > 1.0 {
+            Err(unsupported(format!("{what} {} is above 1", c3(c))))
+        } else {
+            Ok(())
+        }
+    };
+    at_most_one("the albedo", m.albedo)?;
+    let _ = writeln!(out, "\n[materials.{}]", quoted(name));
+    let kind = match m.specular {
+        Specular::None => "diffuse",
+        Specular::Mirror { .. } => "mirror",
+        Specular::Conductor { .. } => "conductor",
+        Specular::Dielectric { .. } => "dielectric",
+    };
+    let _ = writeln!(out, "type = \"{kind}\"\nalbedo = {}", c3(m.albedo));
+    if m.emission != Vec3::ZERO {
+        let _ = writeln!(out, "emission = {}", c3(m.emission));
+    }
+    match m.specular {
+        Specular::None => {}
+        Specular::Mirror { reflectance } => {
+            at_most_one("the reflectance", reflectance)?;
+            let _ = writeln!(out, "reflectance = {}", c3(reflectance));
+        }
+        Specular::Conductor { eta, k, reflectance } => {
+            at_most_one("the reflectance", reflectance)?;
+            let _ = writeln!(
+                out,
+                "eta = {}\nk = {}\nreflectance = {}",
+                c3(eta),
+                c3(k),
+                c3(reflectance)
+            );
+        }
+        Specular::Dielectric { ior, absorption } => {
+            let _ = writeln!(out, "ior = {:?}\nabsorption = {}", ior, c3(absorption));
+        }
+    }
+    // A diffuse material's roughness means nothing to either integrator.
+    if m.roughness != 0.0 && m.specular != Specular::None {
+        let _ = writeln!(out, "roughness = {:?}", m.roughness);
+    }
+    if let Some(t) = &m.texture {
+        let _ = writeln!(out, "texture = {}", texture_toml(t, true)?);
+    }
+    if let Some(t) = &m.specular_texture {
+        let _ = writeln!(out, "specular_texture = {}", texture_toml(t, false)?);
+    }
+    if let Some(t) = &m.normal_map {
+        let _ = writeln!(out, "normal_map = {}", texture_toml(t, false)?);
+    }
+    if let Some(b) = &m.bump_map {
+        let table = texture_toml(&b.texture, false)?;
+        let heights = match b.scale {
+            crate::scene::BumpScale::Scene => "",
+            crate::scene::BumpScale::CourseTexels => ", heights = \"course_texels\"",
+        };
+        let table =
+            format!("{}, factor = {:?}{heights} }}", table.trim_end_matches(" }"), b.factor);
+        let _ = writeln!(out, "bump_map = {table}");
+    }
+    if let Some(p) = &m.phong {
+        let exponent = if p.exponent > 0.0 {
+            format!(", exponent = {:?}", p.exponent)
+        } else if p.specular == Vec3::ZERO {
+            // Without a highlight the exponent does not matter; the format wants it > 0.
+            String::new()
+        } else {
+            return Err(unsupported(format!("its Phong exponent is {}", p.exponent)));
+        };
+        let _ = writeln!(
+            out,
+            "phong = {{ ambient = {}, specular = {}{exponent} }}",
+            c3(p.ambient),
+            c3(p.specular)
+        );
+        let brdf = match p.brdf {
+            CourseBrdf::OriginalBlinnPhong => None,
+            CourseBrdf::OriginalPhong => Some("model = \"original_phong\"".to_owned()),
+            CourseBrdf::ModifiedBlinnPhong { normalized } => {
+                Some(format!("model = \"modified_blinn_phong\", normalized = {normalized}"))
+            }
+            CourseBrdf::ModifiedPhong { normalized } => {
+                Some(format!("model = \"modified_phong\", normalized = {normalized}"))
+            }
+            CourseBrdf::TorranceSparrow { kd_fresnel, eta, k } => {
+                if eta != Vec3::splat(eta.x) || k != Vec3::splat(k.x) {
+                    return Err(unsupported("its Torrance-Sparrow index varies by channel".into()));
+                }
+                Some(format!(
+                    "model = \"torrance_sparrow\", kd_fresnel = {kd_fresnel}, eta = {}, k = {}",
+                    f(f64::from(eta.x)),
+                    f(f64::from(k.x))
+                ))
+            }
+        };
+        if let Some(brdf) = brdf {
+            let _ = writeln!(out, "brdf = {{ {brdf} }}");
+        }
+    }
+    Ok(())
+}
+
+/// The mesh as OBJ text: positions (and normals, texture coordinates) per vertex, one face
+/// per triangle with the same index for every attribute.
+/// The inline table of a texture; `with_mode` for the diffuse one (a specular texture
+/// always replaces).
+pub(super) fn texture_toml(t: &TextureDesc, with_mode: bool) -> Result<String, TomlWriteError> {
+    let unsupported = |problem: &str| TomlWriteError::Unsupported {
+        item: "a texture".to_owned(),
+        problem: problem.to_owned(),
+    };
+    if t.texture_from_object != DAffine3::IDENTITY {
+        return Err(unsupported("it is mapped through a transform"));
+    }
+    let at_most_one = |c: Vec3| {
+        if c.max_element() > 1.0 { Err(unsupported("a colour above 1")) } else { Ok(()) }
+    };
+    let fields = match &t.pattern {
+        Pattern::Checker2d { scale, even, odd } | Pattern::Checker3d { scale, even, odd } => {
+            at_most_one(even.max(*odd))?;
+            let kind = if matches!(t.pattern, Pattern::Checker2d { .. }) {
+                "checker2d"
+            } else {
+                "checker3d"
+            };
+            format!(
+                "type = \"{kind}\", scale = {}, even = {}, odd = {}",
+                f(*scale as f64),
+                c3(*even),
+                c3(*odd)
+            )
+        }
+        Pattern::CourseChecker { scale, offset, black, white } => {
+            at_most_one(black.max(*white))?;
+            format!(
+                "type = \"checker\", scale = {}, offset = {}, black = {}, white = {}",
+                f(*scale as f64),
+                f(*offset as f64),
+                c3(*black),
+                c3(*white)
+            )
+        }
+        Pattern::Perlin { scale, conversion } => {
+            format!(
+                "type = \"perlin\", scale = {}, conversion = \"{conversion}\"",
+                f(*scale as f64)
+            )
+        }
+        Pattern::Image { image, interpolation, normalizer } => {
+            // Absolute, so that the TOML finds the image wherever it is written.
+            let file = std::path::absolute(&image.file).unwrap_or_else(|_| image.file.clone());
+            let encoding = if image.srgb_decoded {
+                "encoding = \"srgb\"".to_owned()
+            } else {
+                format!("encoding = \"raw\", normalizer = {}", f(*normalizer as f64))
+            };
+            format!(
+                "type = \"image\", file = {}, interpolation = \"{interpolation}\", {encoding}",
+                quoted(&file.to_string_lossy())
+            )
+        }
+    };
+    let mode = if with_mode && t.mode != TextureMode::Replace {
+        format!(", mode = \"{}\"", t.mode)
+    } else {
+        String::new()
+    };
+    Ok(format!("{{ {fields}{mode} }}"))
+}

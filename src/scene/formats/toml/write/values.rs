@@ -1,0 +1,40 @@
+//! TOML values as text: floats that round-trip, vectors, strings, affine matrices.
+
+use glam::{DAffine3, DVec3, Vec3};
+
+/// A TOML float: `Debug` always writes a decimal point or an exponent, and round-trips.
+pub(super) fn f(v: f64) -> String {
+    format!("{v:?}")
+}
+
+pub(super) fn v3(v: DVec3) -> String {
+    format!("[{}, {}, {}]", f(v.x), f(v.y), f(v.z))
+}
+
+pub(super) fn c3(v: Vec3) -> String {
+    format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
+}
+
+/// A TOML basic string.
+pub(super) fn quoted(text: &str) -> String {
+    let mut out = String::from("\"");
+    for ch in text.chars() {
+        match ch {
+            '"' => out += "\\\"",
+            '\\' => out += "\\\\",
+            c if (c as u32) < 0x20 || c == '\u{7f}' => out += &format!("\\u{:04x}", c as u32),
+            c => out.push(c),
+        }
+    }
+    out + "\""
+}
+
+pub(super) fn matrix(m: &DAffine3) -> String {
+    let rows: Vec<String> = (0..3)
+        .map(|r| {
+            let row = m.matrix3.row(r);
+            format!("[{}, {}, {}, {}]", f(row.x), f(row.y), f(row.z), f(m.translation[r]))
+        })
+        .collect();
+    format!("[{{ matrix = [{}, [0.0, 0.0, 0.0, 1.0]] }}]", rows.join(", "))
+}
