@@ -1,0 +1,103 @@
+//! Materials: the Lambertian part, the specular lobe, the course's reflectance models.
+
+use super::texture::{BumpMapDesc, TextureDesc};
+use glam::Vec3;
+
+/// How a surface reflects light. Every material has a Lambertian part (`albedo`, possibly
+/// replaced by a `texture`) and optionally one specular part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialDesc {
+    pub name: String,
+    /// Diffuse reflectance in [0, 1].
+    pub albedo: Vec3,
+    /// Emitted radiance, on the side the surface normal points to.
+    pub emission: Vec3,
+    pub specular: Specular,
+    /// GGX roughness α of the specular part (0 = perfectly smooth).
+    pub roughness: f32,
+    /// A pattern that replaces (or blends into) `albedo`, per its `mode`.
+    pub texture: Option<TextureDesc>,
+    /// A pattern that replaces the specular reflectance of the course's shading terms
+    /// (`phong.specular`; the course's `replace_ks`).
+    pub specular_texture: Option<TextureDesc>,
+    /// A tangent-space normal map (colour c in [0, 1]³ is the normal 2c − 1 in the frame of
+    /// ∂p/∂u, ∂p/∂v and the shading normal; the course's `replace_normal`).
+    pub normal_map: Option<TextureDesc>,
+    /// A height field (the texture's mean channel, times `factor`) that displaces the
+    /// shading normal (the course's `bump_normal`); uv-mapped patterns only.
+    pub bump_map: Option<BumpMapDesc>,
+    /// Terms only the course's Whitted shading model uses (ambient, Blinn-Phong highlight).
+    pub phong: Option<PhongDesc>,
+}
+
+impl Default for MaterialDesc {
+    fn default() -> Self {
+        MaterialDesc {
+            name: String::new(),
+            albedo: Vec3::splat(0.8),
+            emission: Vec3::ZERO,
+            specular: Specular::None,
+            roughness: 0.0,
+            texture: None,
+            specular_texture: None,
+            normal_map: None,
+            bump_map: None,
+            phong: None,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Specular {
+    None,
+    /// Perfect (or, with roughness, glossy) reflection scaled by `reflectance`.
+    Mirror {
+        reflectance: Vec3,
+    },
+    /// Metal: Fresnel reflectance from the complex index `eta + i·k` (per channel), scaled
+    /// by `reflectance`.
+    Conductor {
+        eta: Vec3,
+        k: Vec3,
+        reflectance: Vec3,
+    },
+    /// Glass: Fresnel reflection and refraction with index `ior`; light travelling inside is
+    /// attenuated by exp(−absorption · distance) (Beer's law).
+    Dielectric {
+        ior: f32,
+        absorption: Vec3,
+    },
+}
+
+/// The course's shading terms (CENG795): ambient reflectance and a highlight, by default the
+/// Blinn-Phong one of the earlier homeworks, or one of hw6's `<BRDFs>`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhongDesc {
+    pub ambient: Vec3,
+    pub specular: Vec3,
+    pub exponent: f32,
+    pub brdf: CourseBrdf,
+}
+
+/// The course's reflectance models (hw6 `<BRDFs>`); `shading::course_brdf` defines each.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum CourseBrdf {
+    /// The shading model of the earlier homeworks.
+    #[default]
+    OriginalBlinnPhong,
+    OriginalPhong,
+    ModifiedBlinnPhong {
+        normalized: bool,
+    },
+    ModifiedPhong {
+        normalized: bool,
+    },
+    /// A Blinn distribution, Fresnel from a conductor's complex index `eta + i·k` (the
+    /// material's RefractionIndex and AbsorptionIndex) and the V-cavity shadowing term;
+    /// `kd_fresnel` scales the diffuse term by `1 − F`.
+    TorranceSparrow {
+        kd_fresnel: bool,
+        eta: Vec3,
+        k: Vec3,
+    },
+}

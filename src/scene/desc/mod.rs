@@ -1,0 +1,18 @@
+//! `SceneDesc`: a validated scene in world space with f64 transforms, independent of the file
+//! format it came from.
+
+mod camera;
+mod light;
+mod material;
+mod scene;
+mod settings;
+mod shape;
+mod texture;
+
+pub use camera::*;
+pub use light::*;
+pub use material::*;
+pub use scene::*;
+pub use settings::*;
+pub use shape::*;
+pub use texture::*;

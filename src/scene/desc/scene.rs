@@ -1,0 +1,45 @@
+//! The whole scene.
+
+use super::camera::CameraDesc;
+use super::light::LightDesc;
+use super::material::MaterialDesc;
+use super::settings::RenderSettings;
+use super::shape::ObjectDesc;
+use glam::{DAffine3, DVec3};
+use std::path::PathBuf;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneDesc {
+    /// The file it was loaded from, for messages.
+    pub source: PathBuf,
+    pub camera: CameraDesc,
+    pub settings: RenderSettings,
+    pub materials: Vec<MaterialDesc>,
+    pub objects: Vec<ObjectDesc>,
+    pub lights: Vec<LightDesc>,
+}
+
+impl SceneDesc {
+    /// Moves the whole scene, camera included, by `offset` (exactly, in f64). Used to
+    /// reproduce the far-from-origin precision problem with any scene.
+    pub fn translate(&mut self, offset: DVec3) {
+        let shift = DAffine3::from_translation(offset);
+        self.camera.lookfrom += offset;
+        self.camera.lookat += offset;
+        for object in &mut self.objects {
+            object.world_from_object = shift * object.world_from_object;
+            if let Some(end) = &mut object.world_from_object_end {
+                *end = shift * *end;
+            }
+        }
+        for light in &mut self.lights {
+            match light {
+                LightDesc::Point { position, .. } | LightDesc::Spot { position, .. } => {
+                    *position += offset
+                }
+                LightDesc::Area { center, .. } => *center += offset,
+                _ => {}
+            }
+        }
+    }
+}

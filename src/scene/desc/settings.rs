@@ -1,0 +1,63 @@
+//! How the scene is rendered: integrator, samples, depth, tone curve.
+
+use super::texture::TextureDesc;
+use glam::Vec3;
+
+/// Which light-transport algorithm renders the scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// Path tracing with next-event estimation and MIS.
+    #[default]
+    Path,
+    /// The CENG795 course model: ambient + Blinn-Phong direct light with shadow rays,
+    /// recursive mirror/conductor/dielectric, values in 0–255 units clamped.
+    Whitted,
+}
+
+crate::choice::named_choices!(IntegratorKind, "integrator", {
+    Path => "path",
+    Whitted => "whitted",
+});
+
+impl IntegratorKind {
+    /// The curve a scene gets unless one is asked for: the course's clamp for Whitted
+    /// (CENG795) scenes, ACES otherwise.
+    pub fn default_tone_map(self) -> crate::output::ToneMap {
+        match self {
+            IntegratorKind::Whitted => crate::output::ToneMap::Clamp255,
+            IntegratorKind::Path => crate::output::ToneMap::Aces,
+        }
+    }
+}
+
+/// Defaults for the renderer that a scene may carry; command-line options override them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    pub spp: u32,
+    pub max_depth: u32,
+    pub background: Vec3,
+    /// Shadow rays towards area lights per shading point.
+    pub light_samples: u32,
+    pub integrator: IntegratorKind,
+    /// The photographic tone mapping the scene asks for its PNG (a CENG795 camera's
+    /// `<Tonemap>`); `None`: the integrator's default curve.
+    pub tonemap: Option<crate::output::Photographic>,
+    /// A picture behind the scene (the course's replace_background): camera rays that leave
+    /// the scene see it stretched over the image (u across, v down from the top), in place
+    /// of the background colour or the environment. Other rays that leave see those.
+    pub background_texture: Option<TextureDesc>,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            spp: 16,
+            max_depth: 5,
+            background: Vec3::ZERO,
+            light_samples: 1,
+            integrator: IntegratorKind::Path,
+            tonemap: None,
+            background_texture: None,
+        }
+    }
+}
