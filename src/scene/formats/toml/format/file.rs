@@ -1,0 +1,86 @@
+//! The scene file and its camera, render and tone-mapping tables.
+
+use super::lights::LightToml;
+use super::materials::{MaterialToml, TextureToml};
+use super::objects::ObjectToml;
+use super::values::Vec3;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SceneFile {
+    pub camera: CameraToml,
+    pub render: Option<RenderToml>,
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialToml>,
+    #[serde(default)]
+    pub objects: Vec<ObjectToml>,
+    #[serde(default)]
+    pub lights: Vec<LightToml>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CameraToml {
+    pub lookfrom: Vec3,
+    pub lookat: Vec3,
+    pub up: Option<Vec3>,
+    pub vfov: f64,
+    pub resolution: [u32; 2],
+    /// Lens diameter (side for a square lens); excludes `f_number`/`focal_length`.
+    pub aperture: Option<f64>,
+    /// With `focal_length`: aperture = focal_length / f_number.
+    pub f_number: Option<f64>,
+    pub focal_length: Option<f64>,
+    pub lens: Option<LensToml>,
+    pub focus_distance: Option<f64>,
+    /// Lens shift (off-axis projection): the window centre at unit distance.
+    pub shift: Option<[f64; 2]>,
+    /// A pixel's width over its height (default 1, square pixels).
+    pub pixel_aspect: Option<f64>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum LensToml {
+    Disk,
+    Square,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum IntegratorToml {
+    Path,
+    Whitted,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RenderToml {
+    pub spp: Option<u32>,
+    pub max_depth: Option<u32>,
+    pub background: Option<Vec3>,
+    pub light_samples: Option<u32>,
+    pub integrator: Option<IntegratorToml>,
+    pub tonemap: Option<TonemapToml>,
+    pub background_texture: Option<TextureToml>,
+}
+
+/// `tonemap = { operator = "photographic", key = 0.18, burn_out = 1, saturation = 1,
+/// gamma = 2.2 }`: how the scene wants its PNG (each number optional, those the defaults).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct TonemapToml {
+    pub operator: TonemapOperatorToml,
+    pub key: Option<f64>,
+    pub burn_out: Option<f64>,
+    pub saturation: Option<f64>,
+    pub gamma: Option<f64>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum TonemapOperatorToml {
+    Photographic,
+}

@@ -1,0 +1,157 @@
+//! Materials, their course reflectance models and textures, as written.
+
+use super::values::Vec3;
+use serde::Deserialize;
+
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum MaterialKind {
+    #[default]
+    Diffuse,
+    Mirror,
+    Conductor,
+    Dielectric,
+}
+
+/// Named metals for `preset` (conductor materials).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum MetalPreset {
+    Gold,
+    Silver,
+    Copper,
+    #[serde(alias = "aluminum")]
+    Aluminium,
+}
+
+/// A material; like objects, one flat struct whose fields `materials` checks per type.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct MaterialToml {
+    #[serde(rename = "type")]
+    pub kind: Option<MaterialKind>,
+    pub albedo: Option<Vec3>,
+    pub emission: Option<Vec3>,
+    pub reflectance: Option<Vec3>,
+    pub roughness: Option<f64>,
+    pub eta: Option<Vec3>,
+    pub k: Option<Vec3>,
+    pub preset: Option<MetalPreset>,
+    pub ior: Option<f64>,
+    pub absorption: Option<Vec3>,
+    pub texture: Option<TextureToml>,
+    pub specular_texture: Option<TextureToml>,
+    pub normal_map: Option<TextureToml>,
+    pub bump_map: Option<TextureToml>,
+    pub phong: Option<PhongToml>,
+    pub brdf: Option<BrdfToml>,
+}
+
+/// The CENG795 hw6 reflectance models, for the Whitted (course) integrator.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum BrdfModelToml {
+    OriginalBlinnPhong,
+    OriginalPhong,
+    ModifiedBlinnPhong,
+    ModifiedPhong,
+    TorranceSparrow,
+}
+
+/// `brdf = { model = "torrance_sparrow", exponent = 50, kd_fresnel = true, eta = 0.37,
+/// k = 2.82 }`: the model, its exponent, `normalized` (the modified models) or
+/// `kd_fresnel`, `eta` and `k` (Torrance-Sparrow's conductor Fresnel).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BrdfToml {
+    pub model: BrdfModelToml,
+    pub exponent: Option<f64>,
+    pub normalized: Option<bool>,
+    pub kd_fresnel: Option<bool>,
+    pub eta: Option<f64>,
+    pub k: Option<f64>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum TextureKind {
+    Checker2d,
+    Checker3d,
+    /// The course's checkerboard (`scale`, `offset`, `black`, `white`).
+    Checker,
+    Perlin,
+    Image,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum TextureModeToml {
+    Replace,
+    Blend,
+    ReplaceAll,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum NoiseConversionToml {
+    Absval,
+    Linear,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum InterpolationToml {
+    Nearest,
+    Bilinear,
+}
+
+/// How an image's texel values become colours: `srgb` decodes 8- and 16-bit values through
+/// the sRGB curve to linear [0, 1]; `raw` divides the file's own values by `normalizer`.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum ImageEncodingToml {
+    Srgb,
+    Raw,
+}
+
+/// `texture = { type = "image", file = "wood.png" }` and the procedural patterns; each
+/// type takes only its own fields (checked in `materials`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct TextureToml {
+    #[serde(rename = "type")]
+    pub kind: TextureKind,
+    pub mode: Option<TextureModeToml>,
+    pub scale: Option<f64>,
+    pub even: Option<Vec3>,
+    pub odd: Option<Vec3>,
+    pub offset: Option<f64>,
+    pub black: Option<Vec3>,
+    pub white: Option<Vec3>,
+    pub conversion: Option<NoiseConversionToml>,
+    pub file: Option<String>,
+    pub interpolation: Option<InterpolationToml>,
+    pub encoding: Option<ImageEncodingToml>,
+    pub normalizer: Option<f64>,
+    /// A bump map's height per unit of texture value.
+    pub factor: Option<f64>,
+    /// What a bump map's heights are measured in.
+    pub heights: Option<BumpHeightsToml>,
+}
+
+/// `heights` of a bump map: `scene` (scene units, slopes per unit of texture coordinate) or
+/// `course_texels` (the CENG795 course's `bump_normal`; see `BumpScale`).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum BumpHeightsToml {
+    Scene,
+    CourseTexels,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PhongToml {
+    pub ambient: Option<Vec3>,
+    pub specular: Option<Vec3>,
+    pub exponent: Option<f64>,
+}

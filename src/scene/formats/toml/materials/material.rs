@@ -1,0 +1,242 @@
+//! `[materials.NAME]` → `MaterialDesc`: a Lambertian part (`albedo` or a `texture`), one specular lobe chosen by `type`, emission, and the course's Phong terms. Each type takes only its own fields.
+
+use super::course::{brdf, phong};
+use super::textures::{Use, texture_desc};
+use crate::scene::desc::{MaterialDesc, PhongDesc, Specular};
+use crate::scene::error::SceneError;
+use crate::scene::formats::toml::format::{
+    BumpHeightsToml, MaterialKind, MaterialToml, MetalPreset,
+};
+use crate::scene::formats::toml::source_map::FieldPath;
+use crate::scene::formats::toml::validate::Ctx;
+use glam::DAffine3;
+use std::path::Path;
+
+/// Fields every material type takes.
+pub(super) const COMMON: [&str; 9] = [
+    "type",
+    "albedo",
+    "emission",
+    "texture",
+    "specular_texture",
+    "normal_map",
+    "bump_map",
+    "phong",
+    "brdf",
+];
+
+/// Complex refractive index (eta, k) of the `preset` metals, per linear sRGB channel.
+///
+/// Source: the Tungsten renderer's `ComplexIorData.hpp`, which integrates the measured
+/// spectral data shipped with pbrt-v3 and Mitsuba (`Au`, `Ag`, `Cu`, `Al` `.eta`/`.k`
+/// spectra) against the sRGB colour matching functions.
+pub(crate) fn metal_preset(preset: MetalPreset) -> ([f32; 3], [f32; 3]) {
+    match preset {
+        MetalPreset::Gold => {
+            ([0.143_118_96, 0.374_957_04, 1.442_478_6], [3.983_160_4, 2.385_720_7, 1.603_215_3])
+        }
+        MetalPreset::Silver => {
+            ([0.155_264_65, 0.116_723_3, 0.138_380_7], [4.828_343_3, 3.122_245_9, 2.146_950_4])
+        }
+        MetalPreset::Copper => {
+            ([0.200_437_7, 0.924_033_4, 1.102_212], [3.912_948_6, 2.452_847_7, 2.142_188])
+        }
+        MetalPreset::Aluminium => {
+            ([1.657_46, 0.880_368_96, 0.521_228_7], [9.223_869, 6.269_523_4, 4.837_001_3])
+        }
+    }
+}
+
+/// A copy of `material` whose texture (if any) maps the space of the object it is attached
+/// to through `texture_from_object`: for a material given per instance, whose pattern
+/// should follow the instance rather than the mesh's own vertex space.
+pub fn with_texture_space(material: &MaterialDesc, texture_from_object: DAffine3) -> MaterialDesc {
+    let mut material = material.clone();
+    let textures =
+        [&mut material.texture, &mut material.specular_texture, &mut material.normal_map];
+    for texture in textures.into_iter().flatten() {
+        texture.texture_from_object = texture_from_object;
+    }
+    material
+}
+
+/// Validates and converts one `[materials.NAME]` table.
+pub(crate) fn material(
+    name: &str,
+    m: &MaterialToml,
+    ctx: &Ctx,
+    base_dir: &Path,
+) -> Result<MaterialDesc, SceneError> {
+    let path = FieldPath::root("materials").key(name);
+    let kind = m.kind.unwrap_or_default();
+    let (kind_name, own): (&str, &[&str]) = match kind {
+        MaterialKind::Diffuse => ("diffuse", &[]),
+        MaterialKind::Mirror => ("mirror", &["reflectance", "roughness"]),
+        MaterialKind::Conductor => {
+            ("conductor", &["eta", "k", "preset", "reflectance", "roughness"])
+        }
+        MaterialKind::Dielectric => ("dielectric", &["ior", "absorption", "roughness"]),
+    };
+    let item = format!("{path} ({kind_name})");
+    let allowed: Vec<&str> = COMMON.iter().chain(own).copied().collect();
+    let present = [
+        ("reflectance", m.reflectance.is_some()),
+        ("roughness", m.roughness.is_some()),
+        ("eta", m.eta.is_some()),
+        ("k", m.k.is_some()),
+        ("preset", m.preset.is_some()),
+        ("ior", m.ior.is_some()),
+        ("absorption", m.absorption.is_some()),
+    ];
+    ctx.check_fields(&path, &item, &present, &allowed)?;
+
+    let default_albedo = if kind == MaterialKind::Diffuse { 0.8 } else { 0.0 };
+    let albedo = ctx.color(&path.key("albedo"), m.albedo.unwrap_or([default_albedo; 3]), true)?;
+    let emission = ctx.color(&path.key("emission"), m.emission.unwrap_or([0.0; 3]), false)?;
+    let roughness = match m.roughness {
+        Some(r) => {
+            let field = path.key("roughness");
+            ctx.non_negative(&field, r)?;
+            ctx.f32(&field, r)?
+        }
+        None => 0.0,
+    };
+    let reflectance =
+        |ctx: &Ctx| ctx.color(&path.key("reflectance"), m.reflectance.unwrap_or([1.0; 3]), true);
+    let specular = match kind {
+        MaterialKind::Diffuse => Specular::None,
+        MaterialKind::Mirror => Specular::Mirror { reflectance: reflectance(ctx)? },
+        MaterialKind::Conductor => {
+            let (eta, k) = conductor_index(&path, &item, m, ctx)?;
+            Specular::Conductor { eta, k, reflectance: reflectance(ctx)? }
+        }
+        MaterialKind::Dielectric => {
+            // `roughness` is kept (GGX α) for renderers that support rough glass; the path
+            // tracer treats dielectrics as smooth.
+            let field = path.key("ior");
+            let ior = ctx.positive(&field, m.ior.unwrap_or(1.5))?;
+            let ior = ctx.f32(&field, ior)?;
+            let absorption =
+                ctx.color(&path.key("absorption"), m.absorption.unwrap_or([0.0; 3]), false)?;
+            Specular::Dielectric { ior, absorption }
+        }
+    };
+    let texture = m
+        .texture
+        .as_ref()
+        .map(|t| texture_desc(&path.key("texture"), t, Use::Diffuse, ctx, base_dir))
+        .transpose()?;
+    let specular_texture = m
+        .specular_texture
+        .as_ref()
+        .map(|t| texture_desc(&path.key("specular_texture"), t, Use::Specular, ctx, base_dir))
+        .transpose()?;
+    let normal_map = m
+        .normal_map
+        .as_ref()
+        .map(|t| texture_desc(&path.key("normal_map"), t, Use::Normal, ctx, base_dir))
+        .transpose()?;
+    let bump_map = match &m.bump_map {
+        None => None,
+        Some(t) => {
+            let field = path.key("bump_map");
+            let texture = texture_desc(&field, t, Use::Bump, ctx, base_dir)?;
+            let factor = ctx.f32(&field.key("factor"), t.factor.unwrap_or(1.0))?;
+            let scale = match t.heights {
+                None | Some(BumpHeightsToml::Scene) => crate::scene::desc::BumpScale::Scene,
+                Some(BumpHeightsToml::CourseTexels) => crate::scene::desc::BumpScale::CourseTexels,
+            };
+            Some(crate::scene::desc::BumpMapDesc { texture, factor, scale })
+        }
+    };
+    let mut phong = m.phong.as_ref().map(|p| phong(&path.key("phong"), p, ctx)).transpose()?;
+    if let Some(b) = &m.brdf {
+        // A BRDF without a `phong` table reflects only its diffuse part (no specular).
+        let p = phong.get_or_insert(PhongDesc {
+            ambient: glam::Vec3::ZERO,
+            specular: glam::Vec3::ZERO,
+            exponent: 1.0,
+            brdf: Default::default(),
+        });
+        (p.brdf, p.exponent) = brdf(&path.key("brdf"), b, p.exponent, ctx)?;
+    }
+    Ok(MaterialDesc {
+        name: name.to_owned(),
+        albedo,
+        emission,
+        specular,
+        roughness,
+        texture,
+        specular_texture,
+        normal_map,
+        bump_map,
+        phong,
+    })
+}
+
+/// `preset`, or `eta` (each > 0) and `k` (each >= 0).
+pub(super) fn conductor_index(
+    path: &FieldPath,
+    item: &str,
+    m: &MaterialToml,
+    ctx: &Ctx,
+) -> Result<(glam::Vec3, glam::Vec3), SceneError> {
+    if let Some(preset) = m.preset {
+        if m.eta.is_some() {
+            return Err(ctx.conflict(path, item, "preset", "eta"));
+        }
+        if m.k.is_some() {
+            return Err(ctx.conflict(path, item, "preset", "k"));
+        }
+        let (eta, k) = metal_preset(preset);
+        return Ok((glam::Vec3::from_array(eta), glam::Vec3::from_array(k)));
+    }
+    let eta = ctx.required(path, item, "eta", m.eta)?;
+    let k = ctx.required(path, item, "k", m.k)?;
+    for (i, &c) in eta.iter().enumerate() {
+        ctx.positive(&path.key("eta").index(i), c)?;
+    }
+    let eta = ctx.color(&path.key("eta"), eta, false)?;
+    let k = ctx.color(&path.key("k"), k, false)?;
+    Ok((eta, k))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::desc::{Pattern, TextureDesc, TextureMode};
+
+    #[test]
+    fn presets_are_metals() {
+        for preset in
+            [MetalPreset::Gold, MetalPreset::Silver, MetalPreset::Copper, MetalPreset::Aluminium]
+        {
+            let (eta, k) = metal_preset(preset);
+            assert!(eta.iter().all(|&e| e > 0.0) && k.iter().all(|&k| k > 1.0), "{preset:?}");
+        }
+        // Gold reflects red more than blue: its k falls from red to blue.
+        let (_, k) = metal_preset(MetalPreset::Gold);
+        assert!(k[0] > k[1] && k[1] > k[2]);
+    }
+
+    #[test]
+    fn texture_space_is_replaced_only_when_there_is_a_texture() {
+        let plain = MaterialDesc::default();
+        let moved = DAffine3::from_translation(glam::DVec3::X);
+        assert_eq!(with_texture_space(&plain, moved), plain);
+        let textured = MaterialDesc {
+            texture: Some(TextureDesc {
+                pattern: Pattern::Checker3d {
+                    scale: 2.0,
+                    even: glam::Vec3::ONE,
+                    odd: glam::Vec3::ZERO,
+                },
+                mode: TextureMode::Replace,
+                texture_from_object: DAffine3::IDENTITY,
+            }),
+            ..MaterialDesc::default()
+        };
+        let attached = with_texture_space(&textured, moved);
+        assert_eq!(attached.texture.unwrap().texture_from_object, moved);
+    }
+}
