@@ -1,8 +1,8 @@
 //! `[[lights]]` entries into `LightDesc`s (and emissive objects for quad, sphere and mesh
 //! lights).
 
+use super::builder::{Builder, dvec, mesh_ref};
 use super::repeat::Placement;
-use super::{Builder, dvec, mesh_ref};
 use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc, ShapeDesc};
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::format::{
