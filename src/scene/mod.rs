@@ -1,12 +1,12 @@
 //! Scene files → `SceneDesc`.
 //!
-//! `load` reads a TOML scene, `load_str` parses text that came from `source` (used in
-//! messages and to resolve relative OBJ paths). The stages: TOML syntax (`source_map`), a
-//! scan rejecting every NaN/inf, serde into `toml_format` (unknown keys are errors), then
-//! `convert` validates and builds the world-space `SceneDesc`.
+//! The format-neutral scene model (`desc`), its limits checks (`budget`), and the readers
+//! of each file format (`formats`), which only translate syntax into the model.
 //!
-//! `ceng795` reads the METU CENG795 course's XML format (one `SceneDesc` per camera), and
-//! `toml_writer` writes a `SceneDesc` back as TOML with OBJ meshes.
+//! `load` reads a TOML scene, `load_str` parses text that came from `source` (used in
+//! messages and to resolve relative OBJ paths); `ceng795` reads the METU CENG795 course's
+//! XML format (one `SceneDesc` per camera), and `toml_writer` writes a `SceneDesc` back as
+//! TOML with OBJ meshes.
 pub mod budget;
 pub mod desc;
 pub use desc::*;

@@ -233,7 +233,7 @@ fn degamma_materials_read_their_reflectances_linearised() {
     assert_eq!(m[2].albedo, glam::Vec3::new(0.651, 0.389, 1.0));
     let bad =
         scene_xml(TRIANGLE).replace("<Material id=\"1\">", "<Material id=\"1\" degamma=\"yes\">");
-    assert_contains(&error_of(&bad), &["degamma is yes, but must be true or false", "line"]);
+    assert_contains(&error_of(&bad), &["degamma=\"yes\"", "\"true\" or \"false\"", "line"]);
 }
 
 /// An invisible area light lights a floor under it (soft shadow sampling) without being

@@ -57,19 +57,7 @@ pub(super) fn brdfs<'a, 'i: 'a>(
 
 fn brdf(x: &Xml, node: Node) -> Result<BrdfSpec, SceneError> {
     x.check_children(node, &["Exponent"])?;
-    let flag = |name: &str| -> Result<bool, SceneError> {
-        match node.attribute(name).map(str::trim) {
-            None | Some("false") => Ok(false),
-            Some("true") => Ok(true),
-            Some(other) => Err(x.error(
-                node,
-                format!(
-                    "attribute {name}=\"{}\" must be \"true\" or \"false\"",
-                    crate::excerpt::excerpt(other)
-                ),
-            )),
-        }
-    };
+    let flag = |name: &str| x.flag(node, name);
     let model = match node.tag_name().name() {
         "OriginalBlinnPhong" => BrdfModel::OriginalBlinnPhong,
         "OriginalPhong" => BrdfModel::OriginalPhong,

@@ -99,14 +99,7 @@ fn material(
     brdfs: &HashMap<String, BrdfSpec>,
 ) -> Result<MaterialDesc, SceneError> {
     x.check_children(node, &ALLOWED)?;
-    let degamma = match node.attribute("degamma").map(str::trim) {
-        None | Some("false") => false,
-        Some("true") => true,
-        Some(other) => {
-            let message = format!("degamma is {}, but must be true or false", excerpt(other));
-            return Err(x.error(node, message));
-        }
-    };
+    let degamma = x.flag(node, "degamma")?;
     // hw5's degamma: the reflectances are display values, made linear by the inverse of
     // the tone mapper's standard gamma.
     let color = |name: &str| -> Result<Vec3, SceneError> {

@@ -17,6 +17,7 @@ mod materials;
 mod objects;
 mod textures;
 mod transforms;
+mod vertex_data;
 mod xml;
 
 use crate::scene::desc::{IntegratorKind, LightDesc, RenderSettings, SceneDesc};
@@ -136,8 +137,8 @@ pub fn load_str_with_warnings(
     let brdfs = brdfs::brdfs(&x, all("BRDFs"))?;
     let materials = materials::materials(&x, all("Materials"), &brdfs)?;
     let transforms = transforms::transforms(&x, all("Transformations"))?;
-    let vertices = objects::vertex_data(&x, all("VertexData"))?;
-    let texcoords = objects::texcoord_data(&x, all("TexCoordData"))?;
+    let vertices = vertex_data::vertex_data(&x, all("VertexData"))?;
+    let texcoords = vertex_data::texcoord_data(&x, all("TexCoordData"))?;
     let base_dir = source.parent().unwrap_or(Path::new(""));
     let textures = textures::texture_maps(&x, base_dir, all("Textures"))?;
     let lights = lights::lights(&x, all("Lights"), &textures)?;

@@ -127,6 +127,21 @@ impl Xml<'_, '_> {
     }
 
     /// Rejects child elements of `node` that are not in `allowed`.
+    /// The boolean attribute `name` of `node`: `"true"` or `"false"` (false when absent).
+    pub fn flag(&self, node: Node, name: &str) -> Result<bool, SceneError> {
+        match node.attribute(name).map(str::trim) {
+            None | Some("false") => Ok(false),
+            Some("true") => Ok(true),
+            Some(other) => Err(self.error(
+                node,
+                format!(
+                    "attribute {name}=\"{}\" must be \"true\" or \"false\"",
+                    crate::excerpt::excerpt(other)
+                ),
+            )),
+        }
+    }
+
     pub fn check_children(&self, node: Node, allowed: &[&str]) -> Result<(), SceneError> {
         for child in node.children().filter(Node::is_element) {
             let name = child.tag_name().name();

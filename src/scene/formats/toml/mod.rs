@@ -1,6 +1,8 @@
-//! The deserialised file (`toml_format`) → a validated `SceneDesc`: objects (with motion and
-//! repeat grids) and lights, each checked with its field path and line (camera and settings:
-//! `camera_settings`; materials: `materials`).
+//! embray's TOML scene format → a validated `SceneDesc`. The stages: TOML syntax with the
+//! line of every key (`source_map`), a scan rejecting every NaN/inf, serde into `format`
+//! (unknown keys are errors), then the model, each item checked with its field path and
+//! line: camera and settings (`camera`), materials (`materials`), objects with motion and
+//! repeat grids (`objects`), lights (`lights`). `write` is the inverse, for `embray convert`.
 
 mod builder;
 pub(crate) mod camera;
