@@ -5,9 +5,9 @@ use super::console::{note, out};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser, Subcommand};
 use embray::distributed::slurm::{
-    self, JOB_FILE, JobFile, SbatchOptions, Submission, TaskState, part_path,
+    self, JOB_FILE, JobFile, PartStatus, SbatchOptions, Submission, TaskState, part_path, status,
 };
-use embray::distributed::{MAX_PARTS, Part, PartTiming, Split, read_part_meta};
+use embray::distributed::{MAX_PARTS, Part, Split};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -224,132 +224,6 @@ fn submit_round(
     job.submissions.push(Submission { array_job, parts: parts.to_vec(), merge_job });
     write_text(&dir.join(JOB_FILE), &job.encode())?;
     Ok(job)
-}
-
-/// Where one part stands.
-#[derive(Debug)]
-enum PartStatus {
-    Done(PartTiming),
-    /// Its task is pending or running.
-    Active(TaskState),
-    /// No file, no live task: `resume` resubmits it (the last state Slurm knew, if any).
-    Missing(Option<TaskState>),
-    /// A file that is not this part of this job.
-    Damaged(String),
-}
-
-struct Report {
-    job: JobFile,
-    parts: Vec<PartStatus>,
-    merge: Option<TaskState>,
-    merged: bool,
-}
-
-fn status(dir: &Path) -> Result<Report> {
-    let job = JobFile::read(dir).map_err(anyhow::Error::msg)?;
-    let mut states: Vec<Option<TaskState>> = vec![None; job.parts as usize];
-    for round in &job.submissions {
-        if let Some(array) = &round.array_job {
-            for (task, state) in slurm::task_states(array)? {
-                if let Some(slot) = states.get_mut(task as usize) {
-                    *slot = Some(state);
-                }
-            }
-        }
-    }
-    let parts = states
-        .into_iter()
-        .enumerate()
-        .map(|(i, state)| {
-            let path = part_path(dir, i as u32, job.parts);
-            if path.exists() {
-                return match read_part_meta(&path) {
-                    Ok(meta) if meta.part.index == i as u32 && meta.part.count == job.parts => {
-                        PartStatus::Done(meta.timing)
-                    }
-                    Ok(meta) => PartStatus::Damaged(format!("holds part {}", meta.part)),
-                    Err(e) => PartStatus::Damaged(e.to_string()),
-                };
-            }
-            match state {
-                Some(s) if s.is_active() => PartStatus::Active(s),
-                other => PartStatus::Missing(other),
-            }
-        })
-        .collect();
-    let merge = match job.submissions.last() {
-        Some(round) => slurm::job_state(&round.merge_job)?,
-        None => None,
-    };
-    let merged = dir.join("render.exr").exists();
-    Ok(Report { job, parts, merge, merged })
-}
-
-impl Report {
-    fn done(&self) -> usize {
-        self.parts.iter().filter(|p| matches!(p, PartStatus::Done(_))).count()
-    }
-
-    fn missing(&self) -> Vec<u32> {
-        let lost = |p: &PartStatus| matches!(p, PartStatus::Missing(_) | PartStatus::Damaged(_));
-        (0..self.job.parts).filter(|&i| lost(&self.parts[i as usize])).collect()
-    }
-
-    fn text(&self, dir: &Path) -> String {
-        let describe = |s: &TaskState| {
-            let reason = if s.reason.is_empty() || s.reason == "None" {
-                String::new()
-            } else {
-                format!(" ({})", s.reason)
-            };
-            format!("{}{reason}, job {}", s.state, s.job_id)
-        };
-        let mut text = format!(
-            "{}: {} parts ({} split) of {}\n",
-            dir.display(),
-            self.job.parts,
-            self.job.split,
-            self.job.scene.display()
-        );
-        for (i, part) in self.parts.iter().enumerate() {
-            let line = match part {
-                PartStatus::Done(t) => format!(
-                    "done: render {:.2} s, {:.2} s of CPU on {} ({} thread{})",
-                    t.render_seconds,
-                    t.cpu_seconds,
-                    t.host,
-                    t.threads,
-                    if t.threads == 1 { "" } else { "s" }
-                ),
-                PartStatus::Active(s) => describe(s),
-                PartStatus::Missing(Some(s)) => format!("missing: its task ended {}", describe(s)),
-                PartStatus::Missing(None) => "missing (Slurm no longer knows its task)".to_owned(),
-                PartStatus::Damaged(why) => format!("missing: its file is unusable ({why})"),
-            };
-            text += &format!("part {i}/{}  {line}\n", self.job.parts);
-        }
-        let merge = match (&self.merge, self.merged) {
-            (_, true) => format!("done: {}", dir.join("render.exr").display()),
-            (Some(s), false) => describe(s),
-            (None, false) => "not run (Slurm no longer knows the job)".to_owned(),
-        };
-        text += &format!("merge  {merge}\n");
-        let missing = self.missing();
-        if !missing.is_empty() {
-            let list = missing
-                .iter()
-                .map(|i| format!("{i}/{}", self.job.parts))
-                .collect::<Vec<_>>()
-                .join(", ");
-            text += &format!(
-                "{} of {} parts done; missing: {list}. `embray slurm resume {}` renders them and merges.\n",
-                self.done(),
-                self.job.parts,
-                dir.display()
-            );
-        }
-        text
-    }
 }
 
 fn resume(dir: &Path, no_wait: bool) -> Result<()> {
