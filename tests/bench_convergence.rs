@@ -3,6 +3,7 @@
 
 mod common;
 
+use common::command::temp_dir;
 use common::*;
 use embray::bench::convergence::{ConvergenceError, measure, read_reference, spp_for_rmse};
 use embray::output::write_exr;
@@ -14,8 +15,7 @@ fn error_falls_with_spp_against_an_exr_reference() {
     let mut reference_options = options(&scene, backend, 1024);
     reference_options.seed = 99;
     let reference = render_ok(&scene, &reference_options).film;
-    let dir = std::env::temp_dir().join(format!("embray-convergence-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("convergence");
     let path = dir.join("reference.exr");
     write_exr(&reference, &path).unwrap();
     let read = read_reference(&path).unwrap();

@@ -180,12 +180,6 @@ fn moving_object_is_hit_at_both_shutter_ends() {
     }
 }
 
-/// Form factor from a point to a parallel rectangle with a corner above it (X = a/h, Y = b/h).
-fn corner_form_factor(x: f64, y: f64) -> f64 {
-    let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
-    (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * std::f64::consts::PI)
-}
-
 #[test]
 fn quad_light_irradiance_matches_the_analytic_form_factor() {
     let (a, b, h) = (2.0, 1.0, 1.0);
@@ -204,7 +198,7 @@ fn quad_light_irradiance_matches_the_analytic_form_factor() {
         light,
         DAffine3::IDENTITY,
     ));
-    let expected = 4.0 * corner_form_factor(a / 2.0 / h, b / 2.0 / h); // albedo·L·F
+    let expected = 4.0 * corner_form_factor(a / 2.0, b / 2.0, h); // albedo·L·F
     for backend in backends() {
         let mut o = direct_only(&s, backend, 1);
         o.jitter = false;

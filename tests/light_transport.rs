@@ -6,15 +6,10 @@ mod common;
 use common::build::*;
 use common::*;
 use embray::choice::Choice;
-use embray::film::Film;
 use embray::sampling::SamplerKind;
 use embray::scene::{MeshData, SceneDesc, ShapeDesc};
 use glam::{DAffine3, DVec3, Vec3};
 use std::sync::Arc;
-
-fn mean(film: &Film) -> Vec3 {
-    film.color.iter().copied().sum::<Vec3>() / film.color.len() as f32
-}
 
 /// A floor lit only by a 10×10 emissive quad 10⁴ units above it, looking down; with
 /// `sheet`, a 1 mm thick slab twice the light's size 0.5 units below the light blocks it.
@@ -38,7 +33,7 @@ fn a_thin_sheet_just_in_front_of_a_far_light_blocks_it() {
         let lit = render_ok(&far_light_scene(false), &options(&far_light_scene(false), backend, 4));
         let blocked_scene = far_light_scene(true);
         let blocked = render_ok(&blocked_scene, &options(&blocked_scene, backend, 4));
-        let (lit, blocked) = (mean(&lit.film), mean(&blocked.film));
+        let (lit, blocked) = (film_mean(&lit.film), film_mean(&blocked.film));
         println!("{}: lit {lit}, behind the sheet {blocked}", backend.name());
         assert!(lit.x > 1.0, "{}: the control render must be lit ({lit})", backend.name());
         assert_eq!(blocked, Vec3::ZERO, "{}: light leaks past the sheet", backend.name());
@@ -79,7 +74,7 @@ fn a_closed_emitter_seen_from_inside_is_a_furnace() {
     for (backend, sampler) in runs {
         let mut o = options(&s, backend, 64);
         o.sampler = sampler;
-        let m = mean(&render_ok(&s, &o).film);
+        let m = film_mean(&render_ok(&s, &o).film);
         println!("{} {sampler}: mean {m}, expected {expected}", backend.name());
         for c in m.to_array() {
             assert!(
@@ -144,7 +139,7 @@ fn mirrored_objects_render_alike_baked_and_instanced() {
         let baked = render_ok(&baked, &options(&baked, backend, 16));
         let instanced = render_ok(&instanced, &options(&instanced, backend, 16));
         let error = image_error(&instanced.film, &baked.film);
-        let (b, i) = (mean(&baked.film), mean(&instanced.film));
+        let (b, i) = (film_mean(&baked.film), film_mean(&instanced.film));
         println!("{}: baked mean {b}, instanced mean {i}, {error:?}", backend.name());
         assert!(b.x > 0.1, "{}: the scene must be lit ({b})", backend.name());
         // Observed 3e-13 (Embree) and 8e-13 (obvhs): rounding of the transforms only. Before

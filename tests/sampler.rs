@@ -9,19 +9,7 @@ use embray::choice::Choice;
 use embray::film::Film;
 use embray::sampling::SamplerKind;
 use embray::scene::SceneDesc;
-use glam::{DAffine3, DVec3, Vec3};
-
-fn mean(film: &Film) -> Vec3 {
-    film.color.iter().copied().sum::<Vec3>() / film.color.len() as f32
-}
-
-/// Form factor from a point to a parallel rectangle of sides `a`, `b` whose corner is
-/// `h` straight above it (the standard closed form).
-fn corner_form_factor(a: f64, b: f64, h: f64) -> f64 {
-    let (x, y) = (a / h, b / h);
-    let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
-    (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * std::f64::consts::PI)
-}
+use glam::{DAffine3, DVec3};
 
 /// A white-ish floor under a 4×2 emitter 1.5 above it, seen through a very narrow camera
 /// aimed at the point below the emitter's centre (every pixel sees about that point).
@@ -43,7 +31,7 @@ fn every_sampler_matches_the_analytic_form_factor() {
     for &sampler in SamplerKind::ALL {
         let mut o = options(&scene, backends()[0], 1024);
         o.sampler = sampler;
-        let m = mean(&render_ok(&scene, &o).film);
+        let m = film_mean(&render_ok(&scene, &o).film);
         let error = (m.x as f64 / expected - 1.0).abs();
         println!("{sampler}: {} against {expected:.6} ({:.3} %)", m.x, 100.0 * error);
         assert!(error < 0.005, "{sampler}: {m} vs {expected}");

@@ -3,6 +3,7 @@
 
 mod common;
 
+use common::command::temp_dir;
 use common::*;
 use embray::choice::Choice;
 use std::path::Path;
@@ -47,8 +48,7 @@ intensity = [4.0, 4.0, 4.0]
 
 #[test]
 fn an_image_texture_shows_on_its_quad_and_normal_maps_bend_the_shading() {
-    let dir = std::env::temp_dir().join(format!("embray-texture-toml-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("texture-toml");
     // Four vertical stripes: red, grey, red, grey.
     write_png(&dir.join("stripes.png"), 8, 2, |x, _| {
         if (x / 2) % 2 == 0 { [220, 30, 30] } else { [160, 160, 160] }
@@ -237,8 +237,7 @@ fn pixel_aspect_stretches_the_horizontal_field_of_view() {
 /// highlight to the lobe-less quad.
 #[test]
 fn a_specular_texture_drives_the_path_tracers_course_lobe() {
-    let dir = std::env::temp_dir().join(format!("embray-specular-toml-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("specular-toml");
     let base = "albedo = [0.3, 0.3, 0.3]\nbrdf = { model = \"modified_phong\", normalized = true }";
     for backend in backends() {
         let render = |material: String| {

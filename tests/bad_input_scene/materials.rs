@@ -1,6 +1,7 @@
 //! Material references and the fields of each material type.
 
 use super::*;
+use crate::common::command::temp_dir;
 
 #[test]
 fn unknown_material_lists_the_defined_ones() {
@@ -169,8 +170,7 @@ fn texture_fields_are_checked() {
 
 #[test]
 fn texture_images_that_cannot_be_read_name_the_file_and_the_field() {
-    let dir = std::env::temp_dir().join(format!("embray-bad-texture-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("bad-texture");
     std::fs::write(dir.join("notes.png"), "not an image").unwrap();
     std::fs::write(dir.join("cut.png"), &b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR"[..]).unwrap();
     for (file, problem) in [

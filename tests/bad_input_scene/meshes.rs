@@ -1,6 +1,7 @@
 //! Mesh files (OBJ, PLY) and shapes with no area.
 
 use super::*;
+use crate::common::command::temp_dir;
 
 #[test]
 fn missing_obj_file_names_the_obj_and_the_scene() {
@@ -100,8 +101,7 @@ fn truncated_binary_ply_is_reported() {
     bytes.push(3);
     bytes.extend(0i32.to_le_bytes());
     bytes.extend(1i32.to_le_bytes()); // the third index is missing
-    let dir = std::env::temp_dir().join(format!("embray-truncated-ply-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("truncated-ply");
     std::fs::write(dir.join("cut.ply"), &bytes).unwrap();
     let result = scene::load_str(
         &scene_with("[[objects]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"cut.ply\"\n"),

@@ -2,6 +2,7 @@
 //! the scene description as the course defines them.
 
 use super::*;
+use crate::common::command::temp_dir;
 use embray::choice::Choice;
 
 fn one(text: &str) -> SceneDesc {
@@ -392,8 +393,7 @@ fn hw5_directional_and_spot_lights_import_and_convert() {
             },
         ]
     );
-    let dir = std::env::temp_dir().join(format!("embray-hw5-lights-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("hw5-lights");
     let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
     let toml = dir.join("lights.toml");
     writer.write(&s, &toml, "round trip").unwrap();

@@ -20,6 +20,7 @@
 //! the box's edges, where a camera ray meets two walls at the same distance and the renderers
 //! pick different ones.
 
+use common::assert_contains;
 use embray::accel::BackendKind;
 use embray::compare::{PngComparison, compare_images, read_rgb};
 use embray::output::{ToneMap, to_srgb8};
@@ -80,12 +81,6 @@ fn error_of(text: &str) -> String {
     }
 }
 
-fn assert_contains(message: &str, needles: &[&str]) {
-    for needle in needles {
-        assert!(message.contains(needle), "message lacks '{needle}': {message}");
-    }
-}
-
 const TRIANGLE: &str = r#"
     <VertexData>
         0 0 -2
@@ -109,6 +104,8 @@ fn course_options(scene: &SceneDesc, backend: BackendKind) -> RenderOptions {
     options
 }
 
+#[path = "../common/mod.rs"]
+mod common;
 mod environment;
 mod glass_energy;
 mod hw4;

@@ -2,6 +2,7 @@
 //! effect scenes, and the XML → TOML round trip.
 
 use super::*;
+use crate::common::command::temp_dir;
 use embray::choice::Choice;
 
 /// Pixels within 3/255 in every channel required of a single-sample reference scene (the
@@ -338,9 +339,7 @@ fn mesh_sharing(scene: &SceneDesc) -> Vec<usize> {
 #[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
 fn converted_toml_renders_like_the_xml() {
     let data = data_dir();
-    let dir = std::env::temp_dir().join(format!("embray-ceng795-convert-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("ceng795-convert");
     let scenes = [
         "2021/hw1/simple.xml",
         "2021/hw2/cornellbox_recursive.xml",

@@ -42,6 +42,27 @@ pub fn backends() -> Vec<BackendKind> {
     BackendKind::compiled()
 }
 
+/// The mean colour of a film.
+pub fn film_mean(film: &embray::film::Film) -> glam::Vec3 {
+    film.color.iter().copied().sum::<glam::Vec3>() / film.color.len() as f32
+}
+
+/// Form factor from a point to a parallel rectangle of sides `a`, `b` whose corner is
+/// `h` straight above it (the standard closed form).
+pub fn corner_form_factor(a: f64, b: f64, h: f64) -> f64 {
+    let (x, y) = (a / h, b / h);
+    let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
+    (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * std::f64::consts::PI)
+}
+
+/// Fails unless `message` contains every one of `parts`.
+#[track_caller]
+pub fn assert_contains(message: &str, parts: &[&str]) {
+    for part in parts {
+        assert!(message.contains(part), "expected {part:?} in the message:\n{message}");
+    }
+}
+
 /// Programmatic scenes for effect tests (independent of the file format).
 pub mod scene_files;
 

@@ -1,7 +1,7 @@
 //! Two outputs of one run, or an output and an input, that are the same file: refused before
 //! anything is rendered, whatever the spelling (hard links, `./`, `..`, symbolic links).
 
-use crate::harness::{Scratch, refused_cases, refused_in, scene};
+use crate::harness::{Scratch, refused_cases, refused_in, scene, with_mesh};
 
 refused_cases! {
     png_default_equal_to_the_exr: ["s.toml" => scene("")], ["render", "s.toml", "-o", "out.png"]
@@ -59,16 +59,12 @@ fn png_over_a_symbolic_link_to_the_scene_is_refused() {
     refused_in(&scratch, &["render", "s.toml", "--png", "link.png"], &["an input of this run"]);
 }
 
-fn with_mesh() -> String {
-    scene("[[objects]]\ntype = \"mesh\"\nfile = \"m.obj\"\n")
-}
-
 const OBJ: &str = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
 
 refused_cases! {
-    png_over_a_mesh_the_scene_reads: ["s.toml" => with_mesh(), "m.obj" => OBJ, "m.mtl" => "newmtl red\nKd 1 0 0\n"], ["render", "s.toml", "--png", "m.obj"]
+    png_over_a_mesh_the_scene_reads: ["s.toml" => with_mesh("m.obj"), "m.obj" => OBJ, "m.mtl" => "newmtl red\nKd 1 0 0\n"], ["render", "s.toml", "--png", "m.obj"]
         => ["--png 'm.obj'", "a file the scene reads", "an input of this run"];
-    stats_json_over_an_mtl_the_scene_reads: ["s.toml" => with_mesh(), "m.obj" => OBJ, "m.mtl" => "newmtl red\nKd 1 0 0\n"], ["render", "s.toml", "--stats-json", "./m.mtl"]
+    stats_json_over_an_mtl_the_scene_reads: ["s.toml" => with_mesh("m.obj"), "m.obj" => OBJ, "m.mtl" => "newmtl red\nKd 1 0 0\n"], ["render", "s.toml", "--stats-json", "./m.mtl"]
         => ["--stats-json './m.mtl'", "an input of this run"];
 }
 

@@ -185,6 +185,11 @@ intensity = [5.0, 5.0, 5.0]
 
 /// A CENG795 scene with one camera per image name (8×8, a sphere, a point light) and
 /// `settings` XML after the background.
+/// `scene` with a mesh object reading `file` (grey material).
+pub fn with_mesh(file: &str) -> String {
+    scene(&format!("[[objects]]\ntype = \"mesh\"\nfile = \"{file}\"\nmaterial = \"grey\"\n"))
+}
+
 pub fn xml_scene(image_names: &[&str], settings: &str) -> String {
     let cameras: String = image_names
         .iter()

@@ -1,7 +1,7 @@
 //! Counts, memory and inputs with documented limits: refused with the limit and the option
 //! or field, before anything large is allocated or anything blocks.
 
-use crate::harness::{Scratch, refused_cases, refused_in, scene};
+use crate::harness::{Scratch, refused_cases, refused_in, scene, with_mesh};
 
 refused_cases! {
     spp_zero: ["s.toml" => scene("")], ["render", "s.toml", "--spp", "0"] => ["--spp is 0", "between 1 and"];
@@ -45,10 +45,6 @@ fn a_render_needing_more_memory_than_there_is_is_refused() {
 /// A symbolic link in the scratch folder to a special file.
 fn link(scratch: &Scratch, name: &str, to: &str) {
     std::os::unix::fs::symlink(to, scratch.path(name)).unwrap();
-}
-
-fn with_mesh(file: &str) -> String {
-    scene(&format!("[[objects]]\ntype = \"mesh\"\nfile = \"{file}\"\nmaterial = \"grey\"\n"))
 }
 
 #[test]

@@ -1,11 +1,7 @@
 //! OBJ and PLY files that tobj or a naive reader would misreport: every problem with the
 //! mesh file, its line and the scene item that names it.
 
-use crate::harness::{Scratch, accepted_in, refused_cases, scene};
-
-fn with_mesh(file: &str) -> String {
-    scene(&format!("[[objects]]\ntype = \"mesh\"\nfile = \"{file}\"\nmaterial = \"grey\"\n"))
-}
+use crate::harness::{Scratch, accepted_in, refused_cases, scene, with_mesh};
 
 const TRIANGLE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 

@@ -14,31 +14,7 @@ use std::sync::Arc;
 #[path = "../common/mod.rs"]
 mod common;
 
-use common::scene_files::{CAMERA, data_dir, source};
-
-const WHITE: &str = "[materials.white]\nalbedo = [0.73, 0.73, 0.73]\n";
-
-fn load(text: &str) -> SceneDesc {
-    load_from(text, &source())
-}
-
-fn load_from(text: &str, source: &Path) -> SceneDesc {
-    match scene::load_str(text, source) {
-        Ok(scene) => scene,
-        Err(e) => panic!("scene should load, got: {e}\n{text}"),
-    }
-}
-
-fn scene_with(rest: &str) -> String {
-    format!("{CAMERA}{WHITE}{rest}")
-}
-
-fn mesh_of(scene: &SceneDesc, object: usize) -> &Arc<MeshData> {
-    match &scene.objects[object].shape {
-        ShapeDesc::Mesh(mesh) => mesh,
-        other => panic!("object {object} is not a mesh: {other:?}"),
-    }
-}
+use common::scene_files::{CAMERA, data_dir, load, mesh_of, scene_with, source};
 
 fn material<'a>(scene: &'a SceneDesc, name: &str) -> &'a MaterialDesc {
     scene.materials.iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no {name}"))

@@ -1,6 +1,7 @@
 //! PLY files: ASCII and both binary byte orders, and the course's PLY models.
 
 use super::*;
+use crate::common::command::temp_dir;
 
 /// Numbers written in one byte order.
 struct Writer {
@@ -70,8 +71,7 @@ fn binary_triangle(big_endian: bool) -> Vec<u8> {
 
 #[test]
 fn ply_ascii_and_binary_give_the_same_mesh() {
-    let dir = std::env::temp_dir().join(format!("embray-ply-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("ply-test");
     for (name, bytes) in [
         ("cube_le.ply", binary_cube(false)),
         ("cube_be.ply", binary_cube(true)),
