@@ -16,6 +16,11 @@ pub enum CompareError {
     Size { a_width: u32, a_height: u32, b_width: u32, b_height: u32 },
     #[error("cannot write heat map '{}': {message}", .path.display())]
     Write { path: PathBuf, message: String },
+    #[error(
+        "no pixel is finite in both images ({a} in the first, {b} in the second have a NaN or \
+         infinite value): there is nothing to compare"
+    )]
+    NothingFinite { a: usize, b: usize },
 }
 
 /// How two images differ.

@@ -51,6 +51,11 @@ pub fn compare_films(a: &Film, b: &Film) -> Result<LinearComparison, CompareErro
             n += 3;
         }
     }
+    // An RMSE of 0 over no pixel would read as a perfect match.
+    if n == 0 {
+        let count = |f: &Film| f.non_finite().map_or(0, |nf| nf.count);
+        return Err(CompareError::NothingFinite { a: count(a), b: count(b) });
+    }
     Ok(LinearComparison {
         width: a.width,
         height: a.height,

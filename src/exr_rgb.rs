@@ -7,10 +7,27 @@ use glam::Vec3;
 
 /// An EXR's first layer's width and height, from its header alone.
 pub fn size(bytes: &[u8]) -> Result<(u64, u64), String> {
+    header_size(bytes).map(|(w, h, _)| (w, h))
+}
+
+/// Bytes per pixel that reading an EXR with `channels` channels into a film holds at its
+/// peak: every channel decoded as f32 and copied once, plus the film (colour, depth,
+/// normal: 28 bytes).
+pub fn read_bytes_per_pixel(channels: u64) -> u64 {
+    8 * channels.max(3) + 28
+}
+
+/// The first layer's width, height and channel count, from the header alone (checked by the
+/// caller against its limits before `read` allocates).
+pub fn header_size(bytes: &[u8]) -> Result<(u64, u64, u64), String> {
+    if bytes.is_empty() {
+        return Err("the file is empty".to_owned());
+    }
     let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| format!("not a readable OpenEXR file ({e})"))?;
     let header = meta.headers.first().ok_or("an EXR file without layers")?;
-    Ok((header.layer_size.width() as u64, header.layer_size.height() as u64))
+    let (w, h) = (header.layer_size.width() as u64, header.layer_size.height() as u64);
+    Ok((w, h, header.channels.list.len() as u64))
 }
 
 /// The first layer's pixels, row-major from the top, as they are (not clamped, not checked

@@ -33,6 +33,35 @@ impl Film {
     pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
         self.color[self.index(x, y)]
     }
+
+    /// The pixels with a NaN or infinite channel: how many, and the first (x, y) in row
+    /// order; `None` when every pixel is finite.
+    pub fn non_finite(&self) -> Option<NonFinite> {
+        let mut bad = self.color.iter().enumerate().filter(|(_, c)| !c.is_finite());
+        let (first, _) = bad.next()?;
+        let width = self.width.max(1) as usize;
+        let first = ((first % width) as u32, (first / width) as u32);
+        Some(NonFinite { count: 1 + bad.count(), first })
+    }
+}
+
+/// A film's pixels with a NaN or infinite channel (`Film::non_finite`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NonFinite {
+    pub count: usize,
+    /// The first, (x, y), in row order.
+    pub first: (u32, u32),
+}
+
+impl std::fmt::Display for NonFinite {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (x, y) = self.first;
+        write!(
+            f,
+            "{} pixel(s) with a NaN or infinite value (the first at x {x}, y {y})",
+            self.count
+        )
+    }
 }
 
 /// A rectangle of pixels rendered by one task.

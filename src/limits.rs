@@ -2,6 +2,8 @@
 //! the memory the machine has. The checks of a scene against them are
 //! `scene::budget`'s.
 
+/// The largest image width or height, in every scene format and in part files.
+pub const MAX_RESOLUTION: u32 = 16384;
 /// Samples per pixel (a million samples of one pixel is a convergence test).
 pub const MAX_SPP: u32 = 1 << 20;
 /// Camera samples of one render, pixels × spp: 2³⁶ ≈ 6.9·10¹⁰, about ten hours at the

@@ -162,8 +162,10 @@ pub fn render_part(
     part: Part,
 ) -> Result<PartOutput, RenderError> {
     check_options(options)?;
-    let samples =
-        u64::from(desc.camera.width) * u64::from(desc.camera.height) * u64::from(options.spp);
+    // Saturating: a product past u64 is past the limit too, and must not wrap under it.
+    let samples = u64::from(desc.camera.width)
+        .saturating_mul(u64::from(desc.camera.height))
+        .saturating_mul(u64::from(options.spp));
     if samples > crate::limits::MAX_SAMPLES {
         let max = crate::limits::MAX_SAMPLES;
         return Err(RenderError::Option { what: "pixels × spp", value: samples, max });

@@ -44,10 +44,23 @@ pub fn read_reference(path: &Path) -> Result<Film, ConvergenceError> {
     let bytes = crate::input_file::read_bytes(path).map_err(|e| error(e.to_string()))?;
     // The header's size is checked before the reader allocates for it: a render's size at
     // most, as any image embray wrote is.
-    let (w, h) = crate::exr_rgb::size(&bytes).map_err(error)?;
+    let (w, h, channels) = crate::exr_rgb::header_size(&bytes).map_err(error)?;
     let max = u64::from(crate::scene::MAX_RESOLUTION);
     if w == 0 || h == 0 || w > max || h > max {
         return Err(error(format!("{w} × {h} pixels; images of 1 to {max} on a side are read")));
+    }
+    // A small compressed file can decode to gigabytes: its decoded size against the memory
+    // there is, before the decoder allocates.
+    let needed = (w * h).saturating_mul(crate::exr_rgb::read_bytes_per_pixel(channels));
+    if let Some(available) = crate::limits::memory_available()
+        && needed > available
+    {
+        return Err(error(format!(
+            "{w} × {h} pixels of {channels} channels need about {} MiB to read, but only {} MiB \
+             are available",
+            needed >> 20,
+            available >> 20
+        )));
     }
     let (w, h, pixels) = crate::exr_rgb::read(&bytes).map_err(error)?;
     let mut film = Film::new(w, h);
@@ -85,13 +98,13 @@ pub fn measure(
         });
     }
     // Checked before any render: a NaN in the reference would make every row NaN.
-    let mut non_finite = reference.color.iter().enumerate().filter(|(_, c)| !c.is_finite());
-    if let Some((first, _)) = non_finite.next() {
+    if let Some(bad) = reference.non_finite() {
+        let (x, y) = bad.first;
         return Err(ConvergenceError::NonFinite {
             path: reference_path.display().to_string(),
-            count: 1 + non_finite.count(),
-            x: (first % w as usize) as u32,
-            y: (first / w as usize) as u32,
+            count: bad.count,
+            x,
+            y,
         });
     }
     let mut rows = Vec::new();

@@ -35,6 +35,16 @@ pub fn run(args: &TonemapArgs) -> Result<()> {
     let lut = super::read_lut(args.lut.as_deref(), &mut plan)?;
     let png = plan.output("-o", &args.output, false)?;
     let film = embray::bench::convergence::read_reference(&args.input)?;
+    // Showing non-finite pixels is this command's job, but never as a silent black image.
+    if let Some(bad) = film.non_finite() {
+        let input = args.input.display();
+        if bad.count == film.color.len() {
+            anyhow::bail!("every pixel of '{input}' is NaN or infinite: there is nothing to show");
+        }
+        super::console::note(format!(
+            "warning: '{input}' has {bad}; NaN is shown black, infinity white"
+        ));
+    }
     let mut files = OutputSet::new();
     files.write(&png, |w| {
         let curve = ToneMap::Photographic;

@@ -157,7 +157,7 @@ fn check_merge_memory(width: u32, height: u32) -> Result<(), MergeError> {
     let per_pixel = 2 * std::mem::size_of::<crate::sample_sums::PixelSums>() as u64
         + super::part_file::BYTES_PER_PIXEL * 2
         + crate::limits::BYTES_PER_PIXEL;
-    let needed = pixels * per_pixel;
+    let needed = pixels.saturating_mul(per_pixel);
     if let Some(available) = crate::limits::memory_available()
         && needed > available
     {

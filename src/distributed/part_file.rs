@@ -148,10 +148,12 @@ pub fn read_part_meta(path: &Path) -> Result<PartMeta, PartFileError> {
 /// The metadata's numbers are within what a render can have, so that laying out and reading
 /// the file is bounded (a hostile header cannot ask for a huge allocation).
 fn check_meta(meta: &PartMeta) -> Result<(), String> {
-    use crate::limits::{MAX_SAMPLES, MAX_SPP};
+    use crate::limits::{MAX_RESOLUTION, MAX_SAMPLES, MAX_SPP};
     let pixels = meta.width as u64 * meta.height as u64;
+    let side = 1..=MAX_RESOLUTION;
     let part = meta.part;
-    if meta.width == 0 || meta.height == 0 || pixels * u64::from(meta.spp.max(1)) > MAX_SAMPLES {
+    let samples = pixels.saturating_mul(u64::from(meta.spp.max(1)));
+    if !side.contains(&meta.width) || !side.contains(&meta.height) || samples > MAX_SAMPLES {
         return Err(format!("its image size {}x{} is out of range", meta.width, meta.height));
     }
     if meta.spp == 0 || meta.spp > MAX_SPP {
@@ -345,6 +347,9 @@ mod tests {
         let sums = FilmSums::new(8, 8);
         for (name, bad) in [
             ("huge", PartMeta { width: 1 << 30, height: 1 << 30, ..meta(8, 8, part) }),
+            // Under the sample limit (4e10 at 1 spp) but no render's size: it would have
+            // sized a 4e10-pixel table.
+            ("wide", PartMeta { width: 200_000, height: 200_000, spp: 1, ..meta(8, 8, part) }),
             ("spp", PartMeta { spp: 0, ..meta(8, 8, part) }),
             ("index", PartMeta { part: Part { index: 3, count: 2, ..part }, ..meta(8, 8, part) }),
             ("size", meta(9, 8, part)),

@@ -59,9 +59,11 @@ pub fn memory_needed(desc: &SceneDesc) -> (u64, usize, u64) {
             }
         }
     }
-    let bytes = pixels * BYTES_PER_PIXEL
-        + desc.objects.len() as u64 * BYTES_PER_OBJECT
-        + triangles * BYTES_PER_TRIANGLE;
+    // Saturating: counts from a file may be absurd, and an estimate that wrapped would pass.
+    let bytes = pixels
+        .saturating_mul(BYTES_PER_PIXEL)
+        .saturating_add((desc.objects.len() as u64).saturating_mul(BYTES_PER_OBJECT))
+        .saturating_add(triangles.saturating_mul(BYTES_PER_TRIANGLE));
     (bytes, desc.objects.len(), triangles)
 }
 

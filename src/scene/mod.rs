@@ -18,10 +18,10 @@ mod mesh_file;
 mod shapes;
 pub mod texture_image;
 
+pub use crate::limits::MAX_RESOLUTION;
 pub use error::{Line, SceneError};
 pub use formats::ceng795;
 pub use formats::toml::MAX_REPEAT_COPIES;
-pub use formats::toml::camera::MAX_RESOLUTION;
 pub use formats::toml::materials::with_texture_space;
 pub use formats::toml::write as toml_writer;
 pub use mesh_file::area_weighted_normals;

@@ -11,6 +11,7 @@ mod collisions;
 mod harness;
 mod limits;
 mod meshes;
+mod numbers;
 mod outputs;
 mod process;
 mod scenes;

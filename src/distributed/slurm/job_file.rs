@@ -49,8 +49,26 @@ impl JobFile {
         let text = crate::scene::read_input_bytes(&path).map_err(|e| {
             format!("cannot read '{}': {e} (is it a folder `embray slurm` made?)", path.display())
         })?;
-        serde_json::from_slice(&text)
-            .map_err(|e| format!("'{}' does not parse: {e}", path.display()))
+        let job: JobFile = serde_json::from_slice(&text)
+            .map_err(|e| format!("'{}' does not parse: {e}", path.display()))?;
+        // `status` and `resume` keep a slot per part: the count is checked before it is used.
+        if !(1..=crate::distributed::MAX_PARTS).contains(&job.parts) {
+            return Err(format!(
+                "'{}': parts is {}, but a render has 1 to {} parts",
+                path.display(),
+                job.parts,
+                crate::distributed::MAX_PARTS
+            ));
+        }
+        if let Some(part) = job.submissions.iter().flat_map(|s| &s.parts).find(|&&p| p >= job.parts)
+        {
+            return Err(format!(
+                "'{}': a submission names part {part}, but the render has {} parts",
+                path.display(),
+                job.parts
+            ));
+        }
+        Ok(job)
     }
 
     pub fn encode(&self) -> String {

@@ -8,8 +8,7 @@ use crate::scene::formats::toml::transform_list::fmt_vec;
 use crate::scene::formats::toml::validate::Ctx;
 use glam::{DVec2, DVec3};
 
-/// The largest width or height accepted.
-pub const MAX_RESOLUTION: u32 = 16384;
+use crate::limits::MAX_RESOLUTION;
 
 pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneError> {
     let path = FieldPath::root("camera");

@@ -33,10 +33,11 @@ impl Builder<'_> {
         for (i, &n) in repeat.count.iter().enumerate() {
             self.ctx.require(n >= 1, &count_path.index(i), n, ">= 1")?;
         }
-        let total: u64 = repeat.count.iter().map(|&n| u64::from(n)).product();
+        // u128: three u32 factors cannot wrap it (their product wrapped u64 past the limit).
+        let total: u128 = repeat.count.iter().map(|&n| u128::from(n)).product();
         let [nx, ny, nz] = repeat.count;
         self.ctx.require(
-            total <= MAX_REPEAT_COPIES,
+            total <= u128::from(MAX_REPEAT_COPIES),
             &count_path,
             format!("{nx} × {ny} × {nz} = {total} copies"),
             &format!("at most {MAX_REPEAT_COPIES} copies"),

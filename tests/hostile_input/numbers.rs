@@ -1,0 +1,79 @@
+//! Numbers in a file are checked before they are used: counts whose product wraps, part
+//! counts that would size a table, images whose pixels are all NaN, empty images.
+
+use crate::harness::{Run, Scratch, accepted_in, refused_in, scene};
+use embray::film::Film;
+use glam::Vec3;
+
+/// An EXR of `width`×`height` pixels of `color`, with `bad` pixels (row order) set to `value`.
+fn exr(scratch: &Scratch, name: &str, color: Vec3, bad: usize, value: f32) {
+    let mut film = Film::new(8, 4);
+    film.color.fill(color);
+    for c in film.color.iter_mut().take(bad) {
+        *c = Vec3::splat(value);
+    }
+    embray::output::write_exr(&film, &scratch.path(name)).unwrap();
+}
+
+#[test]
+fn repeat_counts_whose_product_wraps_u64_are_refused_with_the_true_product() {
+    // 2²² × 2²¹ × 2²¹ = 2⁶⁴: 0 in u64 arithmetic, under the copy limit.
+    let scratch = Scratch::new();
+    let text = scene("").replace(
+        "v = [2.0, 0.0, 0.0]",
+        "v = [2.0, 0.0, 0.0]\nrepeat = { count = [4194304, 2097152, 2097152], spacing = [1.0, 1.0, 1.0] }",
+    );
+    scratch.write("s.toml", text);
+    refused_in(
+        &scratch,
+        &["render", "s.toml"],
+        &["repeat.count", "4194304 × 2097152 × 2097152 = 18446744073709551616 copies"],
+    );
+}
+
+#[test]
+fn a_job_file_with_an_absurd_part_count_is_refused_before_it_sizes_anything() {
+    let scratch = Scratch::new();
+    let job = r#"{"embray": "/bin/embray", "scene": "/s.toml", "parts": 4000000000,
+        "split": "tiles", "render_args": [], "sbatch": {"partition": null, "time": null,
+        "cpus_per_task": 1, "max_running": null, "extra": []}, "submissions": []}"#;
+    scratch.write("job/job.json", job);
+    refused_in(&scratch, &["slurm", "status", "job"], &["parts is 4000000000", "1 to 100000"]);
+}
+
+#[test]
+fn tonemap_of_an_exr_that_is_all_nan_is_refused_not_black() {
+    let scratch = Scratch::new();
+    exr(&scratch, "nan.exr", Vec3::ONE, 32, f32::NAN);
+    refused_in(&scratch, &["tonemap", "nan.exr", "-o", "out.png"], &["every pixel", "nan.exr"]);
+}
+
+#[test]
+fn tonemap_of_an_exr_with_some_nan_says_how_many_and_where() {
+    let scratch = Scratch::new();
+    exr(&scratch, "some.exr", Vec3::splat(0.5), 3, f32::INFINITY);
+    let run = accepted_in(&scratch, &["tonemap", "some.exr", "-o", "out.png"]);
+    run.assert_says(&["3 pixel(s) with a NaN or infinite value", "x 0, y 0"]);
+    assert!(scratch.path("out.png").exists());
+}
+
+#[test]
+fn compare_of_exrs_with_no_finite_pixel_in_common_is_refused_not_zero() {
+    let scratch = Scratch::new();
+    exr(&scratch, "a.exr", Vec3::ONE, 32, f32::NAN);
+    exr(&scratch, "b.exr", Vec3::ONE, 0, 0.0);
+    refused_in(
+        &scratch,
+        &["compare", "a.exr", "b.exr"],
+        &["nothing to compare", "32 in the first"],
+    );
+}
+
+#[test]
+fn an_empty_exr_is_named_as_empty() {
+    let scratch = Scratch::new();
+    scratch.write("empty.exr", "");
+    let run: Run =
+        refused_in(&scratch, &["tonemap", "empty.exr", "-o", "out.png"], &["empty.exr", "empty"]);
+    assert!(!run.stderr.contains("missing bytes"), "{}", run.stderr);
+}
