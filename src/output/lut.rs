@@ -39,7 +39,7 @@ fn three(fields: &[&str], what: &str) -> Result<[f32; 3], String> {
             .parse()
             .map_err(|_| format!("{what}: '{}' is not a number", crate::excerpt::excerpt(f)))?;
         if !x.is_finite() {
-            return Err(format!("{what}: '{f}' is not finite"));
+            return Err(format!("{what}: '{}' is not finite", crate::excerpt::excerpt(f)));
         }
         *slot = x;
     }

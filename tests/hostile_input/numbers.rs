@@ -77,3 +77,21 @@ fn an_empty_exr_is_named_as_empty() {
         refused_in(&scratch, &["tonemap", "empty.exr", "-o", "out.png"], &["empty.exr", "empty"]);
     assert!(!run.stderr.contains("missing bytes"), "{}", run.stderr);
 }
+
+#[test]
+fn a_lut_entry_of_ten_thousand_digits_is_quoted_short() {
+    let scratch = Scratch::new();
+    exr(&scratch, "in.exr", Vec3::splat(0.5), 0, 0.0);
+    let huge = format!("1{}", "0".repeat(10_000));
+    let mut lut = String::from("LUT_3D_SIZE 2\n");
+    for i in 0..8 {
+        lut += &if i == 5 { format!("0 {huge} 0\n") } else { "0 0 0\n".to_owned() };
+    }
+    scratch.write("look.cube", lut);
+    let run = refused_in(
+        &scratch,
+        &["tonemap", "in.exr", "-o", "out.png", "--lut", "look.cube"],
+        &["look.cube", "line 7", "is not finite"],
+    );
+    assert!(run.stderr.len() < 400, "the number was echoed whole: {} bytes", run.stderr.len());
+}
