@@ -173,10 +173,23 @@ fn texture_images_that_cannot_be_read_name_the_file_and_the_field() {
     let dir = temp_dir("bad-texture");
     std::fs::write(dir.join("notes.png"), "not an image").unwrap();
     std::fs::write(dir.join("cut.png"), &b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR"[..]).unwrap();
+    // A JPEG cut after part of its scan: the decoder alone would fill the rest with grey.
+    let mut jpeg = Vec::new();
+    let noise =
+        image::RgbImage::from_fn(64, 64, |x, y| image::Rgb([(x * 7) as u8, (y * 5) as u8, 9]));
+    noise.write_to(&mut std::io::Cursor::new(&mut jpeg), image::ImageFormat::Jpeg).unwrap();
+    std::fs::write(dir.join("whole.jpg"), &jpeg).unwrap();
+    std::fs::write(dir.join("cut.jpg"), &jpeg[..jpeg.len() * 2 / 3]).unwrap();
+    let whole = format!(
+        "{CAMERA}[materials.floor]\ntexture = {{ type = \"image\", file = \"whole.jpg\" }}\n"
+    );
+    std::fs::write(dir.join("whole.toml"), whole).unwrap();
+    embray::scene::load(&dir.join("whole.toml")).expect("the whole JPEG loads");
     for (file, problem) in [
         ("missing.png", "No such file"),
         ("notes.png", "not a PNG or JPEG image"),
         ("cut.png", "unexpected end of file"),
+        ("cut.jpg", "cut short"),
     ] {
         let text = format!(
             "{CAMERA}[materials.floor]\ntexture = {{ type = \"image\", file = \"{file}\" }}\n"
