@@ -92,7 +92,9 @@ impl Lut3d {
                         return Err(at(format!("LUT_3D_SIZE is {n}, but must be 2 to {MAX_SIZE}")));
                     }
                     size = Some(n);
-                    table.reserve(n * n * n);
+                    // The size claims n³ entries; the text can hold one per 6 bytes ("0 0 0\n")
+                    // at most, so a short file cannot make it reserve 200 MB.
+                    table.reserve((n * n * n).min(text.len() / 6));
                 }
                 "DOMAIN_MIN" => domain_min = three(&fields[1..], "DOMAIN_MIN").map_err(at)?,
                 "DOMAIN_MAX" => domain_max = three(&fields[1..], "DOMAIN_MAX").map_err(at)?,
