@@ -30,10 +30,16 @@ pub const MAX_WORLD_COORDINATE: f64 = 1e12;
 /// The smallest `f_number`: a lens faster than f/0.01 is an infinite aperture in all but name.
 pub const MIN_F_NUMBER: f64 = 0.01;
 
-/// Bytes per pixel a render holds at its peak: the film (colour, depth, normal: 28), the
-/// tiles' buffers (28), and the EXR channels and PNG pixels while encoding (31), rounded up.
-/// Measured: 79 bytes per pixel at 4096².
-pub const BYTES_PER_PIXEL: u64 = 96;
+/// Bytes per pixel a render holds at its peak: the exact fixed-point sums of every pixel,
+/// the film resolved from them, and the EXR channels and PNG pixels while encoding.
+/// Measured as the peak resident memory of `embray render` (Cornell box, 1 spp, either
+/// backend): 257 bytes per pixel at 2048² and 4096², 259–268 at 1024² with the fixed part;
+/// `tests/memory_bound.rs` holds the estimate between the measured peak and 1.5 times it.
+pub const BYTES_PER_PIXEL: u64 = 270;
+/// Bytes every render holds whatever its size: the binary, the runtime, Embree's library
+/// and the bundled scenes (measured: 10–14 MiB beyond the pixels; 24 leaves room for
+/// another machine's Embree kernels).
+pub const BASE_BYTES: u64 = 24 << 20;
 /// Bytes per object placement: the scene description, its render-space instance and its
 /// share of the top-level BVH (measured: 540 per `repeat` copy).
 pub const BYTES_PER_OBJECT: u64 = 640;

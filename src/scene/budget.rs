@@ -2,8 +2,8 @@
 //! coordinate range and the memory the render will need against the memory the machine has.
 
 use crate::limits::{
-    BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_TRIANGLE, MAX_COORDINATE, MAX_WORLD_COORDINATE,
-    memory_available,
+    BASE_BYTES, BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_TRIANGLE, MAX_COORDINATE,
+    MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
 use crate::scene::{LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
@@ -62,6 +62,7 @@ pub fn memory_needed(desc: &SceneDesc) -> (u64, usize, u64) {
     // Saturating: counts from a file may be absurd, and an estimate that wrapped would pass.
     let bytes = pixels
         .saturating_mul(BYTES_PER_PIXEL)
+        .saturating_add(BASE_BYTES)
         .saturating_add((desc.objects.len() as u64).saturating_mul(BYTES_PER_OBJECT))
         .saturating_add(triangles.saturating_mul(BYTES_PER_TRIANGLE));
     (bytes, desc.objects.len(), triangles)
