@@ -34,7 +34,7 @@ pub const MIN_F_NUMBER: f64 = 0.01;
 /// the film resolved from them, and the EXR channels and PNG pixels while encoding.
 /// Measured as the peak resident memory of `embray render` (Cornell box, 1 spp, either
 /// backend): 257 bytes per pixel at 2048² and 4096², 259–268 at 1024² with the fixed part;
-/// `tests/memory_bound.rs` holds the estimate between the measured peak and 1.5 times it.
+/// `tests/memory_model.rs` holds the estimate between the measured peak and 1.5 times it.
 pub const BYTES_PER_PIXEL: u64 = 270;
 /// Bytes every render holds whatever its size: the binary, the runtime, Embree's library
 /// and the bundled scenes (measured: 10–14 MiB beyond the pixels; 24 leaves room for

@@ -34,7 +34,7 @@ fn a_render_needing_more_memory_than_there_is_is_refused() {
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     run.assert_says(&[
         "s.toml",
-        "6.0 GiB of memory",
+        "16.9 GiB of memory",
         "8192x8192",
         "only 1.0 GiB",
         "lower camera.resolution",
