@@ -5,6 +5,16 @@
 
 use glam::Vec3;
 
+/// Runs an OpenEXR read that may panic on hostile bytes: the `exr` crate multiplies sizes
+/// from a header without overflow checks (found by `tests/reader_proptest.rs`), which panics
+/// in a build with overflow checks. The panic becomes an error naming no file (the caller
+/// adds it).
+pub fn guarded<T>(read: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(read)).unwrap_or_else(|_| {
+        Err("the OpenEXR reader failed on it (sizes in its header out of range)".to_owned())
+    })
+}
+
 /// An EXR's first layer's width and height, from its header alone.
 pub fn size(bytes: &[u8]) -> Result<(u64, u64), String> {
     header_size(bytes).map(|(w, h, _)| (w, h))
@@ -23,8 +33,10 @@ pub fn header_size(bytes: &[u8]) -> Result<(u64, u64, u64), String> {
     if bytes.is_empty() {
         return Err("the file is empty".to_owned());
     }
-    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
-        .map_err(|e| format!("not a readable OpenEXR file ({e})"))?;
+    let meta = guarded(|| {
+        exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
+            .map_err(|e| format!("not a readable OpenEXR file ({e})"))
+    })?;
     let header = meta.headers.first().ok_or("an EXR file without layers")?;
     let (w, h) = (header.layer_size.width() as u64, header.layer_size.height() as u64);
     Ok((w, h, header.channels.list.len() as u64))
@@ -34,14 +46,16 @@ pub fn header_size(bytes: &[u8]) -> Result<(u64, u64, u64), String> {
 /// for finiteness); its width and height.
 pub fn read(bytes: &[u8]) -> Result<(u32, u32, Vec<Vec3>), String> {
     use exr::prelude::*;
-    let image = exr::prelude::read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(std::io::Cursor::new(bytes))
-        .map_err(|e| e.to_string())?;
+    let image = guarded(|| {
+        exr::prelude::read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .first_valid_layer()
+            .all_attributes()
+            .from_buffered(std::io::Cursor::new(bytes))
+            .map_err(|e| e.to_string())
+    })?;
     let layer = image.layer_data;
     let (width, height) = (layer.size.width(), layer.size.height());
     let channel = |name: &str| {

@@ -123,7 +123,10 @@ fn read_error(path: &Path, e: impl ToString) -> PartFileError {
 pub fn read_part_meta(path: &Path) -> Result<PartMeta, PartFileError> {
     use exr::prelude::*;
     check_readable(path)?;
-    let meta = MetaData::read_from_file(path, false).map_err(|e| read_error(path, e))?;
+    let meta = crate::exr_rgb::guarded(|| {
+        MetaData::read_from_file(path, false).map_err(|e| e.to_string())
+    })
+    .map_err(|e| read_error(path, e))?;
     let header = meta.headers.first().ok_or_else(|| read_error(path, "the file has no layer"))?;
     let value = header.own_attributes.other.get(&Text::new_or_panic(META_ATTRIBUTE));
     let Some(AttributeValue::Text(text)) = value else {
@@ -198,14 +201,17 @@ pub fn read_part_sums(
             meta.width, meta.height
         )));
     }
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(path)
-        .map_err(|e| read_error(path, e))?;
+    let image = crate::exr_rgb::guarded(|| {
+        read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .first_valid_layer()
+            .all_attributes()
+            .from_file(path)
+            .map_err(|e| e.to_string())
+    })
+    .map_err(|e| read_error(path, e))?;
     let channels = &image.layer_data.channel_data.list;
     let channel = |name: &str| -> std::result::Result<&[u32], PartFileError> {
         let found = channels.iter().find(|c| c.name.to_string() == name);
