@@ -69,7 +69,16 @@ impl PngComparison {
 pub fn read_rgb(path: &Path) -> Result<RgbImage, CompareError> {
     let error = |message: String| CompareError::Read { path: path.to_path_buf(), message };
     let bytes = crate::scene::read_input_bytes(path).map_err(|e| error(e.to_string()))?;
-    image::load_from_memory(&bytes).map(|i| i.to_rgb8()).map_err(|e| error(e.to_string()))
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
+        .with_guessed_format()
+        .map_err(|e| error(e.to_string()))?;
+    // The header's size is checked before the decoder allocates for it: a render's size at
+    // most, as any image embray wrote is.
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(crate::limits::MAX_RESOLUTION);
+    limits.max_image_height = Some(crate::limits::MAX_RESOLUTION);
+    reader.limits(limits);
+    reader.decode().map(|i| i.to_rgb8()).map_err(|e| error(e.to_string()))
 }
 
 /// Compares the two image files (`DEFAULT_TOLERANCE`).
