@@ -6,23 +6,14 @@
 //! `EMBRAY_PROPTEST_CASES=100000 EMBRAY_PROPTEST_SEED=random cargo test --release --test
 //! loader_proptest` (or a number to replay one).
 
+mod common;
+
 use embray::scene::{self, ceng795};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 
 fn config() -> ProptestConfig {
-    let cases = std::env::var("EMBRAY_PROPTEST_CASES").ok().and_then(|n| n.parse().ok());
-    let seed = match std::env::var("EMBRAY_PROPTEST_SEED").ok().as_deref() {
-        Some("random") => proptest::test_runner::RngSeed::Random,
-        Some(n) => proptest::test_runner::RngSeed::Fixed(n.parse().expect("a number or random")),
-        None => proptest::test_runner::RngSeed::Fixed(795),
-    };
-    ProptestConfig {
-        cases: cases.unwrap_or(256),
-        failure_persistence: None,
-        rng_seed: seed,
-        ..ProptestConfig::default()
-    }
+    common::proptest_config(256, 795)
 }
 
 /// Tokens that have broken parsers: numbers at and past the limits, syntax characters,

@@ -21,18 +21,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 fn config() -> ProptestConfig {
-    let cases = std::env::var("EMBRAY_PROPTEST_CASES").ok().and_then(|n| n.parse().ok());
-    let seed = match std::env::var("EMBRAY_PROPTEST_SEED").ok().as_deref() {
-        Some("random") => proptest::test_runner::RngSeed::Random,
-        Some(n) => proptest::test_runner::RngSeed::Fixed(n.parse().expect("a number or random")),
-        None => proptest::test_runner::RngSeed::Fixed(34),
-    };
-    ProptestConfig {
-        cases: cases.unwrap_or(256),
-        failure_persistence: None,
-        rng_seed: seed,
-        ..ProptestConfig::default()
-    }
+    common::proptest_config(256, 34)
 }
 
 /// One change to a file's bytes: at a position (a fraction of its length) delete some bytes

@@ -42,6 +42,24 @@ pub fn backends() -> Vec<BackendKind> {
     BackendKind::compiled()
 }
 
+/// Property-test settings: `default_cases` cases from the fixed `default_seed`, unless
+/// `EMBRAY_PROPTEST_CASES` and `EMBRAY_PROPTEST_SEED` (a number, or `random`) say otherwise.
+pub fn proptest_config(default_cases: u32, default_seed: u64) -> proptest::test_runner::Config {
+    use proptest::test_runner::{Config, RngSeed};
+    let cases = std::env::var("EMBRAY_PROPTEST_CASES").ok().and_then(|n| n.parse().ok());
+    let seed = match std::env::var("EMBRAY_PROPTEST_SEED").ok().as_deref() {
+        Some("random") => RngSeed::Random,
+        Some(n) => RngSeed::Fixed(n.parse().expect("a number or random")),
+        None => RngSeed::Fixed(default_seed),
+    };
+    Config {
+        cases: cases.unwrap_or(default_cases),
+        failure_persistence: None,
+        rng_seed: seed,
+        ..Config::default()
+    }
+}
+
 /// The mean colour of a film.
 pub fn film_mean(film: &embray::film::Film) -> glam::Vec3 {
     film.color.iter().copied().sum::<glam::Vec3>() / film.color.len() as f32
