@@ -56,31 +56,6 @@ pub fn pdf(brdf: &CourseBrdf, p: f32, wo: Vec3, wi: Vec3) -> f32 {
     cosine_power_pdf(h.z, p) / (4.0 * wo_h)
 }
 
-/// An upper bound of the lobe's directional albedo per unit of specular reflectance
-/// (∫ f cos θi dωi / ks over every wo), used to keep a material that adds the lobe to
-/// other lobes from reflecting more than it receives (`Bsdf::with_reflectances`).
-///
-/// The normalized models are bounded by their normalization: exactly 1 for Phong (reached
-/// at normal incidence) and Torrance-Sparrow (F ≤ 1), 1.0748 for Blinn-Phong, whose
-/// (p+8)/(8π) is an approximation (`course_brdf`'s furnace test finds that worst case at
-/// p = 10). The others are bounded through the lobes' own integrals: a cos^p lobe about the
-/// mirror direction integrates to at most 2π/(p+1) (times cos θi ≤ 1); about the half
-/// vector, dωi = 4 (wo·h) dωh ≤ 4 dωh, so at most 8π/(p+1).
-pub fn albedo_bound(brdf: &CourseBrdf, p: f32) -> f32 {
-    use std::f32::consts::TAU;
-    let p = p.max(0.0);
-    match brdf {
-        CourseBrdf::ModifiedPhong { normalized: true } | CourseBrdf::TorranceSparrow { .. } => 1.0,
-        CourseBrdf::ModifiedBlinnPhong { normalized: true } => 1.0748,
-        CourseBrdf::OriginalPhong | CourseBrdf::ModifiedPhong { normalized: false } => {
-            TAU / (p + 1.0)
-        }
-        CourseBrdf::OriginalBlinnPhong | CourseBrdf::ModifiedBlinnPhong { normalized: false } => {
-            4.0 * TAU / (p + 1.0)
-        }
-    }
-}
-
 /// The lobe's directional albedo per unit of specular reflectance, ∫ f cos θi dωi / ks, as
 /// a function of cos θo: tabulated once per material, by stratified sampling of the lobe's
 /// own density (its weights f cos θi / pdf vary slowly, so 32² strata give it to about 0.1 %).

@@ -9,8 +9,7 @@
 //! is left exactly as the course defines it. The lobe's directional albedo is tabulated per
 //! material (`LobeAlbedo`), so the rest gives up no more than the lobe really takes.
 
-use crate::scene::CourseBrdf;
-use crate::shading::course_lobe::{self, LobeAlbedo};
+use crate::shading::course_lobe::LobeAlbedo;
 use glam::Vec3;
 
 /// How the path tracer combines a material's lobes.
@@ -39,26 +38,15 @@ pub struct Coupling {
     rest: Vec3,
     /// The lobe's specular reflectance (scaled down where the lobe alone would exceed 1).
     ks: Vec3,
-    albedo: Option<LobeAlbedo>,
-    /// Used without a table: an upper bound of the lobe's albedo over every view.
-    bound: f32,
+    albedo: LobeAlbedo,
 }
 
 impl Coupling {
-    /// `rest`: the other lobes' albedo; `ks` and the model of the course lobe with its
-    /// tabulated albedo (`None` falls back to the model's bound).
-    pub fn new(
-        rest: Vec3,
-        ks: Vec3,
-        brdf: &CourseBrdf,
-        exponent: f32,
-        albedo: Option<LobeAlbedo>,
-    ) -> Self {
-        let bound = course_lobe::albedo_bound(brdf, exponent);
-        let largest = albedo.map_or(bound, |a| a.max());
+    /// `rest`: the other lobes' albedo; `ks` and the tabulated albedo of the course lobe.
+    pub fn new(rest: Vec3, ks: Vec3, albedo: LobeAlbedo) -> Self {
         // A lobe that alone could reflect more than arrives reflects at most that.
-        let ks = ks / (ks * largest).max(Vec3::ONE);
-        Coupling { rest, ks, albedo, bound }
+        let ks = ks / (ks * albedo.max()).max(Vec3::ONE);
+        Coupling { rest, ks, albedo }
     }
 
     /// The lobe's specular reflectance to evaluate it with.
@@ -68,7 +56,7 @@ impl Coupling {
 
     /// What the lobe reflects of what arrives, for a view at `cos_o`.
     pub fn lobe_albedo(&self, cos_o: f32) -> Vec3 {
-        self.ks * self.albedo.map_or(self.bound, |a| a.at(cos_o))
+        self.ks * self.albedo.at(cos_o)
     }
 
     /// The factor for the other lobes, per channel, for a view at `cos_o`.
@@ -90,18 +78,19 @@ impl Coupling {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::CourseBrdf;
 
     #[test]
     fn a_conserving_material_is_left_as_the_course_defines_it() {
         let lobe = CourseBrdf::ModifiedPhong { normalized: true };
         let table = LobeAlbedo::new(&lobe, 90.0);
         // kd 0.5 with ks 0.3: at most 0.8, nothing to give up.
-        let c = Coupling::new(Vec3::splat(0.5), Vec3::splat(0.3), &lobe, 90.0, Some(table));
+        let c = Coupling::new(Vec3::splat(0.5), Vec3::splat(0.3), table);
         for cos_o in [0.05, 0.5, 1.0] {
             assert_eq!(c.rest_scale(cos_o), Vec3::ONE);
         }
         // Glass (1) with ks 0.3 gives up the lobe's share, more where the lobe takes more.
-        let glass = Coupling::new(Vec3::ONE, Vec3::splat(0.3), &lobe, 90.0, Some(table));
+        let glass = Coupling::new(Vec3::ONE, Vec3::splat(0.3), table);
         let (head_on, grazing) = (glass.rest_scale(1.0).x, glass.rest_scale(0.2).x);
         assert!((head_on - 0.7).abs() < 0.01, "{head_on}");
         assert!(grazing > head_on && grazing < 1.0, "{grazing}");

@@ -37,6 +37,19 @@ pub struct BsdfSample {
     pub transmitted: bool,
 }
 
+/// The most the Lambertian part `diffuse` and the specular lobe reflect or transmit
+/// together, per channel (Fresnel ≤ 1; glass passes everything on).
+fn rest_albedo(diffuse: Vec3, specular: Specular) -> Vec3 {
+    diffuse
+        + match specular {
+            Specular::None => Vec3::ZERO,
+            Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
+                reflectance.clamp(Vec3::ZERO, Vec3::ONE)
+            }
+            Specular::Dielectric { .. } => Vec3::ONE,
+        }
+}
+
 /// The scattering function at one shading point.
 #[derive(Clone, Copy, Debug)]
 pub struct Bsdf {
@@ -102,16 +115,13 @@ impl Bsdf {
             .as_ref()
             .filter(|_| course_specular.max_element() > 0.0 && course_specular.is_finite());
         let coupling = course_lobe.filter(|_| conserving).map(|p| {
-            let rest = diffuse
-                + match material.specular {
-                    Specular::None => Vec3::ZERO,
-                    Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
-                        reflectance.clamp(Vec3::ZERO, Vec3::ONE)
-                    }
-                    Specular::Dielectric { .. } => Vec3::ONE,
-                };
-            let ks = course_specular.max(Vec3::ZERO);
-            Coupling::new(rest, ks, &p.brdf, p.exponent, material.course_lobe_albedo)
+            // Tabulated once per material (`Material::with_phong`); a material built
+            // without it pays for the table here.
+            let albedo = material
+                .course_lobe_albedo
+                .unwrap_or_else(|| course_lobe::LobeAlbedo::new(&p.brdf, p.exponent));
+            let rest = rest_albedo(diffuse, material.specular);
+            Coupling::new(rest, course_specular.max(Vec3::ZERO), albedo)
         });
         let specular_weight = match material.specular {
             Specular::None => 0.0,
@@ -188,14 +198,7 @@ impl Bsdf {
     /// BSDF reflects or transmits, per channel: at most 1 by construction.
     pub fn albedo_bound(&self, wo: Vec3) -> Vec3 {
         let cos_o = self.local_from_render(wo).z;
-        let rest = self.diffuse
-            + match self.specular {
-                Specular::None => Vec3::ZERO,
-                Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
-                    reflectance.clamp(Vec3::ZERO, Vec3::ONE)
-                }
-                Specular::Dielectric { .. } => Vec3::ONE,
-            };
+        let rest = rest_albedo(self.diffuse, self.specular);
         self.coupling.as_ref().map_or(rest, |c| c.total_albedo(cos_o))
     }
 
