@@ -31,6 +31,30 @@ impl TonemapArg {
     }
 }
 
+/// How a PNG is made from the linear image, beyond the curve: the photographic operator's
+/// parameters, a grading LUT and an exposure (`render` and `tonemap` share them).
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct LookArgs {
+    #[command(flatten)]
+    pub photographic: PhotographicArgs,
+    /// A 3-D LUT (.cube, Adobe/Resolve format) applied to the PNG last, as a grading look.
+    #[arg(long, value_name = "FILE.cube")]
+    pub lut: Option<std::path::PathBuf>,
+    /// Exposure adjustment in stops, applied before tone mapping (the PNG only).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub exposure: f32,
+}
+
+impl LookArgs {
+    /// Refuses an exposure that is not a number.
+    pub fn check(&self) -> anyhow::Result<()> {
+        if !self.exposure.is_finite() {
+            anyhow::bail!("--exposure must be a finite number");
+        }
+        Ok(())
+    }
+}
+
 /// The photographic operator's parameters on the command line; each overrides the scene's
 /// (a CENG795 `<Tonemap>`) or the default.
 #[derive(clap::Args, Debug, Clone, Default)]

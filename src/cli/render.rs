@@ -33,7 +33,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let Some(path) = &args.scene {
         plan.input("the scene", path);
     }
-    let lut = super::read_lut(args.lut.as_deref(), &mut plan)?;
+    let lut = super::read_lut(args.look.lut.as_deref(), &mut plan)?;
     let jobs = match args.scene.as_deref().filter(|p| ceng795::is_ceng795_path(p)) {
         Some(path) => ceng795_jobs(args, path, &mut plan)?,
         None => {
@@ -55,7 +55,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         args.stats_json.as_deref().map(|p| plan.output("--stats-json", p, false)).transpose()?;
     for job in &jobs {
         args.to_options(&job.scene)?;
-        args.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
+        args.look.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
     }
     let mut files = OutputSet::new();
     let mut reports = Vec::new();
@@ -64,9 +64,16 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let output = render(&job.scene, &options)?;
         files.write(&job.exr, |w| encode_exr(&output.film, w))?;
         let curve = args.tonemap.resolve(&job.scene.settings);
-        let photographic = args.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
+        let photographic = args.look.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
         files.write(&job.png, |w| {
-            encode_png_graded(&output.film, curve, args.exposure, &photographic, lut.as_ref(), w)
+            encode_png_graded(
+                &output.film,
+                curve,
+                args.look.exposure,
+                &photographic,
+                lut.as_ref(),
+                w,
+            )
         })?;
         if let Some(target) = &stats_json {
             let report = StatsReport::new(&output, &options);

@@ -1,6 +1,6 @@
 //! `embray render`'s arguments and their validation into `RenderOptions`.
 
-use super::choices::{PhotographicArgs, TonemapArg, choice, tonemap};
+use super::choices::{LookArgs, TonemapArg, choice, tonemap};
 use anyhow::{Result, bail};
 use clap::Args;
 use embray::accel::{BackendKind, BatchMode, BuildQuality};
@@ -73,13 +73,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = tonemap(), default_value = "auto")]
     pub tonemap: TonemapArg,
     #[command(flatten)]
-    pub photographic: PhotographicArgs,
-    /// A 3-D LUT (.cube, Adobe/Resolve format) applied to the PNG last, as a grading look.
-    #[arg(long, value_name = "FILE.cube")]
-    pub lut: Option<PathBuf>,
-    /// Exposure adjustment in stops, applied before tone mapping (PNG only).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    pub exposure: f32,
+    pub look: LookArgs,
     /// Print ray and traversal counters as a table (counting node visits and primitive
     /// tests costs time; the summary's Mrays/s is then not representative).
     #[arg(long)]
@@ -166,9 +160,7 @@ impl RenderArgs {
             }
             options.threads = Some(threads);
         }
-        if !self.exposure.is_finite() {
-            bail!("--exposure must be a finite number");
-        }
+        self.look.check()?;
         options.seed = self.seed;
         options.jitter = !self.no_jitter;
         options.render_space = self.render_space;

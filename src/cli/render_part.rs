@@ -56,7 +56,7 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         false,
     )?;
     let options = args.to_options(&scene)?;
-    let photographic = args.photographic.resolve(scene.settings.tonemap.as_ref())?;
+    let photographic = args.look.photographic.resolve(scene.settings.tonemap.as_ref())?;
     let files = embray::scene::files_read();
     let scene_hash = hash_files(&files)?;
     let rendered = render_part(&scene, &options, part)?;
@@ -78,7 +78,7 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         part,
         png: PngSettings {
             curve: args.tonemap.resolve(&scene.settings).to_string(),
-            exposure: args.exposure,
+            exposure: args.look.exposure,
             photographic: [
                 photographic.key,
                 photographic.burn_out,

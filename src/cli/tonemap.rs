@@ -1,7 +1,7 @@
 //! `embray tonemap`: the photographic operator applied to an existing EXR, without rendering
 //! (how the course's EXR/PNG reference pairs check it).
 
-use super::choices::PhotographicArgs;
+use super::choices::LookArgs;
 use anyhow::Result;
 use clap::Args;
 use embray::output::{OutputPlan, OutputSet, ToneMap, encode_png_graded};
@@ -15,24 +15,16 @@ pub struct TonemapArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     #[command(flatten)]
-    pub photographic: PhotographicArgs,
-    /// A 3-D LUT (.cube) applied to the PNG last, as a grading look.
-    #[arg(long, value_name = "FILE.cube")]
-    pub lut: Option<PathBuf>,
-    /// Exposure adjustment in stops, applied first.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    pub exposure: f32,
+    pub look: LookArgs,
 }
 
 pub fn run(args: &TonemapArgs) -> Result<()> {
-    if !args.exposure.is_finite() {
-        anyhow::bail!("--exposure must be a finite number");
-    }
-    let photographic = args.photographic.resolve(None)?;
+    args.look.check()?;
+    let photographic = args.look.photographic.resolve(None)?;
     // The PNG may not overwrite the EXR: checked before anything is read.
     let mut plan = OutputPlan::new();
     plan.input("the EXR", &args.input);
-    let lut = super::read_lut(args.lut.as_deref(), &mut plan)?;
+    let lut = super::read_lut(args.look.lut.as_deref(), &mut plan)?;
     let png = plan.output("-o", &args.output, false)?;
     let film = embray::bench::convergence::read_reference(&args.input)?;
     // Showing non-finite pixels is this command's job, but never as a silent black image.
@@ -48,7 +40,7 @@ pub fn run(args: &TonemapArgs) -> Result<()> {
     let mut files = OutputSet::new();
     files.write(&png, |w| {
         let curve = ToneMap::Photographic;
-        encode_png_graded(&film, curve, args.exposure, &photographic, lut.as_ref(), w)
+        encode_png_graded(&film, curve, args.look.exposure, &photographic, lut.as_ref(), w)
     })?;
     files.commit()?;
     Ok(())
