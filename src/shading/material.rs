@@ -85,9 +85,14 @@ impl Material {
         .with_phong(desc.phong.clone())
     }
 
-    /// This material with the course's reflectance model `phong`.
+    /// This material with the course's reflectance model `phong` (set `specular_texture`
+    /// first). The lobe's albedo table is made only where the path tracer can see a lobe:
+    /// a specular reflectance above 0, or a texture that gives one per hit.
     pub fn with_phong(self, phong: Option<PhongDesc>) -> Self {
-        let course_lobe_albedo = phong.as_ref().map(|p| LobeAlbedo::new(&p.brdf, p.exponent));
+        let course_lobe_albedo = phong
+            .as_ref()
+            .filter(|p| p.specular.max_element() > 0.0 || self.specular_texture.is_some())
+            .map(|p| LobeAlbedo::new(&p.brdf, p.exponent));
         Material { phong, course_lobe_albedo, ..self }
     }
 
