@@ -2,7 +2,7 @@
 //! rounding bound γ(n), one-ulp steps, and hit points on triangles and spheres with a
 //! conservative bound on their error. Below everything that spawns rays or samples lights.
 
-use glam::Vec3;
+use glam::{Affine3A, Mat3, Vec3};
 
 /// γ(n) = nε / (1 − nε), the relative error bound of n chained f32 operations.
 pub const fn gamma(n: i32) -> f32 {
@@ -132,6 +132,16 @@ pub fn sphere_point_from_local(center: Vec3, radius: f32, local: Vec3) -> (Vec3,
         + (center.abs() + local.abs()) * gamma(1)
         + Vec3::splat(radius * gamma(8) + MIN_OFFSET);
     (point, error)
+}
+
+/// Applies `m` to a point with error bound `error`, returning the point and its new bound
+/// (pbrt-v4's interval transform).
+pub fn transform_point_with_error(m: &Affine3A, p: Vec3, error: Vec3) -> (Vec3, Vec3) {
+    let linear = Mat3::from(m.matrix3);
+    let abs = Mat3::from_cols(linear.x_axis.abs(), linear.y_axis.abs(), linear.z_axis.abs());
+    let point = m.transform_point3(p);
+    let rounding = (abs * p.abs() + Vec3::from(m.translation).abs()) * gamma(3);
+    (point, abs * error * (1.0 + gamma(3)) + rounding)
 }
 
 #[cfg(test)]

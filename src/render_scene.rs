@@ -9,7 +9,7 @@
 use crate::camera::Camera;
 use crate::compile::effects::Effects;
 use crate::float_error::TrianglePlane;
-use crate::shading::light::LightSet;
+use crate::light::LightSet;
 use crate::shading::material::Material;
 use crate::shading::texture::Texture;
 use glam::{Affine3A, Mat3, Quat, Vec2, Vec3};

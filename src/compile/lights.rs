@@ -2,13 +2,13 @@
 //! the description, and the emitters of every emissive instance (a quad per pair of
 //! triangles that form a parallelogram, else one per primitive).
 
-use crate::render_scene::{Geometry, Instance, Placement, Prototype};
-use crate::scene::LightDesc;
-use crate::scene::{EnvironmentMap, EnvironmentMapping};
-use crate::shading::light::{
+use crate::light::{
     DirectionalLight, Ellipsoid, Emitter, EmitterShape, EnvironmentLight, InstanceEmitters,
     LightSet, NO_GEOMETRY, PointLight, SphereShape, SpotCone,
 };
+use crate::render_scene::{Geometry, Instance, Placement, Prototype};
+use crate::scene::LightDesc;
+use crate::scene::{EnvironmentMap, EnvironmentMapping};
 use crate::shading::material::Material;
 use crate::transform::course_square_axes;
 use glam::{DAffine3, Vec3};

@@ -1,11 +1,10 @@
-//! What happens at a surface: materials and textures, BSDFs, lights and their sampling, the
+//! What happens at a surface: materials and textures, BSDFs, the
 //! surface interaction at a hit, and how rays leave it.
 
 pub mod bsdf;
 pub mod course_brdf;
 pub mod course_lobe;
 pub mod fresnel;
-pub mod light;
 pub mod material;
 pub mod normal_map;
 pub mod spawn;

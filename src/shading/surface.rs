@@ -2,11 +2,13 @@
 //! incoming ray, material and texture coordinates. Computed from the backend's `Hit` the same
 //! way for every backend.
 
-use crate::float_error::{gamma, sphere_point, triangle_point, triangle_point_from_ray};
+use crate::float_error::{
+    sphere_point, transform_point_with_error, triangle_point, triangle_point_from_ray,
+};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{Geometry, Placement, RenderScene};
 use crate::shading::spawn::SurfacePoint;
-use glam::{Affine3A, Mat3, Vec2, Vec3};
+use glam::{Mat3, Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug)]
 pub struct SurfaceInteraction {
@@ -21,16 +23,6 @@ pub struct SurfaceInteraction {
     /// The ray arrived on the side the surface's own normal points to (outside, for closed
     /// meshes wound counter-clockwise and for spheres).
     pub front_face: bool,
-}
-
-/// Applies `m` to a point with error bound `error`, returning the point and its new bound
-/// (pbrt-v4's interval transform).
-pub(crate) fn transform_point_with_error(m: &Affine3A, p: Vec3, error: Vec3) -> (Vec3, Vec3) {
-    let linear = Mat3::from(m.matrix3);
-    let abs = Mat3::from_cols(linear.x_axis.abs(), linear.y_axis.abs(), linear.z_axis.abs());
-    let point = m.transform_point3(p);
-    let rounding = (abs * p.abs() + Vec3::from(m.translation).abs()) * gamma(3);
-    (point, abs * error * (1.0 + gamma(3)) + rounding)
 }
 
 /// Texture coordinates of the point with unit normal `n` (in the sphere's own frame) on a

@@ -38,21 +38,7 @@ pub enum LightDesc {
     Environment { map: EnvironmentMap, scale: Vec3, mapping: EnvironmentMapping },
 }
 
-/// How an environment image covers the sphere of directions (see
-/// `shading::light::env_mapping`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum EnvironmentMapping {
-    /// Latitude-longitude (equirectangular), hw5.tex's mapping.
-    #[default]
-    LatLong,
-    /// Debevec's light probe (angular map).
-    Probe,
-}
-
-crate::choice::named_choices!(EnvironmentMapping, "environment mapping", {
-    LatLong => "latlong",
-    Probe => "probe",
-});
+pub use crate::light::EnvironmentMapping;
 
 /// What an environment light's radiance comes from.
 #[derive(Clone, Debug, PartialEq)]

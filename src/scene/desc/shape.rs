@@ -1,23 +1,8 @@
 //! Shapes and their placements: meshes, spheres, objects.
 
-use glam::{DAffine3, DVec3, Vec2, Vec3};
-use std::path::PathBuf;
+use glam::{DAffine3, DVec3, Vec2};
 
-/// Decoded texels, row-major from the top-left, in the file's own units (0–255 for 8-bit
-/// files, 0–65535 for 16-bit ones, linear values for float ones) unless the loader was
-/// asked to decode sRGB into linear [0, 1]. `file` is kept for messages and for writing
-/// the scene back out.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TextureImage {
-    pub file: PathBuf,
-    pub width: u32,
-    pub height: u32,
-    pub texels: Vec<Vec3>,
-    /// True if the texels were decoded from sRGB to linear [0, 1].
-    pub srgb_decoded: bool,
-    /// True if the texels are an EXR file's linear values (high dynamic range).
-    pub hdr: bool,
-}
+pub use crate::texels::TextureImage;
 
 /// Mesh data in object space. Positions are f64 so that no precision is lost before the
 /// object is placed in render space.

@@ -14,6 +14,7 @@ mod tests;
 
 pub use ellipsoid::Ellipsoid;
 pub use emitter::EmitterShape;
+pub use env_mapping::EnvironmentMapping;
 pub use environment::{EnvironmentLight, EnvironmentSample};
 pub use shape_sample::ShapeSample;
 pub use sphere_shape::SphereShape;

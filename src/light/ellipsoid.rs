@@ -7,7 +7,7 @@
 
 use super::shape_sample::{ShapeSample, solid_angle_density};
 use super::sphere_shape::SphereShape;
-use crate::shading::surface::transform_point_with_error;
+use crate::float_error::transform_point_with_error;
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 use std::f32::consts::PI;
 

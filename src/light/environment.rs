@@ -4,9 +4,9 @@
 //! radiance is exactly the piecewise-constant function the sampling density follows.
 
 use super::env_mapping;
+use super::env_mapping::EnvironmentMapping;
 use crate::color::luminance;
 use crate::sampling::piecewise::Piecewise2D;
-use crate::scene::EnvironmentMapping;
 use glam::{Mat3, Vec2, Vec3};
 use std::sync::Arc;
 

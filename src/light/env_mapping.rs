@@ -10,9 +10,23 @@
 //!   is θ = πρ from −z towards (a, b). dω = 4π sin(πρ)/ρ du dv. Texels outside the disc are
 //!   never seen.
 
-use crate::scene::EnvironmentMapping;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
+
+/// How an environment image covers the sphere of directions.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EnvironmentMapping {
+    /// Latitude-longitude (equirectangular), hw5.tex's mapping.
+    #[default]
+    LatLong,
+    /// Debevec's light probe (angular map).
+    Probe,
+}
+
+crate::choice::named_choices!(EnvironmentMapping, "environment mapping", {
+    LatLong => "latlong",
+    Probe => "probe",
+});
 
 /// Image coordinates in [0, 1]² of the unit world direction `d`, and the solid angle per
 /// unit image area there (0 where the mapping is singular: the poles of a lat-long map).
