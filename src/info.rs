@@ -4,7 +4,7 @@
 use crate::compile::{EffectsMode, to_render_scene};
 use crate::render_scene::{Geometry, Placement, RenderScene};
 use crate::render_space::RenderSpace;
-use crate::scene::{LightDesc, SceneDesc, ShapeDesc, Specular};
+use crate::scene::{LightDesc, Environment, SceneDesc, ShapeDesc, Specular};
 use crate::shading::material::Material;
 use std::fmt;
 
@@ -37,10 +37,10 @@ pub fn describe(scene: &SceneDesc) -> String {
             ShapeDesc::Sphere { .. } => spheres += 1,
         }
     }
-    let points = scene.lights.iter().filter(|l| matches!(l, LightDesc::Point { .. })).count();
-    let spots = scene.lights.iter().filter(|l| matches!(l, LightDesc::Spot { .. })).count();
+    let points = scene.lights.iter().filter(|l| matches!(l, LightDesc::Point(_))).count();
+    let spots = scene.lights.iter().filter(|l| matches!(l, LightDesc::Spot(_))).count();
     let directional =
-        scene.lights.iter().filter(|l| matches!(l, LightDesc::Directional { .. })).count();
+        scene.lights.iter().filter(|l| matches!(l, LightDesc::Directional(_))).count();
     let emissive = scene
         .objects
         .iter()
@@ -51,12 +51,12 @@ pub fn describe(scene: &SceneDesc) -> String {
         "materials: {}\nlights: {points} point, {spots} spot, {directional} directional, {emissive} emissive objects\n",
         scene.materials.len()
     );
-    let area = scene.lights.iter().filter(|l| matches!(l, LightDesc::Area { .. })).count();
+    let area = scene.lights.iter().filter(|l| matches!(l, LightDesc::Area(_))).count();
     if area > 0 {
         out += &format!("area lights (invisible squares): {area}\n");
     }
     for light in &scene.lights {
-        if let LightDesc::Environment { map, .. } = light {
+        if let LightDesc::Environment(Environment { map, .. }) = light {
             out += &match map {
                 crate::scene::EnvironmentMap::Constant(c) => {
                     format!("environment: constant {} {} {}\n", c.x, c.y, c.z)

@@ -100,7 +100,7 @@ impl Params {
     }
 
     /// The name the user writes for the kind's parameter `name`.
-    fn spelled(&self, name: &str) -> String {
+    pub fn spelling(&self, name: &str) -> String {
         let renamed = self.renames.iter().find(|(_, kind)| *kind == name);
         renamed.map_or(name, |(format, _)| format).to_owned()
     }
@@ -111,8 +111,8 @@ impl Params {
             None => Ok(()),
             Some(entry) => Err(ParamError::NotAllowed {
                 item: self.item.clone(),
-                field: self.spelled(&entry.name),
-                allowed: fields.iter().map(|f| self.spelled(f)).collect::<Vec<_>>().join(", "),
+                field: self.spelling(&entry.name),
+                allowed: fields.iter().map(|f| self.spelling(f)).collect::<Vec<_>>().join(", "),
                 line: entry.line,
             }),
         }
@@ -121,14 +121,14 @@ impl Params {
     pub fn missing(&self, name: &str) -> ParamError {
         ParamError::Missing {
             item: self.item.clone(),
-            field: self.spelled(name),
+            field: self.spelling(name),
             line: self.item_line,
         }
     }
 
     pub fn conflict(&self, first: &str, second: &str) -> ParamError {
         let line = self.entry(second).and_then(|e| e.line);
-        let (first, second) = (self.spelled(first), self.spelled(second));
+        let (first, second) = (self.spelling(first), self.spelling(second));
         ParamError::Conflict { item: self.item.clone(), first, second, line }
     }
 
@@ -136,7 +136,7 @@ impl Params {
     pub fn out_of_range(&self, name: &str, value: impl ToString, requirement: &str) -> ParamError {
         let (field, line) = match self.entry(name) {
             Some(e) => (e.field.clone(), e.line),
-            None => (self.spelled(name), self.item_line),
+            None => (self.spelling(name), self.item_line),
         };
         let (value, requirement) = (value.to_string(), requirement.to_owned());
         ParamError::OutOfRange { field, value, requirement, line }
@@ -245,7 +245,7 @@ impl Params {
 
     /// The field parameter `name` is written as.
     pub fn field(&self, name: &str) -> String {
-        self.entry(name).map_or_else(|| self.spelled(name), |e| e.field.clone())
+        self.entry(name).map_or_else(|| self.spelling(name), |e| e.field.clone())
     }
 }
 

@@ -9,6 +9,7 @@ use embray::accel::{AccelOptions, BackendKind, build as build_accel};
 use embray::choice::Choice;
 use embray::compile::EffectsMode;
 use embray::film::Film;
+use embray::scene::{Directional, Point};
 use embray::ray::Ray;
 use embray::render::{RenderOptions, prepare_scene, render};
 use embray::scene::{MaterialDesc, Pattern, SceneDesc, ShapeDesc, Specular, TextureDesc};
@@ -98,10 +99,10 @@ fn moving_cube_scene(start: DAffine3, end: Option<DAffine3>) -> SceneDesc {
     let mut cube = object("cube", ShapeDesc::Mesh(cube()), grey, start);
     cube.world_from_object_end = end;
     s.objects.push(cube);
-    s.lights.push(embray::scene::LightDesc::Point {
+    s.lights.push(embray::scene::LightDesc::Point(Point {
         position: DVec3::new(1.0, 10.0, 5.0),
         intensity: Vec3::splat(100.0),
-    });
+    }));
     s
 }
 
@@ -400,10 +401,10 @@ fn textured_sphere(placement: DAffine3, instanced: bool, material: MaterialDesc)
     let centred =
         if instanced { DAffine3::from_translation(DVec3::splat(-0.5)) } else { DAffine3::IDENTITY };
     s.objects.push(object("textured", shape, m, placement * centred));
-    s.lights.push(embray::scene::LightDesc::Directional {
+    s.lights.push(embray::scene::LightDesc::Directional(Directional {
         direction: placement.transform_vector3(DVec3::new(-1.0, -2.0, -1.5)),
         irradiance: Vec3::splat(3.0),
-    });
+    }));
     s
 }
 

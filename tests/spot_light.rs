@@ -60,7 +60,7 @@ fn factor(alpha: f64) -> f64 {
 fn a_spot_light_is_a_point_light_times_its_cone() {
     let point = scene_from_str(&floor_under(POINT));
     let spot = scene_from_str(&floor_under(SPOT));
-    assert!(matches!(spot.lights[0], LightDesc::Spot { .. }));
+    assert!(matches!(spot.lights[0], LightDesc::Spot(_)));
     for integrator in [IntegratorKind::Path, IntegratorKind::Whitted] {
         for backend in backends() {
             let mut options = options(&point, backend, 1);

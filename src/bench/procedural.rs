@@ -1,7 +1,7 @@
 //! Procedurally generated benchmark scenes, so the large ones need no files.
 
 use crate::scene::{
-    CameraDesc, LightDesc, MaterialDesc, MeshData, ObjectDesc, RenderSettings, SceneDesc, ShapeDesc,
+    CameraDesc, LightDesc, Point, MaterialDesc, MeshData, ObjectDesc, RenderSettings, SceneDesc, ShapeDesc,
 };
 use glam::{DAffine3, DVec3, Vec3};
 use std::sync::Arc;
@@ -74,10 +74,10 @@ pub fn displaced_sphere_scene(triangles: usize, width: u32, height: u32) -> Scen
         settings: RenderSettings { spp: 4, max_depth: 3, ..Default::default() },
         materials: vec![material],
         objects: vec![object("sphere", displaced_sphere(triangles)), object("ground", ground)],
-        lights: vec![LightDesc::Point {
+        lights: vec![LightDesc::Point(Point {
             position: DVec3::new(3.0, 5.0, 4.0),
             intensity: Vec3::splat(60.0),
-        }],
+        })],
     }
 }
 

@@ -1,16 +1,13 @@
-//! Lights into render space: point, directional, ambient and the course's square lights from
-//! the description, and the emitters of every emissive instance (a quad per pair of
+//! Lights into render space: each kind of the description compiles itself (see
+//! `light::kinds`); here are the emitters of every emissive instance (a quad per pair of
 //! triangles that form a parallelogram, else one per primitive).
 
 use crate::light::{
-    DirectionalLight, Ellipsoid, Emitter, EmitterShape, EnvironmentLight, InstanceEmitters,
-    LightSet, NO_GEOMETRY, PointLight, SphereShape, SpotCone,
+    Ellipsoid, Emitter, EmitterShape, InstanceEmitters, LightDesc, LightParts, LightSet,
+    SphereShape,
 };
 use crate::render_scene::{Geometry, Instance, Placement, Prototype};
-use crate::scene::LightDesc;
-use crate::scene::{EnvironmentMap, EnvironmentMapping};
 use crate::shading::material::Material;
-use crate::transform::course_square_axes;
 use glam::{DAffine3, Vec3};
 
 /// The two triangles as the quad v0 v1 v2 v3 of `EmitterShape::Quad` ((v0, v1, v3) and
@@ -103,91 +100,9 @@ pub(super) fn compile_lights(
     instances: &[Instance],
     materials: &[Material],
 ) -> LightSet {
-    let mut points = Vec::new();
-    let mut directional = Vec::new();
-    let mut ambient = Vec3::ZERO;
-    let mut squares = Vec::new();
-    let mut environment = None;
+    let mut parts = LightParts::default();
     for light in descs {
-        match light {
-            LightDesc::Point { position, intensity } => points.push(PointLight {
-                position: render_from_world.transform_point3(*position).as_vec3(),
-                intensity: *intensity,
-                spot: None,
-            }),
-            LightDesc::Spot {
-                position,
-                direction,
-                intensity,
-                coverage_degrees,
-                falloff_degrees,
-            } => {
-                let half_cos = |degrees: f64| (0.5 * degrees).to_radians().cos() as f32;
-                points.push(PointLight {
-                    position: render_from_world.transform_point3(*position).as_vec3(),
-                    intensity: *intensity,
-                    spot: Some(SpotCone {
-                        axis: render_from_world.transform_vector3(*direction).normalize().as_vec3(),
-                        cos_falloff: half_cos(*falloff_degrees),
-                        cos_coverage: half_cos(*coverage_degrees),
-                    }),
-                })
-            }
-            LightDesc::Directional { direction, irradiance } => {
-                directional.push(DirectionalLight {
-                    direction: render_from_world
-                        .transform_vector3(*direction)
-                        .normalize()
-                        .as_vec3(),
-                    irradiance: *irradiance,
-                })
-            }
-            LightDesc::Ambient { radiance } => ambient += *radiance,
-            LightDesc::Environment { map, scale, mapping } => {
-                // Directions are looked up in world space: render space only rotates back.
-                let world_from_render = render_from_world.matrix3.inverse().as_mat3();
-                environment = Some(match map {
-                    EnvironmentMap::Constant(radiance) => EnvironmentLight::new(
-                        1,
-                        1,
-                        &[*radiance],
-                        *scale,
-                        EnvironmentMapping::LatLong,
-                        world_from_render,
-                    ),
-                    EnvironmentMap::Image(image) => EnvironmentLight::new(
-                        image.width as usize,
-                        image.height as usize,
-                        &image.texels,
-                        *scale,
-                        *mapping,
-                        world_from_render,
-                    ),
-                });
-            }
-            LightDesc::Area { center, normal, size, radiance } => {
-                let (u, v) = course_square_axes(*normal);
-                let half = 0.5 * size;
-                let corner = |a: f64, b: f64| {
-                    let world = *center + (a * u + b * v) * half;
-                    render_from_world.transform_point3(world).as_vec3()
-                };
-                let vertices =
-                    [corner(-1.0, -1.0), corner(1.0, -1.0), corner(1.0, 1.0), corner(-1.0, 1.0)];
-                // A square whose corners round to a non-parallelogram (far from the origin)
-                // is sampled as two triangles.
-                match EmitterShape::quad(vertices) {
-                    Some(shape) => squares.push(Emitter::new(NO_GEOMETRY, shape, *radiance, true)),
-                    None => {
-                        let [v0, v1, v2, v3] = vertices;
-                        for tri in [[v0, v1, v3], [v2, v3, v1]] {
-                            let shape = EmitterShape::triangle(tri);
-                            squares.push(Emitter::new(NO_GEOMETRY, shape, *radiance, true));
-                        }
-                    }
-                }
-            }
-        }
+        light.compile(render_from_world, &mut parts);
     }
     let mut instance_emitters = InstanceEmitters::default();
     for (geom_id, instance) in instances.iter().enumerate() {
@@ -206,8 +121,9 @@ pub(super) fn compile_lights(
             });
         instance_emitters.by_instance.push(sampled);
     }
-    let mut lights = LightSet::new(points, directional, instance_emitters, squares);
-    lights.ambient = ambient;
-    lights.environment = environment;
+    let mut lights =
+        LightSet::new(parts.points, parts.directional, instance_emitters, parts.invisible);
+    lights.ambient = parts.ambient;
+    lights.environment = parts.environment;
     lights
 }

@@ -4,6 +4,7 @@
 //! the same way but never hit.
 
 mod ellipsoid;
+pub mod kinds;
 mod emitter;
 mod env_mapping;
 mod environment;
@@ -13,6 +14,7 @@ mod sphere_shape;
 mod tests;
 
 pub use ellipsoid::Ellipsoid;
+pub use kinds::{LightDesc, LightKind, LightParts, SpotCone};
 pub use emitter::EmitterShape;
 pub use env_mapping::EnvironmentMapping;
 pub use environment::{EnvironmentLight, EnvironmentSample};
@@ -30,31 +32,6 @@ pub struct PointLight {
     pub intensity: Vec3,
     /// The cone a spot light shines into; `None` for an isotropic point light.
     pub spot: Option<SpotCone>,
-}
-
-/// A spot light's cone (the course's SpotLight): see `LightDesc::Spot`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SpotCone {
-    /// Unit axis, from the light into the scene.
-    pub axis: Vec3,
-    /// cos(falloff / 2): full intensity within.
-    pub cos_falloff: f32,
-    /// cos(coverage / 2): no light beyond.
-    pub cos_coverage: f32,
-}
-
-impl SpotCone {
-    /// The fraction of the axis intensity sent along the unit direction `w` (from the light).
-    pub fn factor(&self, w: Vec3) -> f32 {
-        let cos = self.axis.dot(w);
-        if cos >= self.cos_falloff {
-            1.0
-        } else if cos > self.cos_coverage {
-            ((cos - self.cos_coverage) / (self.cos_falloff - self.cos_coverage)).powi(4)
-        } else {
-            0.0
-        }
-    }
 }
 
 impl PointLight {

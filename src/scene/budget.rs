@@ -6,7 +6,7 @@ use crate::limits::{
     MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
-use crate::scene::{LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
+use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc};
 use glam::DVec3;
 use std::collections::HashSet;
 
@@ -173,13 +173,7 @@ pub fn check_coordinates(desc: &SceneDesc, space: RenderSpace) -> Result<(), Lim
             }
         }
         for (i, light) in desc.lights.iter().enumerate() {
-            let reach = match light {
-                LightDesc::Point { position, .. } | LightDesc::Spot { position, .. } => {
-                    far(*position)
-                }
-                LightDesc::Area { center, size, .. } => far(*center) + size,
-                _ => 0.0,
-            };
+            let reach = light.reach(origin);
             if !(reach <= limit) {
                 return Err(refuse(format!("lights[{i}]"), reach));
             }

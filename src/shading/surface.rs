@@ -144,6 +144,7 @@ pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteract
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Affine3A;
 
     #[test]
     fn transformed_error_bound_covers_the_rounding() {

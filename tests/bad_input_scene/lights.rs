@@ -1,6 +1,7 @@
 //! Light types and their fields.
 
 use super::*;
+use embray::scene::Environment;
 
 #[test]
 fn directional_light_needs_a_direction() {
@@ -91,7 +92,7 @@ fn environment_light_takes_a_file_or_a_radiance() {
     let scene = load(&format!("{light}radiance = [1, 2, 3]\nscale = [2, 2, 2]\n"));
     assert!(matches!(
         &scene.lights[0],
-        LightDesc::Environment { map: embray::scene::EnvironmentMap::Constant(c), scale, .. }
+        LightDesc::Environment(Environment { map: embray::scene::EnvironmentMap::Constant(c), scale, .. })
             if *c == Vec3::new(1.0, 2.0, 3.0) && *scale == Vec3::splat(2.0)
     ));
 }
@@ -129,11 +130,11 @@ fn environment_maps_are_checked_when_read() {
     let scene = load(&format!("{light}file = \"{}\"\nmapping = \"probe\"\n", good.display()));
     assert!(matches!(
         scene.lights[0],
-        LightDesc::Environment { mapping: embray::scene::EnvironmentMapping::Probe, .. }
+        LightDesc::Environment(Environment { mapping: embray::scene::EnvironmentMapping::Probe, .. })
     ));
     let scene = load(&format!("{light}file = \"{}\"\n", good.display()));
     match &scene.lights[0] {
-        LightDesc::Environment { map: embray::scene::EnvironmentMap::Image(image), .. } => {
+        LightDesc::Environment(Environment { map: embray::scene::EnvironmentMap::Image(image), .. }) => {
             assert_eq!((image.width, image.height, image.hdr), (3, 2, true));
         }
         other => panic!("an environment light, got {other:?}"),

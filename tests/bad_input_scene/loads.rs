@@ -1,6 +1,7 @@
 //! Scenes that load: the documented example, every bundled scene, and what they hold.
 
 use super::*;
+use embray::scene::Point;
 
 /// The example of the format documentation, with every object type, light type and
 /// transform kind.
@@ -92,10 +93,10 @@ fn example_scene_with_every_feature_loads() {
     );
     assert_eq!(
         scene.lights,
-        [LightDesc::Point {
+        [LightDesc::Point(Point {
             position: DVec3::new(278.0, 500.0, 278.0),
             intensity: Vec3::splat(1000.0)
-        }]
+        })]
     );
     // light, white (the table, sorted by name), the two MTL materials, the quad light's.
     let materials: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();

@@ -240,7 +240,7 @@ fn hw5_directional_light_scene_matches_the_course_image() {
     let cameras = ceng795::load(&data.join("2022/hw5/inputs/cube_directional.xml")).unwrap();
     let reference = read_rgb(&data.join("2022/hw5/outputs/cube_directional.png")).unwrap();
     let scene = &cameras[0].scene;
-    assert!(scene.lights.iter().any(|l| matches!(l, LightDesc::Directional { .. })));
+    assert!(scene.lights.iter().any(|l| matches!(l, LightDesc::Directional(_))));
     for backend in BackendKind::compiled() {
         let (image, _) = render_rgb(scene, &course_options(scene, backend));
         let c = compare_images(&image, &reference, 3).unwrap();

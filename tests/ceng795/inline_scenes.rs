@@ -4,6 +4,7 @@
 use super::*;
 use crate::common::command::temp_dir;
 use embray::choice::Choice;
+use embray::scene::{Ambient, Area, Directional, Point, Spot};
 
 fn one(text: &str) -> SceneDesc {
     let mut scenes = load_text(text).unwrap_or_else(|e| panic!("{e}"));
@@ -194,17 +195,17 @@ fn materials_and_lights_map_to_the_scene_description() {
     assert_eq!(
         s.lights,
         [
-            LightDesc::Ambient { radiance: glam::Vec3::splat(25.0) },
-            LightDesc::Point {
+            LightDesc::Ambient(Ambient { radiance: glam::Vec3::splat(25.0) }),
+            LightDesc::Point(Point {
                 position: DVec3::new(1.0, 2.0, 3.0),
                 intensity: glam::Vec3::splat(1000.0)
-            },
-            LightDesc::Area {
+            }),
+            LightDesc::Area(Area {
                 center: DVec3::new(0.0, 9.8, 2.0),
                 normal: DVec3::NEG_Y,
                 size: 3.0,
                 radiance: glam::Vec3::splat(150000.0)
-            },
+            }),
         ]
     );
 }
@@ -380,17 +381,17 @@ fn hw5_directional_and_spot_lights_import_and_convert() {
     assert_eq!(
         s.lights,
         [
-            LightDesc::Directional {
+            LightDesc::Directional(Directional {
                 direction: DVec3::new(1.0, -0.8, -1.0).normalize(),
                 irradiance: glam::Vec3::splat(200.0)
-            },
-            LightDesc::Spot {
+            }),
+            LightDesc::Spot(Spot {
                 position: DVec3::new(-0.93, 1.0, 0.9),
                 direction: DVec3::new(1.0, -1.0, -1.0).normalize(),
                 intensity: glam::Vec3::splat(600.0),
                 coverage_degrees: 10.0,
                 falloff_degrees: 8.0
-            },
+            }),
         ]
     );
     let dir = temp_dir("hw5-lights");

@@ -1,6 +1,7 @@
 //! The new light types, and the bundled scenes that use the newer format.
 
 use super::*;
+use embray::scene::{Ambient, Directional};
 
 #[test]
 fn new_light_types() {
@@ -16,8 +17,8 @@ fn new_light_types() {
     assert_eq!(
         scene.lights,
         [
-            LightDesc::Directional { direction: DVec3::NEG_Y, irradiance: Vec3::splat(3.0) },
-            LightDesc::Ambient { radiance: Vec3::new(0.1, 0.2, 0.3) },
+            LightDesc::Directional(Directional { direction: DVec3::NEG_Y, irradiance: Vec3::splat(3.0) }),
+            LightDesc::Ambient(Ambient { radiance: Vec3::new(0.1, 0.2, 0.3) }),
         ]
     );
     assert_eq!(scene.objects.len(), 3);

@@ -33,13 +33,7 @@ impl SceneDesc {
             }
         }
         for light in &mut self.lights {
-            match light {
-                LightDesc::Point { position, .. } | LightDesc::Spot { position, .. } => {
-                    *position += offset
-                }
-                LightDesc::Area { center, .. } => *center += offset,
-                _ => {}
-            }
+            light.translate(offset);
         }
     }
 }

@@ -9,7 +9,7 @@
 use super::textures::TextureMaps;
 use super::xml::Xml;
 use crate::excerpt::excerpt;
-use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc};
+use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc, Spot, Point, Environment, Directional, Area, Ambient};
 use crate::scene::error::SceneError;
 use roxmltree::Node;
 
@@ -35,7 +35,7 @@ pub(super) fn lights<'a, 'i: 'a>(
             out.push(match node.tag_name().name() {
                 "SphericalDirectionalLight" => {
                     x.check_children(node, &["ImageId"])?;
-                    if out.iter().any(|l| matches!(l, LightDesc::Environment { .. })) {
+                    if out.iter().any(|l| matches!(l, LightDesc::Environment(_))) {
                         return Err(x.error(node, "a scene takes one SphericalDirectionalLight"));
                     }
                     let mapping = match node.attribute("type").map(str::trim) {
@@ -51,26 +51,26 @@ pub(super) fn lights<'a, 'i: 'a>(
                         }
                     };
                     let image = textures.radiance_map(x, x.required(node, "ImageId")?)?;
-                    LightDesc::Environment {
+                    LightDesc::Environment(Environment {
                         map: EnvironmentMap::Image(image),
                         scale: glam::Vec3::ONE,
                         mapping,
-                    }
+                    })
                 }
-                "AmbientLight" => LightDesc::Ambient { radiance: x.color(node)? },
+                "AmbientLight" => LightDesc::Ambient(Ambient { radiance: x.color(node)? }),
                 "PointLight" => {
                     x.check_children(node, &["Position", "Intensity"])?;
-                    LightDesc::Point {
+                    LightDesc::Point(Point {
                         position: x.vec3(x.required(node, "Position")?)?,
                         intensity: x.color(x.required(node, "Intensity")?)?,
-                    }
+                    })
                 }
                 "DirectionalLight" => {
                     x.check_children(node, &["Direction", "Radiance"])?;
-                    LightDesc::Directional {
+                    LightDesc::Directional(Directional {
                         direction: direction(x, x.required(node, "Direction")?)?,
                         irradiance: x.color(x.required(node, "Radiance")?)?,
-                    }
+                    })
                 }
                 "SpotLight" => {
                     let children =
@@ -87,13 +87,13 @@ pub(super) fn lights<'a, 'i: 'a>(
                         let requirement = "degrees in [0, CoverageAngle]";
                         return Err(x.out_of_range(falloff_node, falloff, requirement));
                     }
-                    LightDesc::Spot {
+                    LightDesc::Spot(Spot {
                         position: x.vec3(x.required(node, "Position")?)?,
                         direction: direction(x, x.required(node, "Direction")?)?,
                         intensity: x.color(x.required(node, "Intensity")?)?,
                         coverage_degrees: coverage,
                         falloff_degrees: falloff,
-                    }
+                    })
                 }
                 _ => {
                     x.check_children(node, &["Position", "Normal", "Size", "Radiance"])?;
@@ -103,12 +103,12 @@ pub(super) fn lights<'a, 'i: 'a>(
                     if !(size > 0.0) {
                         return Err(x.out_of_range(size_node, size, "> 0"));
                     }
-                    LightDesc::Area {
+                    LightDesc::Area(Area {
                         center: x.vec3(x.required(node, "Position")?)?,
                         normal,
                         size,
                         radiance: x.color(x.required(node, "Radiance")?)?,
-                    }
+                    })
                 }
             });
         }

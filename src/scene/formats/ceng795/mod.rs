@@ -215,9 +215,9 @@ pub fn load_str_with_warnings(
                             .filter(|l| {
                                 !matches!(
                                     l,
-                                    LightDesc::Point { .. }
-                                        | LightDesc::Spot { .. }
-                                        | LightDesc::Area { .. }
+                                    LightDesc::Point(_)
+                                        | LightDesc::Spot(_)
+                                        | LightDesc::Area(_)
                                 )
                             })
                             .cloned()

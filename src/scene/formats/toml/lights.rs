@@ -3,7 +3,7 @@
 
 use super::builder::{Builder, dvec, mesh_ref};
 use super::repeat::Placement;
-use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc, ShapeDesc};
+use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc, Spot, Point, Environment, Directional, Area, Ambient, ShapeDesc};
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::format::{
     EnvironmentMappingToml, ImageEncodingToml, LightKind, LightToml,
@@ -72,7 +72,7 @@ impl Builder<'_> {
                 let position = ctx.required(&path, &item, "position", l.position)?;
                 let intensity = ctx.required(&path, &item, "intensity", l.intensity)?;
                 let intensity = ctx.color(&path.key("intensity"), intensity, false)?;
-                self.lights.push(LightDesc::Point { position: dvec(position), intensity });
+                self.lights.push(LightDesc::Point(Point { position: dvec(position), intensity }));
             }
             LightKind::Spot => {
                 let position = ctx.required(&path, &item, "position", l.position)?;
@@ -98,13 +98,13 @@ impl Builder<'_> {
                     falloff,
                     "an angle in degrees, >= 0 and <= coverage_angle",
                 )?;
-                self.lights.push(LightDesc::Spot {
+                self.lights.push(LightDesc::Spot(Spot {
                     position: dvec(position),
                     direction,
                     intensity,
                     coverage_degrees: coverage,
                     falloff_degrees: falloff,
-                });
+                }));
             }
             LightKind::Directional => {
                 let direction = ctx.required(&path, &item, "direction", l.direction)?;
@@ -114,12 +114,12 @@ impl Builder<'_> {
                 })?;
                 let irradiance = ctx.required(&path, &item, "irradiance", l.irradiance)?;
                 let irradiance = ctx.color(&path.key("irradiance"), irradiance, false)?;
-                self.lights.push(LightDesc::Directional { direction: unit, irradiance });
+                self.lights.push(LightDesc::Directional(Directional { direction: unit, irradiance }));
             }
             LightKind::Ambient => {
                 let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
                 let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
-                self.lights.push(LightDesc::Ambient { radiance });
+                self.lights.push(LightDesc::Ambient(Ambient { radiance }));
             }
             LightKind::Area => {
                 let center = ctx.required(&path, &item, "center", l.center)?;
@@ -132,7 +132,7 @@ impl Builder<'_> {
                 let size = ctx.positive(&path.key("size"), size)?;
                 let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
                 let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
-                self.lights.push(LightDesc::Area { center: dvec(center), normal, size, radiance });
+                self.lights.push(LightDesc::Area(Area { center: dvec(center), normal, size, radiance }));
             }
             LightKind::Environment => {
                 let map = self.environment_map(&path, &item, l)?;
@@ -140,7 +140,7 @@ impl Builder<'_> {
                     Some(scale) => ctx.color(&path.key("scale"), scale, false)?,
                     None => glam::Vec3::ONE,
                 };
-                if self.lights.iter().any(|l| matches!(l, LightDesc::Environment { .. })) {
+                if self.lights.iter().any(|l| matches!(l, LightDesc::Environment(_))) {
                     let requirement = "at most one environment light per scene";
                     return Err(ctx.out_of_range(&path.key("type"), "environment", requirement));
                 }
@@ -152,7 +152,7 @@ impl Builder<'_> {
                     let requirement = "given only with file";
                     return Err(ctx.out_of_range(&path.key("mapping"), "given", requirement));
                 }
-                self.lights.push(LightDesc::Environment { map, scale, mapping });
+                self.lights.push(LightDesc::Environment(Environment { map, scale, mapping }));
             }
             LightKind::Quad => {
                 let corner = ctx.required(&path, &item, "corner", l.corner)?;

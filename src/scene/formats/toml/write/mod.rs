@@ -10,7 +10,7 @@
 //! colour, a texture mapped through a non-identity transform.
 
 use crate::scene::desc::IntegratorKind;
-use crate::scene::desc::{EnvironmentMap, LensShape, LightDesc, MeshData, SceneDesc, ShapeDesc};
+use crate::scene::desc::{EnvironmentMap, LensShape, LightDesc, Spot, Point, Environment, Directional, Area, Ambient, MeshData, SceneDesc, ShapeDesc};
 use glam::DAffine3;
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -131,19 +131,19 @@ impl TomlWriter {
         for light in &scene.lights {
             out += "\n[[lights]]\n";
             let _ = match light {
-                LightDesc::Point { position, intensity } => writeln!(
+                LightDesc::Point(Point { position, intensity }) => writeln!(
                     out,
                     "type = \"point\"\nposition = {}\nintensity = {}",
                     v3(*position),
                     c3(*intensity)
                 ),
-                LightDesc::Spot {
+                LightDesc::Spot(Spot {
                     position,
                     direction,
                     intensity,
                     coverage_degrees,
                     falloff_degrees,
-                } => writeln!(
+                }) => writeln!(
                     out,
                     "type = \"spot\"\nposition = {}\ndirection = {}\nintensity = {}\n\
                      coverage_angle = {coverage_degrees:?}\nfalloff_angle = {falloff_degrees:?}",
@@ -151,16 +151,16 @@ impl TomlWriter {
                     v3(*direction),
                     c3(*intensity)
                 ),
-                LightDesc::Directional { direction, irradiance } => writeln!(
+                LightDesc::Directional(Directional { direction, irradiance }) => writeln!(
                     out,
                     "type = \"directional\"\ndirection = {}\nirradiance = {}",
                     v3(*direction),
                     c3(*irradiance)
                 ),
-                LightDesc::Ambient { radiance } => {
+                LightDesc::Ambient(Ambient { radiance }) => {
                     writeln!(out, "type = \"ambient\"\nradiance = {}", c3(*radiance))
                 }
-                LightDesc::Area { center, normal, size, radiance } => writeln!(
+                LightDesc::Area(Area { center, normal, size, radiance }) => writeln!(
                     out,
                     "type = \"area\"\ncenter = {}\nnormal = {}\nsize = {}\nradiance = {}",
                     v3(*center),
@@ -168,7 +168,7 @@ impl TomlWriter {
                     f(*size),
                     c3(*radiance)
                 ),
-                LightDesc::Environment { map, scale, mapping } => {
+                LightDesc::Environment(Environment { map, scale, mapping }) => {
                     let source = match map {
                         EnvironmentMap::Constant(radiance) => {
                             format!("radiance = {}", c3(*radiance))

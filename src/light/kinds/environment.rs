@@ -1,0 +1,96 @@
+//! Radiance from every direction far away: an image (`file`, mapped onto the sphere by
+//! `mapping`, see `env_mapping`) or a constant `radiance`, times `scale`. Rays that leave
+//! the scene see it in place of the background; a scene takes at most one.
+
+use super::{LightKind, LightParts};
+use crate::light::{EnvironmentLight, EnvironmentMapping};
+use crate::params::{ParamError, ParamSink, Params, Resources};
+use crate::texels::TextureImage;
+use glam::{DAffine3, Vec3};
+use std::sync::Arc;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Environment {
+    pub map: EnvironmentMap,
+    pub scale: Vec3,
+    pub mapping: EnvironmentMapping,
+}
+
+/// What an environment light's radiance comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EnvironmentMap {
+    /// The same radiance from every direction.
+    Constant(Vec3),
+    /// An image of linear radiances.
+    Image(Arc<TextureImage>),
+}
+
+const ENCODINGS: [(&str, bool); 2] = [("srgb", true), ("raw", false)];
+const MAPPINGS: [(&str, EnvironmentMapping); 2] =
+    [("latlong", EnvironmentMapping::LatLong), ("probe", EnvironmentMapping::Probe)];
+
+impl LightKind for Environment {
+    const NAME: &'static str = "environment";
+    const LABEL: &'static str = "environment light";
+    const FIELDS: &'static [&'static str] = &["file", "radiance", "scale", "encoding", "mapping"];
+    const ONE_PER_SCENE: bool = true;
+
+    fn read(p: &Params, resources: &dyn Resources) -> Result<Self, ParamError> {
+        let encoding = p.opt_choice("encoding", &ENCODINGS)?;
+        let map = match (p.has("file"), p.has("radiance")) {
+            (true, true) => return Err(p.conflict("file", "radiance")),
+            (false, false) => return Err(p.missing("file (or radiance)")),
+            (false, true) => {
+                p.require(encoding.is_none(), "encoding", "given", "given only with file")?;
+                EnvironmentMap::Constant(p.color("radiance")?)
+            }
+            (true, false) => {
+                let image = resources.radiance_image(p, "file", encoding.unwrap_or(true))?;
+                let requirement = "given only for PNG and JPEG files (EXR values are linear)";
+                p.require(!(image.hdr && encoding.is_some()), "encoding", "given", requirement)?;
+                EnvironmentMap::Image(image)
+            }
+        };
+        let scale = p.opt_color("scale")?.unwrap_or(Vec3::ONE);
+        let mapping = p.opt_choice("mapping", &MAPPINGS)?;
+        p.require(mapping.is_none() || p.has("file"), "mapping", "given", "given only with file")?;
+        Ok(Environment { map, scale, mapping: mapping.unwrap_or_default() })
+    }
+
+    fn write(&self, out: &mut dyn ParamSink) {
+        match &self.map {
+            EnvironmentMap::Constant(radiance) => out.color("radiance", *radiance),
+            EnvironmentMap::Image(image) => {
+                out.path("file", &image.file);
+                if !image.hdr {
+                    out.text("encoding", if image.srgb_decoded { "srgb" } else { "raw" });
+                }
+                out.text("mapping", &self.mapping.to_string());
+            }
+        }
+        out.color("scale", self.scale);
+    }
+
+    fn compile(&self, render_from_world: &DAffine3, parts: &mut LightParts) {
+        // Directions are looked up in world space: render space only rotates back.
+        let world_from_render = render_from_world.matrix3.inverse().as_mat3();
+        parts.environment = Some(match &self.map {
+            EnvironmentMap::Constant(radiance) => EnvironmentLight::new(
+                1,
+                1,
+                &[*radiance],
+                self.scale,
+                EnvironmentMapping::LatLong,
+                world_from_render,
+            ),
+            EnvironmentMap::Image(image) => EnvironmentLight::new(
+                image.width as usize,
+                image.height as usize,
+                &image.texels,
+                self.scale,
+                self.mapping,
+                world_from_render,
+            ),
+        });
+    }
+}
