@@ -4,7 +4,7 @@
 use crate::compile::{EffectsMode, to_render_scene};
 use crate::render_scene::{Geometry, Placement, RenderScene};
 use crate::render_space::RenderSpace;
-use crate::scene::{LightDesc, Environment, SceneDesc, ShapeDesc, Specular};
+use crate::scene::{Environment, LightDesc, SceneDesc, ShapeDesc, Specular};
 use crate::shading::material::Material;
 use std::fmt;
 
@@ -37,24 +37,23 @@ pub fn describe(scene: &SceneDesc) -> String {
             ShapeDesc::Sphere { .. } => spheres += 1,
         }
     }
-    let points = scene.lights.iter().filter(|l| matches!(l, LightDesc::Point(_))).count();
-    let spots = scene.lights.iter().filter(|l| matches!(l, LightDesc::Spot(_))).count();
-    let directional =
-        scene.lights.iter().filter(|l| matches!(l, LightDesc::Directional(_))).count();
     let emissive = scene
         .objects
         .iter()
         .filter(|o| scene.materials[o.material as usize].emission.max_element() > 0.0)
         .count();
     out += &format!("objects: {meshes} meshes ({triangles} triangles), {spheres} spheres\n");
-    out += &format!(
-        "materials: {}\nlights: {points} point, {spots} spot, {directional} directional, {emissive} emissive objects\n",
-        scene.materials.len()
-    );
-    let area = scene.lights.iter().filter(|l| matches!(l, LightDesc::Area(_))).count();
-    if area > 0 {
-        out += &format!("area lights (invisible squares): {area}\n");
+    out += &format!("materials: {}\n", scene.materials.len());
+    let mut lights: Vec<String> = Vec::new();
+    for light in &scene.lights {
+        let label = light.label();
+        if !lights.iter().any(|counted| counted.ends_with(label)) {
+            let count = scene.lights.iter().filter(|l| l.label() == label).count();
+            lights.push(format!("{count} {label}"));
+        }
     }
+    lights.push(format!("{emissive} emissive objects"));
+    out += &format!("lights: {}\n", lights.join(", "));
     for light in &scene.lights {
         if let LightDesc::Environment(Environment { map, .. }) = light {
             out += &match map {

@@ -16,6 +16,8 @@ pub enum Value {
     Numbers(Vec<f64>),
     Text(String),
     Bool(bool),
+    /// Anything else (a table, a mixed array), kept as written for messages.
+    Other(String),
 }
 
 impl Value {
@@ -257,6 +259,7 @@ fn show(value: &Value) -> String {
         }
         Value::Text(text) => format!("{text:?}"),
         Value::Bool(b) => b.to_string(),
+        Value::Other(text) => text.clone(),
     }
 }
 

@@ -1,7 +1,8 @@
 //! Procedurally generated benchmark scenes, so the large ones need no files.
 
 use crate::scene::{
-    CameraDesc, LightDesc, Point, MaterialDesc, MeshData, ObjectDesc, RenderSettings, SceneDesc, ShapeDesc,
+    CameraDesc, LightDesc, MaterialDesc, MeshData, ObjectDesc, Point, RenderSettings, SceneDesc,
+    ShapeDesc,
 };
 use glam::{DAffine3, DVec3, Vec3};
 use std::sync::Arc;

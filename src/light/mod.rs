@@ -4,20 +4,20 @@
 //! the same way but never hit.
 
 mod ellipsoid;
-pub mod kinds;
 mod emitter;
 mod env_mapping;
 mod environment;
+pub mod kinds;
 mod shape_sample;
 mod sphere_shape;
 #[cfg(test)]
 mod tests;
 
 pub use ellipsoid::Ellipsoid;
-pub use kinds::{LightDesc, LightKind, LightParts, SpotCone};
 pub use emitter::EmitterShape;
 pub use env_mapping::EnvironmentMapping;
 pub use environment::{EnvironmentLight, EnvironmentSample};
+pub use kinds::{LightDesc, LightKind, LightParts, SpotCone};
 pub use shape_sample::ShapeSample;
 pub use sphere_shape::SphereShape;
 

@@ -124,3 +124,29 @@ pub enum SceneError {
     #[error("{}: {field} must have exactly one of the keys scale, rotate, translate, matrix; it has {found}{line}", .file.display())]
     TransformEntry { file: PathBuf, field: String, found: String, line: Line },
 }
+
+impl SceneError {
+    /// A kind's parameter error, in the scene `file`.
+    pub fn from_param(file: &std::path::Path, error: crate::params::ParamError) -> Self {
+        use crate::params::ParamError;
+        let file = file.to_path_buf();
+        match error {
+            ParamError::OutOfRange { field, value, requirement, line } => {
+                SceneError::OutOfRange { file, field, value, requirement, line: Line(line) }
+            }
+            ParamError::Missing { item, field, line } => {
+                SceneError::MissingField { file, item, field, line: Line(line) }
+            }
+            ParamError::NotAllowed { item, field, allowed, line } => {
+                SceneError::FieldNotAllowed { file, item, field, allowed, line: Line(line) }
+            }
+            ParamError::Conflict { item, first, second, line } => {
+                SceneError::Conflict { file, item, first, second, line: Line(line) }
+            }
+            ParamError::Reader(error) => match error.downcast::<SceneError>() {
+                Ok(error) => *error,
+                Err(other) => SceneError::Toml { file, message: other.to_string() },
+            },
+        }
+    }
+}

@@ -130,11 +130,17 @@ fn environment_maps_are_checked_when_read() {
     let scene = load(&format!("{light}file = \"{}\"\nmapping = \"probe\"\n", good.display()));
     assert!(matches!(
         scene.lights[0],
-        LightDesc::Environment(Environment { mapping: embray::scene::EnvironmentMapping::Probe, .. })
+        LightDesc::Environment(Environment {
+            mapping: embray::scene::EnvironmentMapping::Probe,
+            ..
+        })
     ));
     let scene = load(&format!("{light}file = \"{}\"\n", good.display()));
     match &scene.lights[0] {
-        LightDesc::Environment(Environment { map: embray::scene::EnvironmentMap::Image(image), .. }) => {
+        LightDesc::Environment(Environment {
+            map: embray::scene::EnvironmentMap::Image(image),
+            ..
+        }) => {
             assert_eq!((image.width, image.height, image.hdr), (3, 2, true));
         }
         other => panic!("an environment light, got {other:?}"),

@@ -76,7 +76,13 @@ fn a_mirror_sphere_reflects_the_map_where_the_course_mapping_puts_it() {
     let (cameras, _) = ceng795::load_with_warnings(&path).unwrap();
     let scene = &cameras[0].scene;
     match &scene.lights[..] {
-        [LightDesc::Environment(Environment { map: EnvironmentMap::Image(image), scale, mapping })] => {
+        [
+            LightDesc::Environment(Environment {
+                map: EnvironmentMap::Image(image),
+                scale,
+                mapping,
+            }),
+        ] => {
             assert_eq!(*mapping, embray::scene::EnvironmentMapping::LatLong);
             assert_eq!((image.width, image.height, image.hdr), (9, 5, true));
             assert_eq!(*scale, Vec3::ONE);
@@ -111,7 +117,10 @@ fn a_light_probe_is_read_as_an_angular_map() {
     let scene = &cameras[0].scene;
     assert!(matches!(
         &scene.lights[..],
-        [LightDesc::Environment(Environment { mapping: embray::scene::EnvironmentMapping::Probe, .. })]
+        [LightDesc::Environment(Environment {
+            mapping: embray::scene::EnvironmentMapping::Probe,
+            ..
+        })]
     ));
     for backend in BackendKind::compiled() {
         let film = render(scene, &course_options(scene, backend)).unwrap().film;

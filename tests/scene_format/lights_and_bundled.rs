@@ -17,7 +17,10 @@ fn new_light_types() {
     assert_eq!(
         scene.lights,
         [
-            LightDesc::Directional(Directional { direction: DVec3::NEG_Y, irradiance: Vec3::splat(3.0) }),
+            LightDesc::Directional(Directional {
+                direction: DVec3::NEG_Y,
+                irradiance: Vec3::splat(3.0)
+            }),
             LightDesc::Ambient(Ambient { radiance: Vec3::new(0.1, 0.2, 0.3) }),
         ]
     );

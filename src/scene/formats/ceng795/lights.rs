@@ -8,10 +8,14 @@
 
 use super::textures::TextureMaps;
 use super::xml::Xml;
+use super::xml::describe;
 use crate::excerpt::excerpt;
-use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc, Spot, Point, Environment, Directional, Area, Ambient};
+use crate::params::{Entry, ParamError, Params, Resources, Value};
+use crate::scene::desc::{Environment, EnvironmentMap, EnvironmentMapping, LightDesc};
 use crate::scene::error::SceneError;
+use crate::texels::TextureImage;
 use roxmltree::Node;
+use std::sync::Arc;
 
 pub(super) fn lights<'a, 'i: 'a>(
     x: &Xml,
@@ -57,66 +61,69 @@ pub(super) fn lights<'a, 'i: 'a>(
                         mapping,
                     })
                 }
-                "AmbientLight" => LightDesc::Ambient(Ambient { radiance: x.color(node)? }),
-                "PointLight" => {
-                    x.check_children(node, &["Position", "Intensity"])?;
-                    LightDesc::Point(Point {
-                        position: x.vec3(x.required(node, "Position")?)?,
-                        intensity: x.color(x.required(node, "Intensity")?)?,
-                    })
-                }
-                "DirectionalLight" => {
-                    x.check_children(node, &["Direction", "Radiance"])?;
-                    LightDesc::Directional(Directional {
-                        direction: direction(x, x.required(node, "Direction")?)?,
-                        irradiance: x.color(x.required(node, "Radiance")?)?,
-                    })
-                }
-                "SpotLight" => {
-                    let children =
-                        ["Position", "Direction", "Intensity", "CoverageAngle", "FalloffAngle"];
-                    x.check_children(node, &children)?;
-                    let coverage_node = x.required(node, "CoverageAngle")?;
-                    let coverage = x.scalar(coverage_node)?;
-                    if !(coverage > 0.0 && coverage <= 360.0) {
-                        return Err(x.out_of_range(coverage_node, coverage, "degrees in (0, 360]"));
-                    }
-                    let falloff_node = x.required(node, "FalloffAngle")?;
-                    let falloff = x.scalar(falloff_node)?;
-                    if !(falloff >= 0.0 && falloff <= coverage) {
-                        let requirement = "degrees in [0, CoverageAngle]";
-                        return Err(x.out_of_range(falloff_node, falloff, requirement));
-                    }
-                    LightDesc::Spot(Spot {
-                        position: x.vec3(x.required(node, "Position")?)?,
-                        direction: direction(x, x.required(node, "Direction")?)?,
-                        intensity: x.color(x.required(node, "Intensity")?)?,
-                        coverage_degrees: coverage,
-                        falloff_degrees: falloff,
-                    })
-                }
-                _ => {
-                    x.check_children(node, &["Position", "Normal", "Size", "Radiance"])?;
-                    let normal = direction(x, x.required(node, "Normal")?)?;
-                    let size_node = x.required(node, "Size")?;
-                    let size = x.scalar(size_node)?;
-                    if !(size > 0.0) {
-                        return Err(x.out_of_range(size_node, size, "> 0"));
-                    }
-                    LightDesc::Area(Area {
-                        center: x.vec3(x.required(node, "Position")?)?,
-                        normal,
-                        size,
-                        radiance: x.color(x.required(node, "Radiance")?)?,
-                    })
-                }
+                "AmbientLight" => course_light(x, node, "ambient", &[(".", "radiance")])?,
+                "PointLight" => course_light(x, node, "point", POINT)?,
+                "DirectionalLight" => course_light(x, node, "directional", DIRECTIONAL)?,
+                "SpotLight" => course_light(x, node, "spot", SPOT)?,
+                _ => course_light(x, node, "area", AREA)?,
             });
         }
     }
     Ok(out)
 }
 
-/// A unit direction from a `Direction` element (refused when zero).
-fn direction(x: &Xml, node: Node) -> Result<glam::DVec3, SceneError> {
-    x.vec3(node)?.try_normalize().ok_or_else(|| x.out_of_range(node, "0 0 0", "a non-zero vector"))
+/// The course's names of each kind's parameters (the kind's own name second).
+const POINT: &[(&str, &str)] = &[("Position", "position"), ("Intensity", "intensity")];
+const DIRECTIONAL: &[(&str, &str)] = &[("Direction", "direction"), ("Radiance", "irradiance")];
+const SPOT: &[(&str, &str)] = &[
+    ("Position", "position"),
+    ("Direction", "direction"),
+    ("Intensity", "intensity"),
+    ("CoverageAngle", "coverage_angle"),
+    ("FalloffAngle", "falloff_angle"),
+];
+const AREA: &[(&str, &str)] =
+    &[("Position", "center"), ("Normal", "normal"), ("Size", "size"), ("Radiance", "radiance")];
+
+/// The light of kind `kind` from the child elements of `node` named in `names` (`.`: the
+/// element's own text).
+fn course_light(
+    x: &Xml,
+    node: Node,
+    kind: &str,
+    names: &'static [(&'static str, &'static str)],
+) -> Result<LightDesc, SceneError> {
+    let children: Vec<&str> =
+        names.iter().map(|(course, _)| *course).filter(|c| *c != ".").collect();
+    x.check_children(node, &children)?;
+    let mut entries = Vec::new();
+    for (course, name) in names {
+        let element = if *course == "." { Some(node) } else { x.child(node, course)? };
+        if let Some(element) = element {
+            entries.push(Entry {
+                name: (*name).to_owned(),
+                value: Value::Numbers(x.floats(element)?),
+                field: describe(element),
+                line: x.line(element).0,
+                indexed: false,
+            });
+        }
+    }
+    let params = Params::new(describe(node), x.line(node).0, entries).with_renames(names);
+    let read = LightDesc::read(kind, &params, &NoFiles).expect("a kind of light");
+    read.map_err(|e| SceneError::from_param(x.file, e))
+}
+
+/// Course lights name no files (the environment's image is a texture, looked up by id).
+struct NoFiles;
+
+impl Resources for NoFiles {
+    fn radiance_image(
+        &self,
+        p: &Params,
+        name: &str,
+        _: bool,
+    ) -> Result<Arc<TextureImage>, ParamError> {
+        Err(p.out_of_range(name, "given", "an image the course names by ImageId"))
+    }
 }

@@ -20,7 +20,7 @@ mod transforms;
 mod vertex_data;
 mod xml;
 
-use crate::scene::desc::{IntegratorKind, LightDesc, RenderSettings, SceneDesc};
+use crate::scene::desc::{IntegratorKind, RenderSettings, SceneDesc};
 use crate::scene::error::{Line, SceneError};
 use glam::Vec3;
 use roxmltree::{Document, Node};
@@ -210,18 +210,9 @@ pub fn load_str_with_warnings(
                     lights: match spec.path_tracing {
                         // No path can hit a point or area light: without next-event
                         // estimation they light nothing.
-                        Some(mode) if !mode.next_event => lights
-                            .iter()
-                            .filter(|l| {
-                                !matches!(
-                                    l,
-                                    LightDesc::Point(_)
-                                        | LightDesc::Spot(_)
-                                        | LightDesc::Area(_)
-                                )
-                            })
-                            .cloned()
-                            .collect(),
+                        Some(mode) if !mode.next_event => {
+                            lights.iter().filter(|l| !l.only_sampled()).cloned().collect()
+                        }
                         _ => lights.clone(),
                     },
                 },

@@ -1,65 +1,80 @@
-//! `[[lights]]` entries into `LightDesc`s (and emissive objects for quad, sphere and mesh
-//! lights).
+//! `[[lights]]` entries: a kind of `light::kinds` reads its own parameters from the entry's
+//! table (any `type` it names); quad, sphere and mesh lights are emissive objects.
 
 use super::builder::{Builder, dvec, mesh_ref};
 use super::repeat::Placement;
-use crate::scene::desc::{EnvironmentMap, EnvironmentMapping, LightDesc, Spot, Point, Environment, Directional, Area, Ambient, ShapeDesc};
+use crate::light::LightDesc;
+use crate::params::{Entry, ParamError, Params, Resources, Value};
+use crate::scene::desc::ShapeDesc;
 use crate::scene::error::SceneError;
-use crate::scene::formats::toml::format::{
-    EnvironmentMappingToml, ImageEncodingToml, LightKind, LightToml,
-};
+use crate::scene::formats::toml::format::{EmissiveShapeKind, EmissiveShapeToml};
 use crate::scene::formats::toml::source_map::FieldPath;
-use crate::scene::formats::toml::transform_list::fmt_vec;
 use crate::scene::formats::toml::validate::Ctx;
 use crate::scene::shapes::quad_mesh;
 use crate::scene::texture_image::{ImageRef, load_radiance};
+use crate::texels::TextureImage;
 use std::sync::Arc;
 
 impl Builder<'_> {
-    pub(super) fn light(&mut self, i: usize, l: &LightToml) -> Result<(), SceneError> {
+    pub(super) fn light(&mut self, i: usize, table: &toml::Table) -> Result<(), SceneError> {
+        let ctx = self.ctx;
         let path = FieldPath::root("lights").index(i);
+        let name = match table.get("type") {
+            Some(toml::Value::String(name)) => name.as_str(),
+            Some(other) => return Err(ctx.out_of_range(&path.key("type"), other, "a string")),
+            None => return Err(ctx.missing(&path, &path.to_string(), "type")),
+        };
+        if EmissiveShapeKind::NAMES.contains(&name) {
+            let light = toml::Value::Table(table.clone()).try_into().map_err(|e| {
+                let message = format!("{path}: {e}{}", ctx.line(&path));
+                SceneError::Toml { file: ctx.file.to_path_buf(), message }
+            })?;
+            return self.emissive_shape(&path, &light);
+        }
+        let Some(label) = LightDesc::label_of(name) else {
+            let kinds = [LightDesc::NAMES, &EmissiveShapeKind::NAMES[..]].concat();
+            let requirement = format!("one of {}", kinds.join(", "));
+            return Err(ctx.out_of_range(&path.key("type"), format!("{name:?}"), &requirement));
+        };
+        let params = params(ctx, &path, format!("{path} ({label})"), table);
+        let from_param = |e| SceneError::from_param(ctx.file, e);
+        let light = LightDesc::read(name, &params, self)
+            .expect("a kind with a label")
+            .map_err(from_param)?;
+        if light.one_per_scene() && self.lights.iter().any(|l| l.name() == name) {
+            let requirement = format!("at most one {label} per scene");
+            return Err(ctx.out_of_range(&path.key("type"), name, &requirement));
+        }
+        self.lights.push(light);
+        Ok(())
+    }
+
+    /// A quad, sphere or mesh light: an object with an emissive material.
+    fn emissive_shape(
+        &mut self,
+        path: &FieldPath,
+        l: &EmissiveShapeToml,
+    ) -> Result<(), SceneError> {
         let (kind, allowed): (&str, &[&str]) = match l.kind {
-            LightKind::Point => ("point light", &["type", "position", "intensity"]),
-            LightKind::Spot => (
-                "spot light",
-                &["type", "position", "direction", "intensity", "coverage_angle", "falloff_angle"],
-            ),
-            LightKind::Quad => {
+            EmissiveShapeKind::Quad => {
                 ("quad light", &["type", "corner", "u", "v", "emission", "transform"])
             }
-            LightKind::Directional => ("directional light", &["type", "direction", "irradiance"]),
-            LightKind::Ambient => ("ambient light", &["type", "radiance"]),
-            LightKind::Sphere => {
+            EmissiveShapeKind::Sphere => {
                 ("sphere light", &["type", "center", "radius", "emission", "transform"])
             }
-            LightKind::Mesh => ("mesh light", &["type", "file", "emission", "transform"]),
-            LightKind::Area => ("area light", &["type", "center", "normal", "size", "radiance"]),
-            LightKind::Environment => {
-                ("environment light", &["type", "file", "radiance", "scale", "encoding", "mapping"])
-            }
+            EmissiveShapeKind::Mesh => ("mesh light", &["type", "file", "emission", "transform"]),
         };
+        let path = path.clone();
         let item = format!("{path} ({kind})");
         let present = [
-            ("position", l.position.is_some()),
-            ("intensity", l.intensity.is_some()),
             ("corner", l.corner.is_some()),
             ("u", l.u.is_some()),
             ("v", l.v.is_some()),
             ("emission", l.emission.is_some()),
-            ("direction", l.direction.is_some()),
-            ("irradiance", l.irradiance.is_some()),
-            ("radiance", l.radiance.is_some()),
             ("center", l.center.is_some()),
             ("radius", l.radius.is_some()),
             ("file", l.file.is_some()),
             ("transform", l.transform.is_some()),
-            ("normal", l.normal.is_some()),
-            ("size", l.size.is_some()),
-            ("coverage_angle", l.coverage_angle.is_some()),
-            ("falloff_angle", l.falloff_angle.is_some()),
-            ("scale", l.scale.is_some()),
-            ("encoding", l.encoding.is_some()),
-            ("mapping", l.mapping.is_some()),
         ];
         let ctx = self.ctx;
         ctx.check_fields(&path, &item, &present, allowed)?;
@@ -68,93 +83,7 @@ impl Builder<'_> {
             ctx.color(&path.key("emission"), emission, false)
         };
         match l.kind {
-            LightKind::Point => {
-                let position = ctx.required(&path, &item, "position", l.position)?;
-                let intensity = ctx.required(&path, &item, "intensity", l.intensity)?;
-                let intensity = ctx.color(&path.key("intensity"), intensity, false)?;
-                self.lights.push(LightDesc::Point(Point { position: dvec(position), intensity }));
-            }
-            LightKind::Spot => {
-                let position = ctx.required(&path, &item, "position", l.position)?;
-                let intensity = ctx.required(&path, &item, "intensity", l.intensity)?;
-                let intensity = ctx.color(&path.key("intensity"), intensity, false)?;
-                let direction = ctx.required(&path, &item, "direction", l.direction)?;
-                let field = path.key("direction");
-                let direction = dvec(direction).try_normalize().ok_or_else(|| {
-                    ctx.out_of_range(&field, fmt_vec(&direction), "a non-zero vector")
-                })?;
-                let coverage = ctx.required(&path, &item, "coverage_angle", l.coverage_angle)?;
-                let falloff = ctx.required(&path, &item, "falloff_angle", l.falloff_angle)?;
-                let coverage_field = path.key("coverage_angle");
-                ctx.require(
-                    coverage > 0.0 && coverage <= 360.0,
-                    &coverage_field,
-                    coverage,
-                    "an angle in degrees, > 0 and <= 360",
-                )?;
-                ctx.require(
-                    falloff >= 0.0 && falloff <= coverage,
-                    &path.key("falloff_angle"),
-                    falloff,
-                    "an angle in degrees, >= 0 and <= coverage_angle",
-                )?;
-                self.lights.push(LightDesc::Spot(Spot {
-                    position: dvec(position),
-                    direction,
-                    intensity,
-                    coverage_degrees: coverage,
-                    falloff_degrees: falloff,
-                }));
-            }
-            LightKind::Directional => {
-                let direction = ctx.required(&path, &item, "direction", l.direction)?;
-                let field = path.key("direction");
-                let unit = dvec(direction).try_normalize().ok_or_else(|| {
-                    ctx.out_of_range(&field, fmt_vec(&direction), "a non-zero vector")
-                })?;
-                let irradiance = ctx.required(&path, &item, "irradiance", l.irradiance)?;
-                let irradiance = ctx.color(&path.key("irradiance"), irradiance, false)?;
-                self.lights.push(LightDesc::Directional(Directional { direction: unit, irradiance }));
-            }
-            LightKind::Ambient => {
-                let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
-                let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
-                self.lights.push(LightDesc::Ambient(Ambient { radiance }));
-            }
-            LightKind::Area => {
-                let center = ctx.required(&path, &item, "center", l.center)?;
-                let normal = ctx.required(&path, &item, "normal", l.normal)?;
-                let field = path.key("normal");
-                let normal = dvec(normal).try_normalize().ok_or_else(|| {
-                    ctx.out_of_range(&field, fmt_vec(&normal), "a non-zero vector")
-                })?;
-                let size = ctx.required(&path, &item, "size", l.size)?;
-                let size = ctx.positive(&path.key("size"), size)?;
-                let radiance = ctx.required(&path, &item, "radiance", l.radiance)?;
-                let radiance = ctx.color(&path.key("radiance"), radiance, false)?;
-                self.lights.push(LightDesc::Area(Area { center: dvec(center), normal, size, radiance }));
-            }
-            LightKind::Environment => {
-                let map = self.environment_map(&path, &item, l)?;
-                let scale = match l.scale {
-                    Some(scale) => ctx.color(&path.key("scale"), scale, false)?,
-                    None => glam::Vec3::ONE,
-                };
-                if self.lights.iter().any(|l| matches!(l, LightDesc::Environment(_))) {
-                    let requirement = "at most one environment light per scene";
-                    return Err(ctx.out_of_range(&path.key("type"), "environment", requirement));
-                }
-                let mapping = match l.mapping {
-                    None | Some(EnvironmentMappingToml::Latlong) => EnvironmentMapping::LatLong,
-                    Some(EnvironmentMappingToml::Probe) => EnvironmentMapping::Probe,
-                };
-                if l.mapping.is_some() && l.file.is_none() {
-                    let requirement = "given only with file";
-                    return Err(ctx.out_of_range(&path.key("mapping"), "given", requirement));
-                }
-                self.lights.push(LightDesc::Environment(Environment { map, scale, mapping }));
-            }
-            LightKind::Quad => {
+            EmissiveShapeKind::Quad => {
                 let corner = ctx.required(&path, &item, "corner", l.corner)?;
                 let u = ctx.required(&path, &item, "u", l.u)?;
                 let v = ctx.required(&path, &item, "v", l.v)?;
@@ -166,7 +95,7 @@ impl Builder<'_> {
                 let shape = ShapeDesc::Mesh(Arc::new(mesh));
                 self.push(item, shape, material, Placement::fixed(world_from_object), None);
             }
-            LightKind::Sphere => {
+            EmissiveShapeKind::Sphere => {
                 let center = ctx.required(&path, &item, "center", l.center)?;
                 let radius = ctx.required(&path, &item, "radius", l.radius)?;
                 let radius = ctx.positive(&path.key("radius"), radius)?;
@@ -176,7 +105,7 @@ impl Builder<'_> {
                 let shape = ShapeDesc::Sphere { center: dvec(center), radius };
                 self.push(item, shape, material, Placement::fixed(world_from_object), None);
             }
-            LightKind::Mesh => {
+            EmissiveShapeKind::Mesh => {
                 let file = ctx.required(&path, &item, "file", l.file.as_deref())?;
                 let emission = emission(ctx)?;
                 let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
@@ -195,40 +124,57 @@ impl Builder<'_> {
         }
         Ok(())
     }
+}
 
-    /// An environment light's `file` or `radiance` (exactly one of them).
-    fn environment_map(
+/// The entry's table as a kind's parameters, each with its field path and line.
+fn params(ctx: &Ctx, path: &FieldPath, item: String, table: &toml::Table) -> Params {
+    let entries = table
+        .iter()
+        .map(|(name, value)| {
+            let field = path.key(name);
+            Entry {
+                name: name.clone(),
+                value: param_value(value),
+                line: ctx.line(&field).0,
+                field: field.to_string(),
+                indexed: true,
+            }
+        })
+        .collect();
+    Params::new(item, ctx.line(path).0, entries)
+}
+
+fn param_value(value: &toml::Value) -> Value {
+    let number = |v: &toml::Value| match v {
+        toml::Value::Integer(i) => Some(*i as f64),
+        toml::Value::Float(x) => Some(*x),
+        _ => None,
+    };
+    match value {
+        toml::Value::String(text) => Value::Text(text.clone()),
+        toml::Value::Boolean(b) => Value::Bool(*b),
+        toml::Value::Array(items) => match items.iter().map(number).collect::<Option<Vec<_>>>() {
+            Some(numbers) => Value::Numbers(numbers),
+            None => Value::Other(value.to_string()),
+        },
+        v => number(v).map_or_else(|| Value::Other(v.to_string()), Value::Number),
+    }
+}
+
+impl Resources for Builder<'_> {
+    fn radiance_image(
         &self,
-        path: &FieldPath,
-        item: &str,
-        l: &LightToml,
-    ) -> Result<EnvironmentMap, SceneError> {
-        let ctx = self.ctx;
-        match (&l.file, l.radiance) {
-            (Some(_), Some(_)) => Err(ctx.conflict(path, item, "file", "radiance")),
-            (None, None) => Err(ctx.missing(path, item, "file (or radiance)")),
-            (None, Some(radiance)) => {
-                if l.encoding.is_some() {
-                    let requirement = "given only with file";
-                    return Err(ctx.out_of_range(&path.key("encoding"), "given", requirement));
-                }
-                Ok(EnvironmentMap::Constant(ctx.color(&path.key("radiance"), radiance, false)?))
-            }
-            (Some(file), None) => {
-                let at = ImageRef {
-                    image: self.base_dir.join(file),
-                    scene: ctx.file,
-                    item: path.key("file").to_string(),
-                    line: ctx.line(&path.key("file")),
-                };
-                let srgb = l.encoding.unwrap_or(ImageEncodingToml::Srgb) == ImageEncodingToml::Srgb;
-                let image = load_radiance(&at, srgb)?;
-                if image.hdr && l.encoding.is_some() {
-                    let requirement = "given only for PNG and JPEG files (EXR values are linear)";
-                    return Err(ctx.out_of_range(&path.key("encoding"), "given", requirement));
-                }
-                Ok(EnvironmentMap::Image(image))
-            }
-        }
+        params: &Params,
+        name: &str,
+        srgb: bool,
+    ) -> Result<Arc<TextureImage>, ParamError> {
+        let file = params.opt_text(name)?.ok_or_else(|| params.missing(name))?;
+        let at = ImageRef {
+            image: self.base_dir.join(file),
+            scene: self.ctx.file,
+            item: params.field(name),
+            line: crate::scene::error::Line(params.line(name)),
+        };
+        load_radiance(&at, srgb).map_err(|e| ParamError::Reader(Box::new(e)))
     }
 }

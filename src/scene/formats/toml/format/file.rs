@@ -1,11 +1,11 @@
 //! The scene file and its camera, render and tone-mapping tables.
 
-use super::lights::LightToml;
 use super::materials::{MaterialToml, TextureToml};
 use super::objects::ObjectToml;
 use super::values::Vec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;
+use toml::Table;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -17,7 +17,7 @@ pub(crate) struct SceneFile {
     #[serde(default)]
     pub objects: Vec<ObjectToml>,
     #[serde(default)]
-    pub lights: Vec<LightToml>,
+    pub lights: Vec<Table>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -10,7 +10,7 @@
 //! colour, a texture mapped through a non-identity transform.
 
 use crate::scene::desc::IntegratorKind;
-use crate::scene::desc::{EnvironmentMap, LensShape, LightDesc, Spot, Point, Environment, Directional, Area, Ambient, MeshData, SceneDesc, ShapeDesc};
+use crate::scene::desc::{LensShape, MeshData, SceneDesc, ShapeDesc};
 use glam::DAffine3;
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -130,66 +130,7 @@ impl TomlWriter {
         }
         for light in &scene.lights {
             out += "\n[[lights]]\n";
-            let _ = match light {
-                LightDesc::Point(Point { position, intensity }) => writeln!(
-                    out,
-                    "type = \"point\"\nposition = {}\nintensity = {}",
-                    v3(*position),
-                    c3(*intensity)
-                ),
-                LightDesc::Spot(Spot {
-                    position,
-                    direction,
-                    intensity,
-                    coverage_degrees,
-                    falloff_degrees,
-                }) => writeln!(
-                    out,
-                    "type = \"spot\"\nposition = {}\ndirection = {}\nintensity = {}\n\
-                     coverage_angle = {coverage_degrees:?}\nfalloff_angle = {falloff_degrees:?}",
-                    v3(*position),
-                    v3(*direction),
-                    c3(*intensity)
-                ),
-                LightDesc::Directional(Directional { direction, irradiance }) => writeln!(
-                    out,
-                    "type = \"directional\"\ndirection = {}\nirradiance = {}",
-                    v3(*direction),
-                    c3(*irradiance)
-                ),
-                LightDesc::Ambient(Ambient { radiance }) => {
-                    writeln!(out, "type = \"ambient\"\nradiance = {}", c3(*radiance))
-                }
-                LightDesc::Area(Area { center, normal, size, radiance }) => writeln!(
-                    out,
-                    "type = \"area\"\ncenter = {}\nnormal = {}\nsize = {}\nradiance = {}",
-                    v3(*center),
-                    v3(*normal),
-                    f(*size),
-                    c3(*radiance)
-                ),
-                LightDesc::Environment(Environment { map, scale, mapping }) => {
-                    let source = match map {
-                        EnvironmentMap::Constant(radiance) => {
-                            format!("radiance = {}", c3(*radiance))
-                        }
-                        EnvironmentMap::Image(image) => {
-                            let file = std::path::absolute(&image.file)
-                                .unwrap_or_else(|_| image.file.clone());
-                            let encoding = match (image.hdr, image.srgb_decoded) {
-                                (true, _) => "",
-                                (false, true) => "\nencoding = \"srgb\"",
-                                (false, false) => "\nencoding = \"raw\"",
-                            };
-                            format!(
-                                "file = {}{encoding}\nmapping = \"{mapping}\"",
-                                quoted(&file.to_string_lossy())
-                            )
-                        }
-                    };
-                    writeln!(out, "type = \"environment\"\n{source}\nscale = {}", c3(*scale))
-                }
-            };
+            light.write(&mut values::TomlLines(&mut out));
         }
         Ok(out)
     }

@@ -38,3 +38,29 @@ pub(super) fn matrix(m: &DAffine3) -> String {
         .collect();
     format!("[{{ matrix = [{}, [0.0, 0.0, 0.0, 1.0]] }}]", rows.join(", "))
 }
+
+/// Parameters written as `key = value` lines.
+pub(super) struct TomlLines<'a>(pub &'a mut String);
+
+impl crate::params::ParamSink for TomlLines<'_> {
+    fn text(&mut self, name: &str, value: &str) {
+        *self.0 += &format!("{name} = {}\n", quoted(value));
+    }
+
+    fn number(&mut self, name: &str, value: f64) {
+        *self.0 += &format!("{name} = {}\n", f(value));
+    }
+
+    fn vec3(&mut self, name: &str, value: DVec3) {
+        *self.0 += &format!("{name} = {}\n", v3(value));
+    }
+
+    fn color(&mut self, name: &str, value: Vec3) {
+        *self.0 += &format!("{name} = {}\n", c3(value));
+    }
+
+    fn path(&mut self, name: &str, value: &std::path::Path) {
+        let absolute = std::path::absolute(value).unwrap_or_else(|_| value.to_path_buf());
+        self.text(name, &absolute.to_string_lossy());
+    }
+}
