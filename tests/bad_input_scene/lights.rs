@@ -146,3 +146,28 @@ fn environment_maps_are_checked_when_read() {
         other => panic!("an environment light, got {other:?}"),
     }
 }
+
+#[test]
+fn a_light_field_of_the_wrong_type_names_the_field_and_line() {
+    let light = format!("{CAMERA}[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\n");
+    let err = load_err(&format!("{light}intensity = \"bright\"\n"));
+    assert_contains(
+        &err,
+        &["scene.toml: lights[0].intensity is \"bright\", but must be 3 numbers (line 9)"],
+    );
+    let err = load_err(&format!("{light}intensity = [1, 1]\n"));
+    assert_contains(&err, &["lights[0].intensity is [1, 1], but must be 3 numbers (line 9)"]);
+}
+
+#[test]
+fn an_unknown_light_type_lists_the_kinds() {
+    let err = load_err(&format!("{CAMERA}[[lights]]\ntype = \"laser\"\n"));
+    assert_contains(
+        &err,
+        &[
+            "lights[0].type is \"laser\", but must be one of point, spot, directional, ambient, area, environment, quad, sphere, mesh (line 7)",
+        ],
+    );
+    let err = load_err(&format!("{CAMERA}[[lights]]\nposition = [0, 1, 0]\n"));
+    assert_contains(&err, &["lights[0] is missing the field `type`"]);
+}

@@ -404,4 +404,13 @@ fn hw5_directional_and_spot_lights_import_and_convert() {
     let wider = lights.replace("<FalloffAngle>8", "<FalloffAngle>12");
     let message = load_text(&with_lights(scene_xml(TRIANGLE), &wider)).unwrap_err().to_string();
     assert!(message.contains("FalloffAngle") && message.contains("12"), "{message}");
+    assert!(
+        message.contains("must be an angle in degrees, >= 0 and <= CoverageAngle"),
+        "{message}"
+    );
+    // A missing parameter is named as the course writes it, not by the kind's own name.
+    let no_position = lights.replace("<Position>", "<!--").replace("</Position>", "-->");
+    let message = load_text(&with_lights(scene_xml(TRIANGLE), &no_position)).unwrap_err();
+    let message = message.to_string();
+    assert!(message.contains("is missing the field `Position`"), "{message}");
 }

@@ -1,6 +1,5 @@
-//! Lights: the model lists the kinds, each of which is one file in `light::kinds`.
+//! Lights: the model lists the kinds (`LightDesc`), each of which is one file in
+//! `light::kinds`.
 
 pub use crate::light::EnvironmentMapping;
-pub use crate::light::kinds::{
-    Ambient, Area, Directional, Environment, EnvironmentMap, LightDesc, Point, Spot,
-};
+pub use crate::light::kinds::*;
