@@ -94,6 +94,80 @@ fn build_options_are_reported_and_keep_the_image() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The files in `dir`, sorted, leaving out the scene.
+fn written(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n != "scene.toml")
+        .collect();
+    names.sort();
+    names
+}
+
+/// `-o` writes the format its extension names and nothing else beside a display image;
+/// `--png` alone writes only that image; with neither, the images are named after the scene.
+#[test]
+fn outputs_follow_their_extensions_and_the_scene_name() {
+    let dir = temp_dir("formats");
+    std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
+    let render = |args: &[&str]| {
+        let all = [&["render", "scene.toml", "--spp", "1", "-q"][..], args].concat();
+        let out = embray(&all, &dir);
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        let names = written(&dir);
+        for name in &names {
+            std::fs::remove_file(dir.join(name)).unwrap();
+        }
+        names
+    };
+    assert_eq!(render(&[]), ["scene.exr", "scene.png"]);
+    assert_eq!(render(&["-o", "a.exr"]), ["a.exr", "a.png"]);
+    assert_eq!(render(&["--png", "only.png"]), ["only.png"]);
+    std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
+    let out = embray(&["render", "scene.toml", "--spp", "1", "-q", "-o", "view.png"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let png = image::open(dir.join("view.png")).unwrap();
+    assert_eq!(
+        image::ImageFormat::from_path(dir.join("view.png")).unwrap(),
+        image::ImageFormat::Png
+    );
+    assert_eq!((png.width(), png.height()), (16, 12));
+    let out = embray(&["render", "scene.toml", "--spp", "1", "-q", "-o", "view.JPG"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let bytes = std::fs::read(dir.join("view.JPG")).unwrap();
+    assert_eq!(bytes[..3], [0xFF, 0xD8, 0xFF], "a JPEG's signature");
+    let jpeg = image::load_from_memory_with_format(&bytes, image::ImageFormat::Jpeg).unwrap();
+    // The JPEG is the PNG's pixels, give or take compression.
+    let (a, b) = (png.to_rgb8(), jpeg.to_rgb8());
+    let mean_difference =
+        a.pixels().zip(b.pixels()).map(|(p, q)| p[1].abs_diff(q[1]) as f64).sum::<f64>()
+            / (16.0 * 12.0);
+    assert!(mean_difference < 4.0, "{mean_difference}");
+    assert_eq!(written(&dir), ["view.JPG", "view.png"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_output_extension_that_names_no_format_is_refused() {
+    let dir = temp_dir("bad-extension");
+    std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
+    let refuse = |args: &[&str], expected: &[&str]| {
+        let out = embray(&[&["render", "scene.toml", "-q"][..], args].concat(), &dir);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        for needle in expected {
+            assert!(stderr.contains(needle), "{args:?}: message lacks '{needle}': {stderr}");
+        }
+        assert_eq!(written(&dir), Vec::<String>::new(), "{args:?}: files written");
+    };
+    refuse(&["-o", "out.tif"], &["-o 'out.tif'", "'.tif'", ".exr, .png, .jpg or .jpeg"]);
+    refuse(&["-o", "out"], &["-o 'out' has no extension"]);
+    refuse(&["-o", "out.png", "--png", "out2.png"], &["-o 'out.png' is the display image already"]);
+    refuse(&["--png", "out.exr"], &["--png 'out.exr' names an EXR"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn render_without_a_scene_draws_the_default_cornell_box() {
     let dir = temp_dir("default");

@@ -49,7 +49,7 @@ fn a_broken_table_is_refused_with_its_line_before_rendering() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("bad.cube, line 3: a table entry: 'one' is not a number"), "{stderr}");
-    assert!(!dir.join("render.exr").exists() && !dir.join("render.png").exists());
+    assert!(!dir.join("scene.exr").exists() && !dir.join("scene.png").exists());
     let out =
         embray(&["render", "scene.toml", "-q", "--lut", "scene.toml", "-o", "scene.toml"], &dir);
     assert!(!out.status.success());

@@ -9,17 +9,19 @@ use embray::distributed::Part;
 use embray::excerpt::excerpt;
 use embray::output::stats::{StatsReport, stats_table};
 use embray::output::{
-    OutputPlan, OutputSet, Target, camera_outputs, encode_exr, encode_png_graded,
+    DisplayLook, ImageFormat, OutputPlan, OutputSet, Target, camera_outputs, encode_display,
+    encode_exr,
 };
 use embray::render::{RenderOptions, RenderOutput, render};
 use embray::scene::{SceneDesc, ceng795};
 use std::path::Path;
 
-/// One image of the run: the scene as its camera sees it and where its files go.
+/// One image of the run: the scene as its camera sees it and where its files go (the EXR,
+/// the display image, or both).
 struct Job {
     scene: SceneDesc,
-    exr: Target,
-    png: Target,
+    exr: Option<Target>,
+    display: Option<(Target, ImageFormat)>,
 }
 
 /// Renders the scene (every camera of a CENG795 file), then commits all the files together:
@@ -45,10 +47,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             }
             let scene = load_scene(args.scene.as_deref())?;
             plan.inputs_read(&embray::input_file::files_read());
-            let exr_what = if args.output.is_some() { "-o" } else { "the EXR (default)" };
-            let exr = plan.output(exr_what, &args.output_path(), false)?;
-            let png = png_target(args, &exr, &args.png_path(), false, &mut plan)?;
-            vec![Job { scene, exr, png }]
+            let (exr, display) = scene_outputs(args, &mut plan)?;
+            vec![Job { scene, exr, display }]
         }
     };
     let stats_json =
@@ -62,24 +62,27 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     for job in &jobs {
         let options = args.to_options(&job.scene)?;
         let output = render(&job.scene, &options)?;
-        files.write(&job.exr, |w| encode_exr(&output.film, w))?;
+        if let Some(exr) = &job.exr {
+            files.write(exr, |w| encode_exr(&output.film, w))?;
+        }
         let curve = args.tonemap.resolve(&job.scene.settings);
         let photographic = args.look.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
-        files.write(&job.png, |w| {
-            encode_png_graded(
-                &output.film,
-                curve,
-                args.look.exposure,
-                &photographic,
-                lut.as_ref(),
-                w,
-            )
-        })?;
+        let look = DisplayLook {
+            curve,
+            exposure: args.look.exposure,
+            photographic: &photographic,
+            lut: lut.as_ref(),
+        };
+        if let Some((target, format)) = &job.display {
+            files.write(target, |w| encode_display(&output.film, &look, *format, w))?;
+        }
         if let Some(target) = &stats_json {
             let report = StatsReport::new(&output, &options);
             files.write(target, |w| report.encode(w))?;
         }
-        let line = summary(&output, &options, &job.exr.path, &job.png.path);
+        let written: Vec<&Path> =
+            job.exr.iter().chain(job.display.iter().map(|(t, _)| t)).map(|t| &*t.path).collect();
+        let line = summary(&output, &options, &written);
         reports.push((line, stats_table(&output.stats, output.observes)));
     }
     files.commit()?;
@@ -92,6 +95,60 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Where a scene's images go. `-o` chooses the format by its extension: an EXR (with the
+/// PNG beside it, or `--png`), or only a PNG or JPEG; `--png` alone writes only that image;
+/// with neither, both are named after the scene (`cornell.exr`, `cornell.png`).
+fn scene_outputs(
+    args: &RenderArgs,
+    plan: &mut OutputPlan,
+) -> Result<(Option<Target>, Option<(Target, ImageFormat)>)> {
+    let display_format = |path: &Path| -> Result<ImageFormat> {
+        match ImageFormat::of_path(path, "--png").map_err(anyhow::Error::msg)? {
+            Some(ImageFormat::Exr) => {
+                bail!("--png '{}' names an EXR: the EXR is -o's", path.display())
+            }
+            Some(format) => Ok(format),
+            None => Ok(ImageFormat::Png),
+        }
+    };
+    let Some(output) = &args.output else {
+        if let Some(png) = &args.png {
+            let target = plan.output("--png", png, false)?;
+            return Ok((None, Some((target, display_format(png)?))));
+        }
+        let stem = args.scene.clone().unwrap_or_else(embray::bundled::default_scene);
+        let stem = stem.file_stem().map_or("render".into(), |s| s.to_string_lossy());
+        let exr = plan.output("the EXR (default)", Path::new(&format!("{stem}.exr")), false)?;
+        let png = Path::new(&format!("{stem}.png")).to_path_buf();
+        let png = plan.output("the PNG (default)", &png, false)?;
+        return Ok((Some(exr), Some((png, ImageFormat::Png))));
+    };
+    let target = plan.output("-o", output, false)?;
+    match ImageFormat::of_path(output, "-o").map_err(anyhow::Error::msg)? {
+        Some(format) if format.is_display() => {
+            if args.png.is_some() {
+                bail!(
+                    "-o '{}' is the display image already; --png would name a second one \
+                     (give -o an .exr to write both)",
+                    output.display()
+                );
+            }
+            Ok((None, Some((target, format))))
+        }
+        format => {
+            if format.is_none() && !target.is_stream() {
+                bail!(
+                    "-o '{}' has no extension: name the format (.exr, .png, .jpg or .jpeg)",
+                    output.display()
+                );
+            }
+            let png = png_target(args, &target, &args.png_path(), false, plan)?;
+            let format = display_format(&png.path)?;
+            Ok((Some(target), Some((png, format))))
+        }
+    }
 }
 
 /// The PNG target. A PNG named after a device EXR (`-o /dev/null` → `/dev/null.png`) would
@@ -158,16 +215,20 @@ fn ceng795_jobs(args: &RenderArgs, path: &Path, plan: &mut OutputPlan) -> Result
         } else {
             png_target(args, &exr, &png, new_folders, plan)?
         };
-        jobs.push(Job { scene: camera.scene, exr, png });
+        jobs.push(Job {
+            scene: camera.scene,
+            exr: Some(exr),
+            display: Some((png, ImageFormat::Png)),
+        });
     }
     Ok(jobs)
 }
 
-fn summary(output: &RenderOutput, options: &RenderOptions, exr: &Path, png: &Path) -> String {
+fn summary(output: &RenderOutput, options: &RenderOptions, written: &[&Path]) -> String {
     let seconds = output.render_time.as_secs_f64();
     let rays = output.stats.total_rays();
     format!(
-        "{}x{} @ {} spp ({} sampler) on {} ({}): build {:.1} ms, render {:.3} s, {} rays, {:.2} Mrays/s → {}, {}",
+        "{}x{} @ {} spp ({} sampler) on {} ({}): build {:.1} ms, render {:.3} s, {} rays, {:.2} Mrays/s → {}",
         output.film.width,
         output.film.height,
         options.spp,
@@ -178,7 +239,6 @@ fn summary(output: &RenderOutput, options: &RenderOptions, exr: &Path, png: &Pat
         seconds,
         rays,
         rays as f64 / seconds.max(1e-9) / 1e6,
-        exr.display(),
-        png.display(),
+        written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
     )
 }

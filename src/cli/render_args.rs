@@ -21,11 +21,14 @@ pub struct RenderArgs {
     /// Scene file: .toml (native) or .xml (CENG795, every camera rendered to its ImageName
     /// in --out-dir); the built-in Cornell box if omitted.
     pub scene: Option<PathBuf>,
-    /// EXR output (linear RGB, Z, N.X/N.Y/N.Z) [default: render.exr; for a one-camera .xml
-    /// scene: the ImageName with .exr in --out-dir].
+    /// Output image, its format by the extension: .exr (linear RGB, Z, N.X/N.Y/N.Z; the PNG
+    /// is written beside it), or .png / .jpg / .jpeg (that display image only) [default: the
+    /// scene's name with .exr and .png (cornell.exr); for a one-camera .xml scene: the
+    /// ImageName with .exr in --out-dir].
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// PNG output (tone-mapped sRGB); defaults to the EXR path with a .png extension.
+    /// Display image (tone-mapped sRGB; .png, or .jpg/.jpeg for JPEG); defaults to the EXR
+    /// path with a .png extension. Given without -o, only this image is written.
     #[arg(long)]
     pub png: Option<PathBuf>,
     /// Folder for the images of a CENG795 .xml scene: each camera's ImageName (PNG) and an
@@ -131,13 +134,10 @@ fn parse_offset(text: &str) -> Result<DVec3, String> {
 }
 
 impl RenderArgs {
-    /// The EXR path (`-o`, default render.exr).
-    pub fn output_path(&self) -> PathBuf {
-        self.output.clone().unwrap_or_else(|| PathBuf::from("render.exr"))
-    }
-
+    /// The display image's path: `--png`, else the EXR's (`-o`) with .png.
     pub fn png_path(&self) -> PathBuf {
-        self.png.clone().unwrap_or_else(|| self.output_path().with_extension("png"))
+        let exr = self.output.clone().unwrap_or_else(|| PathBuf::from("render.exr"));
+        self.png.clone().unwrap_or_else(|| exr.with_extension("png"))
     }
 
     pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {

@@ -8,6 +8,7 @@
 
 mod cleanup;
 mod exr;
+mod format;
 mod lut;
 mod naming;
 mod photographic;
@@ -20,11 +21,14 @@ mod transaction;
 
 pub use cleanup::remove_temp_files_on_signals;
 pub use exr::{encode_exr, write_exr};
+pub use format::ImageFormat;
 pub use lut::{Lut3d, LutError};
 pub use naming::{camera_outputs, image_name_key, image_name_problem};
 pub use photographic::Photographic;
 pub use plan::OutputPlan;
-pub use png::{encode_png, encode_png_graded, encode_rgb8, to_srgb8, write_png};
+pub use png::{
+    DisplayLook, encode_display, encode_png, encode_png_graded, encode_rgb8, to_srgb8, write_png,
+};
 pub use target::{NAME_MAX, Target};
 pub use tonemap::ToneMap;
 pub use transaction::{OutputSet, WriteSeek};

@@ -1,5 +1,6 @@
 //! The display PNG: exposure, a tone curve and sRGB encoding, 8 bits per channel.
 
+use super::format::{ImageFormat, encode_display_rgb8};
 use super::photographic::Photographic;
 use super::tonemap::{ToneMap, srgb_encode, tone_map};
 use super::{OutputError, WriteSeek, write_one};
@@ -77,11 +78,32 @@ pub fn encode_png_graded(
     lut: Option<&super::Lut3d>,
     sink: &mut dyn WriteSeek,
 ) -> std::io::Result<()> {
-    let mut pixels = to_srgb8(film, curve, exposure, photographic);
-    if let Some(lut) = lut {
+    let look = DisplayLook { curve, exposure, photographic, lut };
+    encode_display(film, &look, ImageFormat::Png, sink)
+}
+
+/// How a film becomes display pixels.
+pub struct DisplayLook<'a> {
+    pub curve: ToneMap,
+    /// In stops.
+    pub exposure: f32,
+    pub photographic: &'a Photographic,
+    /// Grades the display pixels last.
+    pub lut: Option<&'a super::Lut3d>,
+}
+
+/// Encodes `film` as a display image (PNG or JPEG) with `look`.
+pub fn encode_display(
+    film: &Film,
+    look: &DisplayLook,
+    format: ImageFormat,
+    sink: &mut dyn WriteSeek,
+) -> std::io::Result<()> {
+    let mut pixels = to_srgb8(film, look.curve, look.exposure, look.photographic);
+    if let Some(lut) = look.lut {
         lut.apply_rgb8(&mut pixels);
     }
-    encode_rgb8(&pixels, film.width, film.height, sink)
+    encode_display_rgb8(&pixels, film.width, film.height, format, sink)
 }
 
 /// Encodes 8-bit RGB pixels as PNG into `sink`.
@@ -91,13 +113,7 @@ pub fn encode_rgb8(
     height: u32,
     sink: &mut dyn WriteSeek,
 ) -> std::io::Result<()> {
-    use image::ImageEncoder;
-    image::codecs::png::PngEncoder::new(sink)
-        .write_image(pixels, width, height, image::ExtendedColorType::Rgb8)
-        .map_err(|e| match e {
-            image::ImageError::IoError(io) => io,
-            other => std::io::Error::other(other.to_string()),
-        })
+    encode_display_rgb8(pixels, width, height, ImageFormat::Png, sink)
 }
 
 #[cfg(test)]

@@ -290,7 +290,10 @@ fn hw3_effect_scenes_render_on_every_backend() {
 fn info_reports_the_hw3_effects() {
     let data = data_dir();
     let expected: &[(&str, &[&str])] = &[
-        ("cornellbox_area.xml", &["area lights", "lights: 1 ambient light, 1 area light, 0 emissive"]),
+        (
+            "cornellbox_area.xml",
+            &["area lights", "lights: 1 ambient light, 1 area light, 0 emissive"],
+        ),
         ("cornellbox_boxes_dynamic.xml", &["motion blur", "instancing", "mirror/glass"]),
         ("cornellbox_brushed_metal.xml", &["glossy"]),
         ("ellipsoids.xml", &["instancing"]),

@@ -4,14 +4,14 @@
 use crate::harness::{Scratch, refused_cases, refused_in, scene, with_mesh};
 
 refused_cases! {
-    png_default_equal_to_the_exr: ["s.toml" => scene("")], ["render", "s.toml", "-o", "out.png"]
-        => ["-o 'out.png'", "the PNG", "same file"];
+    png_default_equal_to_the_exr: ["s.toml" => scene("")], ["render", "s.toml", "-o", "out.exr", "--png", "out.exr"]
+        => ["-o 'out.exr'", "--png 'out.exr'", "same file"];
     exr_and_png_named_alike: ["s.toml" => scene("")], ["render", "s.toml", "-o", "x.exr", "--png", "x.exr"]
         => ["-o 'x.exr'", "--png 'x.exr'", "same file"];
     stats_json_over_the_exr: ["s.toml" => scene("")], ["render", "s.toml", "-o", "x.exr", "--stats-json", "x.exr"]
         => ["--stats-json 'x.exr'", "same file"];
-    stats_json_over_the_default_png: ["s.toml" => scene("")], ["render", "s.toml", "--stats-json", "render.png"]
-        => ["--stats-json 'render.png'", "same file"];
+    stats_json_over_the_default_png: ["s.toml" => scene("")], ["render", "s.toml", "--stats-json", "s.png"]
+        => ["--stats-json 's.png'", "same file"];
     exr_over_the_scene: ["s.toml" => scene("")], ["render", "s.toml", "-o", "s.toml"]
         => ["-o 's.toml'", "the scene 's.toml'", "never overwrites its inputs"];
     png_over_the_scene: ["s.toml" => scene("")], ["render", "s.toml", "--png", "s.toml"]

@@ -43,7 +43,7 @@ fn render_with_a_full_stderr_still_writes_its_images() {
     let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
     let output = scratch.command(&["render", "s.toml"]).stderr(full).output().unwrap();
     assert_eq!(output.status.code(), Some(0));
-    assert!(scratch.path("render.exr").is_file() && scratch.path("render.png").is_file());
+    assert!(scratch.path("s.exr").is_file() && scratch.path("s.png").is_file());
 }
 
 /// Starts a render whose PNG goes to a FIFO nobody reads: committing blocks on opening it

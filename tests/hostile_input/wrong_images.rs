@@ -13,7 +13,7 @@ fn a_blinding_emitter_is_white_not_black() {
     );
     scratch.write("s.toml", text);
     accepted_in(&scratch, &["render", "s.toml", "-q"]);
-    let png = image::open(scratch.path("render.png")).unwrap().to_rgb8();
+    let png = image::open(scratch.path("s.png")).unwrap().to_rgb8();
     let centre = png.get_pixel(4, 4).0;
     assert_eq!(centre, [255, 255, 255], "the emitter's pixel");
 }
