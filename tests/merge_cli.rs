@@ -104,6 +104,19 @@ fn parts_that_do_not_make_one_render_are_refused() {
     std::fs::write(dir.join("bad.exr"), bytes).unwrap();
     assert_refused(&dir, &["p0.exr", "bad.exr", "p2.exr"], &["bad.exr"]);
     assert_refused(&dir, &["p0.exr", "missing.exr"], &["cannot read part file 'missing.exr'"]);
+    // -o is the EXR: a display extension there would have been EXR bytes in a .png file.
+    for (output, expected) in [
+        ("merged.png", "merge writes the EXR there"),
+        ("merged.tif", "'.tif' names no image format"),
+    ] {
+        let out = embray(&["merge", "p0.exr", "p1.exr", "p2.exr", "-o", output], &dir);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{output}: {stderr}");
+        assert!(stderr.contains(expected), "{output}: {stderr}");
+        assert!(!dir.join(output).exists());
+    }
+    ok(&["merge", "p0.exr", "p1.exr", "p2.exr", "-o", "m.exr", "--png", "m.jpg"], &dir);
+    assert_eq!(std::fs::read(dir.join("m.jpg")).unwrap()[..3], [0xFF, 0xD8, 0xFF]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

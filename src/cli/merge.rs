@@ -1,10 +1,13 @@
 //! `embray merge`: the part files of a split render → its EXR (and PNG).
 
 use super::console::note;
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use embray::distributed::merge_parts;
-use embray::output::{OutputPlan, OutputSet, Photographic, ToneMap, encode_exr, encode_png_graded};
+use embray::output::{
+    DisplayLook, ImageFormat, OutputPlan, OutputSet, Photographic, ToneMap, encode_display,
+    encode_exr,
+};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -15,7 +18,8 @@ pub struct MergeArgs {
     /// The merged EXR (linear RGB, Z, N.X/N.Y/N.Z), as `embray render` writes it.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Also write the tone-mapped PNG, with the settings the parts were rendered with.
+    /// Also write the tone-mapped display image (.png, or .jpg/.jpeg for JPEG), with the
+    /// settings the parts were rendered with.
     #[arg(long)]
     pub png: Option<PathBuf>,
     /// A 3-D LUT (.cube) applied to the PNG last, as a grading look.
@@ -34,7 +38,25 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     }
     let lut = super::read_lut(args.lut.as_deref(), &mut plan)?;
     let exr = plan.output("-o", &args.output, false)?;
+    match ImageFormat::of_path(&args.output, "-o").map_err(anyhow::Error::msg)? {
+        Some(ImageFormat::Exr) => {}
+        None if exr.is_stream() => {}
+        _ => bail!(
+            "-o '{}': merge writes the EXR there (name it .exr); the display image is --png's",
+            args.output.display()
+        ),
+    }
     let png = args.png.as_deref().map(|p| plan.output("--png", p, false)).transpose()?;
+    let display_format = match &args.png {
+        None => ImageFormat::Png,
+        Some(path) => match ImageFormat::of_path(path, "--png").map_err(anyhow::Error::msg)? {
+            Some(ImageFormat::Exr) => {
+                bail!("--png '{}' names an EXR: the EXR is -o's", path.display())
+            }
+            Some(format) => format,
+            None => ImageFormat::Png,
+        },
+    };
     let merged = merge_parts(&args.parts)?;
     let (meta, stats) = (&merged.meta, merged.stats);
     let film = merged.sums.resolve();
@@ -44,10 +66,13 @@ pub fn run(args: &MergeArgs) -> Result<()> {
         let curve: ToneMap = meta.png.curve.parse().context("the parts' PNG settings")?;
         let [key, burn_out, saturation, gamma] = meta.png.photographic;
         let photographic = Photographic { key, burn_out, saturation, gamma };
-        let exposure = meta.png.exposure;
-        files.write(png, |w| {
-            encode_png_graded(&film, curve, exposure, &photographic, lut.as_ref(), w)
-        })?;
+        let look = DisplayLook {
+            curve,
+            exposure: meta.png.exposure,
+            photographic: &photographic,
+            lut: lut.as_ref(),
+        };
+        files.write(png, |w| encode_display(&film, &look, display_format, w))?;
     }
     files.commit()?;
     if !args.quiet {

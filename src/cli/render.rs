@@ -21,8 +21,11 @@ use std::path::Path;
 struct Job {
     scene: SceneDesc,
     exr: Option<Target>,
-    display: Option<(Target, ImageFormat)>,
+    display: Option<DisplayTarget>,
 }
+
+/// Where a display image goes, and as what.
+type DisplayTarget = (Target, ImageFormat);
 
 /// Renders the scene (every camera of a CENG795 file), then commits all the files together:
 /// every output path is checked first (usable, not an input, not another output), and
@@ -103,7 +106,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 fn scene_outputs(
     args: &RenderArgs,
     plan: &mut OutputPlan,
-) -> Result<(Option<Target>, Option<(Target, ImageFormat)>)> {
+) -> Result<(Option<Target>, Option<DisplayTarget>)> {
     let display_format = |path: &Path| -> Result<ImageFormat> {
         match ImageFormat::of_path(path, "--png").map_err(anyhow::Error::msg)? {
             Some(ImageFormat::Exr) => {
