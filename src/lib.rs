@@ -29,6 +29,7 @@ pub mod integrator;
 pub mod intersect;
 pub mod light;
 pub mod limits;
+pub mod mitsuba_rule;
 pub mod output;
 pub mod params;
 pub mod ray;

@@ -93,6 +93,11 @@ impl Params {
         self
     }
 
+    /// Adds a parameter the reader derived (a position from a placement).
+    pub fn push(&mut self, entry: Entry) {
+        self.entries.push(entry);
+    }
+
     fn entry(&self, name: &str) -> Option<&Entry> {
         self.entries.iter().find(|e| e.name == name)
     }

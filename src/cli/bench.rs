@@ -185,7 +185,7 @@ fn bench_effects(args: &EffectsArgs) -> Result<()> {
     use embray::bench::effects_cost;
     anyhow::ensure!(args.spp > 0, "--spp must be at least 1");
     check_counts(args.runs, None)?;
-    let scene = load_scene(args.scene.as_deref())?;
+    let scene = load_scene(args.scene.as_deref(), &[])?;
     let mut base = embray::render::RenderOptions::for_scene(&scene);
     base.spp = args.spp;
     let rows =
@@ -286,7 +286,7 @@ fn bench_accuracy(args: &AccuracyArgs) -> Result<()> {
 fn bench_spaces(args: &BenchArgs) -> Result<()> {
     use embray::bench::{grid, table};
     let path = args.scene.clone().unwrap_or_else(|| bundled::path("scenes/city_block.toml"));
-    let scene = load_scene(Some(&path))?;
+    let scene = load_scene(Some(&path), &[])?;
     check_counts(args.runs, args.threads)?;
     let mut options = embray::render::RenderOptions::for_scene(&scene);
     if let Some(spp) = args.spp {
@@ -330,7 +330,7 @@ fn bench_convergence(args: &ConvergenceArgs) -> Result<()> {
     if let Some(t) = args.target_rmse {
         anyhow::ensure!(t.is_finite() && t > 0.0, "--target-rmse must be a positive number");
     }
-    let scene = load_scene(Some(&args.scene))?;
+    let scene = load_scene(Some(&args.scene), &[])?;
     let reference = convergence::read_reference(&args.reference)?;
     let inputs = [("the scene", args.scene.as_path()), ("the reference", args.reference.as_path())];
     let csv = args.csv.as_deref().map(|csv| plan_csv(csv, &inputs)).transpose()?;

@@ -22,6 +22,14 @@ pub struct CompareArgs {
     /// Per-channel tolerance in 1/255 steps.
     #[arg(long, default_value_t = embray::compare::DEFAULT_TOLERANCE)]
     pub tolerance: u8,
+    /// The reference's per-sample variance (EXR): judge the first image by Mitsuba 3's
+    /// pass rule (a per-pixel Z-test in XYZ at the Šidák-corrected 1 % level; 99.75 % of
+    /// the pixel channels must pass). Needs --spp.
+    #[arg(long, requires = "spp")]
+    pub variance: Option<PathBuf>,
+    /// The first image's samples per pixel (for --variance).
+    #[arg(long, requires = "variance")]
+    pub spp: Option<u32>,
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
@@ -35,7 +43,16 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         (true, true) if heatmap.is_some() => {
             anyhow::bail!("--heatmap is for 8-bit images (PNG, JPEG), not EXRs")
         }
-        (true, true) => return compare_linear(&args.a, &args.b),
+        (true, true) => {
+            compare_linear(&args.a, &args.b)?;
+            if let (Some(variance), Some(spp)) = (&args.variance, args.spp) {
+                mitsuba_rule(&args.a, &args.b, variance, spp)?;
+            }
+            return Ok(());
+        }
+        (false, false) if args.variance.is_some() => {
+            anyhow::bail!("--variance judges EXRs, not 8-bit images")
+        }
         (false, false) => {}
         _ => anyhow::bail!(
             "'{}' and '{}': compare an EXR with an EXR, or an 8-bit image with an 8-bit image \
@@ -93,5 +110,30 @@ fn compare_linear(a: &Path, b: &Path) -> Result<()> {
             String::new()
         }
     ))?;
+    Ok(())
+}
+
+/// Mitsuba's pass rule for `a` (rendered at `spp`) against the reference `b` and its
+/// per-sample `variance`; a failing image is an exit status of 1.
+fn mitsuba_rule(a: &Path, b: &Path, variance: &Path, spp: u32) -> Result<()> {
+    use embray::bench::convergence::read_reference;
+    let (image, reference, variance) =
+        (read_reference(a)?, read_reference(b)?, read_reference(variance)?);
+    let size = |f: &embray::film::Film| (f.width, f.height);
+    if size(&image) != size(&reference) || size(&variance) != size(&reference) {
+        anyhow::bail!("the image, the reference and the variance must have the same size");
+    }
+    let verdict = embray::mitsuba_rule::judge(&image.color, &reference.color, &variance.color, spp);
+    out(format!(
+        "Mitsuba's rule at {spp} spp: {} of {} pixel channels pass ({:.3} %, {:.2} % needed): {}\n",
+        verdict.passing,
+        verdict.channels,
+        100.0 * verdict.fraction(),
+        100.0 * embray::mitsuba_rule::PASS_FRACTION,
+        if verdict.passes() { "PASS" } else { "FAIL" }
+    ))?;
+    if !verdict.passes() {
+        anyhow::bail!("the image fails Mitsuba's pass rule");
+    }
     Ok(())
 }

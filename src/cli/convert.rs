@@ -26,7 +26,7 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
     plan.input("the input scene", &args.input);
     // Checked before the scene is read: a wrong -o costs nothing.
     plan.output("-o", &args.output, true)?;
-    let cameras = ceng795::load(&args.input)?;
+    let cameras = embray::scene::xml::load(&args.input, &[])?;
     let stem = args.output.file_stem().map(|s| s.to_string_lossy().into_owned());
     let Some(stem) = stem.filter(|s| !s.is_empty()) else {
         bail!("-o '{}' is not a file name", args.output.display());

@@ -9,10 +9,10 @@ use std::path::Path;
 pub fn run(scene: Option<&Path>) -> Result<()> {
     out(format!("backends: {}\n", embray::accel::backends_description()))?;
     if let Some(path) = scene.filter(|p| ceng795::is_ceng795_path(p)) {
-        for camera in ceng795::load(path)? {
+        for camera in embray::scene::xml::load(path, &[])? {
             out(format!("camera: {}\n{}", camera.image_name, describe(&camera.scene)))?;
         }
         return Ok(());
     }
-    out(describe(&super::load_scene(scene)?))
+    out(describe(&super::load_scene(scene, &[])?))
 }

@@ -88,10 +88,10 @@ pub fn run(cli: Cli) -> Result<()> {
 
 /// Loads the named scene, or the built-in default. For a CENG795 .xml file with several
 /// cameras, the first camera's scene.
-pub fn load_scene(path: Option<&Path>) -> Result<SceneDesc> {
+pub fn load_scene(path: Option<&Path>, defines: &[(String, String)]) -> Result<SceneDesc> {
     Ok(match path {
         Some(path) if embray::scene::ceng795::is_ceng795_path(path) => {
-            embray::scene::ceng795::load(path)?.swap_remove(0).scene
+            embray::scene::xml::load(path, defines)?.swap_remove(0).scene
         }
         Some(path) => embray::scene::load(path)?,
         None => embray::scene::load(&embray::bundled::default_scene())

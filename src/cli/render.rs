@@ -48,7 +48,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                       files are named by -o and --png",
                 );
             }
-            let scene = load_scene(args.scene.as_deref())?;
+            let scene = load_scene(args.scene.as_deref(), &args.defines)?;
             plan.inputs_read(&embray::input_file::files_read());
             let (exr, display) = scene_outputs(args, &mut plan)?;
             vec![Job { scene, exr, display }]
@@ -180,7 +180,7 @@ fn png_target(
 /// The jobs of a CENG795 file: each camera to its ImageName (PNG) in --out-dir and an EXR of
 /// the same stem, or, for a one-camera file, to -o/--png when given.
 fn ceng795_jobs(args: &RenderArgs, path: &Path, plan: &mut OutputPlan) -> Result<Vec<Job>> {
-    let cameras = ceng795::load(path)?;
+    let cameras = embray::scene::xml::load(path, &args.defines)?;
     plan.inputs_read(&embray::input_file::files_read());
     if cameras.len() > 1 {
         for (flag, given) in [

@@ -21,6 +21,10 @@ pub struct RenderArgs {
     /// Scene file: .toml (native) or .xml (CENG795, every camera rendered to its ImageName
     /// in --out-dir); the built-in Cornell box if omitted.
     pub scene: Option<PathBuf>,
+    /// A Mitsuba 3 scene's parameter (its `<default name=…>`, used as `$NAME`), as
+    /// Mitsuba's own `-D`; repeatable.
+    #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub defines: Vec<(String, String)>,
     /// Output image, its format by the extension: .exr (linear RGB, Z, N.X/N.Y/N.Z; the PNG
     /// is written beside it), or .png / .jpg / .jpeg (that display image only) [default: the
     /// scene's name with .exr and .png (cornell.exr); for a one-camera .xml scene: the
@@ -131,6 +135,14 @@ fn parse_offset(text: &str) -> Result<DVec3, String> {
         *slot = value;
     }
     Ok(DVec3::from_array(v))
+}
+
+/// `NAME=VALUE` for `-D`.
+fn parse_define(text: &str) -> Result<(String, String), String> {
+    match text.split_once('=') {
+        Some((name, value)) if !name.is_empty() => Ok((name.to_owned(), value.to_owned())),
+        _ => Err(format!("expected NAME=VALUE, got '{text}'")),
+    }
 }
 
 impl RenderArgs {

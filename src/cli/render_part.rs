@@ -35,7 +35,7 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
     }
     let scene = match args.scene.as_deref() {
         Some(path) if embray::scene::ceng795::is_ceng795_path(path) => {
-            let mut cameras = embray::scene::ceng795::load(path)?;
+            let mut cameras = embray::scene::xml::load(path, &args.defines)?;
             if cameras.len() != 1 {
                 bail!(
                     "'{}' has {} cameras; --part renders one image: convert it with `embray \
@@ -46,7 +46,7 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
             }
             cameras.swap_remove(0).scene
         }
-        path => super::load_scene(path)?,
+        path => super::load_scene(path, &args.defines)?,
     };
     plan.inputs_read(&embray::input_file::files_read());
     let output = args.output.clone().unwrap_or_else(|| default_part_path(part));

@@ -170,7 +170,7 @@ fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[Stri
         bail!("the render options (after --) are not `embray render` options");
     };
     if embray::scene::ceng795::is_ceng795_path(scene) {
-        let cameras = embray::scene::ceng795::load(scene)?.len();
+        let cameras = embray::scene::xml::load(scene, &render.defines)?.len();
         if cameras != 1 {
             bail!(
                 "'{}' has {cameras} cameras; a split render is one image: convert it with \
@@ -179,7 +179,7 @@ fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[Stri
             );
         }
     }
-    let desc = super::load_scene(Some(scene))?;
+    let desc = super::load_scene(Some(scene), &render.defines)?;
     let options = render.to_options(&desc)?;
     let part = Part { index: 0, count: parts, split };
     let size = (desc.camera.width, desc.camera.height);

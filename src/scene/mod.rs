@@ -24,6 +24,7 @@ pub use formats::ceng795;
 pub use formats::toml::MAX_REPEAT_COPIES;
 pub use formats::toml::materials::with_texture_space;
 pub use formats::toml::write as toml_writer;
+pub use formats::{mitsuba, xml};
 pub use mesh_file::area_weighted_normals;
 
 use std::io::Write;

@@ -3,6 +3,8 @@
 //! back as TOML (with OBJ meshes) for `embray convert`.
 
 pub mod ceng795;
+pub mod mitsuba;
 pub(crate) mod obj;
 pub(crate) mod ply;
 pub mod toml;
+pub mod xml;

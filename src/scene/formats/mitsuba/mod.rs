@@ -1,0 +1,132 @@
+//! Mitsuba 3 scenes (`<scene version="3.0.0">`): the XML format of the research renderer
+//! users compare with, read into the model with Mitsuba's parameter names, defaults and
+//! conventions. What embray cannot render as Mitsuba would is refused with the plugin type,
+//! file and line, never silently replaced.
+
+mod bsdfs;
+mod emitters;
+mod ior;
+mod metals;
+mod sensor;
+mod shapes;
+mod spectrum;
+mod transform;
+mod tree;
+mod values;
+
+use crate::scene::desc::{LightDesc, MaterialDesc, ObjectDesc, RenderSettings, SceneDesc};
+use crate::scene::error::SceneError;
+use crate::scene::mesh_file::MeshCache;
+use std::collections::HashMap;
+use std::path::Path;
+use tree::{Element, FileResolver};
+
+/// Whether `text` is a Mitsuba scene (its root element is `<scene>`, lower case).
+pub fn is_mitsuba(text: &str) -> bool {
+    let start = text.find("<scene").map(|at| &text[at + 6..]);
+    let before = text.split("<scene").next().unwrap_or("");
+    start.is_some_and(|rest| rest.starts_with([' ', '>', '\t', '\n', '\r']))
+        && !before.contains("<Scene")
+}
+
+/// Objects with an `id`, for `<ref>`.
+pub(super) struct Ids {
+    by_id: HashMap<String, Element>,
+}
+
+impl Ids {
+    /// The BSDF `element` is or refers to.
+    fn bsdf<'a>(&'a self, element: &'a Element) -> Result<&'a Element, SceneError> {
+        if element.tag != "ref" {
+            return Ok(element);
+        }
+        let id = element.required("id")?;
+        match self.by_id.get(id) {
+            Some(found) if found.tag == "bsdf" => Ok(found),
+            Some(found) => Err(element.error(format!("'{id}' is a <{}>, not a <bsdf>", found.tag))),
+            None => {
+                let mut known: Vec<&str> = self.by_id.keys().map(String::as_str).collect();
+                known.sort();
+                Err(element
+                    .error(format!("no object has the id '{id}' (known: {})", known.join(", "))))
+            }
+        }
+    }
+}
+
+struct Builder<'a> {
+    files: &'a FileResolver,
+    ids: Ids,
+    meshes: MeshCache,
+    warnings: &'a mut Vec<String>,
+    materials: Vec<MaterialDesc>,
+    objects: Vec<ObjectDesc>,
+    lights: Vec<LightDesc>,
+}
+
+/// The Mitsuba scene in `text` (read from `path`), with `-D name=value` parameters.
+pub fn load(
+    path: &Path,
+    text: &str,
+    defines: &[(String, String)],
+) -> Result<(SceneDesc, Vec<String>), SceneError> {
+    let (root, files) = tree::read(path, text, defines)?;
+    let mut warnings = Vec::new();
+    let mut by_id = HashMap::new();
+    for child in &root.children {
+        if let Some(id) = child.attr("id") {
+            if by_id.insert(id.to_owned(), child.clone()).is_some() {
+                return Err(child.error(format!("the id '{id}' is given twice")));
+            }
+        }
+    }
+    let mut settings = RenderSettings { max_depth: crate::limits::MAX_DEPTH, ..Default::default() };
+    let mut sensor = None;
+    let mut builder = Builder {
+        files: &files,
+        ids: Ids { by_id },
+        meshes: MeshCache::default(),
+        warnings: &mut warnings,
+        materials: Vec::new(),
+        objects: Vec::new(),
+        lights: Vec::new(),
+    };
+    for child in &root.children {
+        match child.tag.as_str() {
+            "integrator" => sensor::integrator(child, &mut settings, builder.warnings)?,
+            "sensor" => {
+                if sensor.is_some() {
+                    return Err(child.error("embray renders one sensor per scene"));
+                }
+                sensor = Some(sensor::sensor(child, builder.warnings)?);
+            }
+            "shape" => builder.shape(child)?,
+            "emitter" => builder.emitter(child)?,
+            // Read where they are used (by reference).
+            "bsdf" | "texture" => {}
+            other => {
+                let kind = child.attr("type").map(|t| format!(" '{t}'")).unwrap_or_default();
+                return Err(child.error(format!(
+                    "<{other}>{kind} is not supported (media, polarisation and spectral-only \
+                     features are not)"
+                )));
+            }
+        }
+    }
+    let sensor = sensor.ok_or_else(|| root.error("the scene has no <sensor>"))?;
+    if let Some(spp) = sensor.spp {
+        settings.spp = spp;
+    } else {
+        settings.spp = 4;
+    }
+    let Builder { materials, objects, lights, .. } = builder;
+    let scene = SceneDesc {
+        source: path.to_path_buf(),
+        camera: sensor.camera,
+        settings,
+        materials,
+        objects,
+        lights,
+    };
+    Ok((scene, warnings))
+}

@@ -1,0 +1,219 @@
+//! `<sensor>` (perspective, thinlens) with its `<film>` and `<sampler>`, and `<integrator>`
+//! (path, direct, ptracer, moment): the camera and the render settings.
+
+use super::transform::transform;
+use super::tree::Element;
+use super::values::{number_attr, numbers};
+use crate::limits::MAX_DEPTH;
+use crate::scene::desc::{CameraDesc, IntegratorKind, LensShape, RenderSettings};
+use crate::scene::error::SceneError;
+
+/// A camera and the sample count its sampler asks for.
+pub(super) struct Sensor {
+    pub camera: CameraDesc,
+    pub spp: Option<u32>,
+}
+
+/// The property child `name` of `plugin` with tag `tag`.
+pub(super) fn property<'a>(plugin: &'a Element, tag: &str, name: &str) -> Option<&'a Element> {
+    plugin.children.iter().find(|c| c.tag == tag && c.attr("name") == Some(name))
+}
+
+pub(super) fn float(plugin: &Element, name: &str) -> Result<Option<f64>, SceneError> {
+    match plugin.children.iter().find(|c| c.attr("name") == Some(name)) {
+        Some(child) if child.tag == "float" || child.tag == "integer" => {
+            Ok(Some(number_attr(child, "value")?))
+        }
+        Some(child) => Err(child.error(format!("`{name}` must be a <float>"))),
+        None => Ok(None),
+    }
+}
+
+fn integer(plugin: &Element, name: &str) -> Result<Option<i64>, SceneError> {
+    let Some(value) = float(plugin, name)? else { return Ok(None) };
+    if value.fract() != 0.0 || value.abs() > 1e15 {
+        let child = plugin.children.iter().find(|c| c.attr("name") == Some(name)).unwrap();
+        return Err(child.error(format!("`{name}` must be a whole number")));
+    }
+    Ok(Some(value as i64))
+}
+
+fn string<'a>(plugin: &'a Element, name: &str) -> Option<&'a Element> {
+    property(plugin, "string", name)
+}
+
+/// The x field of view in degrees (Mitsuba's `parse_fov`): `fov` along `fov_axis`, or a
+/// 35 mm-equivalent `focal_length` (default 50mm) along the film's diagonal.
+fn x_fov(sensor: &Element, aspect: f64) -> Result<f64, SceneError> {
+    let (fov, axis, at) = match float(sensor, "fov")? {
+        Some(fov) => {
+            let axis = string(sensor, "fov_axis");
+            let name = axis.map_or(Ok("x"), |a| a.required("value"))?;
+            (fov, name.to_owned(), axis.unwrap_or(sensor).clone())
+        }
+        None => {
+            let length = match string(sensor, "focal_length") {
+                Some(element) => {
+                    let text = element.required("value")?;
+                    let mm = text.trim().strip_suffix("mm").unwrap_or(text.trim());
+                    match numbers(element, mm)?[..] {
+                        [f] if f > 0.0 => f,
+                        _ => return Err(element.error("focal_length must be like \"50mm\"")),
+                    }
+                }
+                None => 50.0,
+            };
+            let diagonal = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
+            let fov = (2.0 * (diagonal / (2.0 * length)).atan()).to_degrees();
+            (fov, "diagonal".to_owned(), sensor.clone())
+        }
+    };
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(sensor.error(format!("fov is {fov}, but must be between 0 and 180 degrees")));
+    }
+    let half_tan = (0.5 * fov).to_radians().tan();
+    let x_half_tan = match axis.as_str() {
+        "x" => half_tan,
+        "y" => half_tan * aspect,
+        "diagonal" => half_tan / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
+        "smaller" if aspect > 1.0 => half_tan * aspect,
+        "larger" if aspect < 1.0 => half_tan * aspect,
+        "smaller" | "larger" => half_tan,
+        other => {
+            return Err(
+                at.error(format!("fov_axis '{other}' is none of x, y, diagonal, smaller, larger"))
+            );
+        }
+    };
+    Ok((2.0 * x_half_tan.atan()).to_degrees())
+}
+
+pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Sensor, SceneError> {
+    let kind = element.required("type")?;
+    if !matches!(kind, "perspective" | "thinlens") {
+        return Err(element.error(format!(
+            "the sensor type '{kind}' is not supported (perspective and thinlens are)"
+        )));
+    }
+    let (mut width, mut height, mut spp) = (768u32, 576u32, None);
+    for child in &element.children {
+        match child.tag.as_str() {
+            "film" => (width, height) = film(child, warnings)?,
+            "sampler" => {
+                let count = integer(child, "sample_count")?.unwrap_or(4);
+                if !(1..=i64::from(u32::MAX)).contains(&count) {
+                    return Err(child.error("sample_count must be at least 1"));
+                }
+                spp = Some(count as u32);
+            }
+            _ => {}
+        }
+    }
+    let to_world = match property(element, "transform", "to_world") {
+        Some(t) => transform(t)?,
+        None => glam::DAffine3::IDENTITY,
+    };
+    let origin = to_world.translation;
+    let dir = to_world.matrix3.col(2).normalize();
+    let up = to_world.matrix3.col(1).normalize();
+    let left = to_world.matrix3.col(0);
+    if left.dot(up.cross(dir)) <= 0.0 {
+        return Err(element.error("a mirrored camera transform is not supported"));
+    }
+    for name in ["principal_point_offset_x", "principal_point_offset_y"] {
+        if float(element, name)?.is_some_and(|v| v != 0.0) {
+            return Err(element.error(format!("`{name}` is not supported")));
+        }
+    }
+    let aspect = f64::from(width) / f64::from(height);
+    let x_fov = x_fov(element, aspect)?;
+    let vfov = (2.0 * ((0.5 * x_fov).to_radians().tan() / aspect).atan()).to_degrees();
+    let mut camera = CameraDesc::pinhole(origin, origin + dir, vfov, width, height);
+    camera.up = up;
+    if kind == "thinlens" {
+        let radius = float(element, "aperture_radius")?.unwrap_or(0.0);
+        camera.aperture = 2.0 * radius;
+        camera.focus_distance = Some(float(element, "focus_distance")?.unwrap_or(0.0));
+        camera.lens_shape = LensShape::Disk;
+    }
+    Ok(Sensor { camera, spp })
+}
+
+/// `hdrfilm`: the image size (a crop is refused; a filter other than the box is noted).
+fn film(film: &Element, warnings: &mut Vec<String>) -> Result<(u32, u32), SceneError> {
+    let size = |name: &str, default: i64| -> Result<u32, SceneError> {
+        let value = integer(film, name)?.unwrap_or(default);
+        let max = i64::from(crate::limits::MAX_RESOLUTION);
+        if !(1..=max).contains(&value) {
+            return Err(film.error(format!("{name} is {value}, but must be 1 to {max}")));
+        }
+        Ok(value as u32)
+    };
+    let (width, height) = (size("width", 768)?, size("height", 576)?);
+    for name in ["crop_width", "crop_height", "crop_offset_x", "crop_offset_y"] {
+        if float(film, name)?.is_some() {
+            return Err(film.error(format!("`{name}` is not supported yet")));
+        }
+    }
+    let filter = film.children.iter().find(|c| c.tag == "rfilter");
+    let filter_type = filter.map_or(Ok("gaussian"), |f| f.required("type"))?;
+    if filter_type != "box" {
+        warnings.push(format!(
+            "{}: line {}: the {filter_type} reconstruction filter is rendered as embray's box \
+             filter (each pixel averages its own samples): edges come out slightly softer or \
+             sharper than Mitsuba's",
+            film.file.display(),
+            film.line
+        ));
+    }
+    Ok((width, height))
+}
+
+/// The render settings an `<integrator>` asks for (wrappers such as `moment` unwrapped).
+pub(super) fn integrator(
+    element: &Element,
+    settings: &mut RenderSettings,
+    warnings: &mut Vec<String>,
+) -> Result<(), SceneError> {
+    let kind = element.required("type")?;
+    match kind {
+        "moment" => match element.children.iter().find(|c| c.tag == "integrator") {
+            Some(inner) => integrator(inner, settings, warnings),
+            None => Err(element.error("a moment integrator wraps an <integrator>")),
+        },
+        "path" | "ptracer" | "volpath" => {
+            if kind != "path" {
+                warnings.push(format!(
+                    "{}: line {}: the {kind} integrator is rendered with embray's path tracer \
+                     (the same expectation, other noise)",
+                    element.file.display(),
+                    element.line
+                ));
+            }
+            if property(element, "boolean", "hide_emitters")
+                .is_some_and(|b| b.attr("value") == Some("true"))
+            {
+                return Err(element.error("hide_emitters is not supported yet"));
+            }
+            settings.integrator = IntegratorKind::Path;
+            settings.max_depth = match integer(element, "max_depth")?.unwrap_or(-1) {
+                -1 => MAX_DEPTH,
+                depth if (1..=i64::from(MAX_DEPTH)).contains(&depth) => depth as u32 - 1,
+                depth => {
+                    return Err(element.error(format!(
+                        "max_depth is {depth}, but must be -1 (no limit) or 1 to {MAX_DEPTH}"
+                    )));
+                }
+            };
+            Ok(())
+        }
+        "direct" => {
+            settings.integrator = IntegratorKind::Path;
+            settings.max_depth = 1;
+            Ok(())
+        }
+        other => Err(element.error(format!(
+            "the integrator '{other}' is not supported (path, direct, ptracer, moment are)"
+        ))),
+    }
+}

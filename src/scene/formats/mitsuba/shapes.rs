@@ -1,0 +1,111 @@
+//! `<shape>` → objects: obj, ply, rectangle, cube and sphere, each with its BSDF (nested or
+//! by reference; Mitsuba's default is a diffuse 0.5) and an `area` emitter's radiance.
+
+use super::Builder;
+use super::bsdfs::bsdf;
+use super::sensor::property;
+use super::transform::transform;
+use super::tree::Element;
+use super::values::{ColorUse, color, vec3};
+use crate::scene::desc::{MaterialDesc, ObjectDesc, ShapeDesc};
+use crate::scene::error::{Line, SceneError};
+use crate::scene::formats::obj::ObjRef;
+use crate::scene::shapes::{box_mesh, quad_mesh};
+use glam::{DAffine3, DVec3};
+use std::sync::Arc;
+
+impl Builder<'_> {
+    pub(super) fn shape(&mut self, element: &Element) -> Result<(), SceneError> {
+        let kind = element.required("type")?;
+        let world_from_object = match property(element, "transform", "to_world") {
+            Some(t) => transform(t)?,
+            None => DAffine3::IDENTITY,
+        };
+        if property(element, "boolean", "flip_normals")
+            .is_some_and(|b| b.attr("value") == Some("true"))
+        {
+            return Err(element.error("flip_normals is not supported yet"));
+        }
+        let material = self.shape_material(element)?;
+        let name = format!("{} (line {})", element.describe(), element.line);
+        let shapes: Vec<ShapeDesc> = match kind {
+            "obj" | "ply" => {
+                let file = property(element, "string", "filename")
+                    .ok_or_else(|| element.error("the property `filename` is missing"))?;
+                let face_normals = property(element, "boolean", "face_normals")
+                    .is_some_and(|b| b.attr("value") == Some("true"));
+                let mesh_ref = ObjRef {
+                    obj: self.files.resolve(file.required("value")?),
+                    scene: &file.file,
+                    item: file.describe(),
+                    line: Line(Some(file.line)),
+                };
+                let (_, models) =
+                    self.meshes.models(&mesh_ref, Some(!face_normals), self.warnings)?;
+                models.into_iter().map(|m| ShapeDesc::Mesh(m.mesh)).collect()
+            }
+            "rectangle" => {
+                let mesh = quad_mesh(DVec3::new(-1.0, -1.0, 0.0), 2.0 * DVec3::X, 2.0 * DVec3::Y)
+                    .map_err(|p| element.error(p))?;
+                vec![ShapeDesc::Mesh(Arc::new(mesh))]
+            }
+            "cube" => {
+                let mesh =
+                    box_mesh(DVec3::splat(-1.0), DVec3::ONE).map_err(|p| element.error(p))?;
+                vec![ShapeDesc::Mesh(Arc::new(mesh))]
+            }
+            "sphere" => {
+                let center = property(element, "point", "center")
+                    .map_or(Ok(DVec3::ZERO), |c| vec3(c, false))?;
+                let radius = super::sensor::float(element, "radius")?.unwrap_or(1.0);
+                if !(radius > 0.0) {
+                    return Err(element.error(format!("radius is {radius}, but must be > 0")));
+                }
+                vec![ShapeDesc::Sphere { center, radius }]
+            }
+            other => {
+                return Err(element.error(format!(
+                    "the shape '{other}' is not supported yet (obj, ply, rectangle, cube, sphere are)"
+                )));
+            }
+        };
+        for shape in shapes {
+            self.objects.push(ObjectDesc {
+                name: name.clone(),
+                shape,
+                material,
+                world_from_object,
+                world_from_object_end: None,
+            });
+        }
+        Ok(())
+    }
+
+    /// The shape's material (its BSDF, with an area emitter's radiance), added to the list.
+    fn shape_material(&mut self, element: &Element) -> Result<u32, SceneError> {
+        let bsdfs: Vec<&Element> =
+            element.children.iter().filter(|c| c.tag == "bsdf" || c.tag == "ref").collect();
+        let emitting = element.children.iter().any(|c| c.tag == "emitter");
+        // Mitsuba's default BSDF: diffuse 0.5, or black for an emitter.
+        let albedo = glam::Vec3::splat(if emitting { 0.0 } else { 0.5 });
+        let mut material = match bsdfs[..] {
+            [] => MaterialDesc { name: "default".to_owned(), albedo, ..Default::default() },
+            [one] => bsdf(self.ids.bsdf(one)?, &self.ids, self.files)?,
+            _ => return Err(element.error("a shape takes one <bsdf>")),
+        };
+        for emitter in element.children.iter().filter(|c| c.tag == "emitter") {
+            if emitter.required("type")? != "area" {
+                return Err(emitter.error("a shape's emitter must be of type area"));
+            }
+            let radiance = property(emitter, "rgb", "radiance")
+                .or_else(|| property(emitter, "spectrum", "radiance"));
+            let radiance = radiance.map_or(Ok(DVec3::ONE), |r| color(r, ColorUse::Emission))?;
+            if !radiance.cmpge(DVec3::ZERO).all() {
+                return Err(emitter.error("radiance must be >= 0"));
+            }
+            material.emission = radiance.as_vec3();
+        }
+        self.materials.push(material);
+        Ok((self.materials.len() - 1) as u32)
+    }
+}

@@ -1,0 +1,214 @@
+//! A Mitsuba 3 scene file as a tree of elements, with what the format resolves before any
+//! plugin sees it: `<default>` parameters (overridden by `-D name=value`), `$name` in
+//! attributes, `<include>` (its children spliced in), and `<path>` folders for finding files.
+//! Every element keeps its file and line for messages.
+
+use crate::excerpt::excerpt;
+use crate::scene::error::{Line, SceneError};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Includes deeper than this are refused (a file that includes itself would never end).
+const MAX_INCLUDE_DEPTH: usize = 16;
+
+#[derive(Clone, Debug)]
+pub(super) struct Element {
+    pub tag: String,
+    pub attrs: Vec<(String, String)>,
+    pub children: Vec<Element>,
+    pub file: Arc<PathBuf>,
+    pub line: usize,
+}
+
+impl Element {
+    pub fn attr(&self, name: &str) -> Option<&str> {
+        self.attrs.iter().find(|(n, _)| n == name).map(|(_, v)| v.as_str())
+    }
+
+    /// `<shape type="obj">`: how messages name the element.
+    pub fn describe(&self) -> String {
+        let mut text = format!("<{}", self.tag);
+        for key in ["type", "name", "id"] {
+            if let Some(value) = self.attr(key) {
+                text += &format!(" {key}=\"{}\"", excerpt(value));
+            }
+        }
+        text + ">"
+    }
+
+    pub fn error(&self, problem: impl Into<String>) -> SceneError {
+        SceneError::Xml {
+            file: self.file.to_path_buf(),
+            element: self.describe(),
+            problem: problem.into(),
+            line: Line(Some(self.line)),
+        }
+    }
+
+    /// The attribute `name`, which must be there.
+    pub fn required(&self, name: &str) -> Result<&str, SceneError> {
+        self.attr(name).ok_or_else(|| self.error(format!("the attribute `{name}` is missing")))
+    }
+}
+
+/// The files a scene may name are looked up in these folders, in order: the scene's own,
+/// then every `<path>` folder.
+#[derive(Debug, Default)]
+pub(super) struct FileResolver {
+    folders: Vec<PathBuf>,
+}
+
+impl FileResolver {
+    /// `name` in the first folder that has it (the first folder when none has it, so that
+    /// the message names the likeliest place).
+    pub fn resolve(&self, name: &str) -> PathBuf {
+        let path = Path::new(name);
+        if path.is_absolute() {
+            return path.to_path_buf();
+        }
+        let found = self.folders.iter().map(|f| f.join(path)).find(|p| p.exists());
+        found.unwrap_or_else(|| self.folders.first().map_or(path.to_path_buf(), |f| f.join(path)))
+    }
+}
+
+/// The scene's root element (its children resolved) and the folders files are found in.
+pub(super) fn read(
+    path: &Path,
+    text: &str,
+    defines: &[(String, String)],
+) -> Result<(Element, FileResolver), SceneError> {
+    let folder = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let mut reader = Reader {
+        params: defines.iter().cloned().collect(),
+        given: defines.iter().map(|(name, _)| name.clone()).collect(),
+        resolver: FileResolver { folders: vec![folder] },
+    };
+    let root = reader.file(path, text, 0)?;
+    Ok((root, reader.resolver))
+}
+
+struct Reader {
+    /// `$name` values: `-D` first, then `<default>`s.
+    params: HashMap<String, String>,
+    /// Names given with `-D` (a `<default>` does not override them).
+    given: Vec<String>,
+    resolver: FileResolver,
+}
+
+impl Reader {
+    fn file(&mut self, path: &Path, text: &str, depth: usize) -> Result<Element, SceneError> {
+        let options = roxmltree::ParsingOptions {
+            allow_dtd: false,
+            nodes_limit: 4_000_000,
+            ..Default::default()
+        };
+        let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| {
+            SceneError::Xml {
+                file: path.to_path_buf(),
+                element: "the document".to_owned(),
+                problem: format!("malformed XML: {e}"),
+                line: Line(Some(e.pos().row as usize)),
+            }
+        })?;
+        let file = Arc::new(path.to_path_buf());
+        let root = doc.root_element();
+        let mut element = self.element(root, &file, &doc, depth)?;
+        if element.tag != "scene" {
+            return Err(element.error("the root element of a Mitsuba 3 file must be <scene>"));
+        }
+        if depth == 0 && element.attr("version").is_none() {
+            return Err(element.error("the attribute `version` is missing"));
+        }
+        element.attrs.retain(|(name, _)| name != "version");
+        Ok(element)
+    }
+
+    fn element(
+        &mut self,
+        node: roxmltree::Node,
+        file: &Arc<PathBuf>,
+        doc: &roxmltree::Document,
+        depth: usize,
+    ) -> Result<Element, SceneError> {
+        let line = doc.text_pos_at(node.range().start).row as usize;
+        let raw = Element {
+            tag: node.tag_name().name().to_owned(),
+            attrs: node.attributes().map(|a| (a.name().to_owned(), a.value().to_owned())).collect(),
+            children: Vec::new(),
+            file: file.clone(),
+            line,
+        };
+        let attrs = raw
+            .attrs
+            .iter()
+            .map(|(name, value)| Ok((name.clone(), self.substitute(&raw, value)?)))
+            .collect::<Result<Vec<_>, SceneError>>()?;
+        let mut element = Element { attrs, ..raw };
+        for child in node.children().filter(roxmltree::Node::is_element) {
+            let child = self.element(child, file, doc, depth)?;
+            match child.tag.as_str() {
+                "default" => {
+                    let name = child.required("name")?.to_owned();
+                    let value = child.required("value")?.to_owned();
+                    if !self.given.contains(&name) {
+                        self.params.insert(name, value);
+                    }
+                }
+                "path" => {
+                    let folder = self.relative_to(&child, child.required("value")?);
+                    self.resolver.folders.push(folder);
+                }
+                "include" => {
+                    if depth + 1 > MAX_INCLUDE_DEPTH {
+                        let limit = format!("includes nest deeper than {MAX_INCLUDE_DEPTH}");
+                        return Err(child.error(limit));
+                    }
+                    let name = child.required("filename")?;
+                    let path = self.resolver.resolve(name);
+                    let text = crate::input_file::read_text(&path).map_err(|e| {
+                        child.error(format!("cannot read '{}': {e}", path.display()))
+                    })?;
+                    let included = self.file(&path, &text, depth + 1)?;
+                    element.children.extend(included.children);
+                }
+                _ => element.children.push(child),
+            }
+        }
+        Ok(element)
+    }
+
+    /// `value` with every `$name` replaced by its parameter.
+    fn substitute(&self, element: &Element, value: &str) -> Result<String, SceneError> {
+        if !value.contains('$') {
+            return Ok(value.to_owned());
+        }
+        let mut out = String::new();
+        let mut rest = value;
+        while let Some(at) = rest.find('$') {
+            out += &rest[..at];
+            let name: String = rest[at + 1..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            let Some(replacement) = self.params.get(&name) else {
+                let known: Vec<&str> = self.params.keys().map(String::as_str).collect();
+                return Err(element.error(format!(
+                    "${} is not a parameter (give it with -D {}=VALUE or a <default>; known: {})",
+                    excerpt(&name),
+                    excerpt(&name),
+                    if known.is_empty() { "none".to_owned() } else { known.join(", ") }
+                )));
+            };
+            out += replacement;
+            rest = &rest[at + 1 + name.len()..];
+        }
+        Ok(out + rest)
+    }
+
+    /// A folder named in `element`'s file, relative to that file's folder.
+    fn relative_to(&self, element: &Element, value: &str) -> PathBuf {
+        let base = element.file.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+        base.join(value)
+    }
+}

@@ -1,0 +1,39 @@
+//! XML scenes: a Mitsuba 3 file (`<scene version=…>`) or a CENG795 course file (`<Scene>`),
+//! told apart by the root element.
+
+use super::ceng795::{self, CameraScene};
+use super::mitsuba;
+use crate::scene::error::SceneError;
+use std::io::Write as _;
+use std::path::Path;
+
+/// The scenes of the XML file at `path`, one per camera. `defines` are Mitsuba's
+/// `-D name=value` parameters. Warnings go to stderr.
+pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Vec<CameraScene>, SceneError> {
+    let (scenes, warnings) = load_with_warnings(path, defines)?;
+    for warning in &warnings {
+        let _ = writeln!(std::io::stderr(), "warning: {warning}");
+    }
+    Ok(scenes)
+}
+
+/// As `load`, returning the warnings instead of printing them.
+pub fn load_with_warnings(
+    path: &Path,
+    defines: &[(String, String)],
+) -> Result<(Vec<CameraScene>, Vec<String>), SceneError> {
+    let text = crate::scene::read_scene_file(path)?;
+    if mitsuba::is_mitsuba(&text) {
+        let (scene, warnings) = mitsuba::load(path, &text, defines)?;
+        let stem = path.file_stem().map_or("render".into(), |s| s.to_string_lossy());
+        return Ok((vec![CameraScene { image_name: format!("{stem}.png"), scene }], warnings));
+    }
+    let (scenes, mut warnings) = ceng795::load_str_with_warnings(&text, path)?;
+    if let Some((name, _)) = defines.first() {
+        warnings.push(format!(
+            "-D {name}=…: parameters are for Mitsuba 3 scenes; '{}' is a CENG795 scene",
+            path.display()
+        ));
+    }
+    Ok((scenes, warnings))
+}
