@@ -236,21 +236,23 @@ struct TileScratch {
     streams: Vec<SampleStream>,
     hits: Vec<Option<Hit>>,
     backdrops: Vec<Option<Vec3>>,
+    weights: Vec<f32>,
 }
 
 /// The camera ray of sample `s` of pixel (`x`, `y`), the random stream its path goes on
-/// with, and the scene's backdrop behind it (if it has one).
+/// with, the scene's backdrop behind it (if it has one), and the sample's filter weight.
 fn camera_sample(
     scene: &RenderScene,
     options: &RenderOptions,
     (x, y): (u32, u32),
     s: u32,
     spp: u32,
-) -> (Ray, SampleStream, Option<Vec3>) {
+) -> (Ray, SampleStream, Option<Vec3>, f32) {
     let camera = &scene.camera;
     let pixel = y as u64 * camera.width as u64 + x as u64;
     let mut stream = SampleStream::new(options.sampler, options.seed, pixel, s as u64);
-    let in_pixel = stream.pixel_position(s, spp, options.jitters());
+    let uniform = stream.pixel_position(s, spp, options.jitters());
+    let (in_pixel, weight) = scene.pixel_filter.sample((x, y), uniform);
     let raster = Vec2::new(x as f32, y as f32) + in_pixel;
     let effects = &scene.effects;
     let lens = effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS));
@@ -258,7 +260,7 @@ fn camera_sample(
     if effects.motion_blur {
         ray.time = stream.reserved_1d(SLOT_TIME);
     }
-    (ray, stream, scene.backdrop_at(raster))
+    (ray, stream, scene.backdrop_at(raster), weight)
 }
 
 /// Renders the samples `samples` of every pixel of one tile. With the path tracer on a
@@ -283,8 +285,10 @@ fn render_tile(
         TileResult { tile, sums: vec![PixelSums::default(); n], stats: RenderStats::default() };
     let spp = options.spp.max(1);
     let pixel = |i: usize| (tile.x0 + (i % width) as u32, tile.y0 + (i / width) as u32);
-    let add = |sums: &mut PixelSums, sample: PathSample| {
-        sums.add_sample(sample.radiance, sample.depth, sample.normal)
+    let add = |sums: &mut PixelSums, sample: PathSample, weight: f32| {
+        // The box filter's weight is 1: its samples are added unscaled.
+        let radiance = if weight == 1.0 { sample.radiance } else { sample.radiance * weight };
+        sums.add_sample(radiance, sample.depth, sample.normal)
     };
     let batched = match tracer {
         Tracer::Path(path) if path.accel().prefers_batches() => Some(path),
@@ -293,8 +297,9 @@ fn render_tile(
     let Some(path) = batched else {
         for (i, sums) in result.sums.iter_mut().enumerate() {
             for s in samples.clone() {
-                let (ray, mut stream, backdrop) = camera_sample(scene, options, pixel(i), s, spp);
-                add(sums, tracer.trace(ray, backdrop, &mut stream, &mut result.stats));
+                let (ray, mut stream, backdrop, weight) =
+                    camera_sample(scene, options, pixel(i), s, spp);
+                add(sums, tracer.trace(ray, backdrop, &mut stream, &mut result.stats), weight);
             }
         }
         return result;
@@ -303,20 +308,23 @@ fn render_tile(
         scratch.rays.clear();
         scratch.streams.clear();
         scratch.backdrops.clear();
+        scratch.weights.clear();
         for i in 0..n {
-            let (ray, stream, backdrop) = camera_sample(scene, options, pixel(i), s, spp);
+            let (ray, stream, backdrop, weight) = camera_sample(scene, options, pixel(i), s, spp);
             scratch.rays.push(ray);
             scratch.streams.push(stream);
             scratch.backdrops.push(backdrop);
+            scratch.weights.push(weight);
         }
         scratch.hits.clear();
         scratch.hits.resize(n, None);
         path.accel().intersect_batch(&scratch.rays, &mut scratch.hits, &mut result.stats.traversal);
         let traced = scratch.rays.iter().zip(&scratch.hits).zip(&mut scratch.streams);
-        for ((sums, ((ray, hit), stream)), backdrop) in
-            result.sums.iter_mut().zip(traced).zip(&scratch.backdrops)
+        for (((sums, ((ray, hit), stream)), backdrop), weight) in
+            result.sums.iter_mut().zip(traced).zip(&scratch.backdrops).zip(&scratch.weights)
         {
-            add(sums, path.trace(*ray, Some(*hit), *backdrop, stream, &mut result.stats));
+            let sample = path.trace(*ray, Some(*hit), *backdrop, stream, &mut result.stats);
+            add(sums, sample, *weight);
         }
     }
     result

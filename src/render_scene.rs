@@ -213,6 +213,8 @@ pub struct RenderScene {
     /// What camera rays that leave the scene see instead, over the image plane.
     pub backdrop: Option<Texture>,
     pub effects: Effects,
+    /// Where in its pixel each sample falls, and its weight.
+    pub pixel_filter: crate::sampling::filter::FilterSampler,
 }
 
 impl RenderScene {

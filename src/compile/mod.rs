@@ -10,6 +10,7 @@ mod placement;
 use crate::camera::Camera;
 use crate::render_scene::{Geometry, Instance, Placement, Prototype, RenderScene};
 use crate::render_space::{CameraTransform, RenderSpace};
+use crate::sampling::filter::FilterSampler;
 use crate::scene::SceneDesc;
 use crate::shading::material::Material;
 use crate::shading::texture::Texture;
@@ -71,6 +72,7 @@ pub fn to_render_scene(
             motion_blur: instances.iter().any(|i| i.placement.is_moving()),
         },
     };
+    let pixel_filter = FilterSampler::new(desc.settings.filter, camera.width, camera.height);
     Ok(RenderScene {
         camera,
         prototypes,
@@ -80,6 +82,7 @@ pub fn to_render_scene(
         background: desc.settings.background,
         backdrop: desc.settings.background_texture.as_ref().map(Texture::from_desc),
         effects,
+        pixel_filter,
     })
 }
 
@@ -102,6 +105,7 @@ pub fn baked_scene(
     }
     let lights =
         lights::compile_lights(&[], &DAffine3::IDENTITY, &prototypes, &instances, &materials);
+    let pixel_filter = FilterSampler::new(Default::default(), camera.width, camera.height);
     RenderScene {
         camera,
         prototypes,
@@ -111,5 +115,6 @@ pub fn baked_scene(
         background: Vec3::ZERO,
         backdrop: None,
         effects: Effects::default(),
+        pixel_filter,
     }
 }

@@ -5,6 +5,7 @@
 pub mod alias;
 #[cfg(test)]
 pub(crate) mod chi_square;
+pub mod filter;
 pub mod piecewise;
 mod pixel;
 mod sobol;

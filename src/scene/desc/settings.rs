@@ -46,6 +46,8 @@ pub struct RenderSettings {
     /// the scene see it stretched over the image (u across, v down from the top), in place
     /// of the background colour or the environment. Other rays that leave see those.
     pub background_texture: Option<TextureDesc>,
+    /// How samples are weighted into pixels (the box: each pixel averages its own).
+    pub filter: crate::sampling::filter::PixelFilter,
 }
 
 impl Default for RenderSettings {
@@ -58,6 +60,7 @@ impl Default for RenderSettings {
             integrator: IntegratorKind::Path,
             tonemap: None,
             background_texture: None,
+            filter: Default::default(),
         }
     }
 }

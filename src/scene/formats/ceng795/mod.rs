@@ -116,6 +116,7 @@ pub fn load_str_with_warnings(
         integrator: IntegratorKind::Whitted,
         tonemap: None,
         background_texture: None,
+        filter: Default::default(),
     };
     if let Some(node) = x.child(root, "BackgroundColor")? {
         settings.background = x.color(node)?;

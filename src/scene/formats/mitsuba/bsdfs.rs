@@ -60,8 +60,8 @@ pub(super) fn bsdf(
             let (eta, k) = match element.children.iter().find(|c| c.attr("name") == Some("eta")) {
                 Some(eta) => {
                     let k = element.children.iter().find(|c| c.attr("name") == Some("k"));
-                    let k = k.map_or(Ok(DVec3::ZERO), |k| color(k, ColorUse::Emission))?;
-                    (color(eta, ColorUse::Emission)?, k)
+                    let k = k.map_or(Ok(DVec3::ZERO), |k| color(k, ColorUse::Unbounded))?;
+                    (color(eta, ColorUse::Unbounded)?, k)
                 }
                 None => {
                     let name = property(element, "string", "material");

@@ -4,6 +4,7 @@
 //! file and line, never silently replaced.
 
 mod bsdfs;
+mod cie;
 mod emitters;
 mod ior;
 mod metals;
@@ -37,13 +38,25 @@ pub(super) struct Ids {
 impl Ids {
     /// The BSDF `element` is or refers to.
     fn bsdf<'a>(&'a self, element: &'a Element) -> Result<&'a Element, SceneError> {
+        let found = self.resolve(element)?;
+        if found.tag != "bsdf" {
+            return Err(element.error(format!(
+                "'{}' is a <{}>, not a <bsdf>",
+                found.describe(),
+                found.tag
+            )));
+        }
+        Ok(found)
+    }
+
+    /// The object `element` is, or the one it refers to (`<ref id=…>`).
+    fn resolve<'a>(&'a self, element: &'a Element) -> Result<&'a Element, SceneError> {
         if element.tag != "ref" {
             return Ok(element);
         }
         let id = element.required("id")?;
         match self.by_id.get(id) {
-            Some(found) if found.tag == "bsdf" => Ok(found),
-            Some(found) => Err(element.error(format!("'{id}' is a <{}>, not a <bsdf>", found.tag))),
+            Some(found) => Ok(found),
             None => {
                 let mut known: Vec<&str> = self.by_id.keys().map(String::as_str).collect();
                 known.sort();
@@ -101,6 +114,8 @@ pub fn load(
                 sensor = Some(sensor::sensor(child, builder.warnings)?);
             }
             "shape" => builder.shape(child)?,
+            // An area emitter with an id is one a shape refers to.
+            "emitter" if child.attr("type") == Some("area") && child.attr("id").is_some() => {}
             "emitter" => builder.emitter(child)?,
             // Read where they are used (by reference).
             "bsdf" | "texture" => {}
@@ -119,6 +134,7 @@ pub fn load(
     } else {
         settings.spp = 4;
     }
+    settings.filter = sensor.filter;
     let Builder { materials, objects, lights, .. } = builder;
     let scene = SceneDesc {
         source: path.to_path_buf(),

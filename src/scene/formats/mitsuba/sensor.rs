@@ -5,6 +5,7 @@ use super::transform::transform;
 use super::tree::Element;
 use super::values::{number_attr, numbers};
 use crate::limits::MAX_DEPTH;
+use crate::sampling::filter::PixelFilter;
 use crate::scene::desc::{CameraDesc, IntegratorKind, LensShape, RenderSettings};
 use crate::scene::error::SceneError;
 
@@ -12,6 +13,7 @@ use crate::scene::error::SceneError;
 pub(super) struct Sensor {
     pub camera: CameraDesc,
     pub spp: Option<u32>,
+    pub filter: PixelFilter,
 }
 
 /// The property child `name` of `plugin` with tag `tag`.
@@ -96,9 +98,11 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         )));
     }
     let (mut width, mut height, mut spp) = (768u32, 576u32, None);
+    // Mitsuba's default film: 768 × 576 with a Gaussian filter.
+    let mut filter = PixelFilter::Gaussian { stddev: 0.5 };
     for child in &element.children {
         match child.tag.as_str() {
-            "film" => (width, height) = film(child, warnings)?,
+            "film" => (width, height, filter) = film(child, warnings)?,
             "sampler" => {
                 let count = integer(child, "sample_count")?.unwrap_or(4);
                 if !(1..=i64::from(u32::MAX)).contains(&count) {
@@ -136,11 +140,11 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         camera.focus_distance = Some(float(element, "focus_distance")?.unwrap_or(0.0));
         camera.lens_shape = LensShape::Disk;
     }
-    Ok(Sensor { camera, spp })
+    Ok(Sensor { camera, spp, filter })
 }
 
-/// `hdrfilm`: the image size (a crop is refused; a filter other than the box is noted).
-fn film(film: &Element, warnings: &mut Vec<String>) -> Result<(u32, u32), SceneError> {
+/// `hdrfilm`: the image size and the reconstruction filter (a crop is refused).
+fn film(film: &Element, warnings: &mut Vec<String>) -> Result<(u32, u32, PixelFilter), SceneError> {
     let size = |name: &str, default: i64| -> Result<u32, SceneError> {
         let value = integer(film, name)?.unwrap_or(default);
         let max = i64::from(crate::limits::MAX_RESOLUTION);
@@ -157,16 +161,29 @@ fn film(film: &Element, warnings: &mut Vec<String>) -> Result<(u32, u32), SceneE
     }
     let filter = film.children.iter().find(|c| c.tag == "rfilter");
     let filter_type = filter.map_or(Ok("gaussian"), |f| f.required("type"))?;
-    if filter_type != "box" {
-        warnings.push(format!(
-            "{}: line {}: the {filter_type} reconstruction filter is rendered as embray's box \
-             filter (each pixel averages its own samples): edges come out slightly softer or \
-             sharper than Mitsuba's",
-            film.file.display(),
-            film.line
-        ));
-    }
-    Ok((width, height))
+    let parameter = |name: &str, default: f64| -> Result<f32, SceneError> {
+        let value = filter.map_or(Ok(None), |f| float(f, name))?.unwrap_or(default);
+        if !(value > 0.0 && value <= 16.0) {
+            let at = filter.unwrap_or(film);
+            return Err(at.error(format!("{name} is {value}, but must be in (0, 16] pixels")));
+        }
+        Ok(value as f32)
+    };
+    let pixel_filter = match filter_type {
+        "box" => PixelFilter::Box,
+        "gaussian" => PixelFilter::Gaussian { stddev: parameter("stddev", 0.5)? },
+        "tent" => PixelFilter::Tent { radius: parameter("radius", 1.0)? },
+        other => {
+            warnings.push(format!(
+                "{}: line {}: the {other} reconstruction filter is not supported yet: the box \
+                 filter is used (each pixel averages its own samples)",
+                film.file.display(),
+                film.line
+            ));
+            PixelFilter::Box
+        }
+    };
+    Ok((width, height, pixel_filter))
 }
 
 /// The render settings an `<integrator>` asks for (wrappers such as `moment` unwrapped).

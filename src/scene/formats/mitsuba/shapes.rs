@@ -83,17 +83,27 @@ impl Builder<'_> {
 
     /// The shape's material (its BSDF, with an area emitter's radiance), added to the list.
     fn shape_material(&mut self, element: &Element) -> Result<u32, SceneError> {
-        let bsdfs: Vec<&Element> =
-            element.children.iter().filter(|c| c.tag == "bsdf" || c.tag == "ref").collect();
-        let emitting = element.children.iter().any(|c| c.tag == "emitter");
+        let mut bsdfs = Vec::new();
+        let mut emitters = Vec::new();
+        for child in &element.children {
+            if matches!(child.tag.as_str(), "bsdf" | "emitter" | "ref") {
+                let found = self.ids.resolve(child)?;
+                match found.tag.as_str() {
+                    "bsdf" => bsdfs.push(found),
+                    "emitter" => emitters.push(found),
+                    other => return Err(child.error(format!("a shape does not take a <{other}>"))),
+                }
+            }
+        }
+        let emitting = !emitters.is_empty();
         // Mitsuba's default BSDF: diffuse 0.5, or black for an emitter.
         let albedo = glam::Vec3::splat(if emitting { 0.0 } else { 0.5 });
         let mut material = match bsdfs[..] {
             [] => MaterialDesc { name: "default".to_owned(), albedo, ..Default::default() },
-            [one] => bsdf(self.ids.bsdf(one)?, &self.ids, self.files)?,
+            [one] => bsdf(one, &self.ids, self.files)?,
             _ => return Err(element.error("a shape takes one <bsdf>")),
         };
-        for emitter in element.children.iter().filter(|c| c.tag == "emitter") {
+        for emitter in emitters {
             if emitter.required("type")? != "area" {
                 return Err(emitter.error("a shape's emitter must be of type area"));
             }

@@ -64,6 +64,8 @@ pub(super) fn vec3(element: &Element, splat: bool) -> Result<DVec3, SceneError> 
 pub(super) enum ColorUse {
     Reflectance,
     Emission,
+    /// Neither bounded nor emitted: a conductor's eta and k.
+    Unbounded,
 }
 
 /// The RGB of an `<rgb>` or `<spectrum>` element.

@@ -1,0 +1,234 @@
+//! Pixel reconstruction filters by filter importance sampling: each sample's position in
+//! its pixel is drawn from the filter (by inverting a tabulated CDF per axis, so stratified
+//! numbers stay stratified) and its radiance weighted by filter / density, so a pixel's
+//! mean estimates ∫ f(x − p) L(x) dx / ∫ f, the image a splatting renderer (Mitsuba, with
+//! its Gaussian default) converges to, while every sample still lands in one pixel only
+//! (renders stay exact sums, bit-identical for any split). The box filter is the pixel itself
+//! and costs nothing.
+
+use super::piecewise::Piecewise1D;
+use glam::Vec2;
+
+/// A separable reconstruction filter, in pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum PixelFilter {
+    /// Each pixel averages the samples inside it.
+    #[default]
+    Box,
+    /// exp(−x²/2σ²) − exp(−r²/2σ²) for |x| < r = 4σ (Mitsuba's `gaussian`, σ = 0.5 there).
+    Gaussian { stddev: f32 },
+    /// 1 − |x|/r for |x| < r (Mitsuba's `tent`, r = 1 there).
+    Tent { radius: f32 },
+}
+
+impl PixelFilter {
+    /// How far from the pixel centre it reaches.
+    pub fn radius(&self) -> f32 {
+        match *self {
+            PixelFilter::Box => 0.5,
+            PixelFilter::Gaussian { stddev } => 4.0 * stddev,
+            PixelFilter::Tent { radius } => radius,
+        }
+    }
+
+    /// The filter's value at offset `x` along one axis.
+    pub fn eval(&self, x: f32) -> f32 {
+        let r = self.radius();
+        if !(x.abs() < r) {
+            return 0.0;
+        }
+        match *self {
+            PixelFilter::Box => 1.0,
+            PixelFilter::Gaussian { stddev } => {
+                let g = |x: f32| (-x * x / (2.0 * stddev * stddev)).exp();
+                (g(x) - g(r)).max(0.0)
+            }
+            PixelFilter::Tent { radius } => 1.0 - x.abs() / radius,
+        }
+    }
+}
+
+/// Cells of the tabulated density per axis.
+const CELLS: usize = 256;
+
+/// The filter's density over offsets in [lo, hi] (the part of it over the image).
+#[derive(Clone, Debug)]
+struct Window {
+    lo: f32,
+    hi: f32,
+    table: Piecewise1D,
+    /// ∫ f over [lo, hi].
+    integral: f64,
+}
+
+impl Window {
+    fn new(filter: PixelFilter, lo: f32, hi: f32) -> Self {
+        let (lo64, width) = (f64::from(lo), f64::from(hi - lo));
+        let at = |t: f64| f64::from(filter.eval((lo64 + width * t) as f32));
+        let weights: Vec<f32> =
+            (0..CELLS).map(|i| at((i as f64 + 0.5) / CELLS as f64) as f32).collect();
+        // Simpson's rule, fine enough that the weights' mean is 1 to ~1e-9.
+        let n = 1 << 16;
+        let h = 1.0 / n as f64;
+        let sum: f64 = (0..=n)
+            .map(|i| {
+                let w = if i == 0 || i == n {
+                    1.0
+                } else if i % 2 == 1 {
+                    4.0
+                } else {
+                    2.0
+                };
+                w * at(i as f64 * h)
+            })
+            .sum();
+        let table = Piecewise1D::new(&weights).expect("a filter is positive at its centre");
+        Window { lo, hi, table, integral: sum * h / 3.0 * width }
+    }
+
+    /// An offset from the pixel centre and its weight f / (p · ∫f).
+    fn sample(&self, filter: PixelFilter, u: f32) -> (f32, f64) {
+        let (t, density, _) = self.table.sample(u);
+        let x = self.lo + (self.hi - self.lo) * t;
+        let per_offset = f64::from(density) / f64::from(self.hi - self.lo);
+        (x, f64::from(filter.eval(x)) / (per_offset * self.integral))
+    }
+}
+
+/// One axis of the image: the filter's windows for the pixels near its ends (where the
+/// filter reaches past the image, which has no samples there, as in Mitsuba's film) and the
+/// whole filter for the rest.
+#[derive(Clone, Debug)]
+struct Axis {
+    size: u32,
+    /// Pixels within `reach` of an end use `ends[i]` (from the start) or `ends[reach + i]`
+    /// (from the end); a pixel within reach of both ends has its own window in `small`.
+    reach: u32,
+    whole: Window,
+    ends: Vec<Window>,
+    small: Vec<Window>,
+}
+
+impl Axis {
+    fn new(filter: PixelFilter, size: u32) -> Self {
+        let r = filter.radius();
+        let window = |pixel: u32| {
+            let lo = (-r).max(-(pixel as f32 + 0.5));
+            let hi = r.min(size as f32 - pixel as f32 - 0.5);
+            Window::new(filter, lo, hi)
+        };
+        let reach = ((r - 0.5).max(0.0).ceil() as u32).min(size);
+        let whole = Window::new(filter, -r, r);
+        if 2 * reach >= size {
+            let small = (0..size).map(window).collect();
+            return Axis { size, reach, whole, ends: Vec::new(), small };
+        }
+        let ends = (0..reach).chain((size - reach..size).rev()).map(window).collect();
+        Axis { size, reach, whole, ends, small: Vec::new() }
+    }
+
+    fn window(&self, pixel: u32) -> &Window {
+        if !self.small.is_empty() {
+            return &self.small[pixel.min(self.size - 1) as usize];
+        }
+        if pixel < self.reach {
+            &self.ends[pixel as usize]
+        } else if pixel >= self.size - self.reach {
+            &self.ends[(self.reach + (self.size - 1 - pixel)) as usize]
+        } else {
+            &self.whole
+        }
+    }
+}
+
+/// Draws positions in a pixel from a filter.
+#[derive(Clone, Debug)]
+pub struct FilterSampler {
+    filter: PixelFilter,
+    /// The x and y axes (`None` for the box).
+    axes: Option<[Axis; 2]>,
+}
+
+impl FilterSampler {
+    /// For an image of `width` × `height` pixels.
+    pub fn new(filter: PixelFilter, width: u32, height: u32) -> Self {
+        let axes = (filter != PixelFilter::Box)
+            .then(|| [Axis::new(filter, width.max(1)), Axis::new(filter, height.max(1))]);
+        FilterSampler { filter, axes }
+    }
+
+    pub fn filter(&self) -> PixelFilter {
+        self.filter
+    }
+
+    /// The position in pixel (`x`, `y`) (from its top-left corner; beyond [0, 1) where the
+    /// filter reaches) for the uniform numbers `u`, and the sample's weight.
+    pub fn sample(&self, (x, y): (u32, u32), u: Vec2) -> (Vec2, f32) {
+        let Some([x_axis, y_axis]) = &self.axes else { return (u, 1.0) };
+        let (dx, wx) = x_axis.window(x).sample(self.filter, u.x);
+        let (dy, wy) = y_axis.window(y).sample(self.filter, u.y);
+        (Vec2::new(0.5 + dx, 0.5 + dy), (wx * wy) as f32)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The weighted positions reproduce the normalised filter: the mean weight is 1 and the
+    /// weighted second moment is the filter's (0.248571 for Mitsuba's Gaussian, σ = 0.5
+    /// truncated at 4σ and lowered by its value there, integrated numerically; r²/6 for a
+    /// tent).
+    #[test]
+    fn weighted_samples_have_the_filters_moments() {
+        for (filter, second_moment) in [
+            (PixelFilter::Gaussian { stddev: 0.5 }, 0.248571),
+            (PixelFilter::Tent { radius: 1.0 }, 1.0 / 6.0),
+        ] {
+            let sampler = FilterSampler::new(filter, 64, 64);
+            let side = 2048;
+            let (mut weight, mut moment) = (0.0f64, 0.0f64);
+            for i in 0..side * side {
+                let cell = Vec2::new((i % side) as f32, (i / side) as f32);
+                let (p, w) = sampler.sample((32, 32), (cell + Vec2::splat(0.5)) / side as f32);
+                weight += f64::from(w);
+                moment += f64::from(w) * f64::from(p.x - 0.5).powi(2);
+            }
+            let n = f64::from(side * side);
+            let (weight, moment) = (weight / n, moment / n);
+            assert!((weight - 1.0).abs() < 1e-3, "{filter:?}: mean weight {weight}");
+            assert!((moment - second_moment).abs() < 5e-4, "{filter:?}: second moment {moment}");
+        }
+    }
+
+    #[test]
+    fn the_box_keeps_the_position_and_weight_one() {
+        let sampler = FilterSampler::new(PixelFilter::Box, 8, 8);
+        assert_eq!(sampler.sample((0, 7), Vec2::new(0.25, 0.75)), (Vec2::new(0.25, 0.75), 1.0));
+    }
+
+    /// Near the image's edges the filter is cut where the image ends: no sample leaves it,
+    /// and the weights still average 1 over the part that is left.
+    #[test]
+    fn pixels_at_the_edges_sample_only_the_image() {
+        let filter = PixelFilter::Gaussian { stddev: 0.5 };
+        for (size, pixel) in [(48, 0), (48, 1), (48, 46), (48, 47), (3, 1), (1, 0)] {
+            let sampler = FilterSampler::new(filter, size, size);
+            let side = 1024;
+            let mut weight = 0.0f64;
+            for i in 0..side * side {
+                let cell = Vec2::new((i % side) as f32, (i / side) as f32);
+                let (p, w) =
+                    sampler.sample((pixel, pixel), (cell + Vec2::splat(0.5)) / side as f32);
+                let q = pixel as f32 + p;
+                assert!(q.cmpge(Vec2::ZERO).all() && q.cmple(Vec2::splat(size as f32)).all());
+                weight += f64::from(w);
+            }
+            let weight = weight / f64::from(side * side);
+            assert!(
+                (weight - 1.0).abs() < 1e-3,
+                "size {size}, pixel {pixel}: mean weight {weight}"
+            );
+        }
+    }
+}
