@@ -38,7 +38,8 @@ pub(super) fn bsdf(
         }
         "diffuse" => {
             let mut material = MaterialDesc { albedo: Vec3::splat(0.5), ..none };
-            if let Some(texture) = reflectance_texture(element, "reflectance", files)? {
+            check_properties(element, &["reflectance"])?;
+            if let Some(texture) = reflectance_texture(element, "reflectance", ids, files)? {
                 material.texture = Some(texture);
             } else if let Some(rgb) = reflectance(element, "reflectance")? {
                 material.albedo = rgb;
@@ -46,6 +47,11 @@ pub(super) fn bsdf(
             Ok(material)
         }
         "conductor" | "roughconductor" => {
+            let mut known = vec!["material", "eta", "k", "specular_reflectance"];
+            if kind == "roughconductor" {
+                known.extend(["alpha", "alpha_u", "alpha_v", "distribution", "sample_visible"]);
+            }
+            check_properties(element, &known)?;
             let reflectance = reflectance(element, "specular_reflectance")?.unwrap_or(Vec3::ONE);
             let roughness = if kind == "roughconductor" { roughness(element)? } else { 0.0 };
             let named = property(element, "string", "material");
@@ -78,6 +84,8 @@ pub(super) fn bsdf(
             Ok(MaterialDesc { specular, roughness, ..none })
         }
         "dielectric" => {
+            let known = ["int_ior", "ext_ior", "specular_reflectance", "specular_transmittance"];
+            check_properties(element, &known)?;
             let ior = |name: &str, default: f64| -> Result<f64, SceneError> {
                 match element.children.iter().find(|c| c.attr("name") == Some(name)) {
                     None => Ok(default),
@@ -108,6 +116,25 @@ pub(super) fn bsdf(
         other => Err(element
             .error(format!("the BSDF '{other}' is not supported yet (supported: {SUPPORTED})"))),
     }
+}
+
+/// Refuses a parameter (a property, a texture or a reference by `name`) the BSDF does not
+/// read, so that nothing in the file is silently ignored.
+fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError> {
+    for child in &element.children {
+        if let Some(name) = child.attr("name") {
+            if !known.contains(&name) {
+                return Err(child.error(format!(
+                    "{} does not take `{name}` (it takes: {})",
+                    element.describe(),
+                    known.join(", ")
+                )));
+            }
+        } else if child.tag != "bsdf" || element.attr("type") != Some("twosided") {
+            return Err(child.error(format!("{} does not take a <{}>", element.describe(), child.tag)));
+        }
+    }
+    Ok(())
 }
 
 /// GGX roughness `alpha` (default 0.1); Beckmann and anisotropic roughness are refused.
@@ -145,13 +172,20 @@ fn reflectance(element: &Element, name: &str) -> Result<Option<Vec3>, SceneError
 fn reflectance_texture(
     element: &Element,
     name: &str,
+    ids: &super::Ids,
     files: &FileResolver,
 ) -> Result<Option<TextureDesc>, SceneError> {
-    let Some(texture) =
-        element.children.iter().find(|c| c.tag == "texture" && c.attr("name") == Some(name))
+    let Some(texture) = element
+        .children
+        .iter()
+        .find(|c| matches!(c.tag.as_str(), "texture" | "ref") && c.attr("name") == Some(name))
     else {
         return Ok(None);
     };
+    let texture = ids.resolve(texture)?;
+    if texture.tag != "texture" {
+        return Err(texture.error(format!("`{name}` must be a colour or a <texture>")));
+    }
     let pattern = match texture.required("type")? {
         "bitmap" => {
             let file = property(texture, "string", "filename")

@@ -44,7 +44,12 @@ impl Builder<'_> {
                 }
                 "directional"
             }
-            "constant" => "environment",
+            "constant" => {
+                if !p.has("radiance") {
+                    set(&mut p, "radiance", DVec3::ONE);
+                }
+                "environment"
+            }
             "area" => return Err(element.error("an area emitter belongs inside a <shape>")),
             other => {
                 return Err(element.error(format!(

@@ -17,6 +17,28 @@ use std::sync::Arc;
 impl Builder<'_> {
     pub(super) fn shape(&mut self, element: &Element) -> Result<(), SceneError> {
         let kind = element.required("type")?;
+        let known: &[&str] = match kind {
+            "obj" | "ply" => &["filename", "face_normals", "flip_normals", "to_world"],
+            "sphere" => &["center", "radius", "flip_normals", "to_world"],
+            _ => &["flip_normals", "to_world"],
+        };
+        for child in &element.children {
+            match child.attr("name") {
+                Some(name) if known.contains(&name) => {}
+                Some(_) if matches!(child.tag.as_str(), "ref" | "bsdf" | "emitter") => {}
+                Some(name) => {
+                    return Err(child.error(format!(
+                        "{} does not take `{name}` (it takes: {})",
+                        element.describe(),
+                        known.join(", ")
+                    )));
+                }
+                None if matches!(child.tag.as_str(), "ref" | "bsdf" | "emitter") => {}
+                None => {
+                    return Err(child.error(format!("a shape does not take a <{}>", child.tag)));
+                }
+            }
+        }
         let world_from_object = match property(element, "transform", "to_world") {
             Some(t) => transform(t)?,
             None => DAffine3::IDENTITY,
