@@ -10,6 +10,7 @@ fn main() {
     // Declared unconditionally so `cfg(embree4)` never warns, whatever the features.
     println!("cargo::rustc-check-cfg=cfg(embree4)");
     println!("cargo::rustc-check-cfg=cfg(course_data)");
+    println!("cargo::rustc-check-cfg=cfg(mitsuba_data)");
     println!("cargo:rerun-if-changed=build.rs");
     // The CENG795 packs beside the checkout (CI has them): tests that compare with the
     // instructor's images run when they are there and are reported as ignored otherwise.
@@ -17,6 +18,12 @@ fn main() {
     println!("cargo:rerun-if-changed={}", course_data.display());
     if course_data.is_dir() {
         println!("cargo:rustc-cfg=course_data");
+    }
+    // Mitsuba 3's render regression suite and scenes, the same way.
+    let mitsuba_data = std::path::Path::new("../shared/data/mitsuba");
+    println!("cargo:rerun-if-changed={}", mitsuba_data.display());
+    if mitsuba_data.is_dir() {
+        println!("cargo:rustc-cfg=mitsuba_data");
     }
     // Cargo compiles this script with `feature = "embree"` exactly when it sets
     // CARGO_FEATURE_EMBREE; the cfg is needed anyway, since bindgen is only a build

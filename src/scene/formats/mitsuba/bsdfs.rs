@@ -131,7 +131,11 @@ fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError>
                 )));
             }
         } else if child.tag != "bsdf" || element.attr("type") != Some("twosided") {
-            return Err(child.error(format!("{} does not take a <{}>", element.describe(), child.tag)));
+            return Err(child.error(format!(
+                "{} does not take a <{}>",
+                element.describe(),
+                child.tag
+            )));
         }
     }
     Ok(())
@@ -140,8 +144,9 @@ fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError>
 /// GGX roughness `alpha` (default 0.1); Beckmann and anisotropic roughness are refused.
 fn roughness(element: &Element) -> Result<f32, SceneError> {
     if let Some(d) = property(element, "string", "distribution") {
-        if d.required("value")? != "ggx" {
-            return Err(d.error("only the ggx distribution is supported"));
+        let name = d.required("value")?;
+        if name != "ggx" {
+            return Err(d.error(format!("the {name} distribution is not supported yet (ggx is)")));
         }
     }
     if float(element, "alpha_u")?.is_some() || float(element, "alpha_v")?.is_some() {

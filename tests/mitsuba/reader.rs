@@ -1,0 +1,199 @@
+//! The Mitsuba reader on scenes written here: what each construct becomes in the model, and
+//! the errors that name the plugin, the file and the line.
+
+use super::common::assert_contains;
+use super::common::command::temp_dir;
+use super::load_mitsuba;
+use embray::scene::{LightDesc, Specular};
+use glam::{DVec3, Vec3};
+use std::path::PathBuf;
+
+/// A folder with `main.xml` (and `extra` files), returning main.xml's path.
+fn files(name: &str, main: &str, extra: &[(&str, &str)]) -> PathBuf {
+    let dir = temp_dir(name);
+    for (file, text) in extra {
+        let path = dir.join(file);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+    std::fs::write(dir.join("main.xml"), main).unwrap();
+    dir.join("main.xml")
+}
+
+const SENSOR: &str = r#"
+    <sensor type="perspective">
+        <float name="fov" value="$fov"/>
+        <string name="fov_axis" value="y"/>
+        <transform name="to_world">
+            <lookat origin="0, 1, 5" target="0, 1, 0" up="0, 1, 0"/>
+        </transform>
+        <sampler type="independent"><integer name="sample_count" value="$spp"/></sampler>
+        <film type="hdrfilm">
+            <integer name="width" value="32"/><integer name="height" value="24"/>
+            <rfilter type="box"/>
+        </film>
+    </sensor>"#;
+
+#[track_caller]
+fn close(a: DVec3, b: DVec3) {
+    assert!((a - b).abs().max_element() < 1e-9, "{a} != {b}");
+}
+
+/// Defaults and `-D`, `$name`, `<include>`, `<path>`, `<ref>`, nested transforms and each
+/// supported plugin become the model's values with Mitsuba's conventions.
+#[test]
+fn a_scene_reads_into_the_model_as_mitsuba_defines_it() {
+    let main = format!(
+        r#"<scene version="3.0.0">
+    <default name="spp" value="16"/>
+    <default name="fov" value="40"/>
+    <path value="assets"/>
+    <integrator type="moment"><integrator type="path"><integer name="max_depth" value="4"/></integrator></integrator>
+    {SENSOR}
+    <include filename="materials.xml"/>
+    <shape type="sphere">
+        <point name="center" x="1" y="0" z="0"/><float name="radius" value="0.5"/>
+        <transform name="to_world"><scale value="2"/><rotate y="1" angle="90"/><translate x="0" y="1" z="0"/></transform>
+        <ref id="glass"/>
+    </shape>
+    <shape type="rectangle">
+        <ref id="gold"/>
+        <emitter type="area"><rgb name="radiance" value="2, 3, 4"/></emitter>
+    </shape>
+    <shape type="cube"><bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.25"/></bsdf></bsdf></shape>
+    <emitter type="point"><point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="10"/></emitter>
+    <emitter type="directional">
+        <transform name="to_world"><lookat origin="0,0,0" target="0,-1,0" up="0,0,1"/></transform>
+        <rgb name="irradiance" value="0.5"/>
+    </emitter>
+    <emitter type="constant"/>
+</scene>"#
+    );
+    let materials = r#"<scene version="3.0.0">
+    <bsdf type="dielectric" id="glass"><string name="int_ior" value="diamond"/><float name="ext_ior" value="1"/></bsdf>
+    <bsdf type="roughconductor" id="gold"><rgb name="eta" value="0.2, 0.4, 1.4"/><rgb name="k" value="3.6, 2.4, 1.8"/><float name="alpha" value="0.3"/></bsdf>
+</scene>"#;
+    let path = files("mitsuba-model", &main, &[("materials.xml", materials)]);
+    let scene = load_mitsuba(&path, &[("fov", "30")]).unwrap();
+    // The sensor: -D overrides the default; fov along y is the vertical field of view.
+    assert_eq!((scene.camera.width, scene.camera.height), (32, 24));
+    assert!((scene.camera.vfov_deg - 30.0).abs() < 1e-12);
+    close(scene.camera.lookfrom, DVec3::new(0.0, 1.0, 5.0));
+    assert_eq!(scene.settings.spp, 16);
+    // Mitsuba's max_depth counts the segment to a visible emitter; embray's, the bounces.
+    assert_eq!(scene.settings.max_depth, 3);
+    // The sphere: center and radius in object space, then scale, rotate, translate in order.
+    let sphere = &scene.objects[0];
+    let embray::scene::ShapeDesc::Sphere { center, radius } = sphere.shape else { panic!() };
+    assert_eq!((center, radius), (DVec3::X, 0.5));
+    close(sphere.world_from_object.transform_point3(DVec3::X), DVec3::new(0.0, 1.0, -2.0));
+    let glass = &scene.materials[sphere.material as usize];
+    assert_eq!(glass.specular, Specular::Dielectric { ior: 2.419, absorption: Vec3::ZERO });
+    // The rectangle: the referenced conductor, with the area emitter's radiance.
+    let gold = &scene.materials[scene.objects[1].material as usize];
+    assert_eq!(gold.emission, Vec3::new(2.0, 3.0, 4.0));
+    assert_eq!(gold.roughness, 0.3);
+    assert!(matches!(gold.specular, Specular::Conductor { .. }));
+    let cube = &scene.materials[scene.objects[2].material as usize];
+    assert_eq!(cube.albedo, Vec3::splat(0.25));
+    // The emitters, read by embray's light kinds; a placed directional light points along
+    // its transform's +z.
+    let [LightDesc::Point(point), LightDesc::Directional(sun), LightDesc::Environment(sky)] =
+        &scene.lights[..]
+    else {
+        panic!("{:?}", scene.lights)
+    };
+    close(point.position, DVec3::new(1.0, 2.0, 3.0));
+    assert_eq!(point.intensity, Vec3::splat(10.0));
+    close(sun.direction, DVec3::new(0.0, -1.0, 0.0));
+    assert_eq!(sun.irradiance, Vec3::splat(0.5));
+    assert_eq!(sky.map, embray::scene::EnvironmentMap::Constant(Vec3::ONE));
+}
+
+/// Mitsuba's `parse_fov`: every axis, and the 50 mm default along the diagonal.
+#[test]
+fn fields_of_view_convert_along_every_axis() {
+    let vfov = |fov: &str| {
+        let sensor = SENSOR.replace(r#"<string name="fov_axis" value="y"/>"#, fov);
+        let main = format!(
+            r#"<scene version="3.0.0"><default name="spp" value="1"/><default name="fov" value="40"/>{sensor}</scene>"#
+        );
+        let path = files("mitsuba-fov", &main, &[]);
+        load_mitsuba(&path, &[]).unwrap().camera.vfov_deg
+    };
+    let aspect = 32.0f64 / 24.0;
+    let from_x =
+        |x_deg: f64| (2.0 * ((0.5 * x_deg).to_radians().tan() / aspect).atan()).to_degrees();
+    let expected_x = from_x(40.0);
+    for (axis, expected) in
+        [("x", expected_x), ("y", 40.0), ("smaller", 40.0), ("larger", expected_x)]
+    {
+        let got = vfov(&format!(r#"<string name="fov_axis" value="{axis}"/>"#));
+        assert!((got - expected).abs() < 1e-9, "{axis}: {got} vs {expected}");
+    }
+    // diagonal: tan(fov/2) spread over the diagonal.
+    let half_diagonal = (20.0f64).to_radians().tan();
+    let half_height = half_diagonal / (1.0 + aspect * aspect).sqrt();
+    let got = vfov(r#"<string name="fov_axis" value="diagonal"/>"#);
+    assert!((got - (2.0 * half_height.atan()).to_degrees()).abs() < 1e-9, "{got}");
+    // No fov: a 50 mm lens on 36 × 24 mm film, along the diagonal.
+    let sensor = SENSOR
+        .replace(r#"<float name="fov" value="$fov"/>"#, "")
+        .replace(r#"<string name="fov_axis" value="y"/>"#, "");
+    let main = format!(r#"<scene version="3.0.0"><default name="spp" value="1"/>{sensor}</scene>"#);
+    let got = load_mitsuba(&files("mitsuba-fov50", &main, &[]), &[]).unwrap().camera.vfov_deg;
+    let half_diagonal = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt() / 100.0;
+    let expected = (2.0 * (half_diagonal / (1.0 + aspect * aspect).sqrt()).atan()).to_degrees();
+    assert!((got - expected).abs() < 1e-9, "{got} vs {expected}");
+}
+
+/// What embray cannot render as Mitsuba would is refused with the plugin, file and line,
+/// and so is every broken reference.
+#[test]
+fn errors_name_the_plugin_the_file_and_the_line() {
+    let scene = |body: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" value=\"40\"/>{SENSOR}\n{body}\n</scene>"
+        )
+    };
+    let error = |name: &str, main: String, extra: &[(&str, &str)]| {
+        let path = files(name, &main, extra);
+        load_mitsuba(&path, &[]).unwrap_err()
+    };
+    let message = error(
+        "mitsuba-plastic",
+        scene("<shape type=\"cube\"><bsdf type=\"plastic\"/></shape>"),
+        &[],
+    );
+    assert_contains(
+        &message,
+        &["main.xml", "<bsdf type=\"plastic\">", "'plastic' is not supported yet", "(line 15)"],
+    );
+    let message = error("mitsuba-medium", scene("<medium type=\"homogeneous\"/>"), &[]);
+    assert_contains(&message, &["<medium> 'homogeneous' is not supported", "(line 15)"]);
+    let message = error(
+        "mitsuba-param",
+        scene("<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>"),
+        &[],
+    );
+    assert_contains(&message, &["$r is not a parameter", "-D r=VALUE"]);
+    let message =
+        error("mitsuba-ref", scene("<shape type=\"cube\"><ref id=\"nothing\"/></shape>"), &[]);
+    assert_contains(&message, &["no object has the id 'nothing'", "(line 15)"]);
+    let message = error("mitsuba-include", scene("<include filename=\"missing.xml\"/>"), &[]);
+    assert_contains(&message, &["<include>", "cannot read", "missing.xml"]);
+    let message = error(
+        "mitsuba-unread",
+        scene(
+            "<bsdf type=\"diffuse\" id=\"d\"><float name=\"roughness\" value=\"1\"/></bsdf><shape type=\"cube\"><ref id=\"d\"/></shape>",
+        ),
+        &[],
+    );
+    assert_contains(&message, &["does not take `roughness`", "(it takes: reflectance)"]);
+    let fragment = "<scene version=\"3.0.0\">\n\n<shape type=\"disk\"/>\n</scene>";
+    let message =
+        error("mitsuba-fragment", scene("<include filename=\"f.xml\"/>"), &[("f.xml", fragment)]);
+    assert_contains(&message, &["f.xml", "the shape 'disk' is not supported yet", "(line 3)"]);
+    let message = error("mitsuba-nosensor", "<scene version=\"3.0.0\"/>".to_owned(), &[]);
+    assert_contains(&message, &["the scene has no <sensor>"]);
+}
