@@ -14,7 +14,7 @@ const SRGB_FROM_XYZ: DMat3 = DMat3::from_cols_array(&[
 ]);
 
 /// A unit-valued spectrum integrates to a luminance of 1.
-const Y_NORMALIZATION: f64 = 1.0 / 106.7502593994140625;
+const Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_06;
 const D65_NORMALIZATION: f64 = 1.0 / 98.99741751876255;
 
 pub(super) fn to_rgb(element: &Element, usage: ColorUse) -> Result<DVec3, SceneError> {
