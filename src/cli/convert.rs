@@ -20,7 +20,10 @@ pub struct ConvertArgs {
 
 pub fn run(args: &ConvertArgs) -> Result<()> {
     if !ceng795::is_ceng795_path(&args.input) {
-        bail!("convert reads CENG795 scenes (.xml); '{}' is not one", args.input.display());
+        bail!(
+            "convert reads XML scenes (CENG795 or Mitsuba 3); '{}' is not one",
+            args.input.display()
+        );
     }
     let mut plan = OutputPlan::new();
     plan.input("the input scene", &args.input);

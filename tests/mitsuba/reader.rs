@@ -197,3 +197,36 @@ fn errors_name_the_plugin_the_file_and_the_line() {
     let message = error("mitsuba-nosensor", "<scene version=\"3.0.0\"/>".to_owned(), &[]);
     assert_contains(&message, &["the scene has no <sensor>"]);
 }
+
+/// `embray convert`'s TOML keeps what the Mitsuba scene says, the reconstruction filter
+/// included (the TOML format's `[render] filter`).
+#[test]
+fn a_mitsuba_scene_converts_to_toml_and_back() {
+    let main = format!(
+        r#"<scene version="3.0.0">
+    <default name="spp" value="16"/><default name="fov" value="40"/>
+    {}
+    <shape type="sphere"><bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.4, 0.6"/></bsdf></shape>
+    <emitter type="point"><point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="10"/></emitter>
+    <emitter type="constant"><rgb name="radiance" value="0.5"/></emitter>
+</scene>"#,
+        SENSOR.replace(
+            r#"<rfilter type="box"/>"#,
+            r#"<rfilter type="gaussian"><float name="stddev" value="0.4"/></rfilter>"#
+        )
+    );
+    let path = files("mitsuba-convert", &main, &[]);
+    let scene = load_mitsuba(&path, &[]).unwrap();
+    assert_eq!(
+        scene.settings.filter,
+        embray::sampling::filter::PixelFilter::Gaussian { stddev: 0.4 }
+    );
+    let dir = path.parent().unwrap();
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
+    let toml = dir.join("scene.toml");
+    writer.write(&scene, &toml, "round trip").unwrap();
+    let back = embray::scene::load(&toml).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(back.settings, scene.settings);
+    assert_eq!(back.lights, scene.lights);
+    assert_eq!(back.materials[back.objects[0].material as usize].albedo, Vec3::new(0.2, 0.4, 0.6));
+}

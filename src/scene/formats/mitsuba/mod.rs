@@ -73,6 +73,8 @@ struct Builder<'a> {
     meshes: MeshCache,
     warnings: &'a mut Vec<String>,
     materials: Vec<MaterialDesc>,
+    /// The material made for each BSDF id, for shapes that share it.
+    shared_materials: HashMap<String, u32>,
     objects: Vec<ObjectDesc>,
     lights: Vec<LightDesc>,
 }
@@ -101,6 +103,7 @@ pub fn load(
         meshes: MeshCache::default(),
         warnings: &mut warnings,
         materials: Vec::new(),
+        shared_materials: HashMap::new(),
         objects: Vec::new(),
         lights: Vec::new(),
     };

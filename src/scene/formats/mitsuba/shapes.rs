@@ -118,6 +118,14 @@ impl Builder<'_> {
             }
         }
         let emitting = !emitters.is_empty();
+        // Shapes that share a BSDF by id (and emit nothing) share one material.
+        let shared_id = match bsdfs[..] {
+            [one] if !emitting => one.attr("id").map(str::to_owned),
+            _ => None,
+        };
+        if let Some(index) = shared_id.as_ref().and_then(|id| self.shared_materials.get(id)) {
+            return Ok(*index);
+        }
         // Mitsuba's default BSDF: diffuse 0.5, or black for an emitter.
         let albedo = glam::Vec3::splat(if emitting { 0.0 } else { 0.5 });
         let mut material = match bsdfs[..] {
@@ -138,6 +146,10 @@ impl Builder<'_> {
             material.emission = radiance.as_vec3();
         }
         self.materials.push(material);
-        Ok((self.materials.len() - 1) as u32)
+        let index = (self.materials.len() - 1) as u32;
+        if let Some(id) = shared_id {
+            self.shared_materials.insert(id, index);
+        }
+        Ok(index)
     }
 }

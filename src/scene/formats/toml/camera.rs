@@ -158,6 +158,9 @@ pub(crate) fn settings(
             IntegratorToml::Whitted => IntegratorKind::Whitted,
         };
     }
+    if let Some(filter) = &render.filter {
+        settings.filter = pixel_filter(ctx, &path.key("filter"), filter)?;
+    }
     if let Some(t) = &render.tonemap {
         let path = path.key("tonemap");
         // The one operator there is; the field makes the choice explicit in the file.
@@ -179,4 +182,36 @@ pub(crate) fn settings(
         settings.tonemap = Some(p);
     }
     Ok(settings)
+}
+
+/// `[render] filter`: the type and its one size (Mitsuba's defaults: σ = 0.5, r = 1).
+fn pixel_filter(
+    ctx: &Ctx,
+    path: &FieldPath,
+    filter: &crate::scene::formats::toml::format::FilterToml,
+) -> Result<crate::sampling::filter::PixelFilter, SceneError> {
+    use crate::sampling::filter::PixelFilter;
+    use crate::scene::formats::toml::format::FilterKindToml;
+    let item = format!("{path} ({:?} filter)", filter.kind).to_lowercase();
+    let size = |name: &str, value: Option<f64>, default: f64| -> Result<f32, SceneError> {
+        let value = value.unwrap_or(default);
+        let ok = value > 0.0 && value <= 16.0;
+        ctx.require(ok, &path.key(name), value, "in (0, 16] pixels")?;
+        Ok(value as f32)
+    };
+    let present = [("stddev", filter.stddev.is_some()), ("radius", filter.radius.is_some())];
+    Ok(match filter.kind {
+        FilterKindToml::Box => {
+            ctx.check_fields(path, &item, &present, &["type"])?;
+            PixelFilter::Box
+        }
+        FilterKindToml::Gaussian => {
+            ctx.check_fields(path, &item, &present, &["type", "stddev"])?;
+            PixelFilter::Gaussian { stddev: size("stddev", filter.stddev, 0.5)? }
+        }
+        FilterKindToml::Tent => {
+            ctx.check_fields(path, &item, &present, &["type", "radius"])?;
+            PixelFilter::Tent { radius: size("radius", filter.radius, 1.0)? }
+        }
+    })
 }

@@ -65,6 +65,25 @@ pub(crate) struct RenderToml {
     pub integrator: Option<IntegratorToml>,
     pub tonemap: Option<TonemapToml>,
     pub background_texture: Option<TextureToml>,
+    pub filter: Option<FilterToml>,
+}
+
+/// `filter = { type = "gaussian", stddev = 0.5 }`: the pixel reconstruction filter.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct FilterToml {
+    #[serde(rename = "type")]
+    pub kind: FilterKindToml,
+    pub stddev: Option<f64>,
+    pub radius: Option<f64>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum FilterKindToml {
+    Box,
+    Gaussian,
+    Tent,
 }
 
 /// `tonemap = { operator = "photographic", key = 0.18, burn_out = 1, saturation = 1,

@@ -188,6 +188,15 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
         c3(s.background),
         s.light_samples
     );
+    match s.filter {
+        crate::sampling::filter::PixelFilter::Box => {}
+        crate::sampling::filter::PixelFilter::Gaussian { stddev } => {
+            let _ = writeln!(out, "filter = {{ type = \"gaussian\", stddev = {stddev:?} }}");
+        }
+        crate::sampling::filter::PixelFilter::Tent { radius } => {
+            let _ = writeln!(out, "filter = {{ type = \"tent\", radius = {radius:?} }}");
+        }
+    }
     if let Some(t) = &s.background_texture {
         let _ = writeln!(out, "background_texture = {}", texture_toml(t, false)?);
     }
