@@ -159,7 +159,8 @@ impl Params {
         if ok { Ok(()) } else { Err(self.out_of_range(name, value, requirement)) }
     }
 
-    fn numbers<const N: usize>(&self, name: &str) -> Result<Option<[f64; N]>, ParamError> {
+    /// Exactly `N` numbers, or `None` when absent.
+    pub fn numbers<const N: usize>(&self, name: &str) -> Result<Option<[f64; N]>, ParamError> {
         let Some(entry) = self.entry(name) else { return Ok(None) };
         let found = entry.value.numbers().and_then(|v| <[f64; N]>::try_from(v).ok());
         let requirement = match N {
@@ -280,4 +281,5 @@ pub trait ParamSink {
     /// A colour, kept in f32: written as the shortest text that reads back to it.
     fn color(&mut self, name: &str, value: Vec3);
     fn path(&mut self, name: &str, value: &std::path::Path);
+    fn numbers(&mut self, name: &str, values: &[f64]);
 }

@@ -81,8 +81,10 @@ fn a_mirror_sphere_reflects_the_map_where_the_course_mapping_puts_it() {
                 map: EnvironmentMap::Image(image),
                 scale,
                 mapping,
+                world_from_map,
             }),
         ] => {
+            assert_eq!(*world_from_map, glam::DMat3::IDENTITY);
             assert_eq!(*mapping, embray::scene::EnvironmentMapping::LatLong);
             assert_eq!((image.width, image.height, image.hdr), (9, 5, true));
             assert_eq!(*scale, Vec3::ONE);

@@ -6,7 +6,7 @@ use super::{LightKind, LightParts};
 use crate::light::{EnvironmentLight, EnvironmentMapping};
 use crate::params::{ParamError, ParamSink, Params, Resources};
 use crate::texels::TextureImage;
-use glam::{DAffine3, Vec3};
+use glam::{DAffine3, DMat3, Vec3};
 use std::sync::Arc;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -14,6 +14,9 @@ pub struct Environment {
     pub map: EnvironmentMap,
     pub scale: Vec3,
     pub mapping: EnvironmentMapping,
+    /// The map's orientation: a rotation from the map's frame (in which `mapping` holds) to
+    /// the world (`to_world`, row by row; identity by default).
+    pub world_from_map: DMat3,
 }
 
 /// What an environment light's radiance comes from.
@@ -32,7 +35,8 @@ const MAPPINGS: [(&str, EnvironmentMapping); 2] =
 impl LightKind for Environment {
     const NAME: &'static str = "environment";
     const LABEL: &'static str = "environment light";
-    const FIELDS: &'static [&'static str] = &["file", "radiance", "scale", "encoding", "mapping"];
+    const FIELDS: &'static [&'static str] =
+        &["file", "radiance", "scale", "encoding", "mapping", "to_world"];
     const ONE_PER_SCENE: bool = true;
 
     fn read(p: &Params, resources: &dyn Resources) -> Result<Self, ParamError> {
@@ -54,7 +58,22 @@ impl LightKind for Environment {
         let scale = p.opt_color("scale")?.unwrap_or(Vec3::ONE);
         let mapping = p.opt_choice("mapping", &MAPPINGS)?;
         p.require(mapping.is_none() || p.has("file"), "mapping", "given", "given only with file")?;
-        Ok(Environment { map, scale, mapping: mapping.unwrap_or_default() })
+        let world_from_map = match p.numbers::<9>("to_world")? {
+            Some(rows) => {
+                let m = DMat3::from_cols_array(&rows).transpose();
+                let orthonormal = (m.transpose() * m - DMat3::IDENTITY).to_cols_array();
+                let ok = orthonormal.iter().all(|e| e.abs() < 1e-9) && m.determinant() > 0.0;
+                p.require(
+                    ok,
+                    "to_world",
+                    format!("{rows:?}"),
+                    "a rotation (9 numbers, row by row)",
+                )?;
+                m
+            }
+            None => DMat3::IDENTITY,
+        };
+        Ok(Environment { map, scale, mapping: mapping.unwrap_or_default(), world_from_map })
     }
 
     fn write(&self, out: &mut dyn ParamSink) {
@@ -69,11 +88,16 @@ impl LightKind for Environment {
             }
         }
         out.color("scale", self.scale);
+        if self.world_from_map != DMat3::IDENTITY {
+            out.numbers("to_world", &self.world_from_map.transpose().to_cols_array());
+        }
     }
 
     fn compile(&self, render_from_world: &DAffine3, parts: &mut LightParts) {
-        // Directions are looked up in world space: render space only rotates back.
-        let world_from_render = render_from_world.matrix3.inverse().as_mat3();
+        // Directions are looked up in the map's frame: render space only rotates back to
+        // the world, and the map's orientation is a rotation from there.
+        let world_from_render = render_from_world.matrix3.inverse();
+        let world_from_render = (self.world_from_map.transpose() * world_from_render).as_mat3();
         parts.environment = Some(match &self.map {
             EnvironmentMap::Constant(radiance) => EnvironmentLight::new(
                 1,

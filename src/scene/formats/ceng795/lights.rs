@@ -59,6 +59,7 @@ pub(super) fn lights<'a, 'i: 'a>(
                         map: EnvironmentMap::Image(image),
                         scale: glam::Vec3::ONE,
                         mapping,
+                        world_from_map: glam::DMat3::IDENTITY,
                     })
                 }
                 "AmbientLight" => course_light(x, node, "ambient", &[(".", "radiance")])?,

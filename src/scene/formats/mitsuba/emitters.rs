@@ -9,7 +9,8 @@ use super::tree::Element;
 use super::values::{ColorUse, params};
 use crate::light::LightDesc;
 use crate::params::{Entry, ParamError, Params, Resources, Value};
-use crate::scene::error::SceneError;
+use crate::scene::error::{Line, SceneError};
+use crate::scene::texture_image::{ImageRef, load_radiance};
 use crate::texels::TextureImage;
 use glam::DVec3;
 use std::sync::Arc;
@@ -17,7 +18,8 @@ use std::sync::Arc;
 impl Builder<'_> {
     pub(super) fn emitter(&mut self, element: &Element) -> Result<(), SceneError> {
         let kind = element.required("type")?;
-        let mut p = params(element, &[], ColorUse::Emission)?;
+        let skip: &[&str] = if kind == "envmap" { &["filename", "scale"] } else { &[] };
+        let mut p = params(element, skip, ColorUse::Emission)?;
         let to_world = match property(element, "transform", "to_world") {
             Some(t) => Some(transform(t)?),
             None => None,
@@ -50,15 +52,39 @@ impl Builder<'_> {
                 }
                 "environment"
             }
+            "envmap" => {
+                let derived = |name: &str, value: Value| Entry {
+                    name: name.to_owned(),
+                    value,
+                    field: format!("{} > {name}", element.describe()),
+                    line: Some(element.line),
+                    indexed: false,
+                };
+                let file = property(element, "string", "filename")
+                    .ok_or_else(|| element.error("the property `filename` is missing"))?;
+                p.push(derived("file", Value::Text(file.required("value")?.to_owned())));
+                if let Some(scale) = super::sensor::float(element, "scale")? {
+                    p.push(derived("scale", Value::Numbers(vec![scale; 3])));
+                }
+                // Mitsuba's map looks along +z at its centre, embray's along −z: half a
+                // turn about y between them.
+                let half_turn = glam::DMat3::from_diagonal(DVec3::new(-1.0, 1.0, -1.0));
+                let world_from_map =
+                    to_world.map_or(glam::DMat3::IDENTITY, |m| m.matrix3) * half_turn;
+                let rows = world_from_map.transpose().to_cols_array().to_vec();
+                p.push(derived("to_world", Value::Numbers(rows)));
+                "environment"
+            }
             "area" => return Err(element.error("an area emitter belongs inside a <shape>")),
             other => {
                 return Err(element.error(format!(
-                    "the emitter '{other}' is not supported yet (point, directional, constant \
-                     and area are)"
+                    "the emitter '{other}' is not supported yet (point, directional, constant, \
+                     envmap and area are)"
                 )));
             }
         };
-        let light = LightDesc::read(ours, &p, &NoFiles)
+        let files = Files { files: self.files, scene: &element.file };
+        let light = LightDesc::read(ours, &p, &files)
             .expect("a kind of light")
             .map_err(|e| SceneError::from_param(&element.file, e))?;
         if light.one_per_scene() && self.lights.iter().any(|l| l.name() == light.name()) {
@@ -69,15 +95,26 @@ impl Builder<'_> {
     }
 }
 
-struct NoFiles;
+/// Files named by an emitter, found where the scene finds its files.
+struct Files<'a> {
+    files: &'a super::tree::FileResolver,
+    scene: &'a std::path::Path,
+}
 
-impl Resources for NoFiles {
+impl Resources for Files<'_> {
     fn radiance_image(
         &self,
         p: &Params,
         name: &str,
-        _: bool,
+        srgb: bool,
     ) -> Result<Arc<TextureImage>, ParamError> {
-        Err(p.out_of_range(name, "given", "not a parameter of this emitter"))
+        let file = p.opt_text(name)?.ok_or_else(|| p.missing(name))?;
+        let at = ImageRef {
+            image: self.files.resolve(file),
+            scene: self.scene,
+            item: p.field(name),
+            line: Line(p.line(name)),
+        };
+        load_radiance(&at, srgb).map_err(|e| ParamError::Reader(Box::new(e)))
     }
 }

@@ -59,6 +59,11 @@ impl crate::params::ParamSink for TomlLines<'_> {
         *self.0 += &format!("{name} = {}\n", c3(value));
     }
 
+    fn numbers(&mut self, name: &str, values: &[f64]) {
+        let list: Vec<String> = values.iter().map(|&v| f(v)).collect();
+        *self.0 += &format!("{name} = [{}]\n", list.join(", "));
+    }
+
     fn path(&mut self, name: &str, value: &std::path::Path) {
         let absolute = std::path::absolute(value).unwrap_or_else(|_| value.to_path_buf());
         self.text(name, &absolute.to_string_lossy());
