@@ -25,6 +25,8 @@ pub struct Camera {
     pub shift: Vec2,
     /// A pixel's width over its height (see `CameraDesc::pixel_aspect`).
     pub pixel_aspect: f32,
+    /// An orthographic camera's half-height of view; `None` for a perspective one.
+    pub ortho_half_height: Option<f32>,
 }
 
 impl Default for Camera {
@@ -41,6 +43,7 @@ impl Default for Camera {
             square_lens: false,
             shift: Vec2::ZERO,
             pixel_aspect: 1.0,
+            ortho_half_height: None,
         }
     }
 }
@@ -66,6 +69,15 @@ impl Camera {
     /// The primary ray through `raster`. `lens` is a uniform sample in [0,1)² and is only
     /// read when the camera has an aperture.
     pub fn generate_ray(&self, raster: Vec2, lens: Option<Vec2>) -> Ray {
+        if let Some(half_height) = self.ortho_half_height {
+            // Parallel rays from the image plane: the perspective direction's x and y at unit
+            // distance, scaled from tan(vfov/2) to the half-height, are the offset.
+            let offset = self.camera_direction(raster) * (half_height / self.tan_half_vfov);
+            let origin_camera = Vec3::new(offset.x, offset.y, 0.0);
+            let origin = self.position + self.render_from_camera_rotation * origin_camera;
+            let dir = (self.render_from_camera_rotation * Vec3::NEG_Z).normalize();
+            return Ray::new(origin, dir, f32::INFINITY);
+        }
         let dir_camera = self.camera_direction(raster);
         let (origin_camera, dir_camera) = match lens {
             Some(u) if self.has_lens() => {

@@ -20,5 +20,6 @@ pub(super) fn place_camera(desc: &CameraDesc, camera_transform: &CameraTransform
         square_lens: desc.lens_shape == LensShape::Square,
         shift: desc.shift.as_vec2(),
         pixel_aspect: desc.pixel_aspect as f32,
+        ortho_half_height: desc.ortho_half_height.map(|h| h as f32),
     }
 }

@@ -25,6 +25,18 @@ pub struct EnvironmentLight {
     world_from_render: Mat3,
     /// Over the image, in proportion to luminance × solid angle per cell; `None` for a black map.
     distribution: Option<Piecewise2D>,
+    lookup: TexelLookup,
+}
+
+/// How a direction's radiance is read from the map.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TexelLookup {
+    /// The texel the direction falls in (constant over each texel's cell).
+    #[default]
+    Nearest,
+    /// Bilinear between texel centres, periodic in u, with the first and last rows on the
+    /// poles (Mitsuba 3's `envmap`: row j at v = j / (H − 1)).
+    BilinearPoles,
 }
 
 /// A direction sampled towards the environment.
@@ -73,14 +85,40 @@ impl EnvironmentLight {
             })
             .collect();
         let distribution = Piecewise2D::new(&weights, across, down);
-        EnvironmentLight { width, height, texels, mapping, world_from_render, distribution }
+        let lookup = TexelLookup::Nearest;
+        EnvironmentLight { width, height, texels, mapping, world_from_render, distribution, lookup }
+    }
+
+    /// The same map read with `lookup` (sampling stays in proportion to the texels).
+    pub fn with_lookup(mut self, lookup: TexelLookup) -> Self {
+        self.lookup = lookup;
+        self
     }
 
     fn texel(&self, uv: Vec2) -> Vec3 {
+        if self.lookup == TexelLookup::BilinearPoles {
+            return self.bilinear(uv);
+        }
         // u wraps (u = 1 is u = 0); v = 1 is the bottom row.
         let col = ((uv.x * self.width as f32) as usize) % self.width;
         let row = ((uv.y * self.height as f32) as usize).min(self.height - 1);
         self.texels[row * self.width + col]
+    }
+
+    fn bilinear(&self, uv: Vec2) -> Vec3 {
+        let (w, h) = (self.width, self.height);
+        let x = (uv.x - uv.x.floor()) * w as f32 - 0.5;
+        let y = uv.y.clamp(0.0, 1.0) * (h - 1) as f32;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let col0 = (x0 as i64).rem_euclid(w as i64) as usize;
+        let col1 = (col0 + 1) % w;
+        let row0 = (y0 as usize).min(h - 1);
+        let row1 = (row0 + 1).min(h - 1);
+        let at = |row: usize, col: usize| self.texels[row * w + col];
+        let top = at(row0, col0) * (1.0 - fx) + at(row0, col1) * fx;
+        let bottom = at(row1, col0) * (1.0 - fx) + at(row1, col1) * fx;
+        top * (1.0 - fy) + bottom * fy
     }
 
     /// Radiance arriving from direction `dir` (render space, any length).

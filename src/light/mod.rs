@@ -16,7 +16,7 @@ mod tests;
 pub use ellipsoid::Ellipsoid;
 pub use emitter::EmitterShape;
 pub use env_mapping::EnvironmentMapping;
-pub use environment::{EnvironmentLight, EnvironmentSample};
+pub use environment::{EnvironmentLight, EnvironmentSample, TexelLookup};
 pub use kinds::{LightDesc, LightKind, LightParts, SpotCone};
 pub use shape_sample::ShapeSample;
 pub use sphere_shape::SphereShape;

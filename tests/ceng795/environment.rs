@@ -82,6 +82,7 @@ fn a_mirror_sphere_reflects_the_map_where_the_course_mapping_puts_it() {
                 scale,
                 mapping,
                 world_from_map,
+                ..
             }),
         ] => {
             assert_eq!(*world_from_map, glam::DMat3::IDENTITY);

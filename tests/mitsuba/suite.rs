@@ -10,7 +10,8 @@ use embray::mitsuba_rule::judge;
 use std::path::{Path, PathBuf};
 
 /// The suite's scenes that embray renders; every other one must be refused.
-const RENDERED: [&str; 1] = ["test_directional_direct"];
+const RENDERED: [&str; 3] =
+    ["test_directional_direct", "test_orthographic_path", "test_textured_diffuse_path"];
 
 fn mitsuba_data() -> PathBuf {
     repo_path("../shared/data/mitsuba")

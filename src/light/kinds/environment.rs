@@ -3,7 +3,7 @@
 //! the scene see it in place of the background; a scene takes at most one.
 
 use super::{LightKind, LightParts};
-use crate::light::{EnvironmentLight, EnvironmentMapping};
+use crate::light::{EnvironmentLight, EnvironmentMapping, TexelLookup};
 use crate::params::{ParamError, ParamSink, Params, Resources};
 use crate::texels::TextureImage;
 use glam::{DAffine3, DMat3, Vec3};
@@ -17,6 +17,8 @@ pub struct Environment {
     /// The map's orientation: a rotation from the map's frame (in which `mapping` holds) to
     /// the world (`to_world`, row by row; identity by default).
     pub world_from_map: DMat3,
+    /// How directions read the image (`interpolation`: nearest, or Mitsuba's bilinear).
+    pub lookup: TexelLookup,
 }
 
 /// What an environment light's radiance comes from.
@@ -29,6 +31,8 @@ pub enum EnvironmentMap {
 }
 
 const ENCODINGS: [(&str, bool); 2] = [("srgb", true), ("raw", false)];
+const LOOKUPS: [(&str, TexelLookup); 2] =
+    [("nearest", TexelLookup::Nearest), ("bilinear_poles", TexelLookup::BilinearPoles)];
 const MAPPINGS: [(&str, EnvironmentMapping); 2] =
     [("latlong", EnvironmentMapping::LatLong), ("probe", EnvironmentMapping::Probe)];
 
@@ -36,7 +40,7 @@ impl LightKind for Environment {
     const NAME: &'static str = "environment";
     const LABEL: &'static str = "environment light";
     const FIELDS: &'static [&'static str] =
-        &["file", "radiance", "scale", "encoding", "mapping", "to_world"];
+        &["file", "radiance", "scale", "encoding", "mapping", "to_world", "interpolation"];
     const ONE_PER_SCENE: bool = true;
 
     fn read(p: &Params, resources: &dyn Resources) -> Result<Self, ParamError> {
@@ -73,7 +77,9 @@ impl LightKind for Environment {
             }
             None => DMat3::IDENTITY,
         };
-        Ok(Environment { map, scale, mapping: mapping.unwrap_or_default(), world_from_map })
+        let lookup = p.opt_choice("interpolation", &LOOKUPS)?.unwrap_or_default();
+        let mapping = mapping.unwrap_or_default();
+        Ok(Environment { map, scale, mapping, world_from_map, lookup })
     }
 
     fn write(&self, out: &mut dyn ParamSink) {
@@ -88,6 +94,10 @@ impl LightKind for Environment {
             }
         }
         out.color("scale", self.scale);
+        if self.lookup != TexelLookup::Nearest {
+            let name = LOOKUPS.iter().find(|(_, l)| *l == self.lookup).map_or("nearest", |l| l.0);
+            out.text("interpolation", name);
+        }
         if self.world_from_map != DMat3::IDENTITY {
             out.numbers("to_world", &self.world_from_map.transpose().to_cols_array());
         }
@@ -114,7 +124,8 @@ impl LightKind for Environment {
                 self.scale,
                 self.mapping,
                 world_from_render,
-            ),
+            )
+            .with_lookup(self.lookup),
         });
     }
 }

@@ -24,6 +24,10 @@ pub struct CameraDesc {
     /// view is the vertical one's extent times width / height × this: the course stretches
     /// a near plane whose aspect differs from the resolution's over the image.
     pub pixel_aspect: f64,
+    /// An orthographic camera's half-height of view (world units): rays run parallel to the
+    /// view direction from the image plane through `lookfrom`; `vfov_deg` is then unused.
+    /// `None`: a perspective camera.
+    pub ortho_half_height: Option<f64>,
 }
 
 impl CameraDesc {
@@ -41,6 +45,7 @@ impl CameraDesc {
             lens_shape: LensShape::Disk,
             shift: DVec2::ZERO,
             pixel_aspect: 1.0,
+            ortho_half_height: None,
         }
     }
 }

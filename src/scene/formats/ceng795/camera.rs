@@ -180,6 +180,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
     Ok(CameraSpec {
         image_name,
         camera: CameraDesc {
+            ortho_half_height: None,
             lookfrom: position,
             lookat: position + gaze,
             up,

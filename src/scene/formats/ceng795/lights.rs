@@ -60,6 +60,7 @@ pub(super) fn lights<'a, 'i: 'a>(
                         scale: glam::Vec3::ONE,
                         mapping,
                         world_from_map: glam::DMat3::IDENTITY,
+                        lookup: Default::default(),
                     })
                 }
                 "AmbientLight" => course_light(x, node, "ambient", &[(".", "radiance")])?,

@@ -227,9 +227,21 @@ fn reflectance_texture(
             )));
         }
     };
-    if property(texture, "transform", "to_uv").is_some() {
-        return Err(texture.error("to_uv is not supported yet"));
-    }
+    let pattern = match (property(texture, "transform", "to_uv"), pattern) {
+        (None, pattern) => pattern,
+        // A uniform scale of the texture coordinates: more checks.
+        (Some(to_uv), Pattern::Checker2d { scale, even, odd }) => {
+            let m = super::transform::transform(to_uv)?;
+            let factor = m.matrix3.x_axis.x;
+            let uniform = m.matrix3 == glam::DMat3::from_diagonal(DVec3::new(factor, factor, 1.0))
+                || m.matrix3 == glam::DMat3::from_diagonal(DVec3::splat(factor));
+            if !uniform || m.translation != DVec3::ZERO || !(factor > 0.0) {
+                return Err(to_uv.error("to_uv other than a uniform scale is not supported yet"));
+            }
+            Pattern::Checker2d { scale: scale * factor as f32, even, odd }
+        }
+        (Some(to_uv), _) => return Err(to_uv.error("to_uv on a bitmap is not supported yet")),
+    };
     Ok(Some(TextureDesc {
         pattern,
         mode: TextureMode::Replace,

@@ -73,6 +73,7 @@ impl Builder<'_> {
                     to_world.map_or(glam::DMat3::IDENTITY, |m| m.matrix3) * half_turn;
                 let rows = world_from_map.transpose().to_cols_array().to_vec();
                 p.push(derived("to_world", Value::Numbers(rows)));
+                p.push(derived("interpolation", Value::Text("bilinear_poles".to_owned())));
                 "environment"
             }
             "area" => return Err(element.error("an area emitter belongs inside a <shape>")),

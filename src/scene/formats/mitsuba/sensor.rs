@@ -92,9 +92,10 @@ fn x_fov(sensor: &Element, aspect: f64) -> Result<f64, SceneError> {
 
 pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Sensor, SceneError> {
     let kind = element.required("type")?;
-    if !matches!(kind, "perspective" | "thinlens") {
+    if !matches!(kind, "perspective" | "thinlens" | "orthographic") {
         return Err(element.error(format!(
-            "the sensor type '{kind}' is not supported (perspective and thinlens are)"
+            "the sensor type '{kind}' is not supported (perspective, thinlens and orthographic \
+             are)"
         )));
     }
     let (mut width, mut height, mut spp) = (768u32, 576u32, None);
@@ -130,6 +131,16 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         }
     }
     let aspect = f64::from(width) / f64::from(height);
+    if kind == "orthographic" {
+        // Mitsuba's film spans x in [−1, 1] and y in [−1/aspect, 1/aspect] of the camera's
+        // space, which to_world may scale.
+        let (sx, sy) = (left.length(), to_world.matrix3.col(1).length());
+        let mut camera = CameraDesc::pinhole(origin, origin + dir, 90.0, width, height);
+        camera.up = up;
+        camera.ortho_half_height = Some(sy / aspect);
+        camera.pixel_aspect = sx / sy;
+        return Ok(Sensor { camera, spp, filter });
+    }
     let x_fov = x_fov(element, aspect)?;
     let vfov = (2.0 * ((0.5 * x_fov).to_radians().tan() / aspect).atan()).to_degrees();
     let mut camera = CameraDesc::pinhole(origin, origin + dir, vfov, width, height);

@@ -7,7 +7,7 @@ use super::sensor::property;
 use super::transform::transform;
 use super::tree::Element;
 use super::values::{ColorUse, color, vec3};
-use crate::scene::desc::{MaterialDesc, ObjectDesc, ShapeDesc};
+use crate::scene::desc::{MaterialDesc, MeshData, ObjectDesc, ShapeDesc};
 use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::obj::ObjRef;
 use crate::scene::shapes::{box_mesh, quad_mesh};
@@ -18,7 +18,8 @@ impl Builder<'_> {
     pub(super) fn shape(&mut self, element: &Element) -> Result<(), SceneError> {
         let kind = element.required("type")?;
         let known: &[&str] = match kind {
-            "obj" | "ply" => &["filename", "face_normals", "flip_normals", "to_world"],
+            "obj" => &["filename", "face_normals", "flip_normals", "flip_tex_coords", "to_world"],
+            "ply" => &["filename", "face_normals", "flip_normals", "to_world"],
             "sphere" => &["center", "radius", "flip_normals", "to_world"],
             _ => &["flip_normals", "to_world"],
         };
@@ -64,7 +65,24 @@ impl Builder<'_> {
                 };
                 let (_, models) =
                     self.meshes.models(&mesh_ref, Some(!face_normals), self.warnings)?;
-                models.into_iter().map(|m| ShapeDesc::Mesh(m.mesh)).collect()
+                // Mitsuba turns an OBJ's v upside down (flip_tex_coords, on by default), so
+                // that v = 0 is the image's top row as for every other texture lookup.
+                let flip = kind == "obj"
+                    && property(element, "boolean", "flip_tex_coords")
+                        .is_none_or(|b| b.attr("value") != Some("false"));
+                models
+                    .into_iter()
+                    .map(|m| {
+                        if !flip || m.mesh.uvs.is_none() {
+                            return ShapeDesc::Mesh(m.mesh);
+                        }
+                        let mut mesh = MeshData::clone(&m.mesh);
+                        for uv in mesh.uvs.iter_mut().flatten() {
+                            uv.y = 1.0 - uv.y;
+                        }
+                        ShapeDesc::Mesh(Arc::new(mesh))
+                    })
+                    .collect()
             }
             "rectangle" => {
                 let mesh = quad_mesh(DVec3::new(-1.0, -1.0, 0.0), 2.0 * DVec3::X, 2.0 * DVec3::Y)

@@ -58,6 +58,7 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
     let focus_distance =
         cam.focus_distance.map(|d| ctx.positive(&path.key("focus_distance"), d)).transpose()?;
     Ok(CameraDesc {
+        ortho_half_height: None,
         lookfrom,
         lookat,
         up: DVec3::from_array(up),

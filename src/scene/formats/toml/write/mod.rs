@@ -175,6 +175,12 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
     if c.pixel_aspect != 1.0 {
         let _ = writeln!(out, "pixel_aspect = {}", f(c.pixel_aspect));
     }
+    if c.ortho_half_height.is_some() {
+        return Err(TomlWriteError::Unsupported {
+            item: "the camera".to_owned(),
+            problem: "it is orthographic".to_owned(),
+        });
+    }
     let s = &scene.settings;
     let integrator = match s.integrator {
         IntegratorKind::Path => "path",
