@@ -34,6 +34,7 @@ pub mod output;
 pub mod params;
 pub mod ray;
 pub mod render;
+pub mod render_options;
 pub mod render_scene;
 pub mod render_space;
 pub mod sample_sums;

@@ -8,6 +8,7 @@ mod cie;
 mod emitters;
 mod ior;
 mod metals;
+mod scalars;
 mod sensor;
 mod shapes;
 mod spectrum;

@@ -3,8 +3,8 @@
 //! observer (times D65 unless it is emission), converted from XYZ and clamped.
 
 use super::cie::{D65, MAX_NM, MIN_NM, SAMPLES, X_BAR, Y_BAR, Z_BAR};
+use super::scalars::{ColorUse, numbers};
 use super::tree::Element;
-use super::values::{ColorUse, numbers};
 use crate::scene::error::SceneError;
 use glam::{DMat3, DVec3};
 

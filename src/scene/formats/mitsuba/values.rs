@@ -2,6 +2,7 @@
 //! values, and a plugin's properties as the `Params` a kind reads (each named by its
 //! element and line).
 
+pub(super) use super::scalars::{ColorUse, number_attr, numbers, vec3};
 use super::spectrum;
 use super::tree::Element;
 use crate::params::{Entry, Params, Value};
@@ -11,62 +12,6 @@ use glam::DVec3;
 /// The tags of property elements (everything else in a plugin is a nested object).
 pub(super) const PROPERTY_TAGS: [&str; 9] =
     ["integer", "float", "boolean", "string", "point", "vector", "rgb", "spectrum", "color"];
-
-/// The numbers of `text`, separated by commas and/or whitespace.
-pub(super) fn numbers(element: &Element, text: &str) -> Result<Vec<f64>, SceneError> {
-    text.split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|t| !t.is_empty())
-        .map(|token| {
-            let value: f64 = token
-                .parse()
-                .map_err(|_| element.error(format!("'{}' is not a number", excerpt(token))))?;
-            if value.is_finite() {
-                Ok(value)
-            } else {
-                Err(element.error(format!("'{}' is not a finite number", excerpt(token))))
-            }
-        })
-        .collect()
-}
-
-fn excerpt(text: &str) -> String {
-    crate::excerpt::excerpt(text)
-}
-
-/// One number from the attribute `name`.
-pub(super) fn number_attr(element: &Element, name: &str) -> Result<f64, SceneError> {
-    match numbers(element, element.required(name)?)?[..] {
-        [x] => Ok(x),
-        _ => Err(element.error(format!("`{name}` must be one number"))),
-    }
-}
-
-/// A point or vector: `x`, `y`, `z` attributes (each 0 when absent) or `value="x, y, z"`
-/// (one number for all three when `splat`).
-pub(super) fn vec3(element: &Element, splat: bool) -> Result<DVec3, SceneError> {
-    if let Some(text) = element.attr("value") {
-        return match numbers(element, text)?[..] {
-            [x, y, z] => Ok(DVec3::new(x, y, z)),
-            [v] if splat => Ok(DVec3::splat(v)),
-            _ => Err(element.error("`value` must be three numbers")),
-        };
-    }
-    let coordinate = |name: &str| match element.attr(name) {
-        Some(_) => number_attr(element, name),
-        None => Ok(0.0),
-    };
-    Ok(DVec3::new(coordinate("x")?, coordinate("y")?, coordinate("z")?))
-}
-
-/// What the colour of an `<rgb>` or `<spectrum>` stands for: Mitsuba converts a spectrum
-/// differently for reflectances (bounded to [0, 1]) and for emission.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum ColorUse {
-    Reflectance,
-    Emission,
-    /// Neither bounded nor emitted: a conductor's eta and k.
-    Unbounded,
-}
 
 /// The RGB of an `<rgb>` or `<spectrum>` element.
 pub(super) fn color(element: &Element, usage: ColorUse) -> Result<DVec3, SceneError> {
@@ -92,7 +37,8 @@ pub(super) fn property_value(element: &Element, usage: ColorUse) -> Result<Value
             "true" => Value::Bool(true),
             "false" => Value::Bool(false),
             other => {
-                return Err(element.error(format!("'{}' is not true or false", excerpt(other))));
+                return Err(element
+                    .error(format!("'{}' is not true or false", crate::excerpt::excerpt(other))));
             }
         },
         "string" => Value::Text(element.required("value")?.to_owned()),

@@ -1,0 +1,74 @@
+//! The options of one render, validated: samples, depth, seed, backend, render space, and
+//! the switches that compare methods (sampler, spawning, lobe energy, effects).
+
+use crate::accel::{AccelOptions, BackendKind};
+use crate::compile::EffectsMode;
+use crate::render_space::RenderSpace;
+use crate::sampling::SamplerKind;
+use crate::scene::{IntegratorKind, SceneDesc};
+use crate::shading::spawn::SpawnMode;
+use glam::DVec3;
+
+/// Validated options of one render (command line, or tests).
+#[derive(Clone, Debug)]
+pub struct RenderOptions {
+    pub spp: u32,
+    pub max_depth: u32,
+    pub seed: u64,
+    /// Jitter samples inside their strata (off: stratum centres, for reproducible tests).
+    /// A Whitted render at 1 spp always samples pixel centres, as the course does.
+    pub jitter: bool,
+    /// Worker threads; `None` uses every core.
+    pub threads: Option<usize>,
+    pub backend: BackendKind,
+    pub render_space: RenderSpace,
+    /// Moves the whole scene and camera (world space, f64) before rendering.
+    pub offset: DVec3,
+    pub count_traversal: bool,
+    /// How the backend is built (its `count_traversal` is replaced by the one above).
+    pub accel: AccelOptions,
+    pub progress: bool,
+    /// Shadow rays to emitters per shading point.
+    pub light_samples: u32,
+    pub effects_mode: EffectsMode,
+    pub integrator: IntegratorKind,
+    pub spawn: SpawnMode,
+    pub sampler: SamplerKind,
+    /// How the path tracer combines a material's lobes (conserving, or the course's
+    /// additive model).
+    pub energy: crate::shading::bsdf::Energy,
+}
+
+impl RenderOptions {
+    /// Options taking spp and depth from the scene's own settings.
+    pub fn for_scene(scene: &SceneDesc) -> Self {
+        RenderOptions {
+            spp: scene.settings.spp,
+            max_depth: scene.settings.max_depth,
+            seed: 0,
+            jitter: true,
+            threads: None,
+            backend: BackendKind::default_compiled(),
+            render_space: RenderSpace::default(),
+            offset: DVec3::ZERO,
+            count_traversal: false,
+            accel: AccelOptions::DEFAULT,
+            progress: false,
+            light_samples: scene.settings.light_samples,
+            effects_mode: EffectsMode::Auto,
+            integrator: scene.settings.integrator,
+            spawn: SpawnMode::Robust,
+            sampler: SamplerKind::default(),
+            energy: Default::default(),
+        }
+    }
+}
+
+impl RenderOptions {
+    /// Whether sample positions are jittered: as asked, except that a Whitted render at one
+    /// sample per pixel samples pixel centres (the course's convention).
+    pub fn jitters(&self) -> bool {
+        let centred = self.integrator == IntegratorKind::Whitted && self.spp == 1;
+        self.jitter && !centred
+    }
+}
