@@ -80,7 +80,7 @@ fn environment_light_takes_a_file_or_a_radiance() {
     assert_contains(
         &err,
         &[
-            "does not take the field `position` (it takes: type, file, radiance, scale, encoding, mapping)",
+            "does not take the field `position` (it takes: type, file, radiance, scale, encoding, mapping, to_world, interpolation)",
         ],
     );
     let err = load_err(&format!("{light}radiance = [1, 1, 1]\nscale = [1, 1, -2]\n"));
