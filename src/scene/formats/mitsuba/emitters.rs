@@ -9,8 +9,8 @@ use super::tree::Element;
 use super::values::{ColorUse, params};
 use crate::light::LightDesc;
 use crate::params::{Entry, ParamError, Params, Resources, Value};
-use crate::scene::error::{Line, SceneError};
-use crate::scene::texture_image::{ImageRef, load_radiance};
+use crate::scene::error::SceneError;
+use crate::scene::texture_image::radiance_param;
 use crate::texels::TextureImage;
 use glam::DVec3;
 use std::sync::Arc;
@@ -109,13 +109,6 @@ impl Resources for Files<'_> {
         name: &str,
         srgb: bool,
     ) -> Result<Arc<TextureImage>, ParamError> {
-        let file = p.opt_text(name)?.ok_or_else(|| p.missing(name))?;
-        let at = ImageRef {
-            image: self.files.resolve(file),
-            scene: self.scene,
-            item: p.field(name),
-            line: Line(p.line(name)),
-        };
-        load_radiance(&at, srgb).map_err(|e| ParamError::Reader(Box::new(e)))
+        radiance_param(p, name, self.scene, |file| self.files.resolve(file), srgb)
     }
 }

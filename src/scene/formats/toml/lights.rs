@@ -11,7 +11,7 @@ use crate::scene::formats::toml::format::{EmissiveShapeKind, EmissiveShapeToml};
 use crate::scene::formats::toml::source_map::FieldPath;
 use crate::scene::formats::toml::validate::Ctx;
 use crate::scene::shapes::quad_mesh;
-use crate::scene::texture_image::{ImageRef, load_radiance};
+use crate::scene::texture_image::radiance_param;
 use crate::texels::TextureImage;
 use std::sync::Arc;
 
@@ -168,13 +168,6 @@ impl Resources for Builder<'_> {
         name: &str,
         srgb: bool,
     ) -> Result<Arc<TextureImage>, ParamError> {
-        let file = params.opt_text(name)?.ok_or_else(|| params.missing(name))?;
-        let at = ImageRef {
-            image: self.base_dir.join(file),
-            scene: self.ctx.file,
-            item: params.field(name),
-            line: crate::scene::error::Line(params.line(name)),
-        };
-        load_radiance(&at, srgb).map_err(|e| ParamError::Reader(Box::new(e)))
+        radiance_param(params, name, self.ctx.file, |file| self.base_dir.join(file), srgb)
     }
 }
