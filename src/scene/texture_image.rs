@@ -145,6 +145,25 @@ pub fn load_radiance(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImag
     }))
 }
 
+/// The radiance image a kind's text parameter `name` names, found by `resolve` (each
+/// format's own way of finding files) for the scene file `scene`; errors name the parameter.
+pub(crate) fn radiance_param(
+    params: &crate::params::Params,
+    name: &str,
+    scene: &Path,
+    resolve: impl Fn(&str) -> PathBuf,
+    decode_srgb: bool,
+) -> Result<Arc<TextureImage>, crate::params::ParamError> {
+    let file = params.opt_text(name)?.ok_or_else(|| params.missing(name))?;
+    let at = ImageRef {
+        image: resolve(file),
+        scene,
+        item: params.field(name),
+        line: Line(params.line(name)),
+    };
+    load_radiance(&at, decode_srgb).map_err(|e| crate::params::ParamError::Reader(Box::new(e)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -234,23 +253,4 @@ mod tests {
         assert!(err.contains("not a PNG or JPEG"), "{err}");
         std::fs::remove_file(&text).unwrap();
     }
-}
-
-/// The radiance image a kind's text parameter `name` names, found by `resolve` (each
-/// format's own way of finding files) for the scene file `scene`; errors name the parameter.
-pub(crate) fn radiance_param(
-    params: &crate::params::Params,
-    name: &str,
-    scene: &Path,
-    resolve: impl Fn(&str) -> PathBuf,
-    decode_srgb: bool,
-) -> Result<Arc<TextureImage>, crate::params::ParamError> {
-    let file = params.opt_text(name)?.ok_or_else(|| params.missing(name))?;
-    let at = ImageRef {
-        image: resolve(file),
-        scene,
-        item: params.field(name),
-        line: Line(params.line(name)),
-    };
-    load_radiance(&at, decode_srgb).map_err(|e| crate::params::ParamError::Reader(Box::new(e)))
 }
