@@ -71,7 +71,7 @@ fn a_scene_reads_into_the_model_as_mitsuba_defines_it() {
     );
     let materials = r#"<scene version="3.0.0">
     <bsdf type="dielectric" id="glass"><string name="int_ior" value="diamond"/><float name="ext_ior" value="1"/></bsdf>
-    <bsdf type="roughconductor" id="gold"><rgb name="eta" value="0.2, 0.4, 1.4"/><rgb name="k" value="3.6, 2.4, 1.8"/><float name="alpha" value="0.3"/></bsdf>
+    <bsdf type="roughconductor" id="gold"><rgb name="eta" value="0.2, 0.4, 1.4"/><rgb name="k" value="3.6, 2.4, 1.8"/><float name="alpha" value="0.3"/><string name="distribution" value="ggx"/></bsdf>
 </scene>"#;
     let path = files("mitsuba-model", &main, &[("materials.xml", materials)]);
     let scene = load_mitsuba(&path, &[("fov", "30")]).unwrap();
@@ -194,6 +194,13 @@ fn errors_name_the_plugin_the_file_and_the_line() {
     let message =
         error("mitsuba-fragment", scene("<include filename=\"f.xml\"/>"), &[("f.xml", fragment)]);
     assert_contains(&message, &["f.xml", "the shape 'disk' is not supported yet", "(line 3)"]);
+    // Mitsuba's rough conductor is Beckmann unless told otherwise: refused, not read as GGX.
+    let message = error(
+        "mitsuba-beckmann",
+        scene("<shape type=\"cube\"><bsdf type=\"roughconductor\"/></shape>"),
+        &[],
+    );
+    assert_contains(&message, &["the beckmann distribution (Mitsuba's default", "(line 15)"]);
     let message = error("mitsuba-nosensor", "<scene version=\"3.0.0\"/>".to_owned(), &[]);
     assert_contains(&message, &["the scene has no <sensor>"]);
 }

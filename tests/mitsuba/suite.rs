@@ -106,3 +106,15 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
     let verdict = judge(&film.color, &reference.color, &variance.color, spp);
     assert!(!verdict.passes(), "{verdict:?}");
 }
+
+/// A GGX rough conductor of Mitsuba's measured gold (the embedded `Au` table) under a point
+/// light and a constant environment, against Mitsuba's own render (the scene and the
+/// reference are in `tests/data/mitsuba`, so this runs everywhere).
+#[test]
+fn rough_gold_passes_mitsubas_rule() {
+    let refs = repo_path("tests/data/mitsuba");
+    let scene = load_mitsuba(&refs.join("rough_gold.xml"), &[]).unwrap();
+    let reference = refs.join("rough_gold_48_ref_rgb.exr");
+    let variance = refs.join("rough_gold_48_ref_rgb_var.exr");
+    assert_passes("rough_gold", &scene, &reference, &variance);
+}

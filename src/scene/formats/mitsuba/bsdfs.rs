@@ -73,9 +73,11 @@ pub(super) fn bsdf(
                     let name = property(element, "string", "material");
                     let value = name.map_or(Ok("none"), |m| m.required("value"))?;
                     conductor_ior(value).ok_or_else(|| {
+                        let known: Vec<&str> = super::metals::names().collect();
                         name.unwrap_or(element).error(format!(
-                            "the conductor material '{value}' is not known (see `embray info` \
-                             for the list, or give eta and k)"
+                            "the conductor material '{value}' is not known (known: {}; or give \
+                             eta and k)",
+                            known.join(", ")
                         ))
                     })?
                 }
@@ -143,11 +145,17 @@ fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError>
 
 /// GGX roughness `alpha` (default 0.1); Beckmann and anisotropic roughness are refused.
 fn roughness(element: &Element) -> Result<f32, SceneError> {
-    if let Some(d) = property(element, "string", "distribution") {
-        let name = d.required("value")?;
-        if name != "ggx" {
-            return Err(d.error(format!("the {name} distribution is not supported yet (ggx is)")));
-        }
+    // Mitsuba's default distribution is Beckmann, not GGX.
+    let name = match property(element, "string", "distribution") {
+        Some(d) => d.required("value")?,
+        None => "beckmann",
+    };
+    if name != "ggx" {
+        let at = property(element, "string", "distribution").unwrap_or(element);
+        return Err(at.error(format!(
+            "the {name} distribution (Mitsuba's default when none is given) is not supported \
+             yet: give <string name=\"distribution\" value=\"ggx\"/>"
+        )));
     }
     if float(element, "alpha_u")?.is_some() || float(element, "alpha_v")?.is_some() {
         return Err(element.error("anisotropic roughness (alpha_u, alpha_v) is not supported"));
