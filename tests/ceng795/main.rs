@@ -106,12 +106,14 @@ fn course_options(scene: &SceneDesc, backend: BackendKind) -> RenderOptions {
 
 #[path = "../common/mod.rs"]
 mod common;
+mod convert_round_trip;
 mod environment;
 mod glass_energy;
 mod hw4;
 mod hw5;
 mod hw6;
 mod inline_errors;
+mod inline_lights;
 mod inline_scenes;
 mod reference_scenes;
 mod renderer_params;
