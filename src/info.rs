@@ -44,14 +44,15 @@ pub fn describe(scene: &SceneDesc) -> String {
         .count();
     out += &format!("objects: {meshes} meshes ({triangles} triangles), {spheres} spheres\n");
     out += &format!("materials: {}\n", scene.materials.len());
-    let mut lights: Vec<String> = Vec::new();
+    // Each kind once, in the order the scene first names it.
+    let mut counts: Vec<(&str, usize)> = Vec::new();
     for light in &scene.lights {
-        let label = light.label();
-        if !lights.iter().any(|counted| counted.ends_with(label)) {
-            let count = scene.lights.iter().filter(|l| l.label() == label).count();
-            lights.push(format!("{count} {label}"));
+        match counts.iter_mut().find(|(label, _)| *label == light.label()) {
+            Some((_, n)) => *n += 1,
+            None => counts.push((light.label(), 1)),
         }
     }
+    let mut lights: Vec<String> = counts.iter().map(|(label, n)| format!("{n} {label}")).collect();
     lights.push(format!("{emissive} emissive objects"));
     out += &format!("lights: {}\n", lights.join(", "));
     for light in &scene.lights {

@@ -221,9 +221,8 @@ fn render_tile(
     let spp = options.spp.max(1);
     let pixel = |i: usize| (tile.x0 + (i % width) as u32, tile.y0 + (i / width) as u32);
     let add = |sums: &mut PixelSums, sample: PathSample, weight: f32| {
-        // The box filter's weight is 1: its samples are added unscaled.
-        let radiance = if weight == 1.0 { sample.radiance } else { sample.radiance * weight };
-        sums.add_sample(radiance, sample.depth, sample.normal)
+        // The box filter's weight is exactly 1, and x · 1 is x: its renders are unchanged.
+        sums.add_sample(sample.radiance * weight, sample.depth, sample.normal)
     };
     let batched = match tracer {
         Tracer::Path(path) if path.accel().prefers_batches() => Some(path),

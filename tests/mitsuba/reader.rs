@@ -201,6 +201,13 @@ fn errors_name_the_plugin_the_file_and_the_line() {
         &[],
     );
     assert_contains(&message, &["the beckmann distribution (Mitsuba's default", "(line 15)"]);
+    // A boolean is true or false, not read as false when it is anything else.
+    let message = error(
+        "mitsuba-boolean",
+        scene("<shape type=\"cube\"><boolean name=\"flip_normals\" value=\"yes\"/></shape>"),
+        &[],
+    );
+    assert_contains(&message, &["'yes' is not true or false", "(line 15)"]);
     let message = error("mitsuba-nosensor", "<scene version=\"3.0.0\"/>".to_owned(), &[]);
     assert_contains(&message, &["the scene has no <sensor>"]);
 }

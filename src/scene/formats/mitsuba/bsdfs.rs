@@ -3,9 +3,9 @@
 //! their type, file and line: none is silently replaced.
 
 use super::ior::{conductor_ior, dielectric_ior};
-use super::sensor::{float, property};
 use super::tree::{Element, FileResolver};
 use super::values::{ColorUse, color};
+use super::values::{boolean, float, property};
 use crate::scene::desc::{
     Interpolation, MaterialDesc, Pattern, Specular, TextureDesc, TextureMode,
 };
@@ -203,8 +203,7 @@ fn reflectance_texture(
         "bitmap" => {
             let file = property(texture, "string", "filename")
                 .ok_or_else(|| texture.error("a bitmap needs a filename"))?;
-            let raw = property(texture, "boolean", "raw")
-                .is_some_and(|r| r.attr("value") == Some("true"));
+            let raw = boolean(texture, "raw")?.unwrap_or(false);
             let at = ImageRef {
                 image: files.resolve(file.required("value")?),
                 scene: &file.file,

@@ -3,10 +3,10 @@
 //! the position or direction they mean).
 
 use super::Builder;
-use super::sensor::property;
 use super::transform::transform;
 use super::tree::Element;
 use super::values::{ColorUse, params};
+use super::values::{float, property};
 use crate::light::LightDesc;
 use crate::params::{Entry, ParamError, Params, Resources, Value};
 use crate::scene::error::SceneError;
@@ -63,7 +63,7 @@ impl Builder<'_> {
                 let file = property(element, "string", "filename")
                     .ok_or_else(|| element.error("the property `filename` is missing"))?;
                 p.push(derived("file", Value::Text(file.required("value")?.to_owned())));
-                if let Some(scale) = super::sensor::float(element, "scale")? {
+                if let Some(scale) = float(element, "scale")? {
                     p.push(derived("scale", Value::Numbers(vec![scale; 3])));
                 }
                 // Mitsuba's map looks along +z at its centre, embray's along −z: half a

@@ -23,12 +23,30 @@ use std::collections::HashMap;
 use std::path::Path;
 use tree::{Element, FileResolver};
 
-/// Whether `text` is a Mitsuba scene (its root element is `<scene>`, lower case).
+/// Whether `text` is a Mitsuba scene: its root element is `<scene>` (lower case; the
+/// course's is `<Scene>`). Declarations, comments and a DOCTYPE before it are skipped.
 pub fn is_mitsuba(text: &str) -> bool {
-    let start = text.find("<scene").map(|at| &text[at + 6..]);
-    let before = text.split("<scene").next().unwrap_or("");
-    start.is_some_and(|rest| rest.starts_with([' ', '>', '\t', '\n', '\r']))
-        && !before.contains("<Scene")
+    let mut rest = text;
+    loop {
+        let Some(at) = rest.find('<') else { return false };
+        rest = &rest[at..];
+        let skip_to = |end: &str| rest.find(end).map(|i| i + end.len());
+        let skipped = if rest.starts_with("<?") {
+            skip_to("?>")
+        } else if rest.starts_with("<!--") {
+            skip_to("-->")
+        } else if rest.starts_with("<!") {
+            skip_to(">")
+        } else {
+            let name: String =
+                rest[1..].chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+            return name == "scene";
+        };
+        match skipped {
+            Some(end) => rest = &rest[end..],
+            None => return false,
+        }
+    }
 }
 
 /// Objects with an `id`, for `<ref>`.
@@ -149,4 +167,21 @@ pub fn load(
         lights,
     };
     Ok((scene, warnings))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_mitsuba;
+
+    #[test]
+    fn the_root_element_tells_the_formats_apart() {
+        assert!(is_mitsuba(
+            "<?xml version=\"1.0\"?>\n<!-- a <Scene> -->\n<scene version=\"3.0.0\"/>"
+        ));
+        assert!(is_mitsuba("<scene version='2.0.0'>"));
+        assert!(!is_mitsuba("<!-- <scene version=\"3.0.0\"> -->\n<Scene>"));
+        assert!(!is_mitsuba("<Scene><!-- <scene> --></Scene>"));
+        assert!(!is_mitsuba("<scenes/>"));
+        assert!(!is_mitsuba("no XML here"));
+    }
 }

@@ -3,7 +3,7 @@
 
 use super::transform::transform;
 use super::tree::Element;
-use super::values::{number_attr, numbers};
+use super::values::{boolean, float, integer, numbers, property};
 use crate::limits::MAX_DEPTH;
 use crate::sampling::filter::PixelFilter;
 use crate::scene::desc::{CameraDesc, IntegratorKind, LensShape, RenderSettings};
@@ -14,30 +14,6 @@ pub(super) struct Sensor {
     pub camera: CameraDesc,
     pub spp: Option<u32>,
     pub filter: PixelFilter,
-}
-
-/// The property child `name` of `plugin` with tag `tag`.
-pub(super) fn property<'a>(plugin: &'a Element, tag: &str, name: &str) -> Option<&'a Element> {
-    plugin.children.iter().find(|c| c.tag == tag && c.attr("name") == Some(name))
-}
-
-pub(super) fn float(plugin: &Element, name: &str) -> Result<Option<f64>, SceneError> {
-    match plugin.children.iter().find(|c| c.attr("name") == Some(name)) {
-        Some(child) if child.tag == "float" || child.tag == "integer" => {
-            Ok(Some(number_attr(child, "value")?))
-        }
-        Some(child) => Err(child.error(format!("`{name}` must be a <float>"))),
-        None => Ok(None),
-    }
-}
-
-fn integer(plugin: &Element, name: &str) -> Result<Option<i64>, SceneError> {
-    let Some(value) = float(plugin, name)? else { return Ok(None) };
-    if value.fract() != 0.0 || value.abs() > 1e15 {
-        let child = plugin.children.iter().find(|c| c.attr("name") == Some(name)).unwrap();
-        return Err(child.error(format!("`{name}` must be a whole number")));
-    }
-    Ok(Some(value as i64))
 }
 
 fn string<'a>(plugin: &'a Element, name: &str) -> Option<&'a Element> {
@@ -51,7 +27,7 @@ fn x_fov(sensor: &Element, aspect: f64) -> Result<f64, SceneError> {
         Some(fov) => {
             let axis = string(sensor, "fov_axis");
             let name = axis.map_or(Ok("x"), |a| a.required("value"))?;
-            (fov, name.to_owned(), axis.unwrap_or(sensor).clone())
+            (fov, name, axis.unwrap_or(sensor))
         }
         None => {
             let length = match string(sensor, "focal_length") {
@@ -67,14 +43,14 @@ fn x_fov(sensor: &Element, aspect: f64) -> Result<f64, SceneError> {
             };
             let diagonal = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
             let fov = (2.0 * (diagonal / (2.0 * length)).atan()).to_degrees();
-            (fov, "diagonal".to_owned(), sensor.clone())
+            (fov, "diagonal", sensor)
         }
     };
     if !(fov > 0.0 && fov < 180.0) {
         return Err(sensor.error(format!("fov is {fov}, but must be between 0 and 180 degrees")));
     }
     let half_tan = (0.5 * fov).to_radians().tan();
-    let x_half_tan = match axis.as_str() {
+    let x_half_tan = match axis {
         "x" => half_tan,
         "y" => half_tan * aspect,
         "diagonal" => half_tan / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
@@ -218,9 +194,7 @@ pub(super) fn integrator(
                     element.line
                 ));
             }
-            if property(element, "boolean", "hide_emitters")
-                .is_some_and(|b| b.attr("value") == Some("true"))
-            {
+            if boolean(element, "hide_emitters")? == Some(true) {
                 return Err(element.error("hide_emitters is not supported yet"));
             }
             settings.integrator = IntegratorKind::Path;

@@ -3,10 +3,10 @@
 
 use super::Builder;
 use super::bsdfs::bsdf;
-use super::sensor::property;
 use super::transform::transform;
 use super::tree::Element;
 use super::values::{ColorUse, color, vec3};
+use super::values::{boolean, float, property};
 use crate::scene::desc::{MaterialDesc, MeshData, ObjectDesc, ShapeDesc};
 use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::obj::ObjRef;
@@ -44,9 +44,7 @@ impl Builder<'_> {
             Some(t) => transform(t)?,
             None => DAffine3::IDENTITY,
         };
-        if property(element, "boolean", "flip_normals")
-            .is_some_and(|b| b.attr("value") == Some("true"))
-        {
+        if boolean(element, "flip_normals")? == Some(true) {
             return Err(element.error("flip_normals is not supported yet"));
         }
         let material = self.shape_material(element)?;
@@ -55,8 +53,7 @@ impl Builder<'_> {
             "obj" | "ply" => {
                 let file = property(element, "string", "filename")
                     .ok_or_else(|| element.error("the property `filename` is missing"))?;
-                let face_normals = property(element, "boolean", "face_normals")
-                    .is_some_and(|b| b.attr("value") == Some("true"));
+                let face_normals = boolean(element, "face_normals")?.unwrap_or(false);
                 let mesh_ref = ObjRef {
                     obj: self.files.resolve(file.required("value")?),
                     scene: &file.file,
@@ -67,9 +64,7 @@ impl Builder<'_> {
                     self.meshes.models(&mesh_ref, Some(!face_normals), self.warnings)?;
                 // Mitsuba turns an OBJ's v upside down (flip_tex_coords, on by default), so
                 // that v = 0 is the image's top row as for every other texture lookup.
-                let flip = kind == "obj"
-                    && property(element, "boolean", "flip_tex_coords")
-                        .is_none_or(|b| b.attr("value") != Some("false"));
+                let flip = kind == "obj" && boolean(element, "flip_tex_coords")?.unwrap_or(true);
                 models
                     .into_iter()
                     .map(|m| {
@@ -97,7 +92,7 @@ impl Builder<'_> {
             "sphere" => {
                 let center = property(element, "point", "center")
                     .map_or(Ok(DVec3::ZERO), |c| vec3(c, false))?;
-                let radius = super::sensor::float(element, "radius")?.unwrap_or(1.0);
+                let radius = float(element, "radius")?.unwrap_or(1.0);
                 if !(radius > 0.0) {
                     return Err(element.error(format!("radius is {radius}, but must be > 0")));
                 }

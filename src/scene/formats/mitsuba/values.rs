@@ -29,6 +29,42 @@ pub(super) fn color(element: &Element, usage: ColorUse) -> Result<DVec3, SceneEr
     }
 }
 
+/// The property child `name` of `plugin` with tag `tag`.
+pub(super) fn property<'a>(plugin: &'a Element, tag: &str, name: &str) -> Option<&'a Element> {
+    plugin.children.iter().find(|c| c.tag == tag && c.attr("name") == Some(name))
+}
+
+pub(super) fn float(plugin: &Element, name: &str) -> Result<Option<f64>, SceneError> {
+    match plugin.children.iter().find(|c| c.attr("name") == Some(name)) {
+        Some(child) if child.tag == "float" || child.tag == "integer" => {
+            Ok(Some(number_attr(child, "value")?))
+        }
+        Some(child) => Err(child.error(format!("`{name}` must be a <float>"))),
+        None => Ok(None),
+    }
+}
+
+pub(super) fn integer(plugin: &Element, name: &str) -> Result<Option<i64>, SceneError> {
+    let Some(value) = float(plugin, name)? else { return Ok(None) };
+    if value.fract() != 0.0 || value.abs() > 1e15 {
+        let child = plugin.children.iter().find(|c| c.attr("name") == Some(name)).unwrap();
+        return Err(child.error(format!("`{name}` must be a whole number")));
+    }
+    Ok(Some(value as i64))
+}
+
+/// The `<boolean>` property `name` (Mitsuba writes `true` or `false`); anything else is
+/// refused rather than read as false.
+pub(super) fn boolean(plugin: &Element, name: &str) -> Result<Option<bool>, SceneError> {
+    match plugin.children.iter().find(|c| c.attr("name") == Some(name)) {
+        None => Ok(None),
+        Some(child) => match property_value(child, ColorUse::Reflectance)? {
+            Value::Bool(value) if child.tag == "boolean" => Ok(Some(value)),
+            _ => Err(child.error(format!("`{name}` must be a <boolean> true or false"))),
+        },
+    }
+}
+
 /// The value of a property element, as a kind reads it.
 pub(super) fn property_value(element: &Element, usage: ColorUse) -> Result<Value, SceneError> {
     Ok(match element.tag.as_str() {
