@@ -11,7 +11,7 @@ use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::sampling::{SampleStream, frame_from_normal};
 use crate::shading::bsdf::{Bsdf, Energy};
-use crate::shading::material::Material;
+use crate::shading::material::{MaskOpacity, Material};
 use crate::shading::spawn::SurfacePoint;
 use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
@@ -86,6 +86,17 @@ impl<'a> PathTracer<'a> {
         }
     }
 
+    /// The fraction of the light that meets a masked surface at `si`.
+    fn opacity(&self, opacity: &MaskOpacity, si: &SurfaceInteraction, time: f32) -> f32 {
+        match opacity {
+            MaskOpacity::Constant(value) => *value,
+            MaskOpacity::Texture(texture) => {
+                let c = self.tracer.texture_color(texture, si, time);
+                (c.x + c.y + c.z) / 3.0
+            }
+        }
+    }
+
     /// Light arriving directly from the lights at `si` and scattered towards `wo`.
     #[allow(clippy::too_many_arguments)]
     fn direct_light(
@@ -100,7 +111,14 @@ impl<'a> PathTracer<'a> {
     ) -> Vec3 {
         let lights = &self.tracer.scene.lights;
         let p = si.surface.point;
-        let faces = |wi: Vec3| si.surface.normal.dot(wi) > 0.0;
+        // Light from the side the surface faces; from both for rough glass, where the
+        // shading normal must then agree with the surface about the side.
+        let transmits = bsdf.transmits();
+        let faces = |wi: Vec3| {
+            let above = si.surface.normal.dot(wi) > 0.0;
+            above && (!transmits || si.shading_normal.dot(wi) > 0.0)
+                || transmits && !above && si.shading_normal.dot(wi) < 0.0
+        };
         let mut sum = Vec3::ZERO;
         for light in &lights.points {
             let to_light = light.position - p;
@@ -248,8 +266,13 @@ impl<'a> PathTracer<'a> {
         let mut from = Vec3::ZERO;
         // Beer's-law absorption of the medium the ray travels through.
         let mut absorption = Vec3::ZERO;
-        for depth in 0..self.max_depth.max(1) {
-            if !ray.is_valid() {
+        let bounces = self.max_depth.max(1);
+        // One step past the last bounce is taken only after a delta lobe (a mirror, glass, a
+        // mask's hole), for the emission it finds: light sampling at the last bounce finds
+        // what a smooth lobe sees, but nothing finds what a delta lobe sees but following
+        // it (Mitsuba's and pbrt's `max_depth` count it so).
+        for depth in 0..=bounces {
+            if !ray.is_valid() || (depth == bounces && !specular_bounce) {
                 break;
             }
             let found = self.tracer.closest_hit(&ray, depth == 0, first_hit.take(), stats);
@@ -280,7 +303,7 @@ impl<'a> PathTracer<'a> {
                     if specular_bounce { 1.0 } else { self.emission_weight(from, &si, pdf_bsdf) };
                 result.radiance += throughput * material.emission * weight;
             }
-            if self.max_depth == 0 {
+            if self.max_depth == 0 || depth == bounces {
                 break;
             }
             let albedo = self.albedo(material, &si, ray.time);
@@ -297,19 +320,26 @@ impl<'a> PathTracer<'a> {
                 si.front_face,
                 self.energy,
             );
+            let bsdf = match &material.opacity {
+                None => bsdf,
+                Some(opacity) => bsdf.with_opacity(self.opacity(opacity, &si, ray.time)),
+            };
             let wo = -ray.dir.normalize();
             let last = depth + 1 >= self.max_depth;
             if bsdf.has_smooth_lobe() {
                 let direct = self.direct_light(&si, &bsdf, wo, ray.time, !last, stream, stats);
                 result.radiance += throughput * direct;
             }
-            if last {
+            if last && !bsdf.has_delta_lobe() {
                 break;
             }
             // Direction first (the best stratified pair), then lobe and roulette.
             let [u0, u1, u_lobe, u_survive] = stream.next_4d();
             let u = Vec2::new(u0, u1);
             let Some(sample) = bsdf.sample(wo, u_lobe, u) else { break };
+            if last && !sample.delta {
+                break;
+            }
             // The geometric surface must agree with the shading normal about the side.
             let below = sample.wi.dot(si.surface.normal) < 0.0;
             if below != sample.transmitted || sample.weight == Vec3::ZERO {
@@ -325,7 +355,7 @@ impl<'a> PathTracer<'a> {
             eta_scale *= sample.eta_scale;
             specular_bounce = sample.delta;
             pdf_bsdf = sample.pdf;
-            if sample.transmitted {
+            if sample.transmitted && !sample.passes {
                 absorption = match material.specular {
                     crate::scene::Specular::Dielectric { absorption: a, .. } if si.front_face => a,
                     _ => Vec3::ZERO,

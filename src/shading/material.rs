@@ -4,7 +4,8 @@
 //! pattern are the scene's own types.
 
 pub use super::texture::Texture;
-use crate::scene::{MaterialDesc, PhongDesc, Specular};
+use crate::scene::{Distribution, MaterialDesc, Opacity, PhongDesc, Specular};
+use crate::shading::bsdf::{Coating, Microfacet};
 use crate::shading::course_lobe::LobeAlbedo;
 use glam::Vec3;
 
@@ -19,8 +20,16 @@ pub struct Material {
     /// mesh's counter-clockwise winding, a sphere's outside).
     pub emission: Vec3,
     pub specular: Specular,
-    /// GGX α of the specular lobe (the path tracer).
+    /// Microfacet α of the specular lobe (the path tracer).
     pub ggx_alpha: f32,
+    /// The distribution `ggx_alpha` is the α of.
+    pub distribution: Distribution,
+    /// What a plastic's coating lets through (set by `from_desc` for plastics).
+    pub coating: Option<Box<Coating>>,
+    /// Fraction of the light that meets the surface; the rest passes through.
+    pub opacity: Option<MaskOpacity>,
+    /// Black from behind (glass excepted).
+    pub one_sided: bool,
     /// Side of the square on the tangent plane within which the course's Whitted model
     /// perturbs reflected rays (its glossy reflection).
     pub perturbation: f32,
@@ -46,6 +55,10 @@ impl Default for Material {
             emission: Vec3::ZERO,
             specular: Specular::None,
             ggx_alpha: 0.0,
+            distribution: Distribution::Ggx,
+            coating: None,
+            opacity: None,
+            one_sided: false,
             perturbation: 0.0,
             texture: None,
             specular_texture: None,
@@ -55,6 +68,23 @@ impl Default for Material {
             course_lobe_albedo: None,
         }
     }
+}
+
+/// A mask's opacity as the integrator looks it up.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaskOpacity {
+    Constant(f32),
+    /// The texture's mean channel.
+    Texture(Texture),
+}
+
+/// The coating table of a plastic (integrated once per material, not per hit).
+fn coating(desc: &MaterialDesc) -> Option<Box<Coating>> {
+    let Specular::Plastic { ior, .. } = desc.specular else { return None };
+    let rough = desc.roughness >= SMOOTH_ROUGHNESS;
+    let microfacet =
+        Microfacet { distribution: desc.distribution, alpha: desc.roughness.max(1e-4) };
+    Some(Box::new(Coating::new(ior, rough.then_some(microfacet))))
 }
 
 impl Material {
@@ -71,6 +101,13 @@ impl Material {
             // The scene's one roughness means a GGX α to the path tracer and the side of the
             // perturbation square to the course's Whitted model.
             ggx_alpha: desc.roughness,
+            distribution: desc.distribution,
+            coating: coating(desc),
+            opacity: desc.opacity.as_ref().map(|o| match o {
+                Opacity::Constant(c) => MaskOpacity::Constant(*c),
+                Opacity::Texture(t) => MaskOpacity::Texture(Texture::from_desc(t)),
+            }),
+            one_sided: desc.one_sided,
             perturbation: desc.roughness,
             texture: desc.texture.as_ref().map(Texture::from_desc),
             specular_texture: desc.specular_texture.as_ref().map(Texture::from_desc),
@@ -104,12 +141,11 @@ impl Material {
         matches!(self.specular, Specular::Dielectric { .. })
     }
 
-    /// True if the specular lobe is a delta distribution (perfect mirror or smooth glass).
+    /// True if the specular lobe is a delta distribution (perfect mirror, smooth glass,
+    /// a smooth plastic's coating).
     pub fn specular_is_delta(&self) -> bool {
         match self.specular {
             Specular::None => false,
-            // The path tracer treats glass as smooth whatever its roughness.
-            Specular::Dielectric { .. } => true,
             _ => self.ggx_alpha < SMOOTH_ROUGHNESS,
         }
     }

@@ -222,6 +222,12 @@ impl<'a> WhittedTracer<'a> {
                 let tint = fresnel_conductor(cos_o, eta, k) * reflectance;
                 combine.reflect = reflected(tint, stream, &mut reflection);
             }
+            // The coating's mirror reflection over the Lambertian base (Whitted's model has
+            // no internal bounces).
+            Specular::Plastic { ior, .. } => {
+                let tint = Vec3::splat(fresnel_dielectric(cos_o, ior));
+                combine.reflect = reflected(tint, stream, &mut reflection);
+            }
             Specular::Dielectric { ior, absorption } => {
                 // Entering (front face): from air into the glass; else leaving it.
                 let eta = if si.front_face { ior } else { 1.0 / ior };

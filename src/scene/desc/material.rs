@@ -13,8 +13,16 @@ pub struct MaterialDesc {
     /// Emitted radiance, on the side the surface normal points to.
     pub emission: Vec3,
     pub specular: Specular,
-    /// GGX roughness α of the specular part (0 = perfectly smooth).
+    /// Roughness α of the specular part (0 = perfectly smooth).
     pub roughness: f32,
+    /// The microfacet distribution `roughness` is the α of.
+    pub distribution: Distribution,
+    /// Fraction of the light that meets the surface at all (Mitsuba's `mask`); the rest
+    /// passes through unchanged. A texture's mean channel where given.
+    pub opacity: Option<Opacity>,
+    /// Scatters only on the side its normal points to (Mitsuba's BSDFs without
+    /// `twosided`); black from behind. Glass is two-sided whatever this says.
+    pub one_sided: bool,
     /// A pattern that replaces (or blends into) `albedo`, per its `mode`.
     pub texture: Option<TextureDesc>,
     /// A pattern that replaces the specular reflectance of the course's shading terms
@@ -38,6 +46,9 @@ impl Default for MaterialDesc {
             emission: Vec3::ZERO,
             specular: Specular::None,
             roughness: 0.0,
+            distribution: Distribution::Ggx,
+            opacity: None,
+            one_sided: false,
             texture: None,
             specular_texture: None,
             normal_map: None,
@@ -67,6 +78,37 @@ pub enum Specular {
         ior: f32,
         absorption: Vec3,
     },
+    /// A dielectric coating of index `ior` over the Lambertian part (Mitsuba's `plastic`,
+    /// `roughplastic`): light the coating lets in is scattered by the base and internally
+    /// reflected by the coating; `nonlinear` accounts for the colour shift of repeated
+    /// internal bounces.
+    Plastic {
+        ior: f32,
+        nonlinear: bool,
+    },
+}
+
+/// A microfacet distribution of normals, by its roughness α.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Distribution {
+    /// Trowbridge–Reitz: long tails.
+    #[default]
+    Ggx,
+    /// Gaussian slopes: Mitsuba's default.
+    Beckmann,
+}
+
+crate::choice::named_choices!(Distribution, "distribution", {
+    Ggx => "ggx",
+    Beckmann => "beckmann",
+});
+
+/// How much of a surface is there (Mitsuba's `mask` opacity).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Opacity {
+    Constant(f32),
+    /// The texture's mean channel.
+    Texture(TextureDesc),
 }
 
 /// The course's shading terms (CENG795): ambient reflectance and a highlight, by default the

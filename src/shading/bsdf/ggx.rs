@@ -9,7 +9,7 @@ pub fn d(h: Vec3, alpha: f32) -> f32 {
     a2 / (PI * denom * denom)
 }
 
-fn lambda(w: Vec3, alpha: f32) -> f32 {
+pub fn lambda(w: Vec3, alpha: f32) -> f32 {
     let cos2 = w.z * w.z;
     if cos2 <= 0.0 {
         return f32::INFINITY;

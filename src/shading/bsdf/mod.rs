@@ -1,25 +1,27 @@
-//! Scattering at a surface: a Lambertian lobe plus at most one specular lobe (mirror,
-//! conductor with Fresnel, or glass), GGX microfacets for rough mirrors and metals, plus the
-//! specular term of a course material's reflectance model (`phong.specular` with its
-//! `CourseBrdf`), which the course adds on top of the rest, glass included (the rest then
-//! gives up what the lobe may take, so that no material reflects more than it receives).
-//! Directions are in render space; `frame` maps the local shading frame (normal = +Z) to it.
+//! Scattering at a surface, by the kind of material: the mixture most materials are
+//! (`mixture`: Lambertian, mirror, metal, smooth glass, the course's lobes), a dielectric
+//! coating over a Lambertian base (`plastic`), rough glass (`rough_dielectric`). A mask's
+//! opacity wraps any of them: the rest of the light passes through unchanged. Directions
+//! are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
+mod coating;
 mod coupling;
 mod ggx;
+mod microfacet;
+mod mixture;
+mod plastic;
+mod rough_dielectric;
 
-use coupling::Coupling;
+pub use coating::Coating;
 pub use coupling::Energy;
+pub use microfacet::Microfacet;
 
-pub use crate::shading::fresnel::{fresnel_conductor, fresnel_dielectric};
-
-use crate::color::luminance;
-use crate::scene::{CourseBrdf, Specular};
-use crate::shading::course_brdf::{CourseTerms, cos_weighted};
-use crate::shading::course_lobe;
-use crate::shading::material::Material;
+use crate::scene::Specular;
+use crate::shading::material::{Material, SMOOTH_ROUGHNESS};
 use glam::{Mat3, Vec2, Vec3};
-use std::f32::consts::FRAC_1_PI;
+use mixture::Mixture;
+use plastic::Plastic;
+use rough_dielectric::RoughDielectric;
 
 /// A sampled scattering direction.
 #[derive(Clone, Copy, Debug)]
@@ -33,53 +35,49 @@ pub struct BsdfSample {
     /// Density of `wi` (0 for a delta lobe).
     pub pdf: f32,
     pub delta: bool,
-    /// The direction passes through the surface (refraction).
+    /// The direction passes through the surface (refraction, or `passes`).
     pub transmitted: bool,
+    /// The light went on as if the surface were not there (a mask's transparent part).
+    pub passes: bool,
 }
 
-/// The most the Lambertian part `diffuse` and the specular lobe reflect or transmit
-/// together, per channel (Fresnel ≤ 1; glass passes everything on).
-fn rest_albedo(diffuse: Vec3, specular: Specular) -> Vec3 {
-    diffuse
-        + match specular {
-            Specular::None => Vec3::ZERO,
-            Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
-                reflectance.clamp(Vec3::ZERO, Vec3::ONE)
-            }
-            Specular::Dielectric { .. } => Vec3::ONE,
+impl BsdfSample {
+    /// Straight on through the surface, unchanged.
+    fn pass_through(wo: Vec3) -> Self {
+        BsdfSample {
+            wi: -wo,
+            weight: Vec3::ONE,
+            eta_scale: 1.0,
+            pdf: 0.0,
+            delta: true,
+            transmitted: true,
+            passes: true,
         }
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Scatter {
+    Mixture(Mixture),
+    Plastic(Plastic),
+    RoughDielectric(RoughDielectric),
+    /// A one-sided material seen from behind.
+    Black,
 }
 
 /// The scattering function at one shading point.
 #[derive(Clone, Copy, Debug)]
 pub struct Bsdf {
-    /// Local (tangent, bitangent, normal) → render space.
+    scatter: Scatter,
+    /// Local (tangent, bitangent, normal) → render space, for the kinds other than the
+    /// mixture (which keeps its own).
     frame: Mat3,
-    /// Lambertian reflectance, after the energy coupling of `Bsdf::new`.
-    diffuse: Vec3,
-    specular: Specular,
-    /// How the course's lobe and the other lobes share what arrives (`coupling`).
-    coupling: Option<Coupling>,
-    alpha: f32,
-    delta_specular: bool,
-    /// Whether the incoming ray arrived on the side the surface normal points to.
-    front_face: bool,
-    /// Probability of choosing the specular lobe (among the lobes other than `course`).
-    p_specular: f32,
-    /// The course model's specular term, sampled by its lobe (`course_lobe`) with
-    /// probability `p_course`.
-    course: Option<(CourseBrdf, CourseTerms)>,
-    p_course: f32,
+    /// The fraction of the light that meets the surface; the rest passes through.
+    opacity: f32,
 }
 
 impl Bsdf {
     /// The BSDF of `material` with Lambertian reflectance `albedo` (its texture's value here).
-    ///
-    /// Energy is conserved by construction: the specular lobe reflects at most
-    /// `reflectance` of what arrives (Fresnel ≤ 1, and single-scattering GGX loses energy,
-    /// never gains it), so the Lambertian part gets only the remainder,
-    /// `albedo · (1 − reflectance)`, and albedos above 1 (allowed by the course's Whitted
-    /// model) are clamped to 1. Glass has no Lambertian part.
     pub fn new(material: &Material, albedo: Vec3, frame: Mat3, front_face: bool) -> Self {
         let course_specular = material.phong.as_ref().map_or(Vec3::ZERO, |p| p.specular);
         let energy = Energy::Conserving;
@@ -96,226 +94,119 @@ impl Bsdf {
         front_face: bool,
         energy: Energy,
     ) -> Self {
-        let conserving = energy == Energy::Conserving;
-        let albedo =
-            if conserving { albedo.clamp(Vec3::ZERO, Vec3::ONE) } else { albedo.max(Vec3::ZERO) };
-        let diffuse = match material.specular {
-            Specular::None => albedo,
-            Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
-                if conserving {
-                    albedo * (Vec3::ONE - reflectance.clamp(Vec3::ZERO, Vec3::ONE))
-                } else {
-                    albedo
-                }
+        let rough = material.ggx_alpha >= SMOOTH_ROUGHNESS;
+        let microfacet =
+            Microfacet { distribution: material.distribution, alpha: material.ggx_alpha.max(1e-4) };
+        let scatter = match material.specular {
+            Specular::Dielectric { ior, .. } if rough => {
+                Scatter::RoughDielectric(RoughDielectric::new(ior, front_face, microfacet))
             }
-            Specular::Dielectric { .. } => Vec3::ZERO,
-        };
-        let course_lobe = material
-            .phong
-            .as_ref()
-            .filter(|_| course_specular.max_element() > 0.0 && course_specular.is_finite());
-        let coupling = course_lobe.filter(|_| conserving).map(|p| {
-            // Tabulated once per material (`Material::with_phong`); a material built
-            // without it pays for the table here.
-            let albedo = material
-                .course_lobe_albedo
-                .unwrap_or_else(|| course_lobe::LobeAlbedo::new(&p.brdf, p.exponent));
-            let rest = rest_albedo(diffuse, material.specular);
-            Coupling::new(rest, course_specular.max(Vec3::ZERO), albedo)
-        });
-        let specular_weight = match material.specular {
-            Specular::None => 0.0,
-            Specular::Mirror { reflectance } => luminance(reflectance),
-            Specular::Conductor { eta, k, reflectance } => {
-                luminance(fresnel_conductor(1.0, eta, k) * reflectance)
+            _ if material.one_sided && !front_face && !material.is_dielectric() => Scatter::Black,
+            Specular::Plastic { ior, nonlinear } => {
+                let coating = material
+                    .coating
+                    .as_deref()
+                    .copied()
+                    .unwrap_or_else(|| Coating::new(ior, rough.then_some(microfacet)));
+                let microfacet = rough.then_some(microfacet);
+                Scatter::Plastic(Plastic::new(albedo, ior, nonlinear, microfacet, coating))
             }
-            Specular::Dielectric { .. } => f32::INFINITY,
+            _ => Scatter::Mixture(Mixture::with_reflectances(
+                material,
+                albedo,
+                course_specular,
+                frame,
+                front_face,
+                energy,
+            )),
         };
-        let diffuse_weight = luminance(diffuse);
-        let p_specular = if specular_weight.is_infinite() {
-            1.0
-        } else if specular_weight + diffuse_weight > 0.0 {
-            specular_weight / (specular_weight + diffuse_weight)
-        } else {
-            0.0
-        };
-        let course = course_lobe.map(|p| {
-            let specular = coupling.map_or(course_specular.max(Vec3::ZERO), |c| c.ks());
-            (p.brdf, CourseTerms { diffuse: Vec3::ZERO, specular, exponent: p.exponent })
-        });
-        let p_course = match &course {
-            None => 0.0,
-            Some((_, terms)) => {
-                let others = if specular_weight.is_infinite() {
-                    1.0
-                } else {
-                    (specular_weight + diffuse_weight).min(1.0)
-                };
-                let weight = luminance(terms.specular).max(1e-3);
-                weight / (weight + others)
-            }
-        };
-        Bsdf {
-            frame,
-            diffuse,
-            specular: material.specular,
-            coupling,
-            alpha: material.ggx_alpha.max(1e-4),
-            delta_specular: material.specular_is_delta(),
-            front_face,
-            p_specular,
-            course,
-            p_course,
-        }
+        Bsdf { scatter, frame, opacity: 1.0 }
+    }
+
+    /// This BSDF under a mask: only `opacity` of the light meets it, the rest passes on.
+    pub fn with_opacity(self, opacity: f32) -> Self {
+        Bsdf { opacity: opacity.clamp(0.0, 1.0), ..self }
     }
 
     /// True if light sampling can contribute (some lobe is not a delta distribution).
     pub fn has_smooth_lobe(&self) -> bool {
-        self.p_course > 0.0 || self.p_specular < 1.0 || !self.delta_specular
-    }
-
-    fn local_from_render(&self, w: Vec3) -> Vec3 {
-        self.frame.transpose() * w
-    }
-
-    fn specular_tint(&self, cos: f32) -> Vec3 {
-        match self.specular {
-            Specular::Mirror { reflectance } => reflectance,
-            Specular::Conductor { eta, k, reflectance } => {
-                fresnel_conductor(cos, eta, k) * reflectance
+        self.opacity > 0.0
+            && match &self.scatter {
+                Scatter::Mixture(m) => m.has_smooth_lobe(),
+                Scatter::Plastic(_) | Scatter::RoughDielectric(_) => true,
+                Scatter::Black => false,
             }
-            _ => Vec3::ZERO,
-        }
     }
 
-    /// The factor on the lobes other than the course's for a view at `cos_o`
-    /// (`coupling`).
-    fn rest_scale(&self, cos_o: f32) -> Vec3 {
-        self.coupling.as_ref().map_or(Vec3::ONE, |c| c.rest_scale(cos_o))
+    /// True if some lobe is a delta distribution (a mirror, smooth glass or coating, a
+    /// mask's holes): light sampling cannot find what it sees, only following it can.
+    pub fn has_delta_lobe(&self) -> bool {
+        self.opacity < 1.0
+            || match &self.scatter {
+                Scatter::Mixture(m) => m.has_delta_lobe(),
+                Scatter::Plastic(p) => p.is_smooth(),
+                Scatter::RoughDielectric(_) | Scatter::Black => false,
+            }
+    }
+
+    /// True if light arriving from behind the surface can be scattered towards the front
+    /// (rough glass): light sampling must then look on both sides.
+    pub fn transmits(&self) -> bool {
+        matches!(self.scatter, Scatter::RoughDielectric(_))
     }
 
     /// An upper bound of the fraction of energy arriving from `wo` (render space) that this
     /// BSDF reflects or transmits, per channel: at most 1 by construction.
     pub fn albedo_bound(&self, wo: Vec3) -> Vec3 {
-        let cos_o = self.local_from_render(wo).z;
-        let rest = rest_albedo(self.diffuse, self.specular);
-        self.coupling.as_ref().map_or(rest, |c| c.total_albedo(cos_o))
+        let met = match &self.scatter {
+            Scatter::Mixture(m) => m.albedo_bound(wo),
+            Scatter::Plastic(p) => p.albedo_bound(),
+            Scatter::RoughDielectric(_) => Vec3::ONE,
+            Scatter::Black => Vec3::ZERO,
+        };
+        met * self.opacity + Vec3::splat(1.0 - self.opacity)
     }
 
     /// f · |cos θi| and the density of sampling `wi`, for the non-delta lobes.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
-        let (wo, wi) = (self.local_from_render(wo), self.local_from_render(wi));
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return (Vec3::ZERO, 0.0);
-        }
-        let p_diffuse = 1.0 - self.p_specular;
-        let rest_scale = self.rest_scale(wo.z);
-        let mut value = self.diffuse * rest_scale * FRAC_1_PI * wi.z;
-        let mut pdf = p_diffuse * wi.z * FRAC_1_PI;
-        if self.p_specular > 0.0 && !self.delta_specular {
-            let h = (wo + wi).normalize();
-            let d = ggx::d(h, self.alpha);
-            let f = self.specular_tint(wo.dot(h)) * rest_scale;
-            value += f * (d * ggx::g2(wo, wi, self.alpha) / (4.0 * wo.z));
-            pdf += self.p_specular * ggx::pdf_reflect(wo, h, self.alpha);
-        }
-        if let Some((brdf, terms)) = &self.course {
-            value += cos_weighted(brdf, terms, Vec3::Z, wi, wo);
-            let lobe = course_lobe::pdf(brdf, terms.exponent, wo, wi);
-            pdf = self.p_course * lobe + (1.0 - self.p_course) * pdf;
-        }
-        (value, pdf)
+        let local = |w: Vec3| self.frame.transpose() * w;
+        let (value, pdf) = match &self.scatter {
+            Scatter::Mixture(m) => m.eval(wo, wi),
+            Scatter::Plastic(p) => p.eval(local(wo), local(wi)),
+            Scatter::RoughDielectric(d) => d.eval(local(wo), local(wi)),
+            Scatter::Black => (Vec3::ZERO, 0.0),
+        };
+        if self.opacity == 1.0 { (value, pdf) } else { (value * self.opacity, pdf * self.opacity) }
     }
 
     /// Samples an incident direction for outgoing `wo` (both render space).
-    pub fn sample(&self, wo_render: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        let wo = self.local_from_render(wo_render);
-        if wo.z <= 0.0 {
-            return None;
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        if u_lobe >= self.opacity {
+            return Some(BsdfSample::pass_through(wo));
         }
-        if let (Some((brdf, terms)), true) = (&self.course, u_lobe < self.p_course) {
-            let wi = course_lobe::sample(brdf, terms.exponent, wo, u)?;
-            return self.mixture_sample(wo_render, self.frame * wi);
-        }
-        // The rest of [0, 1) chooses among the other lobes; a delta lobe's weight counts the
-        // probability of not having chosen the course lobe.
-        let u_lobe = (u_lobe - self.p_course) / (1.0 - self.p_course);
-        let not_course = 1.0 - self.p_course;
-        if u_lobe < self.p_specular {
-            if let Specular::Dielectric { ior, .. } = self.specular {
-                let mut sample = self.sample_dielectric(wo, ior, u.x);
-                sample.weight = sample.weight * self.rest_scale(wo.z) / not_course;
-                return Some(sample);
-            }
-            if self.delta_specular {
-                let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-                return Some(BsdfSample {
-                    wi: self.frame * wi,
-                    weight: self.specular_tint(wo.z) * self.rest_scale(wo.z)
-                        / (self.p_specular * not_course),
-                    eta_scale: 1.0,
-                    pdf: 0.0,
-                    delta: true,
-                    transmitted: false,
-                });
-            }
-            let h = ggx::sample_visible_normal(wo, self.alpha, u);
-            let wi = 2.0 * wo.dot(h) * h - wo;
-            if wi.z <= 0.0 {
-                return None;
-            }
-            return self.mixture_sample(wo_render, self.frame * wi);
-        }
-        let wi = crate::sampling::cosine_hemisphere(u);
-        if wi.z <= 0.0 {
-            return None;
-        }
-        self.mixture_sample(wo_render, self.frame * wi)
+        // The weights f·cos/pdf of the rest are unchanged: both carry the opacity.
+        let u_lobe = if self.opacity == 1.0 { u_lobe } else { u_lobe / self.opacity };
+        let local = self.frame.transpose() * wo;
+        let mut sample = match &self.scatter {
+            Scatter::Mixture(m) => return m.sample(wo, u_lobe, u).map(|s| self.masked(s)),
+            Scatter::Plastic(p) => p.sample(local, u_lobe, u)?,
+            Scatter::RoughDielectric(d) => d.sample(local, u_lobe, u)?,
+            Scatter::Black => return None,
+        };
+        sample.wi = self.frame * sample.wi;
+        Some(self.masked(sample))
     }
 
-    /// A non-delta sample weighted by the whole mixture (needed for MIS to be consistent).
-    fn mixture_sample(&self, wo: Vec3, wi: Vec3) -> Option<BsdfSample> {
-        let (value, pdf) = self.eval(wo, wi);
-        (pdf > 0.0).then(|| BsdfSample {
-            wi,
-            weight: value / pdf,
-            eta_scale: 1.0,
-            pdf,
-            delta: false,
-            transmitted: false,
-        })
-    }
-
-    fn sample_dielectric(&self, wo: Vec3, ior: f32, u: f32) -> BsdfSample {
-        // Relative index across the interface in the direction of travel.
-        let eta = if self.front_face { ior } else { 1.0 / ior };
-        let reflectance = fresnel_dielectric(wo.z, eta);
-        if u < reflectance {
-            let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-            return BsdfSample {
-                wi: self.frame * wi,
-                weight: Vec3::ONE,
-                eta_scale: 1.0,
-                pdf: 0.0,
-                delta: true,
-                transmitted: false,
-            };
+    /// A sample of the scattering part with its density as the whole mask's.
+    fn masked(&self, mut sample: BsdfSample) -> BsdfSample {
+        if self.opacity != 1.0 {
+            sample.pdf *= self.opacity;
         }
-        let cos_i = wo.z;
-        let sin2_t = (1.0 - cos_i * cos_i) / (eta * eta);
-        let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
-        let wi = -wo / eta + (cos_i / eta - cos_t) * Vec3::Z;
-        BsdfSample {
-            wi: self.frame * wi.normalize(),
-            // Radiance is compressed entering a denser medium: (η_i/η_t)².
-            weight: Vec3::splat(1.0 / (eta * eta)),
-            eta_scale: eta * eta,
-            pdf: 0.0,
-            delta: true,
-            transmitted: true,
-        }
+        sample
     }
 }
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_kinds;

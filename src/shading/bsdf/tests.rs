@@ -3,6 +3,9 @@
 //! than it receives), and Fresnel's limits.
 
 use super::*;
+use crate::scene::CourseBrdf;
+use crate::shading::course_brdf::cos_weighted;
+use crate::shading::fresnel::{fresnel_conductor, fresnel_dielectric};
 use crate::splitmix::SplitMix64;
 use std::f32::consts::PI;
 
@@ -269,7 +272,8 @@ fn course_glass_adds_its_specular_term_to_fresnel() {
     let glass = course_lobe(glass, CourseBrdf::ModifiedPhong { normalized: true }, 20.0);
     let bsdf = Bsdf::new(&glass, Vec3::ZERO, Mat3::IDENTITY, true);
     assert!(bsdf.has_smooth_lobe(), "next-event estimation sees the course lobe");
-    let (brdf, terms) = bsdf.course.unwrap();
+    let Scatter::Mixture(mixture) = bsdf.scatter else { panic!("glass is a mixture") };
+    let (brdf, terms) = mixture.course.unwrap();
     for wo in directions() {
         let (rings, sectors) = (1000, 180);
         let mut lobe = 0.0f64;

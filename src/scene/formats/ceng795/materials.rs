@@ -209,5 +209,6 @@ fn material(
         normal_map: None,
         bump_map: None,
         phong: Some(phong),
+        ..MaterialDesc::default()
     })
 }

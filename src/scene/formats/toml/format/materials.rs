@@ -11,6 +11,22 @@ pub(crate) enum MaterialKind {
     Mirror,
     Conductor,
     Dielectric,
+    Plastic,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum DistributionToml {
+    Ggx,
+    Beckmann,
+}
+
+/// `opacity = 0.5` or `opacity = { type = "image", file = "leaf.png" }` (its mean channel).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(crate) enum OpacityToml {
+    Constant(f64),
+    Texture(TextureToml),
 }
 
 /// Named metals for `preset` (conductor materials).
@@ -34,6 +50,10 @@ pub(crate) struct MaterialToml {
     pub emission: Option<Vec3>,
     pub reflectance: Option<Vec3>,
     pub roughness: Option<f64>,
+    pub distribution: Option<DistributionToml>,
+    pub nonlinear: Option<bool>,
+    pub opacity: Option<OpacityToml>,
+    pub one_sided: Option<bool>,
     pub eta: Option<Vec3>,
     pub k: Option<Vec3>,
     pub preset: Option<MetalPreset>,

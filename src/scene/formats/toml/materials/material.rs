@@ -2,10 +2,10 @@
 
 use super::course::{brdf, phong};
 use super::textures::{Use, texture_desc};
-use crate::scene::desc::{MaterialDesc, PhongDesc, Specular};
+use crate::scene::desc::{Distribution, MaterialDesc, Opacity, PhongDesc, Specular};
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::format::{
-    BumpHeightsToml, MaterialKind, MaterialToml, MetalPreset,
+    BumpHeightsToml, DistributionToml, MaterialKind, MaterialToml, MetalPreset, OpacityToml,
 };
 use crate::scene::formats::toml::source_map::FieldPath;
 use crate::scene::formats::toml::validate::Ctx;
@@ -13,8 +13,10 @@ use glam::DAffine3;
 use std::path::Path;
 
 /// Fields every material type takes.
-pub(super) const COMMON: [&str; 9] = [
+pub(super) const COMMON: [&str; 11] = [
     "type",
+    "opacity",
+    "one_sided",
     "albedo",
     "emission",
     "texture",
@@ -71,11 +73,14 @@ pub(crate) fn material(
     let kind = m.kind.unwrap_or_default();
     let (kind_name, own): (&str, &[&str]) = match kind {
         MaterialKind::Diffuse => ("diffuse", &[]),
-        MaterialKind::Mirror => ("mirror", &["reflectance", "roughness"]),
+        MaterialKind::Mirror => ("mirror", &["reflectance", "roughness", "distribution"]),
         MaterialKind::Conductor => {
-            ("conductor", &["eta", "k", "preset", "reflectance", "roughness"])
+            ("conductor", &["eta", "k", "preset", "reflectance", "roughness", "distribution"])
         }
-        MaterialKind::Dielectric => ("dielectric", &["ior", "absorption", "roughness"]),
+        MaterialKind::Dielectric => {
+            ("dielectric", &["ior", "absorption", "roughness", "distribution"])
+        }
+        MaterialKind::Plastic => ("plastic", &["ior", "nonlinear", "roughness", "distribution"]),
     };
     let item = format!("{path} ({kind_name})");
     let allowed: Vec<&str> = COMMON.iter().chain(own).copied().collect();
@@ -87,10 +92,17 @@ pub(crate) fn material(
         ("preset", m.preset.is_some()),
         ("ior", m.ior.is_some()),
         ("absorption", m.absorption.is_some()),
+        ("distribution", m.distribution.is_some()),
+        ("nonlinear", m.nonlinear.is_some()),
     ];
     ctx.check_fields(&path, &item, &present, &allowed)?;
 
-    let default_albedo = if kind == MaterialKind::Diffuse { 0.8 } else { 0.0 };
+    let default_albedo = match kind {
+        MaterialKind::Diffuse => 0.8,
+        // Mitsuba's default base.
+        MaterialKind::Plastic => 0.5,
+        _ => 0.0,
+    };
     let albedo = ctx.color(&path.key("albedo"), m.albedo.unwrap_or([default_albedo; 3]), true)?;
     let emission = ctx.color(&path.key("emission"), m.emission.unwrap_or([0.0; 3]), false)?;
     let roughness = match m.roughness {
@@ -120,6 +132,34 @@ pub(crate) fn material(
                 ctx.color(&path.key("absorption"), m.absorption.unwrap_or([0.0; 3]), false)?;
             Specular::Dielectric { ior, absorption }
         }
+        MaterialKind::Plastic => {
+            // Polypropylene, Mitsuba's default coating.
+            let field = path.key("ior");
+            let ior = ctx.positive(&field, m.ior.unwrap_or(1.49))?;
+            Specular::Plastic {
+                ior: ctx.f32(&field, ior)?,
+                nonlinear: m.nonlinear.unwrap_or(false),
+            }
+        }
+    };
+    let distribution = match m.distribution {
+        None | Some(DistributionToml::Ggx) => Distribution::Ggx,
+        Some(DistributionToml::Beckmann) => Distribution::Beckmann,
+    };
+    let opacity = match &m.opacity {
+        None => None,
+        Some(OpacityToml::Constant(value)) => {
+            let field = path.key("opacity");
+            ctx.require((0.0..=1.0).contains(value), &field, value, "in [0, 1]")?;
+            Some(Opacity::Constant(*value as f32))
+        }
+        Some(OpacityToml::Texture(t)) => Some(Opacity::Texture(texture_desc(
+            &path.key("opacity"),
+            t,
+            Use::Specular,
+            ctx,
+            base_dir,
+        )?)),
     };
     let texture = m
         .texture
@@ -166,6 +206,9 @@ pub(crate) fn material(
         emission,
         specular,
         roughness,
+        distribution,
+        opacity,
+        one_sided: m.one_sided.unwrap_or(false),
         texture,
         specular_texture,
         normal_map,

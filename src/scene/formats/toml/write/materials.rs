@@ -2,7 +2,10 @@
 
 use super::TomlWriteError;
 use super::values::{c3, f, quoted};
-use crate::scene::desc::{CourseBrdf, MaterialDesc, Pattern, Specular, TextureDesc, TextureMode};
+use crate::choice::Choice;
+use crate::scene::desc::{
+    CourseBrdf, Distribution, MaterialDesc, Opacity, Pattern, Specular, TextureDesc, TextureMode,
+};
 use glam::{DAffine3, Vec3};
 use std::fmt::Write as _;
 
@@ -44,6 +47,7 @@ pub(super) fn write_material(
         Specular::Mirror { .. } => "mirror",
         Specular::Conductor { .. } => "conductor",
         Specular::Dielectric { .. } => "dielectric",
+        Specular::Plastic { .. } => "plastic",
     };
     let _ = writeln!(out, "type = \"{kind}\"\nalbedo = {}", c3(m.albedo));
     if m.emission != Vec3::ZERO {
@@ -68,10 +72,28 @@ pub(super) fn write_material(
         Specular::Dielectric { ior, absorption } => {
             let _ = writeln!(out, "ior = {:?}\nabsorption = {}", ior, c3(absorption));
         }
+        Specular::Plastic { ior, nonlinear } => {
+            let _ = writeln!(out, "ior = {ior:?}\nnonlinear = {nonlinear}");
+        }
     }
     // A diffuse material's roughness means nothing to either integrator.
     if m.roughness != 0.0 && m.specular != Specular::None {
         let _ = writeln!(out, "roughness = {:?}", m.roughness);
+        if m.distribution != Distribution::Ggx {
+            let _ = writeln!(out, "distribution = \"{}\"", m.distribution.name());
+        }
+    }
+    if m.one_sided {
+        let _ = writeln!(out, "one_sided = true");
+    }
+    match &m.opacity {
+        None => {}
+        Some(Opacity::Constant(value)) => {
+            let _ = writeln!(out, "opacity = {value:?}");
+        }
+        Some(Opacity::Texture(t)) => {
+            let _ = writeln!(out, "opacity = {}", texture_toml(t, false)?);
+        }
     }
     if let Some(t) = &m.texture {
         let _ = writeln!(out, "texture = {}", texture_toml(t, true)?);

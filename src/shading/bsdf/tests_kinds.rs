@@ -1,0 +1,222 @@
+//! The kinds beside the mixture — plastic (smooth and rough), rough glass, masks — checked
+//! as the mixture is: sampling against the density by chi-square over the whole sphere,
+//! sample weights against eval/pdf, white furnaces, and the limits each must reach.
+
+use super::*;
+use crate::scene::Distribution;
+use crate::splitmix::SplitMix64;
+use std::f32::consts::PI;
+
+const THETA_CELLS: usize = 16;
+const PHI_CELLS: usize = 16;
+/// Sub-samples per cell side: fine enough for the sharpest lobe tested (α 0.05) and for
+/// the edge of rough glass's transmission, where refraction through facets seen edge-on
+/// piles directions up.
+const SUB: usize = 64;
+
+/// Cell of `w` on the whole sphere (θ from +Z over [0, π]).
+fn cell_of(w: Vec3) -> usize {
+    let theta = w.z.clamp(-1.0, 1.0).acos();
+    let c = ((theta / PI * THETA_CELLS as f32) as usize).min(THETA_CELLS - 1);
+    let phi = w.y.atan2(w.x).rem_euclid(2.0 * PI);
+    let p = ((phi / (2.0 * PI) * PHI_CELLS as f32) as usize).min(PHI_CELLS - 1);
+    c * PHI_CELLS + p
+}
+
+fn expected_fractions(bsdf: &Bsdf, wo: Vec3) -> Vec<f64> {
+    let dtheta = std::f64::consts::PI / (THETA_CELLS * SUB) as f64;
+    let dphi = 2.0 * std::f64::consts::PI / (PHI_CELLS * SUB) as f64;
+    (0..THETA_CELLS * PHI_CELLS)
+        .map(|cell| {
+            let (c, p) = (cell / PHI_CELLS, cell % PHI_CELLS);
+            let mut sum = 0.0f64;
+            for i in 0..SUB {
+                let theta = ((c * SUB + i) as f64 + 0.5) * dtheta;
+                for j in 0..SUB {
+                    let phi = ((p * SUB + j) as f64 + 0.5) * dphi;
+                    let (st, ct) = theta.sin_cos();
+                    let wi = Vec3::new((st * phi.cos()) as f32, (st * phi.sin()) as f32, ct as f32);
+                    sum += bsdf.eval(wo, wi).1 as f64 * st * dtheta * dphi;
+                }
+            }
+            sum
+        })
+        .collect()
+}
+
+/// Chi-square of the non-delta samples against `eval`'s density; delta samples (and
+/// refusals) go to one extra cell, whose share is what the density does not cover.
+fn chi_square_test(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u64) {
+    let samples = 200_000u64;
+    let mut rng = SplitMix64(seed);
+    let mut counts = vec![0u64; THETA_CELLS * PHI_CELLS + 1];
+    for _ in 0..samples {
+        let u_lobe = rng.unit();
+        match bsdf.sample(wo, u_lobe, Vec2::new(rng.unit(), rng.unit())) {
+            Some(s) if !s.delta => {
+                let (value, pdf) = bsdf.eval(wo, s.wi);
+                assert!((pdf - s.pdf).abs() <= 1e-3 * pdf, "{name}: pdf {} vs {pdf}", s.pdf);
+                let weight = value / pdf;
+                let error = (weight - s.weight).abs().max_element();
+                assert!(error <= 1e-3 * weight.max_element().max(1e-3), "{name}: {s:?}");
+                counts[cell_of(s.wi)] += 1;
+            }
+            _ => counts[THETA_CELLS * PHI_CELLS] += 1,
+        }
+    }
+    let mut expected = expected_fractions(bsdf, wo);
+    let covered: f64 = expected.iter().sum();
+    expected.push((1.0 - covered).max(0.0));
+    crate::sampling::chi_square::assert_fits(
+        &format!("{name} (∫pdf {covered:.4})"),
+        &counts,
+        &expected,
+        samples,
+    );
+}
+
+/// Mean energy of the sample weights (refraction's radiance compression undone).
+fn furnace(bsdf: &Bsdf, wo: Vec3, samples: usize) -> Vec3 {
+    let mut rng = SplitMix64(5);
+    let mut total = Vec3::ZERO;
+    for _ in 0..samples {
+        let u_lobe = rng.unit();
+        if let Some(s) = bsdf.sample(wo, u_lobe, Vec2::new(rng.unit(), rng.unit())) {
+            total += s.weight * s.eta_scale;
+        }
+    }
+    total / samples as f32
+}
+
+fn plastic(base: Vec3, alpha: f32, distribution: Distribution, nonlinear: bool) -> Material {
+    let desc = crate::scene::MaterialDesc {
+        albedo: base,
+        specular: Specular::Plastic { ior: 1.5, nonlinear },
+        roughness: alpha,
+        distribution,
+        ..Default::default()
+    };
+    Material::from_desc(&desc)
+}
+
+fn rough_glass(alpha: f32, distribution: Distribution) -> Material {
+    Material {
+        albedo: Vec3::ZERO,
+        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+        ggx_alpha: alpha,
+        distribution,
+        ..Default::default()
+    }
+}
+
+fn views() -> [Vec3; 3] {
+    [Vec3::new(0.1, 0.0, 1.0).normalize(), Vec3::new(0.5, 0.2, 0.8).normalize(), {
+        Vec3::new(-0.9, 0.3, 0.25).normalize()
+    }]
+}
+
+#[test]
+fn plastics_and_rough_glass_sample_their_own_density() {
+    let mut cases = vec![];
+    for distribution in [Distribution::Ggx, Distribution::Beckmann] {
+        for alpha in [0.05, 0.2] {
+            let base = Vec3::new(0.2, 0.5, 0.3);
+            cases.push((
+                format!("plastic {distribution:?} α {alpha}"),
+                plastic(base, alpha, distribution, false),
+                true,
+            ));
+            cases.push((
+                format!("glass {distribution:?} α {alpha}"),
+                rough_glass(alpha, distribution),
+                true,
+            ));
+            cases.push((
+                format!("glass from inside {distribution:?} α {alpha}"),
+                rough_glass(alpha, distribution),
+                false,
+            ));
+        }
+    }
+    cases.push((
+        "smooth plastic".into(),
+        plastic(Vec3::splat(0.5), 0.0, Distribution::Ggx, false),
+        true,
+    ));
+    for (i, (name, material, front_face)) in cases.iter().enumerate() {
+        let bsdf = Bsdf::new(material, material.albedo, Mat3::IDENTITY, *front_face);
+        for (j, wo) in views().into_iter().enumerate() {
+            chi_square_test(&format!("{name}, wo {wo}"), &bsdf, wo, (i * 7 + j) as u64);
+        }
+    }
+}
+
+#[test]
+fn a_white_plastic_keeps_nearly_everything_and_never_more() {
+    for nonlinear in [false, true] {
+        for (alpha, distribution) in [(0.0, Distribution::Ggx), (0.1, Distribution::Beckmann)] {
+            let material = plastic(Vec3::ONE, alpha, distribution, nonlinear);
+            let bsdf = Bsdf::new(&material, material.albedo, Mat3::IDENTITY, true);
+            for wo in views().into_iter().take(2) {
+                let energy = furnace(&bsdf, wo, 200_000).x;
+                // A white base loses nothing but what rough facets mask and the linear
+                // model's approximation of the internal bounces.
+                assert!(energy > 0.93 && energy < 1.01, "α {alpha} {nonlinear}: {energy}");
+            }
+        }
+    }
+    // A black base: only the coating's reflection, Fresnel's few percent at normal incidence.
+    let material = plastic(Vec3::ZERO, 0.0, Distribution::Ggx, false);
+    let bsdf = Bsdf::new(&material, material.albedo, Mat3::IDENTITY, true);
+    let energy = furnace(&bsdf, Vec3::Z, 100_000).x;
+    assert!((energy - 0.04).abs() < 2e-3, "{energy}");
+}
+
+#[test]
+fn rough_glass_passes_on_what_it_does_not_mask_from_either_side() {
+    for distribution in [Distribution::Ggx, Distribution::Beckmann] {
+        for front_face in [true, false] {
+            let material = rough_glass(0.05, distribution);
+            let bsdf = Bsdf::new(&material, material.albedo, Mat3::IDENTITY, front_face);
+            let energy = furnace(&bsdf, Vec3::new(0.3, 0.0, 0.95).normalize(), 200_000).x;
+            assert!(energy > 0.97 && energy < 1.005, "{distribution:?} {front_face}: {energy}");
+        }
+    }
+}
+
+#[test]
+fn a_mask_passes_the_rest_of_the_light_straight_on() {
+    let material = Material::diffuse(Vec3::splat(0.5));
+    let bsdf = Bsdf::new(&material, material.albedo, Mat3::IDENTITY, true).with_opacity(0.25);
+    let wo = Vec3::new(0.3, 0.1, 0.9).normalize();
+    let (mut passed, mut rng, n) = (0, SplitMix64(3), 100_000);
+    for _ in 0..n {
+        let s = bsdf.sample(wo, rng.unit(), Vec2::new(rng.unit(), rng.unit())).unwrap();
+        if s.passes {
+            assert!(s.delta && s.transmitted && s.wi == -wo && s.weight == Vec3::ONE);
+            passed += 1;
+        }
+    }
+    assert!((passed as f64 / n as f64 - 0.75).abs() < 0.01, "{passed}");
+    let plain = Bsdf::new(&material, material.albedo, Mat3::IDENTITY, true);
+    let wi = Vec3::new(-0.2, 0.4, 0.8).normalize();
+    let ((masked, masked_pdf), (full, full_pdf)) = (bsdf.eval(wo, wi), plain.eval(wo, wi));
+    assert!((masked - full * 0.25).abs().max_element() < 1e-7);
+    assert!((masked_pdf - full_pdf * 0.25).abs() < 1e-7);
+    chi_square_test("lambert, opacity 0.25", &bsdf, wo, 11);
+}
+
+#[test]
+fn a_one_sided_material_is_black_from_behind_but_glass_is_not() {
+    let one_sided = Material { one_sided: true, ..Material::diffuse(Vec3::splat(0.5)) };
+    let wo = Vec3::new(0.3, 0.1, 0.9).normalize();
+    let behind = Bsdf::new(&one_sided, one_sided.albedo, Mat3::IDENTITY, false);
+    assert_eq!(behind.eval(wo, Vec3::Z), (Vec3::ZERO, 0.0));
+    assert!(behind.sample(wo, 0.5, Vec2::splat(0.5)).is_none());
+    let front = Bsdf::new(&one_sided, one_sided.albedo, Mat3::IDENTITY, true);
+    assert!(front.eval(wo, Vec3::Z).0.x > 0.0);
+    let glass = Material { one_sided: true, ..rough_glass(0.2, Distribution::Ggx) };
+    let inside = Bsdf::new(&glass, glass.albedo, Mat3::IDENTITY, false);
+    assert!(furnace(&inside, wo, 10_000).x > 0.9);
+}
+
