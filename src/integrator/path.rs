@@ -105,7 +105,6 @@ impl<'a> PathTracer<'a> {
         bsdf: &Bsdf,
         wo: Vec3,
         time: f32,
-        bsdf_continues: bool,
         stream: &mut SampleStream,
         stats: &mut RenderStats,
     ) -> Vec3 {
@@ -176,15 +175,10 @@ impl<'a> PathTracer<'a> {
                     continue;
                 }
                 let pdf_light = sample.pdf;
-                // Without a following BSDF sample (last bounce) light sampling is the only
-                // strategy and gets full weight.
                 // An invisible emitter (the course's area light) can never be found by the
                 // BSDF sample either.
-                let weight = if bsdf_continues && sample.visible {
-                    power_heuristic(n * pdf_light, pdf_bsdf)
-                } else {
-                    1.0
-                };
+                let weight =
+                    if sample.visible { power_heuristic(n * pdf_light, pdf_bsdf) } else { 1.0 };
                 sum += f_cos * sample.emission * (weight / (n * pdf_light));
             }
         }
@@ -201,8 +195,7 @@ impl<'a> PathTracer<'a> {
                 {
                     continue;
                 }
-                let weight =
-                    if bsdf_continues { power_heuristic(n * sample.pdf, pdf_bsdf) } else { 1.0 };
+                let weight = power_heuristic(n * sample.pdf, pdf_bsdf);
                 sum += f_cos * sample.radiance * (weight / (n * sample.pdf));
             }
         }
@@ -267,12 +260,13 @@ impl<'a> PathTracer<'a> {
         // Beer's-law absorption of the medium the ray travels through.
         let mut absorption = Vec3::ZERO;
         let bounces = self.max_depth.max(1);
-        // One step past the last bounce is taken only after a delta lobe (a mirror, glass, a
-        // mask's hole), for the emission it finds: light sampling at the last bounce finds
-        // what a smooth lobe sees, but nothing finds what a delta lobe sees but following
-        // it (Mitsuba's and pbrt's `max_depth` count it so).
+        // After the last bounce's scattering one more ray is traced, for the emission it
+        // finds only: light sampling and BSDF sampling share every bounce by MIS, the last
+        // included (Mitsuba's and pbrt's `max_depth` count so), which keeps glossy lobes
+        // lit by large lights as quiet as anywhere else, and lets delta lobes (mirrors,
+        // glass, a mask's holes) see the lights at all.
         for depth in 0..=bounces {
-            if !ray.is_valid() || (depth == bounces && !specular_bounce) {
+            if !ray.is_valid() {
                 break;
             }
             let found = self.tracer.closest_hit(&ray, depth == 0, first_hit.take(), stats);
@@ -325,21 +319,14 @@ impl<'a> PathTracer<'a> {
                 Some(opacity) => bsdf.with_opacity(self.opacity(opacity, &si, ray.time)),
             };
             let wo = -ray.dir.normalize();
-            let last = depth + 1 >= self.max_depth;
             if bsdf.has_smooth_lobe() {
-                let direct = self.direct_light(&si, &bsdf, wo, ray.time, !last, stream, stats);
+                let direct = self.direct_light(&si, &bsdf, wo, ray.time, stream, stats);
                 result.radiance += throughput * direct;
-            }
-            if last && !bsdf.has_delta_lobe() {
-                break;
             }
             // Direction first (the best stratified pair), then lobe and roulette.
             let [u0, u1, u_lobe, u_survive] = stream.next_4d();
             let u = Vec2::new(u0, u1);
             let Some(sample) = bsdf.sample(wo, u_lobe, u) else { break };
-            if last && !sample.delta {
-                break;
-            }
             // The geometric surface must agree with the shading normal about the side.
             let below = sample.wi.dot(si.surface.normal) < 0.0;
             if below != sample.transmitted || sample.weight == Vec3::ZERO {

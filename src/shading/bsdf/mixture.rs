@@ -146,11 +146,6 @@ impl Mixture {
         self.p_course > 0.0 || self.p_specular < 1.0 || !self.delta_specular
     }
 
-    /// True if a lobe is a delta distribution (only following it can find what it sees).
-    pub fn has_delta_lobe(&self) -> bool {
-        self.p_specular > 0.0 && self.delta_specular
-    }
-
     fn local_from_render(&self, w: Vec3) -> Vec3 {
         self.frame.transpose() * w
     }

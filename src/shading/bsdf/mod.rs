@@ -138,17 +138,6 @@ impl Bsdf {
             }
     }
 
-    /// True if some lobe is a delta distribution (a mirror, smooth glass or coating, a
-    /// mask's holes): light sampling cannot find what it sees, only following it can.
-    pub fn has_delta_lobe(&self) -> bool {
-        self.opacity < 1.0
-            || match &self.scatter {
-                Scatter::Mixture(m) => m.has_delta_lobe(),
-                Scatter::Plastic(p) => p.is_smooth(),
-                Scatter::RoughDielectric(_) | Scatter::Black => false,
-            }
-    }
-
     /// True if light arriving from behind the surface can be scattered towards the front
     /// (rough glass): light sampling must then look on both sides.
     pub fn transmits(&self) -> bool {

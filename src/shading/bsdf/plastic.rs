@@ -45,10 +45,6 @@ impl Plastic {
         Vec3::ONE
     }
 
-    pub fn is_smooth(&self) -> bool {
-        self.microfacet.is_none()
-    }
-
     /// Probability of sampling the coating's reflection for the view at `cos_o`.
     fn p_specular(&self, cos_o: f32) -> f32 {
         let reflected = 1.0 - self.coating.transmittance(cos_o);

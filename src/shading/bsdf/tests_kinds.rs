@@ -219,4 +219,3 @@ fn a_one_sided_material_is_black_from_behind_but_glass_is_not() {
     let inside = Bsdf::new(&glass, glass.albedo, Mat3::IDENTITY, false);
     assert!(furnace(&inside, wo, 10_000).x > 0.9);
 }
-

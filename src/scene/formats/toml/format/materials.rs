@@ -26,7 +26,7 @@ pub(crate) enum DistributionToml {
 #[serde(untagged)]
 pub(crate) enum OpacityToml {
     Constant(f64),
-    Texture(TextureToml),
+    Texture(Box<TextureToml>),
 }
 
 /// Named metals for `preset` (conductor materials).

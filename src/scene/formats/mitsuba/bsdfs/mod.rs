@@ -1,0 +1,188 @@
+//! `<bsdf>` → `MaterialDesc`, one file per family, with Mitsuba's parameter names,
+//! defaults and conventions (BSDFs are one-sided unless wrapped in `twosided`; glass is
+//! two-sided by nature). Other BSDFs are refused with their type, file and line: none is
+//! silently replaced.
+
+mod conductor;
+mod dielectric;
+mod plastic;
+mod texture;
+
+use super::tree::{Element, FileResolver};
+use super::values::{ColorUse, color, float, property};
+use crate::scene::desc::{Distribution, MaterialDesc, Opacity};
+use crate::scene::error::SceneError;
+use glam::{DVec3, Vec3};
+use texture::reflectance_texture;
+
+/// The BSDFs this reader knows, for messages.
+pub(super) const SUPPORTED: &str = "diffuse, twosided, mask, conductor, roughconductor, \
+                                    dielectric, roughdielectric, plastic, roughplastic";
+
+pub(super) fn bsdf(
+    element: &Element,
+    ids: &super::Ids,
+    files: &FileResolver,
+) -> Result<MaterialDesc, SceneError> {
+    let kind = element.required("type")?;
+    let name = element.attr("id").unwrap_or(kind).to_owned();
+    let none = MaterialDesc { name, albedo: Vec3::ZERO, one_sided: true, ..Default::default() };
+    match kind {
+        "twosided" => {
+            let inner = nested_bsdf(
+                element,
+                ids,
+                files,
+                "twosided takes one nested <bsdf> (two are not supported)",
+            )?;
+            Ok(MaterialDesc { name: none.name, one_sided: false, ..inner })
+        }
+        "mask" => {
+            check_properties(element, &["opacity"])?;
+            let inner = nested_bsdf(element, ids, files, "mask takes one nested <bsdf>")?;
+            if inner.opacity.is_some() {
+                return Err(element.error("a mask inside a mask is not supported"));
+            }
+            let opacity = match reflectance_texture(element, "opacity", ids, files)? {
+                Some(texture) => Opacity::Texture(texture),
+                None => {
+                    let value = float(element, "opacity")?.unwrap_or(0.5);
+                    if !(0.0..=1.0).contains(&value) {
+                        return Err(
+                            element.error(format!("opacity is {value}, but must be in [0, 1]"))
+                        );
+                    }
+                    Opacity::Constant(value as f32)
+                }
+            };
+            Ok(MaterialDesc { name: none.name, opacity: Some(opacity), ..inner })
+        }
+        "diffuse" => {
+            let mut material = MaterialDesc { albedo: Vec3::splat(0.5), ..none };
+            check_properties(element, &["reflectance"])?;
+            if let Some(texture) = reflectance_texture(element, "reflectance", ids, files)? {
+                material.texture = Some(texture);
+            } else if let Some(rgb) = reflectance(element, "reflectance")? {
+                material.albedo = rgb;
+            }
+            Ok(material)
+        }
+        "conductor" | "roughconductor" => conductor::conductor(element, kind, none),
+        "dielectric" | "roughdielectric" => dielectric::dielectric(element, kind, none),
+        "plastic" | "roughplastic" => plastic::plastic(element, kind, none, ids, files),
+        other => Err(element
+            .error(format!("the BSDF '{other}' is not supported yet (supported: {SUPPORTED})"))),
+    }
+}
+
+/// The one `<bsdf>` (or reference to one) inside a wrapper such as `twosided` or `mask`.
+fn nested_bsdf(
+    element: &Element,
+    ids: &super::Ids,
+    files: &FileResolver,
+    otherwise: &str,
+) -> Result<MaterialDesc, SceneError> {
+    let inner: Vec<&Element> = element
+        .children
+        .iter()
+        .filter(|c| c.tag == "bsdf" || (c.tag == "ref" && c.attr("name").is_none()))
+        .collect();
+    match inner[..] {
+        [one] => bsdf(ids.bsdf(one)?, ids, files),
+        _ => Err(element.error(otherwise)),
+    }
+}
+
+/// Refuses a parameter (a property, a texture or a reference by `name`) the BSDF does not
+/// read, so that nothing in the file is silently ignored.
+fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError> {
+    let wrapper = matches!(element.attr("type"), Some("twosided" | "mask"));
+    for child in &element.children {
+        if let Some(name) = child.attr("name") {
+            if !known.contains(&name) {
+                return Err(child.error(format!(
+                    "{} does not take `{name}` (it takes: {})",
+                    element.describe(),
+                    known.join(", ")
+                )));
+            }
+        } else if !(wrapper && matches!(child.tag.as_str(), "bsdf" | "ref")) {
+            return Err(child.error(format!(
+                "{} does not take a <{}>",
+                element.describe(),
+                child.tag
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The parameters of a microfacet distribution every rough BSDF takes.
+const MICROFACET: [&str; 5] = ["alpha", "alpha_u", "alpha_v", "distribution", "sample_visible"];
+
+/// The distribution and its α (Mitsuba's defaults: Beckmann, 0.1); anisotropic roughness
+/// and a textured α are refused.
+fn microfacet(element: &Element) -> Result<(Distribution, f32), SceneError> {
+    let distribution = match property(element, "string", "distribution") {
+        None => Distribution::Beckmann,
+        Some(d) => match d.required("value")?.to_ascii_lowercase().as_str() {
+            "beckmann" => Distribution::Beckmann,
+            "ggx" => Distribution::Ggx,
+            other => {
+                return Err(
+                    d.error(format!("the distribution '{other}' is not known (beckmann or ggx)"))
+                );
+            }
+        },
+    };
+    let (u, v) = (float(element, "alpha_u")?, float(element, "alpha_v")?);
+    if u.is_some() || v.is_some() {
+        if u != v {
+            return Err(element.error("anisotropic roughness (alpha_u ≠ alpha_v) is not supported"));
+        }
+        if float(element, "alpha")?.is_some() {
+            return Err(element.error("give either alpha or alpha_u and alpha_v, not both"));
+        }
+    }
+    let alpha = float(element, "alpha")?.or(u).unwrap_or(0.1);
+    if !(0.0..=1.0).contains(&alpha) {
+        return Err(element.error(format!("alpha is {alpha}, but must be in [0, 1]")));
+    }
+    if super::values::boolean(element, "sample_visible")? == Some(false) {
+        return Err(
+            element.error("sample_visible = false is not supported (visible normals are sampled)")
+        );
+    }
+    Ok((distribution, alpha as f32))
+}
+
+/// An `<rgb>`/`<spectrum>` reflectance named `name`, each component in [0, 1].
+fn reflectance(element: &Element, name: &str) -> Result<Option<Vec3>, SceneError> {
+    let found = element
+        .children
+        .iter()
+        .find(|c| c.attr("name") == Some(name) && matches!(c.tag.as_str(), "rgb" | "spectrum"));
+    let Some(found) = found else { return Ok(None) };
+    let rgb = color(found, ColorUse::Reflectance)?;
+    if !rgb.cmpge(DVec3::ZERO).all() || !rgb.cmple(DVec3::ONE).all() {
+        return Err(found.error(format!("a reflectance must be in [0, 1], not {rgb}")));
+    }
+    Ok(Some(rgb.as_vec3()))
+}
+
+/// Refuses a `specular_reflectance`/`specular_transmittance` other than 1 (not modelled).
+fn unit_only(element: &Element, names: &[&str]) -> Result<(), SceneError> {
+    for name in names {
+        if reflectance(element, name)?.is_some_and(|r| r != Vec3::ONE) {
+            return Err(element.error(format!("{name} other than 1 is not supported")));
+        }
+        let textured = element
+            .children
+            .iter()
+            .any(|c| c.attr("name") == Some(name) && matches!(c.tag.as_str(), "texture" | "ref"));
+        if textured {
+            return Err(element.error(format!("a textured {name} is not supported")));
+        }
+    }
+    Ok(())
+}

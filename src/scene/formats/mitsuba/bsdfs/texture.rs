@@ -1,0 +1,85 @@
+//! `<texture>` properties of BSDFs: bitmap and checkerboard, for a reflectance or a
+//! mask's opacity.
+
+use super::super::tree::{Element, FileResolver};
+use super::super::values::{boolean, property};
+use super::reflectance;
+use crate::scene::desc::{Interpolation, Pattern, TextureDesc, TextureMode};
+use crate::scene::error::{Line, SceneError};
+use crate::scene::texture_image::{ImageRef, load};
+use glam::{DAffine3, DVec3, Vec3};
+
+/// A `<texture name="…">` (bitmap or checkerboard) for the reflectance `name`.
+pub(super) fn reflectance_texture(
+    element: &Element,
+    name: &str,
+    ids: &super::super::Ids,
+    files: &FileResolver,
+) -> Result<Option<TextureDesc>, SceneError> {
+    let Some(texture) = element
+        .children
+        .iter()
+        .find(|c| matches!(c.tag.as_str(), "texture" | "ref") && c.attr("name") == Some(name))
+    else {
+        return Ok(None);
+    };
+    let texture = ids.resolve(texture)?;
+    if texture.tag != "texture" {
+        return Err(texture.error(format!("`{name}` must be a colour or a <texture>")));
+    }
+    let pattern = match texture.required("type")? {
+        "bitmap" => {
+            let file = property(texture, "string", "filename")
+                .ok_or_else(|| texture.error("a bitmap needs a filename"))?;
+            let raw = boolean(texture, "raw")?.unwrap_or(false);
+            let at = ImageRef {
+                image: files.resolve(file.required("value")?),
+                scene: &file.file,
+                item: file.describe(),
+                line: Line(Some(file.line)),
+            };
+            let image = load(&at, !raw)?;
+            let normalizer = if image.srgb_decoded || image.hdr { 1.0 } else { 255.0 };
+            let interpolation = match property(texture, "string", "filter_type") {
+                Some(f) if f.required("value")? == "nearest" => Interpolation::Nearest,
+                _ => Interpolation::Bilinear,
+            };
+            Pattern::Image { image, interpolation, normalizer }
+        }
+        "checkerboard" => {
+            let color_of = |name: &str, default: f64| -> Result<Vec3, SceneError> {
+                Ok(reflectance(texture, name)?.unwrap_or(Vec3::splat(default as f32)))
+            };
+            Pattern::Checker2d {
+                scale: 2.0,
+                even: color_of("color0", 0.4)?,
+                odd: color_of("color1", 0.2)?,
+            }
+        }
+        other => {
+            return Err(texture.error(format!(
+                "the texture '{other}' is not supported yet (bitmap and checkerboard are)"
+            )));
+        }
+    };
+    let pattern = match (property(texture, "transform", "to_uv"), pattern) {
+        (None, pattern) => pattern,
+        // A uniform scale of the texture coordinates: more checks.
+        (Some(to_uv), Pattern::Checker2d { scale, even, odd }) => {
+            let m = super::super::transform::transform(to_uv)?;
+            let factor = m.matrix3.x_axis.x;
+            let uniform = m.matrix3 == glam::DMat3::from_diagonal(DVec3::new(factor, factor, 1.0))
+                || m.matrix3 == glam::DMat3::from_diagonal(DVec3::splat(factor));
+            if !uniform || m.translation != DVec3::ZERO || !(factor > 0.0) {
+                return Err(to_uv.error("to_uv other than a uniform scale is not supported yet"));
+            }
+            Pattern::Checker2d { scale: scale * factor as f32, even, odd }
+        }
+        (Some(to_uv), _) => return Err(to_uv.error("to_uv on a bitmap is not supported yet")),
+    };
+    Ok(Some(TextureDesc {
+        pattern,
+        mode: TextureMode::Replace,
+        texture_from_object: DAffine3::IDENTITY,
+    }))
+}
