@@ -29,8 +29,8 @@ fn object_without_material_is_rejected() {
 
 #[test]
 fn unknown_material_type_is_named() {
-    let err = load_err(&format!("{CAMERA}[materials.m]\ntype = \"plastic\"\n"));
-    assert_contains(&err, &["scene.toml", "line 7", "unknown variant `plastic`"]);
+    let err = load_err(&format!("{CAMERA}[materials.m]\ntype = \"velvet\"\n"));
+    assert_contains(&err, &["scene.toml", "line 7", "unknown variant `velvet`"]);
 }
 
 #[test]
@@ -39,7 +39,7 @@ fn field_of_another_material_type_is_rejected() {
     assert_contains(
         &err,
         &["scene.toml: materials.white (diffuse) does not take the field `roughness` \
-             (it takes: type, albedo, emission, texture, specular_texture, normal_map, bump_map, phong, brdf) (line 8)"],
+             (it takes: type, albedo, emission, texture, specular_texture, normal_map, bump_map, phong, brdf, opacity, one_sided) (line 8)"],
     );
     let err =
         load_err(&format!("{CAMERA}[materials.glass]\ntype = \"dielectric\"\neta = [1, 1, 1]\n"));

@@ -5,6 +5,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod bsdfs;
 mod reader;
 mod suite;
 

@@ -9,7 +9,7 @@ use glam::{DVec3, Vec3};
 use std::path::PathBuf;
 
 /// A folder with `main.xml` (and `extra` files), returning main.xml's path.
-fn files(name: &str, main: &str, extra: &[(&str, &str)]) -> PathBuf {
+pub(super) fn files(name: &str, main: &str, extra: &[(&str, &str)]) -> PathBuf {
     let dir = temp_dir(name);
     for (file, text) in extra {
         let path = dir.join(file);
@@ -20,7 +20,7 @@ fn files(name: &str, main: &str, extra: &[(&str, &str)]) -> PathBuf {
     dir.join("main.xml")
 }
 
-const SENSOR: &str = r#"
+pub(super) const SENSOR: &str = r#"
     <sensor type="perspective">
         <float name="fov" value="$fov"/>
         <string name="fov_axis" value="y"/>
@@ -161,13 +161,18 @@ fn errors_name_the_plugin_the_file_and_the_line() {
         load_mitsuba(&path, &[]).unwrap_err()
     };
     let message = error(
-        "mitsuba-plastic",
-        scene("<shape type=\"cube\"><bsdf type=\"plastic\"/></shape>"),
+        "mitsuba-principled",
+        scene("<shape type=\"cube\"><bsdf type=\"principled\"/></shape>"),
         &[],
     );
     assert_contains(
         &message,
-        &["main.xml", "<bsdf type=\"plastic\">", "'plastic' is not supported yet", "(line 15)"],
+        &[
+            "main.xml",
+            "<bsdf type=\"principled\">",
+            "'principled' is not supported yet",
+            "(line 15)",
+        ],
     );
     let message = error("mitsuba-medium", scene("<medium type=\"homogeneous\"/>"), &[]);
     assert_contains(&message, &["<medium> 'homogeneous' is not supported", "(line 15)"]);
@@ -194,13 +199,6 @@ fn errors_name_the_plugin_the_file_and_the_line() {
     let message =
         error("mitsuba-fragment", scene("<include filename=\"f.xml\"/>"), &[("f.xml", fragment)]);
     assert_contains(&message, &["f.xml", "the shape 'disk' is not supported yet", "(line 3)"]);
-    // Mitsuba's rough conductor is Beckmann unless told otherwise: refused, not read as GGX.
-    let message = error(
-        "mitsuba-beckmann",
-        scene("<shape type=\"cube\"><bsdf type=\"roughconductor\"/></shape>"),
-        &[],
-    );
-    assert_contains(&message, &["the beckmann distribution (Mitsuba's default", "(line 15)"]);
     // A boolean is true or false, not read as false when it is anything else.
     let message = error(
         "mitsuba-boolean",

@@ -10,8 +10,17 @@ use embray::mitsuba_rule::judge;
 use std::path::{Path, PathBuf};
 
 /// The suite's scenes that embray renders; every other one must be refused.
-const RENDERED: [&str; 3] =
-    ["test_directional_direct", "test_orthographic_path", "test_textured_diffuse_path"];
+const RENDERED: [&str; 9] = [
+    "test_arealight_path",
+    "test_constant_path",
+    "test_directional_direct",
+    "test_envmap_path",
+    "test_orthographic_path",
+    "test_pointlight_path",
+    "test_roughdielectric_path",
+    "test_roughplastic_linear_path",
+    "test_textured_diffuse_path",
+];
 
 fn mitsuba_data() -> PathBuf {
     repo_path("../shared/data/mitsuba")

@@ -135,6 +135,14 @@ fn microfacet(element: &Element) -> Result<(Distribution, f32), SceneError> {
             }
         },
     };
+    for name in ["alpha", "alpha_u", "alpha_v"] {
+        let textured = element.children.iter().find(|c| {
+            c.attr("name") == Some(name) && matches!(c.tag.as_str(), "texture" | "ref")
+        });
+        if let Some(texture) = textured {
+            return Err(texture.error(format!("a textured `{name}` is not supported yet")));
+        }
+    }
     let (u, v) = (float(element, "alpha_u")?, float(element, "alpha_v")?);
     if u.is_some() || v.is_some() {
         if u != v {

@@ -15,8 +15,6 @@ use std::path::Path;
 /// Fields every material type takes.
 pub(super) const COMMON: [&str; 11] = [
     "type",
-    "opacity",
-    "one_sided",
     "albedo",
     "emission",
     "texture",
@@ -25,6 +23,8 @@ pub(super) const COMMON: [&str; 11] = [
     "bump_map",
     "phong",
     "brdf",
+    "opacity",
+    "one_sided",
 ];
 
 /// Complex refractive index (eta, k) of the `preset` metals, per linear sRGB channel.

@@ -1,0 +1,105 @@
+//! Mitsuba's BSDFs as the reader turns them into materials: each family's defaults and
+//! conventions (one-sided unless `twosided`, glass two-sided, Beckmann unless told, a mask's
+//! opacity 0.5), and the refusals of what embray does not model.
+
+use super::common::assert_contains;
+use super::load_mitsuba;
+use super::reader::{SENSOR, files};
+use embray::scene::{Distribution, MaterialDesc, Opacity, Specular};
+use glam::Vec3;
+
+/// The material of the one cube of a scene whose cube has the BSDF `bsdf`.
+fn material_of(name: &str, bsdf: &str) -> Result<MaterialDesc, String> {
+    let main = format!(
+        "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+         value=\"40\"/>{SENSOR}\n<shape type=\"cube\">{bsdf}</shape>\n</scene>"
+    );
+    let scene = load_mitsuba(&files(name, &main, &[]), &[])?;
+    Ok(scene.materials[scene.objects[0].material as usize].clone())
+}
+
+#[test]
+fn each_family_reads_with_mitsubas_defaults() {
+    let rough = material_of("m-rc", "<bsdf type=\"roughconductor\"/>").unwrap();
+    assert_eq!((rough.distribution, rough.roughness), (Distribution::Beckmann, 0.1));
+    assert!(rough.one_sided, "Mitsuba's BSDFs are black from behind");
+    assert_eq!(rough.specular, Specular::Mirror { reflectance: Vec3::ONE });
+
+    let plastic = material_of("m-pl", "<bsdf type=\"plastic\"/>").unwrap();
+    let Specular::Plastic { ior, nonlinear } = plastic.specular else { panic!("{plastic:?}") };
+    // Polypropylene over air, Mitsuba's default coating; a base of 0.5.
+    assert!((ior - 1.49 / 1.000277).abs() < 1e-6 && !nonlinear);
+    assert_eq!((plastic.albedo, plastic.roughness), (Vec3::splat(0.5), 0.0));
+
+    let rough_plastic = material_of(
+        "m-rpl",
+        "<bsdf type=\"roughplastic\"><string name=\"distribution\" value=\"ggx\"/>\
+         <float name=\"alpha\" value=\"0.3\"/><boolean name=\"nonlinear\" value=\"true\"/>\
+         <rgb name=\"diffuse_reflectance\" value=\"0.1, 0.2, 0.3\"/></bsdf>",
+    )
+    .unwrap();
+    assert_eq!(rough_plastic.distribution, Distribution::Ggx);
+    assert_eq!(rough_plastic.roughness, 0.3);
+    assert!(matches!(rough_plastic.specular, Specular::Plastic { nonlinear: true, .. }));
+    assert_eq!(rough_plastic.albedo, Vec3::new(0.1, 0.2, 0.3));
+
+    let glass = material_of(
+        "m-rd",
+        "<bsdf type=\"roughdielectric\"><float name=\"alpha\" value=\"0.2\"/>\
+         <string name=\"int_ior\" value=\"water\"/></bsdf>",
+    )
+    .unwrap();
+    let Specular::Dielectric { ior, .. } = glass.specular else { panic!("{glass:?}") };
+    assert!((ior - 1.333 / 1.000277).abs() < 1e-6, "{ior}");
+    assert_eq!((glass.distribution, glass.roughness), (Distribution::Beckmann, 0.2));
+    assert!(!glass.one_sided, "glass is seen from both sides");
+
+    let masked = material_of(
+        "m-mask",
+        "<bsdf type=\"mask\"><bsdf type=\"twosided\"><bsdf type=\"diffuse\"/></bsdf></bsdf>",
+    )
+    .unwrap();
+    assert_eq!(masked.opacity, Some(Opacity::Constant(0.5)));
+    assert!(!masked.one_sided);
+    assert_eq!(masked.albedo, Vec3::splat(0.5));
+}
+
+#[test]
+fn what_is_not_modelled_is_refused_by_name_and_line() {
+    let cases = [
+        (
+            "<bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.1\"/>\
+             <float name=\"alpha_v\" value=\"0.3\"/></bsdf>",
+            "anisotropic roughness",
+        ),
+        (
+            "<bsdf type=\"roughplastic\"><string name=\"distribution\" value=\"phong\"/></bsdf>",
+            "the distribution 'phong' is not known",
+        ),
+        (
+            "<bsdf type=\"mask\"><bsdf type=\"mask\"><bsdf type=\"diffuse\"/></bsdf></bsdf>",
+            "a mask inside a mask is not supported",
+        ),
+        (
+            "<bsdf type=\"mask\"><float name=\"opacity\" value=\"1.5\"/><bsdf type=\"diffuse\"/></bsdf>",
+            "opacity is 1.5, but must be in [0, 1]",
+        ),
+        (
+            "<bsdf type=\"plastic\"><rgb name=\"specular_reflectance\" value=\"0.5\"/></bsdf>",
+            "specular_reflectance other than 1 is not supported",
+        ),
+        (
+            "<bsdf type=\"roughdielectric\"><boolean name=\"sample_visible\" value=\"false\"/></bsdf>",
+            "sample_visible = false is not supported",
+        ),
+        (
+            "<bsdf type=\"plastic\"><float name=\"int_ior\" value=\"1.2\"/>\
+             <float name=\"ext_ior\" value=\"1.2\"/></bsdf>",
+            "must differ",
+        ),
+    ];
+    for (i, (bsdf, expected)) in cases.into_iter().enumerate() {
+        let message = material_of(&format!("m-refused-{i}"), bsdf).unwrap_err();
+        assert_contains(&message, &[expected, "main.xml", "(line 15)"]);
+    }
+}
