@@ -286,7 +286,15 @@ impl<'a> PathTracer<'a> {
             }
             let si = interaction(self.tracer.scene, &ray, &hit);
             let material = &self.tracer.scene.materials[si.material as usize];
-            let si = self.tracer.with_normal_map(si, material, ray.time);
+            let unmapped = si.shading_normal;
+            let mut si = self.tracer.with_normal_map(si, material, ray.time);
+            let bump_shadowing = material.bump_shadowing && si.shading_normal != unmapped;
+            if bump_shadowing && ray.dir.dot(si.shading_normal) >= 0.0 {
+                // Mitsuba keeps the view above the mapped normal by mirroring it about the
+                // unmapped one.
+                let n = si.shading_normal;
+                si.shading_normal = (2.0 * n.dot(unmapped) * unmapped - n).normalize();
+            }
             if depth == 0 {
                 result.depth = Some(hit.t);
                 result.normal =
@@ -318,6 +326,7 @@ impl<'a> PathTracer<'a> {
                 None => bsdf,
                 Some(opacity) => bsdf.with_opacity(self.opacity(opacity, &si, ray.time)),
             };
+            let bsdf = if bump_shadowing { bsdf.with_bump_shadowing(unmapped) } else { bsdf };
             let wo = -ray.dir.normalize();
             if bsdf.has_smooth_lobe() {
                 let direct = self.direct_light(&si, &bsdf, wo, ray.time, stream, stats);

@@ -116,6 +116,12 @@ impl SceneTracer<'_> {
         let (dpdu, dpdv) = (derivatives.dpdu, derivatives.dpdv);
         let n = si.shading_normal;
         let mapped = match (&material.normal_map, &material.bump_map) {
+            (Some(map), _) if material.bump_shadowing => {
+                // Mitsuba's tangent frame: ∂p/∂u made orthogonal to the normal, and n × it.
+                let tangent = (dpdu - n.dot(dpdu) * n).normalize_or_zero();
+                let color = self.texture_color(map, &si, time);
+                mapped_normal(color, n, tangent, n.cross(tangent))
+            }
             (Some(map), _) => mapped_normal(self.texture_color(map, &si, time), n, dpdu, dpdv),
             (None, Some((map, factor, scale))) => {
                 let height = |uv: glam::Vec2| {

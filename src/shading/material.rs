@@ -41,6 +41,8 @@ pub struct Material {
     /// A height field, its factor and what its heights are measured in
     /// (`shading::normal_map`).
     pub bump_map: Option<(Texture, f32, crate::scene::BumpScale)>,
+    /// Mitsuba's shading of mapped normals (`MaterialDesc::bump_shadowing`).
+    pub bump_shadowing: bool,
     pub phong: Option<PhongDesc>,
     /// The directional albedo of `phong`'s lobe (set with it by `from_desc` and
     /// `with_phong`), by which the path tracer keeps the material from reflecting more
@@ -64,6 +66,7 @@ impl Default for Material {
             specular_texture: None,
             normal_map: None,
             bump_map: None,
+            bump_shadowing: false,
             phong: None,
             course_lobe_albedo: None,
         }
@@ -116,6 +119,7 @@ impl Material {
                 .bump_map
                 .as_ref()
                 .map(|b| (Texture::from_desc(&b.texture), b.factor, b.scale)),
+            bump_shadowing: desc.bump_shadowing,
             phong: None,
             course_lobe_albedo: None,
         }

@@ -34,6 +34,10 @@ pub struct MaterialDesc {
     /// A height field (the texture's mean channel, times `factor`) that displaces the
     /// shading normal (the course's `bump_normal`); uv-mapped patterns only.
     pub bump_map: Option<BumpMapDesc>,
+    /// Shades a normal- or bump-mapped surface as Mitsuba does: the view is kept above the
+    /// mapped normal (mirrored about the unmapped one), light must arrive on the same side
+    /// of both, and Estevez et al.'s shadowing term darkens the bump terminator.
+    pub bump_shadowing: bool,
     /// Terms only the course's Whitted shading model uses (ambient, Blinn-Phong highlight).
     pub phong: Option<PhongDesc>,
 }
@@ -53,6 +57,7 @@ impl Default for MaterialDesc {
             specular_texture: None,
             normal_map: None,
             bump_map: None,
+            bump_shadowing: false,
             phong: None,
         }
     }

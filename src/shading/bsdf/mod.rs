@@ -74,6 +74,9 @@ pub struct Bsdf {
     frame: Mat3,
     /// The fraction of the light that meets the surface; the rest passes through.
     opacity: f32,
+    /// The shading normal before a normal or bump map changed it, when the mapped normal
+    /// is shaded as Mitsuba does (`with_bump_shadowing`).
+    unmapped: Option<Vec3>,
 }
 
 impl Bsdf {
@@ -120,12 +123,33 @@ impl Bsdf {
                 energy,
             )),
         };
-        Bsdf { scatter, frame, opacity: 1.0 }
+        Bsdf { scatter, frame, opacity: 1.0, unmapped: None }
     }
 
     /// This BSDF under a mask: only `opacity` of the light meets it, the rest passes on.
     pub fn with_opacity(self, opacity: f32) -> Self {
         Bsdf { opacity: opacity.clamp(0.0, 1.0), ..self }
+    }
+
+    /// This BSDF on a surface whose shading normal `unmapped` a map replaced by the frame's:
+    /// light must arrive on the same side of both, and is shadowed by Estevez et al.'s
+    /// microfacet term for the bump terminator (Ray Tracing Gems, 2019), as in Mitsuba.
+    pub fn with_bump_shadowing(self, unmapped: Vec3) -> Self {
+        Bsdf { unmapped: Some(unmapped), ..self }
+    }
+
+    /// The bump terminator's shadowing of light from `wi`, or none if `wi` is on different
+    /// sides of the mapped and unmapped normals.
+    fn bump_shadowing(&self, wi: Vec3) -> Option<f32> {
+        let Some(unmapped) = self.unmapped else { return Some(1.0) };
+        let mapped = self.frame.z_axis;
+        let cos_unmapped = wi.dot(unmapped);
+        if cos_unmapped * wi.dot(mapped) <= 0.0 {
+            return None;
+        }
+        let tan2 = |cos: f32| (1.0 - cos * cos).max(0.0) / (cos * cos);
+        let alpha2 = (0.125 * tan2(mapped.dot(unmapped))).min(1.0);
+        Some(2.0 / (1.0 + (1.0 + alpha2 * tan2(cos_unmapped)).sqrt()))
     }
 
     /// True if light sampling can contribute (some lobe is not a delta distribution).
@@ -165,6 +189,8 @@ impl Bsdf {
             Scatter::RoughDielectric(d) => d.eval(local(wo), local(wi)),
             Scatter::Black => (Vec3::ZERO, 0.0),
         };
+        let Some(shadowing) = self.bump_shadowing(wi) else { return (Vec3::ZERO, 0.0) };
+        let value = if self.unmapped.is_some() { value * shadowing } else { value };
         if self.opacity == 1.0 { (value, pdf) } else { (value * self.opacity, pdf * self.opacity) }
     }
 
@@ -177,21 +203,25 @@ impl Bsdf {
         let u_lobe = if self.opacity == 1.0 { u_lobe } else { u_lobe / self.opacity };
         let local = self.frame.transpose() * wo;
         let mut sample = match &self.scatter {
-            Scatter::Mixture(m) => return m.sample(wo, u_lobe, u).map(|s| self.masked(s)),
+            Scatter::Mixture(m) => return m.sample(wo, u_lobe, u).and_then(|s| self.masked(s)),
             Scatter::Plastic(p) => p.sample(local, u_lobe, u)?,
             Scatter::RoughDielectric(d) => d.sample(local, u_lobe, u)?,
             Scatter::Black => return None,
         };
         sample.wi = self.frame * sample.wi;
-        Some(self.masked(sample))
+        self.masked(sample)
     }
 
-    /// A sample of the scattering part with its density as the whole mask's.
-    fn masked(&self, mut sample: BsdfSample) -> BsdfSample {
+    /// A sample of the scattering part with its density as the whole mask's, and shadowed
+    /// at the bump terminator.
+    fn masked(&self, mut sample: BsdfSample) -> Option<BsdfSample> {
         if self.opacity != 1.0 {
             sample.pdf *= self.opacity;
         }
-        sample
+        if self.unmapped.is_some() {
+            sample.weight *= self.bump_shadowing(sample.wi)?;
+        }
+        Some(sample)
     }
 }
 

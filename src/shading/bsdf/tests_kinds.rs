@@ -219,3 +219,27 @@ fn a_one_sided_material_is_black_from_behind_but_glass_is_not() {
     let inside = Bsdf::new(&glass, glass.albedo, Mat3::IDENTITY, false);
     assert!(furnace(&inside, wo, 10_000).x > 0.9);
 }
+
+#[test]
+fn bump_shadowing_darkens_the_terminator_and_refuses_light_from_the_other_side() {
+    let material = Material::diffuse(Vec3::splat(0.5));
+    let tilted = Vec3::new(0.5, 0.0, 1.0).normalize();
+    let frame = crate::sampling::frame_from_normal(tilted);
+    let plain = Bsdf::new(&material, material.albedo, frame, true);
+    let shadowed = plain.with_bump_shadowing(Vec3::Z);
+    let wo = Vec3::new(0.1, 0.2, 0.9).normalize();
+    // Light above both normals: dimmed by at most the term's floor, more at grazing angles.
+    let high = Vec3::new(0.2, 0.0, 0.95).normalize();
+    let low = Vec3::new(0.95, 0.0, 0.1).normalize();
+    let ratio = |wi: Vec3| shadowed.eval(wo, wi).0.x / plain.eval(wo, wi).0.x;
+    let (high_ratio, low_ratio) = (ratio(high), ratio(low));
+    assert!(high_ratio < 1.0 && high_ratio > 0.97, "{high_ratio}");
+    assert!(low_ratio < high_ratio && low_ratio > 0.0, "{low_ratio}");
+    // Above the mapped normal but below the unmapped one: no light.
+    let below = Vec3::new(0.99, 0.0, -0.05).normalize();
+    assert!(plain.eval(wo, below).0.x > 0.0);
+    assert_eq!(shadowed.eval(wo, below), (Vec3::ZERO, 0.0));
+    // An unmapped normal equal to the mapped one changes nothing.
+    let same = plain.with_bump_shadowing(tilted);
+    assert!((same.eval(wo, high).0 - plain.eval(wo, high).0).abs().max_element() < 1e-6);
+}

@@ -10,14 +10,15 @@ mod texture;
 
 use super::tree::{Element, FileResolver};
 use super::values::{ColorUse, color, float, property};
-use crate::scene::desc::{Distribution, MaterialDesc, Opacity};
+use crate::scene::desc::{BumpMapDesc, BumpScale, Distribution, MaterialDesc, Opacity};
 use crate::scene::error::SceneError;
 use glam::{DVec3, Vec3};
 use texture::reflectance_texture;
 
 /// The BSDFs this reader knows, for messages.
-pub(super) const SUPPORTED: &str = "diffuse, twosided, mask, conductor, roughconductor, \
-                                    dielectric, roughdielectric, plastic, roughplastic";
+pub(super) const SUPPORTED: &str = "diffuse, twosided, mask, normalmap, bumpmap, conductor, \
+                                    roughconductor, dielectric, roughdielectric, plastic, \
+                                    roughplastic";
 
 pub(super) fn bsdf(
     element: &Element,
@@ -56,6 +57,39 @@ pub(super) fn bsdf(
                 }
             };
             Ok(MaterialDesc { name: none.name, opacity: Some(opacity), ..inner })
+        }
+        "normalmap" => {
+            check_properties(element, &["normalmap"])?;
+            let inner = nested_bsdf(element, ids, files, "normalmap takes one nested <bsdf>")?;
+            let map = reflectance_texture(element, "normalmap", ids, files)?
+                .ok_or_else(|| element.error("normalmap needs a <texture name=\"normalmap\">"))?;
+            if inner.normal_map.is_some() || inner.bump_map.is_some() {
+                return Err(element.error("a normal or bump map inside another is not supported"));
+            }
+            let bump_shadowing = true;
+            Ok(MaterialDesc { name: none.name, normal_map: Some(map), bump_shadowing, ..inner })
+        }
+        "bumpmap" => {
+            let inner = nested_bsdf(element, ids, files, "bumpmap takes one nested <bsdf>")?;
+            let textures: Vec<&str> = element
+                .children
+                .iter()
+                .filter(|c| matches!(c.tag.as_str(), "texture" | "ref") && c.attr("name").is_some())
+                .filter_map(|c| c.attr("name"))
+                .collect();
+            let [name] = textures[..] else {
+                return Err(element.error("bumpmap takes one height <texture>"));
+            };
+            check_properties(element, &["scale", name])?;
+            let texture = reflectance_texture(element, name, ids, files)?
+                .ok_or_else(|| element.error("bumpmap needs a height <texture>"))?;
+            if inner.normal_map.is_some() || inner.bump_map.is_some() {
+                return Err(element.error("a normal or bump map inside another is not supported"));
+            }
+            let factor = float(element, "scale")?.unwrap_or(1.0) as f32;
+            let bump = BumpMapDesc { texture, factor, scale: BumpScale::Scene };
+            let bump_shadowing = true;
+            Ok(MaterialDesc { name: none.name, bump_map: Some(bump), bump_shadowing, ..inner })
         }
         "diffuse" => {
             let mut material = MaterialDesc { albedo: Vec3::splat(0.5), ..none };
@@ -96,7 +130,8 @@ fn nested_bsdf(
 /// Refuses a parameter (a property, a texture or a reference by `name`) the BSDF does not
 /// read, so that nothing in the file is silently ignored.
 fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError> {
-    let wrapper = matches!(element.attr("type"), Some("twosided" | "mask"));
+    let wrapper =
+        matches!(element.attr("type"), Some("twosided" | "mask" | "normalmap" | "bumpmap"));
     for child in &element.children {
         if let Some(name) = child.attr("name") {
             if !known.contains(&name) {
@@ -136,9 +171,10 @@ fn microfacet(element: &Element) -> Result<(Distribution, f32), SceneError> {
         },
     };
     for name in ["alpha", "alpha_u", "alpha_v"] {
-        let textured = element.children.iter().find(|c| {
-            c.attr("name") == Some(name) && matches!(c.tag.as_str(), "texture" | "ref")
-        });
+        let textured = element
+            .children
+            .iter()
+            .find(|c| c.attr("name") == Some(name) && matches!(c.tag.as_str(), "texture" | "ref"));
         if let Some(texture) = textured {
             return Err(texture.error(format!("a textured `{name}` is not supported yet")));
         }

@@ -63,6 +63,7 @@ pub(crate) struct MaterialToml {
     pub specular_texture: Option<TextureToml>,
     pub normal_map: Option<TextureToml>,
     pub bump_map: Option<TextureToml>,
+    pub bump_shadowing: Option<bool>,
     pub phong: Option<PhongToml>,
     pub brdf: Option<BrdfToml>,
 }

@@ -13,7 +13,7 @@ use glam::DAffine3;
 use std::path::Path;
 
 /// Fields every material type takes.
-pub(super) const COMMON: [&str; 11] = [
+pub(super) const COMMON: [&str; 12] = [
     "type",
     "albedo",
     "emission",
@@ -25,6 +25,7 @@ pub(super) const COMMON: [&str; 11] = [
     "brdf",
     "opacity",
     "one_sided",
+    "bump_shadowing",
 ];
 
 /// Complex refractive index (eta, k) of the `preset` metals, per linear sRGB channel.
@@ -213,6 +214,7 @@ pub(crate) fn material(
         specular_texture,
         normal_map,
         bump_map,
+        bump_shadowing: m.bump_shadowing.unwrap_or(false),
         phong,
     })
 }

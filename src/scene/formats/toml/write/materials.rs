@@ -114,6 +114,9 @@ pub(super) fn write_material(
             format!("{}, factor = {:?}{heights} }}", table.trim_end_matches(" }"), b.factor);
         let _ = writeln!(out, "bump_map = {table}");
     }
+    if m.bump_shadowing {
+        let _ = writeln!(out, "bump_shadowing = true");
+    }
     if let Some(p) = &m.phong {
         let exponent = if p.exponent > 0.0 {
             format!(", exponent = {:?}", p.exponent)
