@@ -198,6 +198,12 @@ fn ceng795_jobs(args: &RenderArgs, path: &Path, plan: &mut OutputPlan) -> Result
             }
         }
     }
+    if cameras.len() == 1 && (args.output.is_some() || args.png.is_some()) {
+        // One camera named by -o/--png: the formats follow the names, as for any scene.
+        let (exr, display) = scene_outputs(args, plan)?;
+        let scene = cameras.into_iter().next().unwrap().scene;
+        return Ok(vec![Job { scene, exr, display }]);
+    }
     let new_folders = args.output.is_none();
     let mut jobs = Vec::new();
     for camera in cameras {

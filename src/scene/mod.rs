@@ -15,6 +15,7 @@ mod error;
 pub mod formats;
 pub use crate::input_file::{MAX_INPUT_BYTES, files_read, read_bytes as read_input_bytes};
 mod mesh_file;
+mod round_shapes;
 mod shapes;
 pub mod texture_image;
 

@@ -118,14 +118,17 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
     assert!(!verdict.passes(), "{verdict:?}");
 }
 
-/// A GGX rough conductor of Mitsuba's measured gold (the embedded `Au` table) under a point
-/// light and a constant environment, against Mitsuba's own render (the scene and the
-/// reference are in `tests/data/mitsuba`, so this runs everywhere).
+/// Scenes written here with Mitsuba's own renders beside them (`tests/data/mitsuba`, so
+/// these run everywhere): a GGX rough conductor with Mitsuba's measured gold under a point
+/// light and a constant sky; the disk, the cylinder, flipped normals and instances of a
+/// shapegroup.
 #[test]
-fn rough_gold_passes_mitsubas_rule() {
+fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
-    let scene = load_mitsuba(&refs.join("rough_gold.xml"), &[]).unwrap();
-    let reference = refs.join("rough_gold_48_ref_rgb.exr");
-    let variance = refs.join("rough_gold_48_ref_rgb_var.exr");
-    assert_passes("rough_gold", &scene, &reference, &variance);
+    for name in ["rough_gold", "shapes"] {
+        let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();
+        let reference = refs.join(format!("{name}_48_ref_rgb.exr"));
+        let variance = refs.join(format!("{name}_48_ref_rgb_var.exr"));
+        assert_passes(name, &scene, &reference, &variance);
+    }
 }

@@ -96,6 +96,8 @@ struct Builder<'a> {
     shared_materials: HashMap<String, u32>,
     objects: Vec<ObjectDesc>,
     lights: Vec<LightDesc>,
+    /// The objects of each shapegroup by id, in the group's space.
+    groups: HashMap<String, Vec<ObjectDesc>>,
 }
 
 /// The Mitsuba scene in `text` (read from `path`), with `-D name=value` parameters.
@@ -125,6 +127,7 @@ pub fn load(
         shared_materials: HashMap::new(),
         objects: Vec::new(),
         lights: Vec::new(),
+        groups: HashMap::new(),
     };
     for child in &root.children {
         match child.tag.as_str() {

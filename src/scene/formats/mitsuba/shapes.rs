@@ -1,5 +1,6 @@
-//! `<shape>` → objects: obj, ply, rectangle, cube and sphere, each with its BSDF (nested or
-//! by reference; Mitsuba's default is a diffuse 0.5) and an `area` emitter's radiance.
+//! `<shape>` → objects: obj, ply, rectangle, cube, sphere, disk and cylinder, each with its
+//! BSDF (nested or by reference; Mitsuba's default is a one-sided diffuse 0.5) and an `area`
+//! emitter's radiance; `shapegroup`s placed by `instance`s share their meshes.
 
 use super::Builder;
 use super::bsdfs::bsdf;
@@ -10,6 +11,7 @@ use super::values::{boolean, float, property};
 use crate::scene::desc::{MaterialDesc, MeshData, ObjectDesc, ShapeDesc};
 use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::obj::ObjRef;
+use crate::scene::round_shapes::{cylinder_mesh, disk_mesh};
 use crate::scene::shapes::{box_mesh, quad_mesh};
 use glam::{DAffine3, DVec3};
 use std::sync::Arc;
@@ -17,10 +19,23 @@ use std::sync::Arc;
 impl Builder<'_> {
     pub(super) fn shape(&mut self, element: &Element) -> Result<(), SceneError> {
         let kind = element.required("type")?;
+        match kind {
+            "shapegroup" => {
+                let id = element.required("id")?;
+                if !self.groups.contains_key(id) {
+                    let group = self.shape_group(element)?;
+                    self.groups.insert(id.to_owned(), group);
+                }
+                return Ok(());
+            }
+            "instance" => return self.instance(element),
+            _ => {}
+        }
         let known: &[&str] = match kind {
             "obj" => &["filename", "face_normals", "flip_normals", "flip_tex_coords", "to_world"],
             "ply" => &["filename", "face_normals", "flip_normals", "to_world"],
             "sphere" => &["center", "radius", "flip_normals", "to_world"],
+            "cylinder" => &["p0", "p1", "radius", "flip_normals", "to_world"],
             _ => &["flip_normals", "to_world"],
         };
         for child in &element.children {
@@ -44,8 +59,9 @@ impl Builder<'_> {
             Some(t) => transform(t)?,
             None => DAffine3::IDENTITY,
         };
-        if boolean(element, "flip_normals")? == Some(true) {
-            return Err(element.error("flip_normals is not supported yet"));
+        let flip_normals = boolean(element, "flip_normals")?.unwrap_or(false);
+        if flip_normals && kind == "sphere" {
+            return Err(element.error("flip_normals on a sphere is not supported yet"));
         }
         let material = self.shape_material(element)?;
         let name = format!("{} (line {})", element.describe(), element.line);
@@ -89,6 +105,32 @@ impl Builder<'_> {
                     box_mesh(DVec3::splat(-1.0), DVec3::ONE).map_err(|p| element.error(p))?;
                 vec![ShapeDesc::Mesh(Arc::new(mesh))]
             }
+            "disk" => vec![ShapeDesc::Mesh(Arc::new(disk_mesh()))],
+            "cylinder" => {
+                let radius = float(element, "radius")?.unwrap_or(1.0);
+                let point = |name: &str, default: DVec3| {
+                    property(element, "point", name).map_or(Ok(default), |p| vec3(p, false))
+                };
+                let (p0, p1) = (point("p0", DVec3::ZERO)?, point("p1", DVec3::Z)?);
+                let length = (p1 - p0).length();
+                if !(radius > 0.0 && length > 0.0) {
+                    return Err(element.error("a cylinder needs a radius > 0 and p0 ≠ p1"));
+                }
+                // Mitsuba's placement of the unit cylinder between p0 and p1.
+                let axis = (p1 - p0) / length;
+                let frame = DAffine3::from_quat(glam::DQuat::from_rotation_arc(DVec3::Z, axis));
+                let own = DAffine3::from_translation(p0)
+                    * frame
+                    * DAffine3::from_scale(DVec3::new(radius, radius, length));
+                self.push_objects(
+                    &name,
+                    vec![ShapeDesc::Mesh(Arc::new(cylinder_mesh()))],
+                    material,
+                    world_from_object * own,
+                    flip_normals,
+                );
+                return Ok(());
+            }
             "sphere" => {
                 let center = property(element, "point", "center")
                     .map_or(Ok(DVec3::ZERO), |c| vec3(c, false))?;
@@ -100,19 +142,94 @@ impl Builder<'_> {
             }
             other => {
                 return Err(element.error(format!(
-                    "the shape '{other}' is not supported yet (obj, ply, rectangle, cube, sphere are)"
+                    "the shape '{other}' is not supported yet (obj, ply, rectangle, cube, sphere, \
+                     disk, cylinder, shapegroup, instance are)"
                 )));
             }
         };
+        self.push_objects(&name, shapes, material, world_from_object, flip_normals);
+        Ok(())
+    }
+
+    fn push_objects(
+        &mut self,
+        name: &str,
+        shapes: Vec<ShapeDesc>,
+        material: u32,
+        world_from_object: DAffine3,
+        flip_normals: bool,
+    ) {
         for shape in shapes {
+            let shape = match shape {
+                ShapeDesc::Mesh(mesh) if flip_normals => ShapeDesc::Mesh(Arc::new(flipped(&mesh))),
+                shape => shape,
+            };
             self.objects.push(ObjectDesc {
-                name: name.clone(),
+                name: name.to_owned(),
                 shape,
                 material,
                 world_from_object,
                 world_from_object_end: None,
             });
         }
+    }
+
+    /// The objects of a `shapegroup`, in the group's own space.
+    fn shape_group(&mut self, element: &Element) -> Result<Vec<ObjectDesc>, SceneError> {
+        let before = self.objects.len();
+        for child in &element.children {
+            if child.tag != "shape" {
+                return Err(
+                    child.error(format!("a shapegroup holds shapes, not a <{}>", child.tag))
+                );
+            }
+            if matches!(child.attr("type"), Some("shapegroup" | "instance")) {
+                return Err(child.error("a shapegroup inside a shapegroup is not supported"));
+            }
+            if child.children.iter().any(|c| c.tag == "emitter") {
+                return Err(child.error("a shape in a shapegroup cannot emit (as in Mitsuba)"));
+            }
+            self.shape(child)?;
+        }
+        Ok(self.objects.split_off(before))
+    }
+
+    /// Every object of the referenced shapegroup, placed by the instance's `to_world`.
+    fn instance(&mut self, element: &Element) -> Result<(), SceneError> {
+        let mut group = None;
+        for child in &element.children {
+            match (child.tag.as_str(), child.attr("name")) {
+                ("ref", _) | ("shape", _) if group.is_none() => {
+                    group = Some(self.ids.resolve(child)?.clone())
+                }
+                ("transform", Some("to_world")) => {}
+                _ => return Err(child.error("an instance takes a shapegroup and a to_world")),
+            }
+        }
+        let group =
+            group.ok_or_else(|| element.error("an instance needs a <ref> to a shapegroup"))?;
+        if group.attr("type") != Some("shapegroup") {
+            return Err(element.error("an instance must refer to a shapegroup"));
+        }
+        let id = group.required("id")?.to_owned();
+        if !self.groups.contains_key(&id) {
+            let objects = self.shape_group(&group)?;
+            self.groups.insert(id.clone(), objects);
+        }
+        let placement = match property(element, "transform", "to_world") {
+            Some(t) => transform(t)?,
+            None => DAffine3::IDENTITY,
+        };
+        let name = format!("{} (line {})", element.describe(), element.line);
+        let placed: Vec<ObjectDesc> = self.groups[&id]
+            .iter()
+            .map(|o| ObjectDesc {
+                name: format!("{name}: {}", o.name),
+                world_from_object: placement * o.world_from_object,
+                ..o.clone()
+            })
+            .collect();
+        self.objects.extend(placed);
         Ok(())
     }
 
@@ -142,7 +259,12 @@ impl Builder<'_> {
         // Mitsuba's default BSDF: diffuse 0.5, or black for an emitter.
         let albedo = glam::Vec3::splat(if emitting { 0.0 } else { 0.5 });
         let mut material = match bsdfs[..] {
-            [] => MaterialDesc { name: "default".to_owned(), albedo, ..Default::default() },
+            [] => MaterialDesc {
+                name: "default".to_owned(),
+                albedo,
+                one_sided: true,
+                ..Default::default()
+            },
             [one] => bsdf(one, &self.ids, self.files)?,
             _ => return Err(element.error("a shape takes one <bsdf>")),
         };
@@ -164,5 +286,14 @@ impl Builder<'_> {
             self.shared_materials.insert(id, index);
         }
         Ok(index)
+    }
+}
+
+/// `mesh` with its faces turned over: winding reversed, normals negated.
+fn flipped(mesh: &MeshData) -> MeshData {
+    MeshData {
+        indices: mesh.indices.iter().map(|&[a, b, c]| [a, c, b]).collect(),
+        normals: mesh.normals.as_ref().map(|n| n.iter().map(|v| -*v).collect()),
+        ..mesh.clone()
     }
 }
