@@ -38,7 +38,10 @@ impl PointLight {
     /// Radiant intensity towards the unit direction `w` (from the light).
     pub fn intensity_towards(&self, w: Vec3) -> Vec3 {
         match &self.spot {
-            Some(cone) => self.intensity * cone.factor(w),
+            Some(cone) => {
+                let factor = cone.factor(w);
+                if factor > 0.0 { self.intensity * factor * cone.tint(w) } else { Vec3::ZERO }
+            }
             None => self.intensity,
         }
     }

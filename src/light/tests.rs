@@ -159,8 +159,7 @@ fn spot_cone_falls_off_from_full_to_nothing_between_its_angles() {
     use super::{PointLight, SpotCone};
     let half_cos = |degrees: f32| (0.5 * degrees).to_radians().cos();
     // Coverage 60°, falloff 20°: full within 10° of the axis, none beyond 30°.
-    let cone =
-        SpotCone { axis: Vec3::NEG_Y, cos_falloff: half_cos(20.0), cos_coverage: half_cos(60.0) };
+    let cone = SpotCone::course(Vec3::NEG_Y, half_cos(20.0), half_cos(60.0));
     let light =
         PointLight { position: Vec3::ZERO, intensity: Vec3::splat(100.0), spot: Some(cone) };
     let at = |degrees: f32| {
@@ -185,6 +184,51 @@ fn spot_cone_falls_off_from_full_to_nothing_between_its_angles() {
     assert!(at(10.01) > 99.0 && at(29.9) < 1e-3);
     let point = PointLight { spot: None, ..light.clone() };
     assert_eq!(point.intensity_towards(Vec3::X), Vec3::splat(100.0));
+}
+
+#[test]
+fn mitsubas_spot_falls_off_linearly_in_angle_and_projects_its_image() {
+    use super::SpotCone;
+    use super::kinds::{Spot, SpotProfile};
+    use crate::light::LightKind;
+    use crate::texels::TextureImage;
+    // Mitsuba's cutoff 30°, beam width 10°: full within 10°, half at 20°, none past 30°.
+    let image = TextureImage {
+        file: "two.png".into(),
+        width: 2,
+        height: 1,
+        texels: vec![Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)],
+        srgb_decoded: true,
+        hdr: false,
+    };
+    let spot = Spot {
+        position: glam::DVec3::ZERO,
+        direction: glam::DVec3::NEG_Y,
+        intensity: Vec3::splat(10.0),
+        coverage_degrees: 60.0,
+        falloff_degrees: 20.0,
+        profile: SpotProfile::Linear,
+        texture: Some((std::sync::Arc::new(image), glam::DVec3::Z)),
+    };
+    let mut parts = super::kinds::LightParts::default();
+    spot.compile(&glam::DAffine3::IDENTITY, &mut parts);
+    let light = &parts.points[0];
+    let cone: &SpotCone = light.spot.as_ref().unwrap();
+    let towards = |degrees: f32, about_z: bool| {
+        let a = degrees.to_radians();
+        if about_z { Vec3::new(a.sin(), -a.cos(), 0.0) } else { Vec3::new(0.0, -a.cos(), a.sin()) }
+    };
+    assert_eq!(cone.factor(towards(5.0, true)), 1.0);
+    assert!((cone.factor(towards(20.0, true)) - 0.5).abs() < 1e-5);
+    assert_eq!(cone.factor(towards(30.5, true)), 0.0);
+    // x = up × direction = Z × −Y = +X: u grows towards +x, the image's right (blue) half;
+    // along the axis the two texels blend half and half.
+    let right = cone.tint(towards(25.0, true));
+    let left = cone.tint(towards(-25.0, true));
+    assert!(right.z > right.x && left.x > left.z, "{right} {left}");
+    let centre = cone.tint(Vec3::NEG_Y);
+    assert!((centre - Vec3::new(0.5, 0.0, 0.5)).abs().max_element() < 1e-5, "{centre}");
+    assert_eq!(light.intensity_towards(towards(31.0, false)), Vec3::ZERO);
 }
 
 #[test]

@@ -10,7 +10,7 @@ use embray::mitsuba_rule::judge;
 use std::path::{Path, PathBuf};
 
 /// The suite's scenes that embray renders; every other one must be refused.
-const RENDERED: [&str; 11] = [
+const RENDERED: [&str; 12] = [
     "test_arealight_path",
     "test_bumpmap_path",
     "test_constant_path",
@@ -21,6 +21,7 @@ const RENDERED: [&str; 11] = [
     "test_pointlight_path",
     "test_roughdielectric_path",
     "test_roughplastic_linear_path",
+    "test_spot_direct",
     "test_textured_diffuse_path",
 ];
 

@@ -17,7 +17,7 @@ pub use area::Area;
 pub use directional::Directional;
 pub use environment::{Environment, EnvironmentMap};
 pub use point::Point;
-pub use spot::{Spot, SpotCone};
+pub use spot::{Spot, SpotCone, SpotProfile, SpotTexture};
 
 use super::{DirectionalLight, Emitter, EnvironmentLight, PointLight};
 use crate::params::{ParamError, ParamSink, Params, Resources};

@@ -90,11 +90,16 @@ crate::choice::named_choices!(NoiseConversion, "noise conversion", {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Interpolation {
     Nearest,
+    /// The course's: texel i spans [i, i + 1), blended with the next by the fraction.
     #[default]
     Bilinear,
+    /// Between texel centres (texel i at i + ½), repeating across the edges: Mitsuba's
+    /// bitmap lookup (and OpenGL's).
+    BilinearCentered,
 }
 
 crate::choice::named_choices!(Interpolation, "interpolation", {
     Nearest => "nearest",
     Bilinear => "bilinear",
+    BilinearCentered => "bilinear_centered",
 });

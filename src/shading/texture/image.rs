@@ -3,6 +3,7 @@
 //! texel (⌊x⌋, ⌊y⌋) (the texel the point lies in: the hw4 references match this to 99.996 %
 //! where rounding gives 99.83 %), bilinear blends texels ⌊x⌋, ⌊x⌋ + 1 by the fraction of x
 //! (and likewise in y), repeating the edge texels. Coordinates repeat outside [0, 1].
+//! Centred bilinear (Mitsuba's) puts texel i at x = i + ½ and wraps around the edges.
 
 use crate::scene::{Interpolation, TextureImage};
 use glam::{Vec2, Vec3};
@@ -32,6 +33,7 @@ pub fn lookup(image: &TextureImage, interpolation: Interpolation, uv: Vec2) -> V
                 + texel(image, p, q + 1) * (1.0 - dx) * dy
                 + texel(image, p + 1, q + 1) * dx * dy
         }
+        Interpolation::BilinearCentered => image.centred_bilinear(uv),
     }
 }
 
@@ -74,5 +76,16 @@ mod tests {
         // Past the last column the edge texel repeats instead of reading out of bounds.
         assert_eq!(lookup(&image, Interpolation::Bilinear, Vec2::new(0.99, 0.0)).x, 3.0);
         assert_eq!(lookup(&image, Interpolation::Nearest, Vec2::new(f32::NAN, 0.0)), Vec3::ZERO);
+    }
+
+    #[test]
+    fn centred_bilinear_hits_texel_centres_and_wraps_around() {
+        let image = ramp();
+        let centred =
+            |u: f32, v: f32| lookup(&image, Interpolation::BilinearCentered, Vec2::new(u, v)).x;
+        // Texel (1, 0)'s centre is u = 1.5/4, v = 0.5/2.
+        assert!((centred(1.5 / 4.0, 0.25) - 1.0).abs() < 1e-5);
+        // Half way between the last and the first column, both rows averaged at v = 0.5.
+        assert!((centred(1.0, 0.5) - (3.0 + 0.0 + 13.0 + 10.0) / 4.0).abs() < 1e-4);
     }
 }

@@ -18,7 +18,11 @@ use std::sync::Arc;
 impl Builder<'_> {
     pub(super) fn emitter(&mut self, element: &Element) -> Result<(), SceneError> {
         let kind = element.required("type")?;
-        let skip: &[&str] = if kind == "envmap" { &["filename", "scale"] } else { &[] };
+        let skip: &[&str] = match kind {
+            "envmap" => &["filename", "scale"],
+            "spot" => &["cutoff_angle", "beam_width", "texture"],
+            _ => &[],
+        };
         let mut p = params(element, skip, ColorUse::Emission)?;
         let to_world = match property(element, "transform", "to_world") {
             Some(t) => Some(transform(t)?),
@@ -45,6 +49,51 @@ impl Builder<'_> {
                     set(&mut p, "direction", m.transform_vector3(DVec3::Z));
                 }
                 "directional"
+            }
+            "spot" => {
+                let Some(m) = to_world else {
+                    return Err(element
+                        .error("a spot light needs a to_world (where it is, where it points)"));
+                };
+                let derived = |name: &str, value: Value| Entry {
+                    name: name.to_owned(),
+                    value,
+                    field: format!("{} > {name}", element.describe()),
+                    line: Some(element.line),
+                    indexed: false,
+                };
+                let cutoff = float(element, "cutoff_angle")?.unwrap_or(20.0);
+                let beam = float(element, "beam_width")?.unwrap_or(0.75 * cutoff);
+                if !(cutoff > 0.0 && cutoff < 90.0 && beam >= 0.0 && beam <= cutoff) {
+                    return Err(element.error(format!(
+                        "cutoff_angle {cutoff} and beam_width {beam} must satisfy 0 <= beam_width <= cutoff_angle < 90"
+                    )));
+                }
+                set(&mut p, "position", m.translation);
+                set(&mut p, "direction", m.transform_vector3(DVec3::Z));
+                p.push(derived("coverage_angle", Value::Numbers(vec![2.0 * cutoff])));
+                p.push(derived("falloff_angle", Value::Numbers(vec![2.0 * beam])));
+                p.push(derived("profile", Value::Text("linear".to_owned())));
+                if !p.has("intensity") {
+                    set(&mut p, "intensity", DVec3::ONE);
+                }
+                let texture = element.children.iter().find(|c| c.attr("name") == Some("texture"));
+                if let Some(texture) = texture {
+                    let texture = self.ids.resolve(texture)?;
+                    if texture.attr("type") != Some("bitmap") {
+                        return Err(texture.error("a spot light's texture must be a bitmap"));
+                    }
+                    for child in &texture.children {
+                        if child.attr("name") != Some("filename") {
+                            return Err(child.error("only a bitmap's filename is supported here"));
+                        }
+                    }
+                    let file = property(texture, "string", "filename")
+                        .ok_or_else(|| texture.error("the property `filename` is missing"))?;
+                    p.push(derived("texture", Value::Text(file.required("value")?.to_owned())));
+                    set(&mut p, "up", m.transform_vector3(DVec3::Y));
+                }
+                "spot"
             }
             "constant" => {
                 if !p.has("radiance") {
@@ -79,8 +128,8 @@ impl Builder<'_> {
             "area" => return Err(element.error("an area emitter belongs inside a <shape>")),
             other => {
                 return Err(element.error(format!(
-                    "the emitter '{other}' is not supported yet (point, directional, constant, \
-                     envmap and area are)"
+                    "the emitter '{other}' is not supported yet (point, spot, directional, \
+                     constant, envmap and area are)"
                 )));
             }
         };

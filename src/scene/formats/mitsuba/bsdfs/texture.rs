@@ -42,7 +42,7 @@ pub(super) fn reflectance_texture(
             let normalizer = if image.srgb_decoded || image.hdr { 1.0 } else { 255.0 };
             let interpolation = match property(texture, "string", "filter_type") {
                 Some(f) if f.required("value")? == "nearest" => Interpolation::Nearest,
-                _ => Interpolation::Bilinear,
+                _ => Interpolation::BilinearCentered,
             };
             Pattern::Image { image, interpolation, normalizer }
         }

@@ -124,6 +124,7 @@ pub(crate) enum NoiseConversionToml {
 pub(crate) enum InterpolationToml {
     Nearest,
     Bilinear,
+    BilinearCentered,
 }
 
 /// How an image's texel values become colours: `srgb` decodes 8- and 16-bit values through

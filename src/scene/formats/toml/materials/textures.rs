@@ -155,6 +155,7 @@ pub(super) fn texture_desc(
                 interpolation: match t.interpolation.unwrap_or(InterpolationToml::Bilinear) {
                     InterpolationToml::Nearest => Interpolation::Nearest,
                     InterpolationToml::Bilinear => Interpolation::Bilinear,
+                    InterpolationToml::BilinearCentered => Interpolation::BilinearCentered,
                 },
                 normalizer: ctx.f32(&field, normalizer)?,
             }
