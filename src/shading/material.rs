@@ -5,7 +5,8 @@
 
 pub use super::texture::Texture;
 use crate::scene::{Distribution, MaterialDesc, Opacity, PhongDesc, Specular};
-use crate::shading::bsdf::{Coating, Microfacet};
+use crate::shading::coating::Coating;
+use crate::shading::microfacet::Microfacet;
 use crate::shading::course_lobe::LobeAlbedo;
 use glam::Vec3;
 

@@ -159,7 +159,9 @@ fn hw5_directional_and_spot_lights_import_and_convert() {
                 direction: DVec3::new(1.0, -1.0, -1.0).normalize(),
                 intensity: glam::Vec3::splat(600.0),
                 coverage_degrees: 10.0,
-                falloff_degrees: 8.0
+                falloff_degrees: 8.0,
+                profile: Default::default(),
+                texture: None,
             }),
         ]
     );

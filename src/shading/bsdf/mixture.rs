@@ -7,7 +7,7 @@
 
 use super::BsdfSample;
 use super::coupling::{Coupling, Energy};
-use super::microfacet::Microfacet;
+use crate::shading::microfacet::Microfacet;
 use crate::color::luminance;
 use crate::scene::{CourseBrdf, Specular};
 use crate::shading::course_brdf::{CourseTerms, cos_weighted};

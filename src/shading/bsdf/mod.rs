@@ -4,19 +4,16 @@
 //! opacity wraps any of them: the rest of the light passes through unchanged. Directions
 //! are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
-mod coating;
 mod coupling;
-mod ggx;
-mod microfacet;
 mod mixture;
 mod plastic;
 mod rough_dielectric;
 
-pub use coating::Coating;
 pub use coupling::Energy;
-pub use microfacet::Microfacet;
 
 use crate::scene::Specular;
+use crate::shading::coating::Coating;
+use crate::shading::microfacet::Microfacet;
 use crate::shading::material::{Material, SMOOTH_ROUGHNESS};
 use glam::{Mat3, Vec2, Vec3};
 use mixture::Mixture;

@@ -5,8 +5,8 @@
 //! radiance expanded by 1/η². Lobes are chosen by their expected energy, as Mitsuba does.
 
 use super::BsdfSample;
-use super::coating::Coating;
-use super::microfacet::Microfacet;
+use crate::shading::coating::Coating;
+use crate::shading::microfacet::Microfacet;
 use crate::shading::fresnel::fresnel_dielectric;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;

@@ -5,8 +5,8 @@
 //! compressed by 1/η² (undone on leaving; `eta_scale` tells roulette).
 
 use super::BsdfSample;
-use super::coating::refract;
-use super::microfacet::Microfacet;
+use crate::shading::coating::refract;
+use crate::shading::microfacet::Microfacet;
 use crate::shading::fresnel::fresnel_dielectric;
 use glam::{Vec2, Vec3};
 

@@ -105,7 +105,7 @@ fn seen_through(microfacet: &Microfacet, w: Vec3, eta: f32, passage: Passage) ->
 
 /// `w` refracted through the facet `m` (w·m > 0) into a medium `eta` times denser; none
 /// under total internal reflection.
-pub(super) fn refract(w: Vec3, m: Vec3, eta: f32) -> Option<Vec3> {
+pub(crate) fn refract(w: Vec3, m: Vec3, eta: f32) -> Option<Vec3> {
     let cos_i = w.dot(m);
     let sin2_t = (1.0 - cos_i * cos_i).max(0.0) / (eta * eta);
     if sin2_t >= 1.0 {
