@@ -6,8 +6,8 @@
 pub use super::texture::Texture;
 use crate::scene::{Distribution, MaterialDesc, Opacity, PhongDesc, Specular};
 use crate::shading::coating::Coating;
-use crate::shading::microfacet::Microfacet;
 use crate::shading::course_lobe::LobeAlbedo;
+use crate::shading::microfacet::Microfacet;
 use glam::Vec3;
 
 /// Below this GGX α a lobe is treated as perfectly smooth (a delta distribution).

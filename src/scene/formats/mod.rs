@@ -6,5 +6,6 @@ pub mod ceng795;
 pub mod mitsuba;
 pub(crate) mod obj;
 pub(crate) mod ply;
+pub(crate) mod serialized;
 pub mod toml;
 pub mod xml;

@@ -7,13 +7,13 @@
 
 use super::BsdfSample;
 use super::coupling::{Coupling, Energy};
-use crate::shading::microfacet::Microfacet;
 use crate::color::luminance;
 use crate::scene::{CourseBrdf, Specular};
 use crate::shading::course_brdf::{CourseTerms, cos_weighted};
 use crate::shading::course_lobe;
 use crate::shading::fresnel::{fresnel_conductor, fresnel_dielectric};
 use crate::shading::material::Material;
+use crate::shading::microfacet::Microfacet;
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 

@@ -13,8 +13,8 @@ pub use coupling::Energy;
 
 use crate::scene::Specular;
 use crate::shading::coating::Coating;
-use crate::shading::microfacet::Microfacet;
 use crate::shading::material::{Material, SMOOTH_ROUGHNESS};
+use crate::shading::microfacet::Microfacet;
 use glam::{Mat3, Vec2, Vec3};
 use mixture::Mixture;
 use plastic::Plastic;

@@ -6,8 +6,8 @@
 
 use super::BsdfSample;
 use crate::shading::coating::refract;
-use crate::shading::microfacet::Microfacet;
 use crate::shading::fresnel::fresnel_dielectric;
+use crate::shading::microfacet::Microfacet;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug)]

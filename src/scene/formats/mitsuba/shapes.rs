@@ -34,6 +34,9 @@ impl Builder<'_> {
         let known: &[&str] = match kind {
             "obj" => &["filename", "face_normals", "flip_normals", "flip_tex_coords", "to_world"],
             "ply" => &["filename", "face_normals", "flip_normals", "to_world"],
+            "serialized" => {
+                &["filename", "shape_index", "face_normals", "flip_normals", "to_world"]
+            }
             "sphere" => &["center", "radius", "flip_normals", "to_world"],
             "cylinder" => &["p0", "p1", "radius", "flip_normals", "to_world"],
             _ => &["flip_normals", "to_world"],
@@ -105,6 +108,7 @@ impl Builder<'_> {
                     box_mesh(DVec3::splat(-1.0), DVec3::ONE).map_err(|p| element.error(p))?;
                 vec![ShapeDesc::Mesh(Arc::new(mesh))]
             }
+            "serialized" => vec![ShapeDesc::Mesh(Arc::new(self.serialized(element)?))],
             "disk" => vec![ShapeDesc::Mesh(Arc::new(disk_mesh()))],
             "cylinder" => {
                 let radius = float(element, "radius")?.unwrap_or(1.0);
@@ -142,8 +146,8 @@ impl Builder<'_> {
             }
             other => {
                 return Err(element.error(format!(
-                    "the shape '{other}' is not supported yet (obj, ply, rectangle, cube, sphere, \
-                     disk, cylinder, shapegroup, instance are)"
+                    "the shape '{other}' is not supported yet (obj, ply, serialized, rectangle, \
+                     cube, sphere, disk, cylinder, shapegroup, instance are)"
                 )));
             }
         };
@@ -172,6 +176,21 @@ impl Builder<'_> {
                 world_from_object_end: None,
             });
         }
+    }
+
+    /// The mesh of a `serialized` shape.
+    fn serialized(&self, element: &Element) -> Result<MeshData, SceneError> {
+        let file = property(element, "string", "filename")
+            .ok_or_else(|| element.error("the property `filename` is missing"))?;
+        let path = self.files.resolve(file.required("value")?);
+        let index = super::values::integer(element, "shape_index")?.unwrap_or(0);
+        let index = u32::try_from(index)
+            .map_err(|_| element.error(format!("shape_index is {index}, but must be >= 0")))?;
+        let face_normals = boolean(element, "face_normals")?.unwrap_or(false);
+        let bytes = crate::input_file::read_bytes(&path)
+            .map_err(|e| file.error(format!("cannot read '{}': {e}", path.display())))?;
+        crate::scene::formats::serialized::parse(&bytes, index, face_normals)
+            .map_err(|problem| file.error(format!("'{}': {problem}", path.display())))
     }
 
     /// The objects of a `shapegroup`, in the group's own space.

@@ -1,0 +1,203 @@
+//! Mitsuba's `.serialized` meshes (versions 3 and 4): a little-endian header (magic 0x041C,
+//! version), then each mesh as a zlib stream of flags, (v4) a name, vertex and face counts,
+//! positions, optional normals, texture coordinates and colours (single or double
+//! precision) and u32 triangle indices; several meshes are indexed by a table of offsets at
+//! the end of the file. Every count is checked against what the stream can hold before
+//! anything is allocated, and every index against the vertex count.
+
+use crate::scene::desc::MeshData;
+use flate2::read::ZlibDecoder;
+use glam::{DVec3, Vec2};
+use std::io::Read;
+
+const MAGIC: u16 = 0x041C;
+const HAS_NORMALS: u32 = 0x0001;
+const HAS_TEXCOORDS: u32 = 0x0002;
+const HAS_COLORS: u32 = 0x0008;
+const DOUBLE_PRECISION: u32 = 0x2000;
+/// The most vertices or triangles one mesh may declare (as the PLY and OBJ readers'
+/// input cap allows: 2 GiB of 12-byte records).
+const MAX_COUNT: u64 = (2u64 << 30) / 12;
+
+fn u16_at(bytes: &[u8], at: usize) -> Option<u16> {
+    Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?))
+}
+
+fn u32_at(bytes: &[u8], at: usize) -> Option<u32> {
+    Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
+}
+
+fn u64_at(bytes: &[u8], at: usize) -> Option<u64> {
+    Some(u64::from_le_bytes(bytes.get(at..at + 8)?.try_into().ok()?))
+}
+
+/// Mesh `shape_index` of the file `bytes`, with normals unless `face_normals`.
+pub(crate) fn parse(
+    bytes: &[u8],
+    shape_index: u32,
+    face_normals: bool,
+) -> Result<MeshData, String> {
+    if u16_at(bytes, 0) != Some(MAGIC) {
+        return Err("not a Mitsuba serialized mesh (the file does not start with 0x041C)".into());
+    }
+    let version = u16_at(bytes, 2).unwrap_or(0);
+    if !(version == 3 || version == 4) {
+        return Err(format!("serialized version {version} is not supported (3 and 4 are)"));
+    }
+    let start = if shape_index == 0 { 4 } else { mesh_offset(bytes, version, shape_index)? };
+    let stream = bytes.get(start..).ok_or("the offset of the mesh is past the end of the file")?;
+    let mut z = ZlibDecoder::new(stream);
+    let mut read = |n: usize, what: &str| -> Result<Vec<u8>, String> {
+        let mut buffer = Vec::new();
+        (&mut z).take(n as u64).read_to_end(&mut buffer).map_err(|e| format!("{what}: {e}"))?;
+        if buffer.len() < n {
+            return Err(format!("the data ends inside the {what}"));
+        }
+        Ok(buffer)
+    };
+    let flags = u32_at(&read(4, "flags")?, 0).unwrap_or(0);
+    if version == 4 {
+        // The mesh's name, NUL-terminated.
+        let mut length = 0;
+        while read(1, "name")?[0] != 0 {
+            length += 1;
+            if length > 4096 {
+                return Err("the mesh's name runs past 4096 bytes".into());
+            }
+        }
+    }
+    let counts = read(16, "vertex and face counts")?;
+    let (vertices, faces) = (u64_at(&counts, 0).unwrap_or(0), u64_at(&counts, 8).unwrap_or(0));
+    if vertices > MAX_COUNT || faces > MAX_COUNT {
+        return Err(format!(
+            "{vertices} vertices and {faces} triangles declared: at most {MAX_COUNT} of each"
+        ));
+    }
+    if vertices == 0 || faces == 0 {
+        return Err(format!("the mesh has {vertices} vertices and {faces} triangles"));
+    }
+    let (vertices, faces) = (vertices as usize, faces as usize);
+    let width = if flags & DOUBLE_PRECISION != 0 { 8 } else { 4 };
+    let mut floats = |count: usize, what: &str| -> Result<Vec<f64>, String> {
+        let data = read(count * width, what)?;
+        let values: Vec<f64> = data
+            .chunks_exact(width)
+            .map(|c| match width {
+                8 => f64::from_le_bytes(c.try_into().unwrap()),
+                _ => f32::from_le_bytes(c.try_into().unwrap()) as f64,
+            })
+            .collect();
+        match values.iter().position(|v| !v.is_finite()) {
+            Some(i) => Err(format!("{what}: value {} is not finite", i)),
+            None => Ok(values),
+        }
+    };
+    let triple = |v: &[f64]| DVec3::new(v[0], v[1], v[2]);
+    let positions: Vec<DVec3> =
+        floats(3 * vertices, "positions")?.chunks_exact(3).map(triple).collect();
+    let normals = match flags & HAS_NORMALS != 0 {
+        false => None,
+        true => Some(floats(3 * vertices, "normals")?.chunks_exact(3).map(triple).collect()),
+    };
+    let uvs = match flags & HAS_TEXCOORDS != 0 {
+        false => None,
+        true => Some(
+            floats(2 * vertices, "texture coordinates")?
+                .chunks_exact(2)
+                .map(|t| Vec2::new(t[0] as f32, t[1] as f32))
+                .collect(),
+        ),
+    };
+    if flags & HAS_COLORS != 0 {
+        floats(3 * vertices, "vertex colours")?;
+    }
+    let data = read(12 * faces, "triangles")?;
+    let mut indices = Vec::with_capacity(faces);
+    for (i, t) in data.chunks_exact(12).enumerate() {
+        let corner = |k: usize| u32_at(t, 4 * k).unwrap_or(u32::MAX);
+        let triangle = [corner(0), corner(1), corner(2)];
+        if let Some(bad) = triangle.iter().find(|&&v| v as usize >= vertices) {
+            return Err(format!("triangle {i} uses vertex {bad}, but there are {vertices}"));
+        }
+        indices.push(triangle);
+    }
+    let normals = if face_normals { None } else { normals };
+    Ok(MeshData { positions, indices, normals, uvs })
+}
+
+/// Where mesh `index` starts, from the table at the end of the file (after its own 4-byte
+/// header, which the mesh repeats).
+fn mesh_offset(bytes: &[u8], version: u16, index: u32) -> Result<usize, String> {
+    let count = bytes.len().checked_sub(4).and_then(|at| u32_at(bytes, at));
+    let count = count.ok_or("the file is too short for its table of meshes")?;
+    if index >= count {
+        return Err(format!("shape_index {index} is out of range: the file has {count} meshes"));
+    }
+    let entry = if version == 4 { 8 } else { 4 };
+    let at = (count - index) as usize * entry + 4;
+    let at = bytes.len().checked_sub(at).ok_or("the table of meshes is longer than the file")?;
+    let offset = if version == 4 { u64_at(bytes, at) } else { u32_at(bytes, at).map(u64::from) };
+    let offset = offset.ok_or("the table of meshes is cut short")?;
+    usize::try_from(offset)
+        .ok()
+        .filter(|o| o.saturating_add(4) < bytes.len())
+        .map(|o| o + 4)
+        .ok_or_else(|| format!("mesh {index} starts at {offset}, past the end of the file"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use flate2::{Compression, write::ZlibEncoder};
+    use std::io::Write;
+
+    /// A v4 file of one mesh: a triangle with texture coordinates.
+    fn triangle_file(vertices: u64, index: u32) -> Vec<u8> {
+        let mut body = Vec::new();
+        body.extend(HAS_TEXCOORDS.to_le_bytes());
+        body.extend(b"tri\0");
+        body.extend(vertices.to_le_bytes());
+        body.extend(1u64.to_le_bytes());
+        for p in [[0f32, 0., 0.], [1., 0., 0.], [0., 1., 0.]] {
+            for c in p {
+                body.extend(c.to_le_bytes());
+            }
+        }
+        for t in [[0f32, 0.], [1., 0.], [0., 1.]] {
+            for c in t {
+                body.extend(c.to_le_bytes());
+            }
+        }
+        for i in [0u32, 1, index] {
+            body.extend(i.to_le_bytes());
+        }
+        let mut z = ZlibEncoder::new(Vec::new(), Compression::default());
+        z.write_all(&body).unwrap();
+        let mut file = vec![0x1C, 0x04, 0x04, 0x00];
+        file.extend(z.finish().unwrap());
+        file
+    }
+
+    #[test]
+    fn a_triangle_reads_back() {
+        let mesh = parse(&triangle_file(3, 2), 0, false).unwrap();
+        assert_eq!(mesh.positions[1], DVec3::X);
+        assert_eq!(mesh.indices, vec![[0, 1, 2]]);
+        assert_eq!(mesh.uvs.unwrap()[2], Vec2::Y);
+        assert!(mesh.normals.is_none());
+    }
+
+    #[test]
+    fn bad_counts_indices_and_truncation_are_refused_without_allocating() {
+        assert!(parse(&triangle_file(3, 3), 0, false).unwrap_err().contains("uses vertex 3"));
+        let huge = parse(&triangle_file(u64::MAX / 2, 2), 0, false).unwrap_err();
+        assert!(huge.contains("at most"), "{huge}");
+        let mut file = triangle_file(3, 2);
+        file.truncate(file.len() - 6);
+        assert!(parse(&file, 0, false).is_err());
+        assert!(parse(b"PK\x03\x04", 0, false).unwrap_err().contains("0x041C"));
+        let wide = parse(&triangle_file(1 << 20, 2), 0, false).unwrap_err();
+        assert!(wide.contains("ends inside"), "{wide}");
+        assert!(parse(&triangle_file(3, 2), 1, false).is_err());
+    }
+}
