@@ -215,6 +215,8 @@ pub struct RenderScene {
     pub effects: Effects,
     /// Where in its pixel each sample falls, and its weight.
     pub pixel_filter: crate::sampling::filter::FilterSampler,
+    /// Camera rays see no light source (`RenderSettings::hide_emitters`).
+    pub hide_emitters: bool,
 }
 
 impl RenderScene {

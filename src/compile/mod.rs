@@ -83,6 +83,7 @@ pub fn to_render_scene(
         backdrop: desc.settings.background_texture.as_ref().map(Texture::from_desc),
         effects,
         pixel_filter,
+        hide_emitters: desc.settings.hide_emitters,
     })
 }
 
@@ -116,5 +117,6 @@ pub fn baked_scene(
         backdrop: None,
         effects: Effects::default(),
         pixel_filter,
+        hide_emitters: false,
     }
 }

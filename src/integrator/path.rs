@@ -86,6 +86,27 @@ impl<'a> PathTracer<'a> {
         }
     }
 
+    /// The first hit along a camera ray past the emitting surfaces it meets: with
+    /// `hide_emitters` camera rays go through them (Mitsuba's rule), lighting what is behind.
+    fn past_emitters(
+        &self,
+        ray: &mut Ray,
+        mut found: Option<Hit>,
+        stats: &mut RenderStats,
+    ) -> Option<Hit> {
+        // A bound on stacked emitters, for rays that would graze along coplanar ones.
+        for _ in 0..64 {
+            let hit = found?;
+            let si = interaction(self.tracer.scene, ray, &hit);
+            if !self.tracer.scene.materials[si.material as usize].is_emissive() {
+                return Some(hit);
+            }
+            *ray = self.tracer.spawn.ray(&si.surface, ray.dir, ray.time);
+            found = self.tracer.closest_hit(ray, false, None, stats);
+        }
+        None
+    }
+
     /// The fraction of the light that meets a masked surface at `si`.
     fn opacity(&self, opacity: &MaskOpacity, si: &SurfaceInteraction, time: f32) -> f32 {
         match opacity {
@@ -269,10 +290,16 @@ impl<'a> PathTracer<'a> {
             if !ray.is_valid() {
                 break;
             }
-            let found = self.tracer.closest_hit(&ray, depth == 0, first_hit.take(), stats);
+            let mut found = self.tracer.closest_hit(&ray, depth == 0, first_hit.take(), stats);
+            if depth == 0 && self.tracer.scene.hide_emitters {
+                found = self.past_emitters(&mut ray, found, stats);
+            }
             let Some(hit) = found else {
                 if let (0, Some(backdrop)) = (depth, backdrop) {
                     result.radiance += backdrop;
+                    break;
+                }
+                if depth == 0 && self.tracer.scene.hide_emitters {
                     break;
                 }
                 let weight =

@@ -32,17 +32,23 @@ pub struct PointLight {
     pub intensity: Vec3,
     /// The cone a spot light shines into; `None` for an isotropic point light.
     pub spot: Option<SpotCone>,
+    /// The image and frustum of a projector.
+    pub projection: Option<kinds::Projection>,
 }
 
 impl PointLight {
     /// Radiant intensity towards the unit direction `w` (from the light).
     pub fn intensity_towards(&self, w: Vec3) -> Vec3 {
-        match &self.spot {
+        let intensity = match &self.spot {
             Some(cone) => {
                 let factor = cone.factor(w);
                 if factor > 0.0 { self.intensity * factor * cone.tint(w) } else { Vec3::ZERO }
             }
             None => self.intensity,
+        };
+        match &self.projection {
+            Some(projection) => intensity * projection.factor(w),
+            None => intensity,
         }
     }
 }

@@ -160,8 +160,12 @@ fn spot_cone_falls_off_from_full_to_nothing_between_its_angles() {
     let half_cos = |degrees: f32| (0.5 * degrees).to_radians().cos();
     // Coverage 60°, falloff 20°: full within 10° of the axis, none beyond 30°.
     let cone = SpotCone::course(Vec3::NEG_Y, half_cos(20.0), half_cos(60.0));
-    let light =
-        PointLight { position: Vec3::ZERO, intensity: Vec3::splat(100.0), spot: Some(cone) };
+    let light = PointLight {
+        position: Vec3::ZERO,
+        intensity: Vec3::splat(100.0),
+        spot: Some(cone),
+        projection: None,
+    };
     let at = |degrees: f32| {
         let a = degrees.to_radians();
         light.intensity_towards(Vec3::new(a.sin(), -a.cos(), 0.0)).x

@@ -101,7 +101,7 @@ pub enum SceneError {
     )]
     PlyData { ply: PathBuf, ply_line: Line, scene: PathBuf, item: String, problem: String },
 
-    /// An image a texture names is missing, unreadable, not a PNG or JPEG, corrupt or too
+    /// An image a texture names is missing, unreadable, not a PNG, JPEG or BMP, corrupt or too
     /// large.
     #[error(
         "image file '{}': {}; named by {item} in '{}'{line}",

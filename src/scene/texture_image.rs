@@ -1,4 +1,4 @@
-//! Reading a texture's image (PNG or JPEG, through the `image` crate) into `TextureImage`,
+//! Reading a texture's image (PNG, JPEG or BMP, through the `image` crate) into `TextureImage`,
 //! its size checked against `MAX_TEXTURE_TEXELS` before any texel is decoded.
 
 use crate::scene::desc::TextureImage;
@@ -56,7 +56,7 @@ pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, Scene
         .with_guessed_format()
         .map_err(|e| at.error(e.to_string()))?;
     if reader.format().is_none() {
-        return Err(at.error("not a PNG or JPEG image"));
+        return Err(at.error("not a PNG, JPEG or BMP image"));
     }
     // The JPEG decoder fills what a cut file lacks with grey and says nothing.
     if reader.format() == Some(image::ImageFormat::Jpeg) && !jpeg_is_complete(&bytes) {
@@ -250,7 +250,7 @@ mod tests {
         let text = std::env::temp_dir().join(format!("embray-tex-{}-text.png", std::process::id()));
         std::fs::write(&text, b"just words").unwrap();
         let err = load(&at(&text), false).unwrap_err().to_string();
-        assert!(err.contains("not a PNG or JPEG"), "{err}");
+        assert!(err.contains("not a PNG, JPEG or BMP"), "{err}");
         std::fs::remove_file(&text).unwrap();
     }
 }

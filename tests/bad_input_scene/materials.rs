@@ -187,7 +187,7 @@ fn texture_images_that_cannot_be_read_name_the_file_and_the_field() {
     embray::scene::load(&dir.join("whole.toml")).expect("the whole JPEG loads");
     for (file, problem) in [
         ("missing.png", "No such file"),
-        ("notes.png", "not a PNG or JPEG image"),
+        ("notes.png", "not a PNG, JPEG or BMP image"),
         ("cut.png", "unexpected end of file"),
         ("cut.jpg", "cut short"),
     ] {

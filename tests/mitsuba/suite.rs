@@ -10,7 +10,7 @@ use embray::mitsuba_rule::judge;
 use std::path::{Path, PathBuf};
 
 /// The suite's scenes that embray renders; every other one must be refused.
-const RENDERED: [&str; 12] = [
+const RENDERED: [&str; 13] = [
     "test_arealight_path",
     "test_bumpmap_path",
     "test_constant_path",
@@ -19,6 +19,7 @@ const RENDERED: [&str; 12] = [
     "test_normalmap_path",
     "test_orthographic_path",
     "test_pointlight_path",
+    "test_projector_constant_direct",
     "test_roughdielectric_path",
     "test_roughplastic_linear_path",
     "test_spot_direct",
@@ -121,12 +122,12 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 
 /// Scenes written here with Mitsuba's own renders beside them (`tests/data/mitsuba`, so
 /// these run everywhere): a GGX rough conductor with Mitsuba's measured gold under a point
-/// light and a constant sky; the disk, the cylinder, flipped normals and instances of a
-/// shapegroup.
+/// light and a constant sky; the disk, the cylinder, a serialized mesh, flipped normals and
+/// instances of a shapegroup; a projector, a textured spot light and hidden emitters.
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
-    for name in ["rough_gold", "shapes"] {
+    for name in ["rough_gold", "shapes", "emitters"] {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();
         let reference = refs.join(format!("{name}_48_ref_rgb.exr"));
         let variance = refs.join(format!("{name}_48_ref_rgb_var.exr"));

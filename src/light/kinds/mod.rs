@@ -10,6 +10,7 @@ mod area;
 mod directional;
 mod environment;
 mod point;
+mod projector;
 mod spot;
 
 pub use ambient::Ambient;
@@ -17,6 +18,7 @@ pub use area::Area;
 pub use directional::Directional;
 pub use environment::{Environment, EnvironmentMap};
 pub use point::Point;
+pub use projector::{Projection, Projector};
 pub use spot::{Spot, SpotCone, SpotProfile, SpotTexture};
 
 use super::{DirectionalLight, Emitter, EnvironmentLight, PointLight};
@@ -142,6 +144,7 @@ macro_rules! light_kinds {
 light_kinds! {
     Point(Point),
     Spot(Spot),
+    Projector(Projector),
     Directional(Directional),
     Ambient(Ambient),
     Area(Area),

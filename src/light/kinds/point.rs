@@ -39,6 +39,7 @@ impl LightKind for Point {
             position: render_from_world.transform_point3(self.position).as_vec3(),
             intensity: self.intensity,
             spot: None,
+            projection: None,
         });
     }
 }

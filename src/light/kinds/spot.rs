@@ -141,6 +141,7 @@ impl LightKind for Spot {
                 angles: (half(self.falloff_degrees) as f32, half(self.coverage_degrees) as f32),
                 texture,
             }),
+            projection: None,
         });
     }
 }

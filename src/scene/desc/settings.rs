@@ -48,6 +48,9 @@ pub struct RenderSettings {
     pub background_texture: Option<TextureDesc>,
     /// How samples are weighted into pixels (the box: each pixel averages its own).
     pub filter: crate::sampling::filter::PixelFilter,
+    /// Camera rays do not see lights (emitters, the environment, the background): they
+    /// only light the scene (Mitsuba's `hide_emitters`).
+    pub hide_emitters: bool,
 }
 
 impl Default for RenderSettings {
@@ -61,6 +64,7 @@ impl Default for RenderSettings {
             tonemap: None,
             background_texture: None,
             filter: Default::default(),
+            hide_emitters: false,
         }
     }
 }

@@ -117,6 +117,7 @@ pub fn load_str_with_warnings(
         tonemap: None,
         background_texture: None,
         filter: Default::default(),
+        hide_emitters: false,
     };
     if let Some(node) = x.child(root, "BackgroundColor")? {
         settings.background = x.color(node)?;

@@ -21,6 +21,7 @@ impl Builder<'_> {
         let skip: &[&str] = match kind {
             "envmap" => &["filename", "scale"],
             "spot" => &["cutoff_angle", "beam_width", "texture"],
+            "projector" => &["irradiance", "scale", "fov", "fov_axis", "focal_length"],
             _ => &[],
         };
         let mut p = params(element, skip, ColorUse::Emission)?;
@@ -50,17 +51,49 @@ impl Builder<'_> {
                 }
                 "directional"
             }
+            "projector" => {
+                let Some(m) = to_world else {
+                    return Err(element
+                        .error("a projector needs a to_world (where it is, where it points)"));
+                };
+                let irradiance =
+                    element.children.iter().find(|c| c.attr("name") == Some("irradiance"));
+                let constant = match irradiance {
+                    Some(c) if matches!(c.tag.as_str(), "rgb" | "spectrum") => {
+                        super::values::color(c, ColorUse::Emission)?
+                    }
+                    None => DVec3::ONE,
+                    Some(_) => {
+                        let file = bitmap_file(self, element, "irradiance")?;
+                        p.push(derived(element, "image", Value::Text(file)));
+                        DVec3::ONE
+                    }
+                };
+                let aspect = match p.has("image") {
+                    false => 1.0,
+                    true => {
+                        let files = Files { files: self.files, scene: &element.file };
+                        let image = files
+                            .radiance_image(&p, "image", true)
+                            .map_err(|e| SceneError::from_param(&element.file, e))?;
+                        image.width as f64 / image.height as f64
+                    }
+                };
+                let fov = super::sensor::x_fov(element, aspect)?;
+                // Mitsuba's irradiance is π·scale·image on the plane at distance 1.
+                let scale =
+                    std::f64::consts::PI * float(element, "scale")?.unwrap_or(1.0) * constant;
+                set(&mut p, "position", m.translation);
+                set(&mut p, "direction", m.transform_vector3(DVec3::Z));
+                set(&mut p, "up", m.transform_vector3(DVec3::Y));
+                p.push(derived(element, "fov", Value::Numbers(vec![fov])));
+                p.push(derived(element, "scale", Value::Numbers(scale.to_array().to_vec())));
+                "projector"
+            }
             "spot" => {
                 let Some(m) = to_world else {
                     return Err(element
                         .error("a spot light needs a to_world (where it is, where it points)"));
-                };
-                let derived = |name: &str, value: Value| Entry {
-                    name: name.to_owned(),
-                    value,
-                    field: format!("{} > {name}", element.describe()),
-                    line: Some(element.line),
-                    indexed: false,
                 };
                 let cutoff = float(element, "cutoff_angle")?.unwrap_or(20.0);
                 let beam = float(element, "beam_width")?.unwrap_or(0.75 * cutoff);
@@ -71,26 +104,15 @@ impl Builder<'_> {
                 }
                 set(&mut p, "position", m.translation);
                 set(&mut p, "direction", m.transform_vector3(DVec3::Z));
-                p.push(derived("coverage_angle", Value::Numbers(vec![2.0 * cutoff])));
-                p.push(derived("falloff_angle", Value::Numbers(vec![2.0 * beam])));
-                p.push(derived("profile", Value::Text("linear".to_owned())));
+                p.push(derived(element, "coverage_angle", Value::Numbers(vec![2.0 * cutoff])));
+                p.push(derived(element, "falloff_angle", Value::Numbers(vec![2.0 * beam])));
+                p.push(derived(element, "profile", Value::Text("linear".to_owned())));
                 if !p.has("intensity") {
                     set(&mut p, "intensity", DVec3::ONE);
                 }
-                let texture = element.children.iter().find(|c| c.attr("name") == Some("texture"));
-                if let Some(texture) = texture {
-                    let texture = self.ids.resolve(texture)?;
-                    if texture.attr("type") != Some("bitmap") {
-                        return Err(texture.error("a spot light's texture must be a bitmap"));
-                    }
-                    for child in &texture.children {
-                        if child.attr("name") != Some("filename") {
-                            return Err(child.error("only a bitmap's filename is supported here"));
-                        }
-                    }
-                    let file = property(texture, "string", "filename")
-                        .ok_or_else(|| texture.error("the property `filename` is missing"))?;
-                    p.push(derived("texture", Value::Text(file.required("value")?.to_owned())));
+                if element.children.iter().any(|c| c.attr("name") == Some("texture")) {
+                    let file = bitmap_file(self, element, "texture")?;
+                    p.push(derived(element, "texture", Value::Text(file)));
                     set(&mut p, "up", m.transform_vector3(DVec3::Y));
                 }
                 "spot"
@@ -102,18 +124,11 @@ impl Builder<'_> {
                 "environment"
             }
             "envmap" => {
-                let derived = |name: &str, value: Value| Entry {
-                    name: name.to_owned(),
-                    value,
-                    field: format!("{} > {name}", element.describe()),
-                    line: Some(element.line),
-                    indexed: false,
-                };
                 let file = property(element, "string", "filename")
                     .ok_or_else(|| element.error("the property `filename` is missing"))?;
-                p.push(derived("file", Value::Text(file.required("value")?.to_owned())));
+                p.push(derived(element, "file", Value::Text(file.required("value")?.to_owned())));
                 if let Some(scale) = float(element, "scale")? {
-                    p.push(derived("scale", Value::Numbers(vec![scale; 3])));
+                    p.push(derived(element, "scale", Value::Numbers(vec![scale; 3])));
                 }
                 // Mitsuba's map looks along +z at its centre, embray's along −z: half a
                 // turn about y between them.
@@ -121,15 +136,15 @@ impl Builder<'_> {
                 let world_from_map =
                     to_world.map_or(glam::DMat3::IDENTITY, |m| m.matrix3) * half_turn;
                 let rows = world_from_map.transpose().to_cols_array().to_vec();
-                p.push(derived("to_world", Value::Numbers(rows)));
-                p.push(derived("interpolation", Value::Text("bilinear_poles".to_owned())));
+                p.push(derived(element, "to_world", Value::Numbers(rows)));
+                p.push(derived(element, "interpolation", Value::Text("bilinear_poles".to_owned())));
                 "environment"
             }
             "area" => return Err(element.error("an area emitter belongs inside a <shape>")),
             other => {
                 return Err(element.error(format!(
-                    "the emitter '{other}' is not supported yet (point, spot, directional, \
-                     constant, envmap and area are)"
+                    "the emitter '{other}' is not supported yet (point, spot, projector, \
+                     directional, constant, envmap and area are)"
                 )));
             }
         };
@@ -143,6 +158,39 @@ impl Builder<'_> {
         self.lights.push(light);
         Ok(())
     }
+}
+
+/// A parameter the reader derives from the element's own (a placement, a renamed angle).
+fn derived(element: &Element, name: &str, value: Value) -> Entry {
+    Entry {
+        name: name.to_owned(),
+        value,
+        field: format!("{} > {name}", element.describe()),
+        line: Some(element.line),
+        indexed: false,
+    }
+}
+
+/// The file of the bitmap texture `name` of an emitter (nothing else about the bitmap is
+/// supported there).
+fn bitmap_file(builder: &Builder, element: &Element, name: &str) -> Result<String, SceneError> {
+    let texture = element
+        .children
+        .iter()
+        .find(|c| c.attr("name") == Some(name))
+        .ok_or_else(|| element.error(format!("the texture `{name}` is missing")))?;
+    let texture = builder.ids.resolve(texture)?;
+    if texture.tag != "texture" || texture.attr("type") != Some("bitmap") {
+        return Err(texture.error(format!("`{name}` must be a bitmap texture")));
+    }
+    for child in &texture.children {
+        if child.attr("name") != Some("filename") {
+            return Err(child.error("only a bitmap's filename is supported here"));
+        }
+    }
+    let file = property(texture, "string", "filename")
+        .ok_or_else(|| texture.error("the property `filename` is missing"))?;
+    Ok(file.required("value")?.to_owned())
 }
 
 /// Files named by an emitter, found where the scene finds its files.

@@ -22,7 +22,7 @@ fn string<'a>(plugin: &'a Element, name: &str) -> Option<&'a Element> {
 
 /// The x field of view in degrees (Mitsuba's `parse_fov`): `fov` along `fov_axis`, or a
 /// 35 mm-equivalent `focal_length` (default 50mm) along the film's diagonal.
-fn x_fov(sensor: &Element, aspect: f64) -> Result<f64, SceneError> {
+pub(super) fn x_fov(sensor: &Element, aspect: f64) -> Result<f64, SceneError> {
     let (fov, axis, at) = match float(sensor, "fov")? {
         Some(fov) => {
             let axis = string(sensor, "fov_axis");
@@ -194,9 +194,7 @@ pub(super) fn integrator(
                     element.line
                 ));
             }
-            if boolean(element, "hide_emitters")? == Some(true) {
-                return Err(element.error("hide_emitters is not supported yet"));
-            }
+            settings.hide_emitters = boolean(element, "hide_emitters")?.unwrap_or(false);
             settings.integrator = IntegratorKind::Path;
             settings.max_depth = match integer(element, "max_depth")?.unwrap_or(-1) {
                 -1 => MAX_DEPTH,
@@ -210,6 +208,7 @@ pub(super) fn integrator(
             Ok(())
         }
         "direct" => {
+            settings.hide_emitters = boolean(element, "hide_emitters")?.unwrap_or(false);
             settings.integrator = IntegratorKind::Path;
             settings.max_depth = 1;
             Ok(())

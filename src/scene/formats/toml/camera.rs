@@ -159,6 +159,7 @@ pub(crate) fn settings(
             IntegratorToml::Whitted => IntegratorKind::Whitted,
         };
     }
+    settings.hide_emitters = render.hide_emitters.unwrap_or(false);
     if let Some(filter) = &render.filter {
         settings.filter = pixel_filter(ctx, &path.key("filter"), filter)?;
     }

@@ -66,6 +66,7 @@ pub(crate) struct RenderToml {
     pub tonemap: Option<TonemapToml>,
     pub background_texture: Option<TextureToml>,
     pub filter: Option<FilterToml>,
+    pub hide_emitters: Option<bool>,
 }
 
 /// `filter = { type = "gaussian", stddev = 0.5 }`: the pixel reconstruction filter.

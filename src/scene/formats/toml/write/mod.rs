@@ -203,6 +203,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
             let _ = writeln!(out, "filter = {{ type = \"tent\", radius = {radius:?} }}");
         }
     }
+    if s.hide_emitters {
+        let _ = writeln!(out, "hide_emitters = true");
+    }
     if let Some(t) = &s.background_texture {
         let _ = writeln!(out, "background_texture = {}", texture_toml(t, false)?);
     }
