@@ -156,10 +156,25 @@ fn film(film: &Element, warnings: &mut Vec<String>) -> Result<(u32, u32, PixelFi
         }
         Ok(value as f32)
     };
+    // The cubics' B and C may be 0 or negative.
+    let parameter_any = |name: &str, default: f64| -> Result<f32, SceneError> {
+        let value = filter.map_or(Ok(None), |f| float(f, name))?.unwrap_or(default);
+        if !(value.abs() <= 16.0) {
+            let at = filter.unwrap_or(film);
+            return Err(at.error(format!("{name} is {value}, but must be in [-16, 16]")));
+        }
+        Ok(value as f32)
+    };
     let pixel_filter = match filter_type {
         "box" => PixelFilter::Box,
         "gaussian" => PixelFilter::Gaussian { stddev: parameter("stddev", 0.5)? },
         "tent" => PixelFilter::Tent { radius: parameter("radius", 1.0)? },
+        "mitchell" => PixelFilter::Mitchell {
+            b: parameter_any("B", 1.0 / 3.0)?,
+            c: parameter_any("C", 1.0 / 3.0)?,
+        },
+        "catmullrom" => PixelFilter::Mitchell { b: 0.0, c: 0.5 },
+        "lanczos" => PixelFilter::Lanczos { lobes: parameter("lobes", 3.0)? },
         other => {
             warnings.push(format!(
                 "{}: line {}: the {other} reconstruction filter is not supported yet: the box \

@@ -201,7 +201,18 @@ fn pixel_filter(
         ctx.require(ok, &path.key(name), value, "in (0, 16] pixels")?;
         Ok(value as f32)
     };
-    let present = [("stddev", filter.stddev.is_some()), ("radius", filter.radius.is_some())];
+    let present = [
+        ("stddev", filter.stddev.is_some()),
+        ("radius", filter.radius.is_some()),
+        ("b", filter.b.is_some()),
+        ("c", filter.c.is_some()),
+        ("lobes", filter.lobes.is_some()),
+    ];
+    let coefficient = |name: &str, value: Option<f64>, default: f64| -> Result<f32, SceneError> {
+        let value = value.unwrap_or(default);
+        ctx.require(value.abs() <= 16.0, &path.key(name), value, "in [-16, 16]")?;
+        Ok(value as f32)
+    };
     Ok(match filter.kind {
         FilterKindToml::Box => {
             ctx.check_fields(path, &item, &present, &["type"])?;
@@ -214,6 +225,21 @@ fn pixel_filter(
         FilterKindToml::Tent => {
             ctx.check_fields(path, &item, &present, &["type", "radius"])?;
             PixelFilter::Tent { radius: size("radius", filter.radius, 1.0)? }
+        }
+        FilterKindToml::Mitchell => {
+            ctx.check_fields(path, &item, &present, &["type", "b", "c"])?;
+            PixelFilter::Mitchell {
+                b: coefficient("b", filter.b, 1.0 / 3.0)?,
+                c: coefficient("c", filter.c, 1.0 / 3.0)?,
+            }
+        }
+        FilterKindToml::Catmullrom => {
+            ctx.check_fields(path, &item, &present, &["type"])?;
+            PixelFilter::Mitchell { b: 0.0, c: 0.5 }
+        }
+        FilterKindToml::Lanczos => {
+            ctx.check_fields(path, &item, &present, &["type", "lobes"])?;
+            PixelFilter::Lanczos { lobes: size("lobes", filter.lobes, 3.0)? }
         }
     })
 }

@@ -77,6 +77,9 @@ pub(crate) struct FilterToml {
     pub kind: FilterKindToml,
     pub stddev: Option<f64>,
     pub radius: Option<f64>,
+    pub b: Option<f64>,
+    pub c: Option<f64>,
+    pub lobes: Option<f64>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -85,6 +88,9 @@ pub(crate) enum FilterKindToml {
     Box,
     Gaussian,
     Tent,
+    Mitchell,
+    Catmullrom,
+    Lanczos,
 }
 
 /// `tonemap = { operator = "photographic", key = 0.18, burn_out = 1, saturation = 1,

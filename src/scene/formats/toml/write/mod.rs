@@ -202,6 +202,12 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
         crate::sampling::filter::PixelFilter::Tent { radius } => {
             let _ = writeln!(out, "filter = {{ type = \"tent\", radius = {radius:?} }}");
         }
+        crate::sampling::filter::PixelFilter::Mitchell { b, c } => {
+            let _ = writeln!(out, "filter = {{ type = \"mitchell\", b = {b:?}, c = {c:?} }}");
+        }
+        crate::sampling::filter::PixelFilter::Lanczos { lobes } => {
+            let _ = writeln!(out, "filter = {{ type = \"lanczos\", lobes = {lobes:?} }}");
+        }
     }
     if s.hide_emitters {
         let _ = writeln!(out, "hide_emitters = true");
