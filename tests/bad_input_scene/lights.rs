@@ -165,7 +165,7 @@ fn an_unknown_light_type_lists_the_kinds() {
     assert_contains(
         &err,
         &[
-            "lights[0].type is \"laser\", but must be one of point, spot, directional, ambient, area, environment, quad, sphere, mesh (line 7)",
+            "lights[0].type is \"laser\", but must be one of point, spot, projector, directional, ambient, area, environment, quad, sphere, mesh (line 7)",
         ],
     );
     let err = load_err(&format!("{CAMERA}[[lights]]\nposition = [0, 1, 0]\n"));

@@ -170,6 +170,18 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
                         let mtl = mtl_of_material.get(&m.name).map_or(obj, PathBuf::as_path);
                         let material =
                             obj_material(m).map_err(|p| obj_ref.error(mtl, p, Line(None)))?;
+                        let ignored = ignored_statements(m);
+                        if !ignored.is_empty() {
+                            warnings.push(format!(
+                                "{}: material '{}': {} not used (embray reads Kd and Ke from \
+                                 MTL files): it renders as a Lambertian Kd; give the object a \
+                                 scene material for more",
+                                mtl.display(),
+                                crate::excerpt::excerpt(&m.name),
+                                ignored.join(", ")
+                                    + if ignored.len() == 1 { " is" } else { " are" }
+                            ));
+                        }
                         loaded.materials.push(material);
                         used.insert(id, loaded.materials.len() - 1);
                         loaded.materials.len() - 1
@@ -247,6 +259,27 @@ fn obj_material(m: &tobj::Material) -> Result<ObjMaterial, String> {
     })
 }
 
+/// The statements of an MTL material that change its look but that embray does not read.
+fn ignored_statements(m: &tobj::Material) -> Vec<&'static str> {
+    let nonzero = |c: Option<[f32; 3]>| c.is_some_and(|c| c.iter().any(|&v| v != 0.0));
+    let textures = [
+        ("map_Kd", &m.diffuse_texture),
+        ("map_Ks", &m.specular_texture),
+        ("map_Bump/norm", &m.normal_texture),
+        ("map_Ns", &m.shininess_texture),
+        ("map_d", &m.dissolve_texture),
+    ];
+    let mut ignored: Vec<&'static str> =
+        textures.iter().filter(|(_, t)| t.is_some()).map(|(name, _)| *name).collect();
+    if nonzero(m.specular) {
+        ignored.push("Ks");
+    }
+    if m.dissolve.is_some_and(|d| d < 1.0) {
+        ignored.push("d (transparency)");
+    }
+    ignored
+}
+
 fn parse_rgb(text: &str) -> Option<[f32; 3]> {
     let values: Vec<f32> =
         text.split_whitespace().map(str::parse).collect::<Result<_, _>>().ok()?;
@@ -267,6 +300,19 @@ mod tests {
         assert_eq!((m.albedo, m.emission), (Vec3::new(0.5, 0.25, 0.0), Vec3::new(2.0, 3.0, 4.0)));
         let m = obj_material(&material(None, None)).unwrap();
         assert_eq!((m.albedo, m.emission), (Vec3::splat(0.8), Vec3::ZERO));
+    }
+
+    #[test]
+    fn what_an_mtl_says_but_embray_does_not_read_is_named() {
+        let plain = material(Some([0.5; 3]), None);
+        assert!(ignored_statements(&plain).is_empty());
+        let rich = tobj::Material {
+            diffuse_texture: Some("wood.png".into()),
+            specular: Some([0.5; 3]),
+            dissolve: Some(0.5),
+            ..plain
+        };
+        assert_eq!(ignored_statements(&rich), ["map_Kd", "Ks", "d (transparency)"]);
     }
 
     #[test]
