@@ -78,6 +78,30 @@ pub struct PhotographicArgs {
 
 impl PhotographicArgs {
     /// `scene`'s parameters (or the defaults) with the flags given applied, checked.
+    /// The first photographic parameter given on the command line, for refusing it under
+    /// another curve (where it would change nothing).
+    pub fn first_given(&self) -> Option<&'static str> {
+        [
+            ("--key", self.key.is_some()),
+            ("--burn-out", self.burn_out.is_some()),
+            ("--saturation", self.saturation.is_some()),
+            ("--gamma", self.gamma.is_some()),
+        ]
+        .into_iter()
+        .find_map(|(flag, given)| given.then_some(flag))
+    }
+
+    /// Refuses photographic parameters under a curve that is not the photographic one.
+    pub fn check_curve(&self, curve: embray::output::ToneMap) -> anyhow::Result<()> {
+        match self.first_given() {
+            Some(flag) if curve != embray::output::ToneMap::Photographic => anyhow::bail!(
+                "{flag} sets the photographic operator, but the PNG's curve is {curve} (give \
+                 --tonemap photographic, or leave {flag} out)"
+            ),
+            _ => Ok(()),
+        }
+    }
+
     pub fn resolve(
         &self,
         scene: Option<&embray::output::Photographic>,

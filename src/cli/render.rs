@@ -59,6 +59,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     for job in &jobs {
         args.to_options(&job.scene)?;
         args.look.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
+        if job.display.is_some() {
+            args.look.photographic.check_curve(args.tonemap.resolve(&job.scene.settings))?;
+        }
     }
     let mut files = OutputSet::new();
     let mut reports = Vec::new();

@@ -1,7 +1,8 @@
-//! `embray tonemap`: the photographic operator applied to an existing EXR, without rendering
-//! (how the course's EXR/PNG reference pairs check it).
+//! `embray tonemap`: a tone curve (the photographic operator by default) applied to an
+//! existing EXR, without rendering: how the course's EXR/PNG reference pairs check it, and
+//! how a render's PNG is remade from its EXR with another curve or look.
 
-use super::choices::LookArgs;
+use super::choices::{LookArgs, choice};
 use anyhow::Result;
 use clap::Args;
 use embray::output::{OutputPlan, OutputSet, ToneMap, encode_png_graded};
@@ -14,12 +15,18 @@ pub struct TonemapArgs {
     /// PNG to write.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// The tone curve: photographic (Reinhard et al.'s global operator: --key, --burn-out,
+    /// --saturation, --gamma), aces, reinhard, none (clamp) or clamp255 (the course's);
+    /// every curve `render --tonemap` names but `auto`, which needs the scene.
+    #[arg(long, value_parser = choice::<ToneMap>(), default_value = "photographic")]
+    pub tonemap: ToneMap,
     #[command(flatten)]
     pub look: LookArgs,
 }
 
 pub fn run(args: &TonemapArgs) -> Result<()> {
     args.look.check()?;
+    args.look.photographic.check_curve(args.tonemap)?;
     let photographic = args.look.photographic.resolve(None)?;
     // The PNG may not overwrite the EXR: checked before anything is read.
     let mut plan = OutputPlan::new();
@@ -39,8 +46,7 @@ pub fn run(args: &TonemapArgs) -> Result<()> {
     }
     let mut files = OutputSet::new();
     files.write(&png, |w| {
-        let curve = ToneMap::Photographic;
-        encode_png_graded(&film, curve, args.look.exposure, &photographic, lut.as_ref(), w)
+        encode_png_graded(&film, args.tonemap, args.look.exposure, &photographic, lut.as_ref(), w)
     })?;
     files.commit()?;
     Ok(())
