@@ -220,9 +220,16 @@ fn render_tile(
         TileResult { tile, sums: vec![PixelSums::default(); n], stats: RenderStats::default() };
     let spp = options.spp.max(1);
     let pixel = |i: usize| (tile.x0 + (i % width) as u32, tile.y0 + (i / width) as u32);
+    let clamp = options.clamp;
     let add = |sums: &mut PixelSums, sample: PathSample, weight: f32| {
+        let radiance = match clamp {
+            Some(limit) if sample.radiance.max_element() > limit => {
+                sample.radiance * (limit / sample.radiance.max_element())
+            }
+            _ => sample.radiance,
+        };
         // The box filter's weight is exactly 1, and x · 1 is x: its renders are unchanged.
-        sums.add_sample(sample.radiance * weight, sample.depth, sample.normal)
+        sums.add_sample(radiance * weight, sample.depth, sample.normal)
     };
     let batched = match tracer {
         Tracer::Path(path) if path.accel().prefers_batches() => Some(path),

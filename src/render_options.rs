@@ -37,6 +37,9 @@ pub struct RenderOptions {
     /// How the path tracer combines a material's lobes (conserving, or the course's
     /// additive model).
     pub energy: crate::shading::bsdf::Energy,
+    /// Each sample's radiance is scaled down to at most this in every channel (a firefly
+    /// clamp: biased, darker where light is concentrated, but quiet at low spp).
+    pub clamp: Option<f32>,
 }
 
 impl RenderOptions {
@@ -60,6 +63,7 @@ impl RenderOptions {
             spawn: SpawnMode::Robust,
             sampler: SamplerKind::default(),
             energy: Default::default(),
+            clamp: None,
         }
     }
 }

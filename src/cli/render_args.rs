@@ -104,6 +104,10 @@ pub struct RenderArgs {
     /// the specular lobe added as they are, to reproduce its images).
     #[arg(long, value_parser = choice::<Energy>(), default_value_t = Energy::Conserving)]
     pub energy: Energy,
+    /// Firefly clamp: scale each sample down so that no channel exceeds this radiance
+    /// (biased: it darkens bright caustics and highlights; off by default).
+    #[arg(long, allow_hyphen_values = true)]
+    pub clamp: Option<f32>,
     /// How rays leave surfaces: `robust` (error-bound offsets) or `epsilon=VALUE`.
     #[arg(long, value_parser = SpawnMode::parse, default_value = "robust")]
     pub spawn: SpawnMode,
@@ -193,6 +197,12 @@ impl RenderArgs {
         options.spawn = self.spawn;
         options.sampler = self.sampler;
         options.energy = self.energy;
+        if let Some(limit) = self.clamp {
+            if !(limit.is_finite() && limit > 0.0) {
+                bail!("--clamp is {limit}, but must be a finite radiance > 0");
+            }
+            options.clamp = Some(limit);
+        }
         if self.force_all_effects {
             options.effects_mode = EffectsMode::ForceAll;
         }
