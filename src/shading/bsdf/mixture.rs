@@ -249,15 +249,7 @@ impl Mixture {
     /// A non-delta sample weighted by the whole mixture (needed for MIS to be consistent).
     fn mixture_sample(&self, wo: Vec3, wi: Vec3) -> Option<BsdfSample> {
         let (value, pdf) = self.eval(wo, wi);
-        (pdf > 0.0).then(|| BsdfSample {
-            wi,
-            weight: value / pdf,
-            eta_scale: 1.0,
-            pdf,
-            delta: false,
-            transmitted: false,
-            passes: false,
-        })
+        BsdfSample::smooth(wi, value, pdf)
     }
 
     fn sample_dielectric(&self, wo: Vec3, ior: f32, u: f32) -> BsdfSample {

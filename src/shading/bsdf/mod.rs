@@ -39,6 +39,20 @@ pub struct BsdfSample {
 }
 
 impl BsdfSample {
+    /// A sample of a smooth (non-delta) lobe, `value` = f·cos and `pdf` the whole BSDF's
+    /// (for MIS to be consistent); none where the density is 0.
+    fn smooth(wi: Vec3, value: Vec3, pdf: f32) -> Option<Self> {
+        (pdf > 0.0).then(|| BsdfSample {
+            wi,
+            weight: value / pdf,
+            eta_scale: 1.0,
+            pdf,
+            delta: false,
+            transmitted: false,
+            passes: false,
+        })
+    }
+
     /// Straight on through the surface, unchanged.
     fn pass_through(wo: Vec3) -> Self {
         BsdfSample {
@@ -222,6 +236,8 @@ impl Bsdf {
     }
 }
 
+#[cfg(test)]
+mod test_grid;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]

@@ -100,14 +100,6 @@ impl Plastic {
             crate::sampling::cosine_hemisphere(u)
         };
         let (value, pdf) = self.eval(wo, wi);
-        (pdf > 0.0).then_some(BsdfSample {
-            wi,
-            weight: value / pdf,
-            eta_scale: 1.0,
-            pdf,
-            delta: false,
-            transmitted: false,
-            passes: false,
-        })
+        BsdfSample::smooth(wi, value, pdf)
     }
 }

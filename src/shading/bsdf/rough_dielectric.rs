@@ -85,14 +85,11 @@ impl RoughDielectric {
             return None;
         }
         let (value, pdf) = self.eval(wo, wi);
-        (pdf > 0.0 && value.is_finite()).then(|| BsdfSample {
-            wi,
-            weight: value / pdf,
-            eta_scale: if transmitted { self.eta * self.eta } else { 1.0 },
-            pdf,
-            delta: false,
-            transmitted,
-            passes: false,
-        })
+        if !value.is_finite() {
+            return None;
+        }
+        let sample = BsdfSample::smooth(wi, value, pdf)?;
+        let eta_scale = if transmitted { self.eta * self.eta } else { 1.0 };
+        Some(BsdfSample { eta_scale, transmitted, ..sample })
     }
 }

@@ -2,6 +2,7 @@
 //! with a chi-square test over the hemisphere, white furnaces (no material reflects more
 //! than it receives), and Fresnel's limits.
 
+use super::test_grid::Grid;
 use super::*;
 use crate::scene::CourseBrdf;
 use crate::shading::course_brdf::cos_weighted;
@@ -9,81 +10,19 @@ use crate::shading::fresnel::{fresnel_conductor, fresnel_dielectric};
 use crate::splitmix::SplitMix64;
 use std::f32::consts::PI;
 
-/// Cells of the (θ, φ) grid over the upper hemisphere.
-const THETA_CELLS: usize = 12;
-const PHI_CELLS: usize = 24;
-/// Sub-samples per cell side when integrating the density over a cell: enough for the
-/// sharpest lobe tested (GGX α 0.05, about 3° wide) to be integrated to well under 1 %.
-const SUB: usize = 24;
-
-fn cell_of(w: Vec3) -> usize {
-    let theta = w.z.clamp(0.0, 1.0).acos();
-    let c = ((theta / (0.5 * PI) * THETA_CELLS as f32) as usize).min(THETA_CELLS - 1);
-    let phi = w.y.atan2(w.x).rem_euclid(2.0 * PI);
-    let p = ((phi / (2.0 * PI) * PHI_CELLS as f32) as usize).min(PHI_CELLS - 1);
-    c * PHI_CELLS + p
-}
-
-/// ∫ pdf dω over each cell (midpoint rule on a SUB × SUB grid; dω = sin θ dθ dφ).
-fn expected_fractions(bsdf: &Bsdf, wo: Vec3) -> Vec<f64> {
-    let dtheta = 0.5 * std::f64::consts::PI / (THETA_CELLS * SUB) as f64;
-    let dphi = 2.0 * std::f64::consts::PI / (PHI_CELLS * SUB) as f64;
-    (0..THETA_CELLS * PHI_CELLS)
-        .map(|cell| {
-            let (c, p) = (cell / PHI_CELLS, cell % PHI_CELLS);
-            let mut sum = 0.0f64;
-            for i in 0..SUB {
-                let theta = ((c * SUB + i) as f64 + 0.5) * dtheta;
-                for j in 0..SUB {
-                    let phi = ((p * SUB + j) as f64 + 0.5) * dphi;
-                    let (st, ct) = theta.sin_cos();
-                    let wi = Vec3::new((st * phi.cos()) as f32, (st * phi.sin()) as f32, ct as f32);
-                    sum += bsdf.eval(wo, wi).1 as f64 * st * dtheta * dphi;
-                }
-            }
-            sum
-        })
-        .collect()
-}
-
-/// Samples `bsdf` for `wo` and tests the directions against `pdf` (plus the rejected mass:
-/// samples the sampler refuses must be exactly what the density does not cover).
+/// The upper hemisphere in 12 × 24 cells, each integrated on a 24 × 24 grid: fine enough
+/// for the sharpest lobe tested (GGX α 0.05, about 3° wide) to be integrated to well under
+/// 1 %.
 fn chi_square_test(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u64) {
-    let samples = 300_000u64;
-    let mut rng = SplitMix64(seed);
-    let mut counts = vec![0u64; THETA_CELLS * PHI_CELLS + 1];
-    for _ in 0..samples {
-        let u_lobe = rng.unit();
-        let u = Vec2::new(rng.unit(), rng.unit());
-        match bsdf.sample(wo, u_lobe, u) {
-            Some(s) => {
-                assert!(!s.delta, "{name}: a smooth lobe returned a delta sample");
-                assert!(s.pdf > 0.0 && s.weight.is_finite(), "{name}: {s:?}");
-                let (value, pdf) = bsdf.eval(wo, s.wi);
-                assert!(
-                    (pdf - s.pdf).abs() <= 1e-3 * pdf,
-                    "{name}: sample pdf {} vs eval {pdf}",
-                    s.pdf
-                );
-                let weight = value / pdf;
-                assert!(
-                    (weight - s.weight).abs().max_element()
-                        <= 1e-3 * weight.max_element().max(1e-3)
-                );
-                counts[cell_of(s.wi)] += 1;
-            }
-            None => counts[THETA_CELLS * PHI_CELLS] += 1,
-        }
-    }
-    let mut expected = expected_fractions(bsdf, wo);
-    let covered: f64 = expected.iter().sum();
-    expected.push((1.0 - covered).max(0.0));
-    crate::sampling::chi_square::assert_fits(
-        &format!("{name} (∫pdf {covered:.4})"),
-        &counts,
-        &expected,
-        samples,
-    );
+    let grid = Grid {
+        theta_max: 0.5 * std::f64::consts::PI,
+        theta_cells: 12,
+        phi_cells: 24,
+        sub: 24,
+        delta_allowed: false,
+        samples: 300_000,
+    };
+    grid.test(name, bsdf, wo, seed);
 }
 
 fn conductor(roughness: f32, reflectance: Vec3) -> Material {
@@ -141,19 +80,10 @@ fn every_smooth_lobe_samples_its_own_density() {
     }
 }
 
-/// Mean of the sample weights: the directional albedo ∫ f cos dω for `wo`.
+/// The directional albedo ∫ f cos dω of `material` for `wo`.
 fn furnace(material: &Material, wo: Vec3, samples: usize) -> Vec3 {
     let bsdf = Bsdf::new(material, material.albedo, Mat3::IDENTITY, true);
-    let mut rng = SplitMix64(99);
-    let mut total = Vec3::ZERO;
-    for _ in 0..samples {
-        let u_lobe = rng.unit();
-        if let Some(s) = bsdf.sample(wo, u_lobe, Vec2::new(rng.unit(), rng.unit())) {
-            // Radiance weights of refraction carry the η² compression; energy does not.
-            total += s.weight * s.eta_scale;
-        }
-    }
-    total / samples as f32
+    super::test_grid::energy(&bsdf, wo, samples, 99)
 }
 
 #[test]

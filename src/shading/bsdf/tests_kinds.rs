@@ -2,90 +2,28 @@
 //! as the mixture is: sampling against the density by chi-square over the whole sphere,
 //! sample weights against eval/pdf, white furnaces, and the limits each must reach.
 
+use super::test_grid::Grid;
 use super::*;
 use crate::scene::Distribution;
 use crate::splitmix::SplitMix64;
-use std::f32::consts::PI;
 
-const THETA_CELLS: usize = 16;
-const PHI_CELLS: usize = 16;
-/// Sub-samples per cell side: fine enough for the sharpest lobe tested (α 0.05) and for
-/// the edge of rough glass's transmission, where refraction through facets seen edge-on
-/// piles directions up.
-const SUB: usize = 64;
-
-/// Cell of `w` on the whole sphere (θ from +Z over [0, π]).
-fn cell_of(w: Vec3) -> usize {
-    let theta = w.z.clamp(-1.0, 1.0).acos();
-    let c = ((theta / PI * THETA_CELLS as f32) as usize).min(THETA_CELLS - 1);
-    let phi = w.y.atan2(w.x).rem_euclid(2.0 * PI);
-    let p = ((phi / (2.0 * PI) * PHI_CELLS as f32) as usize).min(PHI_CELLS - 1);
-    c * PHI_CELLS + p
-}
-
-fn expected_fractions(bsdf: &Bsdf, wo: Vec3) -> Vec<f64> {
-    let dtheta = std::f64::consts::PI / (THETA_CELLS * SUB) as f64;
-    let dphi = 2.0 * std::f64::consts::PI / (PHI_CELLS * SUB) as f64;
-    (0..THETA_CELLS * PHI_CELLS)
-        .map(|cell| {
-            let (c, p) = (cell / PHI_CELLS, cell % PHI_CELLS);
-            let mut sum = 0.0f64;
-            for i in 0..SUB {
-                let theta = ((c * SUB + i) as f64 + 0.5) * dtheta;
-                for j in 0..SUB {
-                    let phi = ((p * SUB + j) as f64 + 0.5) * dphi;
-                    let (st, ct) = theta.sin_cos();
-                    let wi = Vec3::new((st * phi.cos()) as f32, (st * phi.sin()) as f32, ct as f32);
-                    sum += bsdf.eval(wo, wi).1 as f64 * st * dtheta * dphi;
-                }
-            }
-            sum
-        })
-        .collect()
-}
-
-/// Chi-square of the non-delta samples against `eval`'s density; delta samples (and
-/// refusals) go to one extra cell, whose share is what the density does not cover.
+/// The whole sphere in 16 × 16 cells, each integrated on a 64 × 64 grid: fine enough for
+/// the sharpest lobe tested (α 0.05) and for the edge of rough glass's transmission, where
+/// refraction through facets seen edge-on piles directions up.
 fn chi_square_test(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u64) {
-    let samples = 200_000u64;
-    let mut rng = SplitMix64(seed);
-    let mut counts = vec![0u64; THETA_CELLS * PHI_CELLS + 1];
-    for _ in 0..samples {
-        let u_lobe = rng.unit();
-        match bsdf.sample(wo, u_lobe, Vec2::new(rng.unit(), rng.unit())) {
-            Some(s) if !s.delta => {
-                let (value, pdf) = bsdf.eval(wo, s.wi);
-                assert!((pdf - s.pdf).abs() <= 1e-3 * pdf, "{name}: pdf {} vs {pdf}", s.pdf);
-                let weight = value / pdf;
-                let error = (weight - s.weight).abs().max_element();
-                assert!(error <= 1e-3 * weight.max_element().max(1e-3), "{name}: {s:?}");
-                counts[cell_of(s.wi)] += 1;
-            }
-            _ => counts[THETA_CELLS * PHI_CELLS] += 1,
-        }
-    }
-    let mut expected = expected_fractions(bsdf, wo);
-    let covered: f64 = expected.iter().sum();
-    expected.push((1.0 - covered).max(0.0));
-    crate::sampling::chi_square::assert_fits(
-        &format!("{name} (∫pdf {covered:.4})"),
-        &counts,
-        &expected,
-        samples,
-    );
+    let grid = Grid {
+        theta_max: std::f64::consts::PI,
+        theta_cells: 16,
+        phi_cells: 16,
+        sub: 64,
+        delta_allowed: true,
+        samples: 200_000,
+    };
+    grid.test(name, bsdf, wo, seed);
 }
 
-/// Mean energy of the sample weights (refraction's radiance compression undone).
 fn furnace(bsdf: &Bsdf, wo: Vec3, samples: usize) -> Vec3 {
-    let mut rng = SplitMix64(5);
-    let mut total = Vec3::ZERO;
-    for _ in 0..samples {
-        let u_lobe = rng.unit();
-        if let Some(s) = bsdf.sample(wo, u_lobe, Vec2::new(rng.unit(), rng.unit())) {
-            total += s.weight * s.eta_scale;
-        }
-    }
-    total / samples as f32
+    super::test_grid::energy(bsdf, wo, samples, 5)
 }
 
 fn plastic(base: Vec3, alpha: f32, distribution: Distribution, nonlinear: bool) -> Material {
