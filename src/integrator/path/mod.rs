@@ -1,8 +1,11 @@
 //! Path tracing with next-event estimation and multiple importance sampling (power
 //! heuristic): at every non-specular hit, one shadow ray per point/directional light,
 //! `light_samples` to points sampled on emitters and `light_samples` towards the
-//! environment; then the BSDF picks the next direction.
+//! environment; then the BSDF picks the next direction, the last bounce included (one more
+//! ray then collects only the emission it finds, MIS-weighted: `light_sampling`).
 //! Only the random dimensions the scene's effects call for are drawn.
+
+mod light_sampling;
 
 use super::PathSample;
 use super::trace::SceneTracer;
@@ -12,7 +15,6 @@ use crate::render_scene::RenderScene;
 use crate::sampling::{SampleStream, frame_from_normal};
 use crate::shading::bsdf::{Bsdf, Energy};
 use crate::shading::material::{MaskOpacity, Material};
-use crate::shading::spawn::SurfacePoint;
 use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
 use glam::{Mat3, Quat, Vec2, Vec3};
@@ -36,18 +38,6 @@ pub struct PathTracer<'a> {
 fn sampling_from_world() -> Mat3 {
     let generic = Vec3::new(0.267_261_24, 0.534_522_5, 0.801_783_7);
     Mat3::from_quat(Quat::from_rotation_arc(generic, Vec3::Z))
-}
-
-/// Power-heuristic weight of a strategy with density `a` against one with density `b`.
-fn power_heuristic(a: f32, b: f32) -> f32 {
-    let (a2, b2) = (a * a, b * b);
-    if a2 + b2 > 0.0 && a2.is_finite() {
-        a2 / (a2 + b2)
-    } else if a2.is_infinite() {
-        1.0
-    } else {
-        0.0
-    }
 }
 
 impl<'a> PathTracer<'a> {
@@ -116,134 +106,6 @@ impl<'a> PathTracer<'a> {
                 (c.x + c.y + c.z) / 3.0
             }
         }
-    }
-
-    /// Light arriving directly from the lights at `si` and scattered towards `wo`.
-    #[allow(clippy::too_many_arguments)]
-    fn direct_light(
-        &self,
-        si: &SurfaceInteraction,
-        bsdf: &Bsdf,
-        wo: Vec3,
-        time: f32,
-        stream: &mut SampleStream,
-        stats: &mut RenderStats,
-    ) -> Vec3 {
-        let lights = &self.tracer.scene.lights;
-        let p = si.surface.point;
-        // Light from the side the surface faces; from both for rough glass, where the
-        // shading normal must then agree with the surface about the side.
-        let transmits = bsdf.transmits();
-        let faces = |wi: Vec3| {
-            let above = si.surface.normal.dot(wi) > 0.0;
-            above && (!transmits || si.shading_normal.dot(wi) > 0.0)
-                || transmits && !above && si.shading_normal.dot(wi) < 0.0
-        };
-        let mut sum = Vec3::ZERO;
-        for light in &lights.points {
-            let to_light = light.position - p;
-            let dist2 = to_light.length_squared();
-            let wi = to_light / dist2.sqrt();
-            let (f_cos, _) = bsdf.eval(wo, wi);
-            if f_cos == Vec3::ZERO || !faces(wi) || !(dist2 > 0.0) {
-                continue;
-            }
-            let shadow =
-                self.tracer.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
-            if !self.occluded(&shadow, stats) {
-                sum += f_cos * light.intensity_towards(-wi) / dist2;
-            }
-        }
-        for light in &lights.directional {
-            let wi = -light.direction;
-            let (f_cos, _) = bsdf.eval(wo, wi);
-            if f_cos == Vec3::ZERO || !faces(wi) {
-                continue;
-            }
-            if !self.occluded(&self.tracer.spawn.ray(&si.surface, wi, time), stats) {
-                sum += f_cos * light.irradiance;
-            }
-        }
-        if lights.has_emitters() {
-            let n = self.light_samples as f32;
-            for _ in 0..self.light_samples {
-                // The light point takes the draw's best stratified pair, the light choice
-                // the other two.
-                let [u0, u1, u2, u3] = stream.next_4d();
-                // A point on the shading point's own emitter is a sample like any other: a
-                // concave emitter lights itself, and its BSDF hits are MIS-weighted against it.
-                let Some(sample) = lights.sample_emitter(p, Vec2::new(u2, u3), Vec2::new(u0, u1))
-                else {
-                    continue;
-                };
-                let to_light = sample.point - p;
-                let dist2 = to_light.length_squared();
-                let wi = to_light / dist2.sqrt();
-                let cos_light = sample.emitted_cosine(-wi);
-                if !faces(wi) || !(cos_light > 0.0) || !(dist2 > 0.0) {
-                    continue;
-                }
-                let (f_cos, pdf_bsdf) = bsdf.eval(wo, wi);
-                if f_cos == Vec3::ZERO {
-                    continue;
-                }
-                let target = SurfacePoint {
-                    point: sample.point,
-                    error: sample.error,
-                    normal: sample.normal,
-                };
-                if self.occluded(&self.tracer.spawn.ray_to(&si.surface, &target, time), stats) {
-                    continue;
-                }
-                let pdf_light = sample.pdf;
-                // An invisible emitter (the course's area light) can never be found by the
-                // BSDF sample either.
-                let weight =
-                    if sample.visible { power_heuristic(n * pdf_light, pdf_bsdf) } else { 1.0 };
-                sum += f_cos * sample.emission * (weight / (n * pdf_light));
-            }
-        }
-        if let Some(environment) = lights.environment.as_ref().filter(|e| e.is_lit()) {
-            let n = self.light_samples as f32;
-            for _ in 0..self.light_samples {
-                let Some(sample) = environment.sample(stream.next_2d()) else { continue };
-                if !faces(sample.wi) {
-                    continue;
-                }
-                let (f_cos, pdf_bsdf) = bsdf.eval(wo, sample.wi);
-                if f_cos == Vec3::ZERO
-                    || self.occluded(&self.tracer.spawn.ray(&si.surface, sample.wi, time), stats)
-                {
-                    continue;
-                }
-                let weight = power_heuristic(n * sample.pdf, pdf_bsdf);
-                sum += f_cos * sample.radiance * (weight / (n * sample.pdf));
-            }
-        }
-        sum
-    }
-
-    /// MIS weight of the environment's radiance found by BSDF sampling (density `pdf_bsdf`)
-    /// along `dir`.
-    fn environment_weight(&self, dir: Vec3, pdf_bsdf: f32) -> f32 {
-        match &self.tracer.scene.lights.environment {
-            Some(environment) => {
-                power_heuristic(pdf_bsdf, self.light_samples as f32 * environment.pdf(dir))
-            }
-            None => 1.0,
-        }
-    }
-
-    /// MIS weight of emission found at `si` by BSDF sampling with density `pdf_bsdf` from
-    /// the shading point `from`.
-    fn emission_weight(&self, from: Vec3, si: &SurfaceInteraction, pdf_bsdf: f32) -> f32 {
-        let lights = &self.tracer.scene.lights;
-        let point = si.surface.point;
-        let Some(pdf_light) = lights.pdf(from, si.geom_id, si.prim_id, point, si.surface.normal)
-        else {
-            return 1.0; // not sampled by next-event estimation
-        };
-        power_heuristic(pdf_bsdf, self.light_samples as f32 * pdf_light)
     }
 
     /// The acceleration structure paths are traced with.
@@ -410,12 +272,5 @@ mod tests {
             assert!((f.z_axis - n).length() < 1e-6);
             assert!(f.x_axis.dot(f.y_axis).abs() < 1e-5 && f.x_axis.dot(n).abs() < 1e-5);
         }
-    }
-
-    #[test]
-    fn power_heuristic_handles_extremes() {
-        assert_eq!(power_heuristic(1.0, 0.0), 1.0);
-        assert_eq!(power_heuristic(0.0, 0.0), 0.0);
-        assert!((power_heuristic(1.0, 1.0) - 0.5).abs() < 1e-6);
     }
 }
