@@ -371,3 +371,27 @@ fn compare_reads_two_exrs_linearly() {
     assert!(!dir.join("h.png").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_black_image_is_said_not_silently_written() {
+    let dir = temp_dir("black");
+    // The quad light above the sphere emits along u × v = +y: away from it.
+    let scene = "[camera]\nlookfrom = [0.0, 0.0, -5.0]\nlookat = [0.0, 0.0, 0.0]\nvfov = 40.0\n\
+        resolution = [16, 16]\n[materials.white]\nalbedo = [0.8, 0.8, 0.8]\n[[objects]]\n\
+        type = \"sphere\"\nmaterial = \"white\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\n\
+        [[lights]]\ntype = \"quad\"\ncorner = [-1.0, 3.0, -1.0]\nu = [0.0, 0.0, 2.0]\n\
+        v = [2.0, 0.0, 0.0]\nemission = [5.0, 5.0, 5.0]\n";
+    std::fs::write(dir.join("away.toml"), scene).unwrap();
+    let out = embray(&["render", "away.toml", "--spp", "2"], &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("warning: the image is black"), "{stderr}");
+    let lit = scene.replace(
+        "u = [0.0, 0.0, 2.0]\nv = [2.0, 0.0, 0.0]",
+        "u = [2.0, 0.0, 0.0]\nv = [0.0, 0.0, 2.0]",
+    );
+    std::fs::write(dir.join("lit.toml"), lit).unwrap();
+    let out = embray(&["render", "lit.toml", "--spp", "2"], &dir);
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("black"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -68,6 +68,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     for job in &jobs {
         let options = args.to_options(&job.scene)?;
         let output = render(&job.scene, &options)?;
+        if output.film.color.iter().all(|c| *c == glam::Vec3::ZERO) && !args.quiet {
+            // A black image with exit 0 is the worst kind of silence: say what to look at.
+            super::console::note(
+                "warning: the image is black: no light reached the camera (an emitter facing \
+                 away from the scene (a quad emits along u × v), a light inside a closed \
+                 object, max_depth 0?); `embray info` lists the lights",
+            );
+        }
         if let Some(exr) = &job.exr {
             files.write(exr, |w| encode_exr(&output.film, w))?;
         }
