@@ -149,10 +149,9 @@ impl Bsdf {
         Bsdf { unmapped: Some(unmapped), ..self }
     }
 
-    /// The bump terminator's shadowing of light from `wi`, or none if `wi` is on different
-    /// sides of the mapped and unmapped normals.
-    fn bump_shadowing(&self, wi: Vec3) -> Option<f32> {
-        let Some(unmapped) = self.unmapped else { return Some(1.0) };
+    /// The bump terminator's shadowing of light from `wi` on a mapped normal whose
+    /// unmapped one is `unmapped`, or none if `wi` is on different sides of the two.
+    fn bump_shadowing(&self, unmapped: Vec3, wi: Vec3) -> Option<f32> {
         let mapped = self.frame.z_axis;
         let cos_unmapped = wi.dot(unmapped);
         if cos_unmapped * wi.dot(mapped) <= 0.0 {
@@ -200,8 +199,13 @@ impl Bsdf {
             Scatter::RoughDielectric(d) => d.eval(local(wo), local(wi)),
             Scatter::Black => (Vec3::ZERO, 0.0),
         };
-        let Some(shadowing) = self.bump_shadowing(wi) else { return (Vec3::ZERO, 0.0) };
-        let value = if self.unmapped.is_some() { value * shadowing } else { value };
+        let value = match self.unmapped {
+            None => value,
+            Some(unmapped) => match self.bump_shadowing(unmapped, wi) {
+                Some(shadowing) => value * shadowing,
+                None => return (Vec3::ZERO, 0.0),
+            },
+        };
         if self.opacity == 1.0 { (value, pdf) } else { (value * self.opacity, pdf * self.opacity) }
     }
 
@@ -212,11 +216,12 @@ impl Bsdf {
         }
         // The weights f·cos/pdf of the rest are unchanged: both carry the opacity.
         let u_lobe = if self.opacity == 1.0 { u_lobe } else { u_lobe / self.opacity };
-        let local = self.frame.transpose() * wo;
+        // The mixture keeps its own frame; the other kinds work in the local one.
+        let local = || self.frame.transpose() * wo;
         let mut sample = match &self.scatter {
             Scatter::Mixture(m) => return m.sample(wo, u_lobe, u).and_then(|s| self.masked(s)),
-            Scatter::Plastic(p) => p.sample(local, u_lobe, u)?,
-            Scatter::RoughDielectric(d) => d.sample(local, u_lobe, u)?,
+            Scatter::Plastic(p) => p.sample(local(), u_lobe, u)?,
+            Scatter::RoughDielectric(d) => d.sample(local(), u_lobe, u)?,
             Scatter::Black => return None,
         };
         sample.wi = self.frame * sample.wi;
@@ -229,8 +234,8 @@ impl Bsdf {
         if self.opacity != 1.0 {
             sample.pdf *= self.opacity;
         }
-        if self.unmapped.is_some() {
-            sample.weight *= self.bump_shadowing(sample.wi)?;
+        if let Some(unmapped) = self.unmapped {
+            sample.weight *= self.bump_shadowing(unmapped, sample.wi)?;
         }
         Some(sample)
     }

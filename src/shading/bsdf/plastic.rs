@@ -45,9 +45,10 @@ impl Plastic {
         Vec3::ONE
     }
 
-    /// Probability of sampling the coating's reflection for the view at `cos_o`.
-    fn p_specular(&self, cos_o: f32) -> f32 {
-        let reflected = 1.0 - self.coating.transmittance(cos_o);
+    /// Probability of sampling the coating's reflection for a view through which the
+    /// coating lets `entering` of the light in.
+    fn p_specular(&self, entering: f32) -> f32 {
+        let reflected = 1.0 - entering;
         let specular = reflected * self.specular_weight;
         let diffuse = (1.0 - reflected) * (1.0 - self.specular_weight);
         if specular + diffuse > 0.0 { specular / (specular + diffuse) } else { 0.0 }
@@ -58,8 +59,9 @@ impl Plastic {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return (Vec3::ZERO, 0.0);
         }
-        let p_specular = self.p_specular(wo.z);
-        let through = self.coating.transmittance(wo.z) * self.coating.transmittance(wi.z);
+        let entering = self.coating.transmittance(wo.z);
+        let p_specular = self.p_specular(entering);
+        let through = entering * self.coating.transmittance(wi.z);
         let mut value = self.diffuse * (through * wi.z * FRAC_1_PI);
         let mut pdf = (1.0 - p_specular) * wi.z * FRAC_1_PI;
         if let Some(microfacet) = &self.microfacet {
@@ -80,7 +82,7 @@ impl Plastic {
         if wo.z <= 0.0 {
             return None;
         }
-        let p_specular = self.p_specular(wo.z);
+        let p_specular = self.p_specular(self.coating.transmittance(wo.z));
         let wi = if u_lobe < p_specular {
             let Some(microfacet) = &self.microfacet else {
                 let fresnel = fresnel_dielectric(wo.z, self.eta);

@@ -16,25 +16,32 @@ fn texel(image: &TextureImage, i: i64, j: i64) -> Vec3 {
 
 /// The image's colour at `uv`.
 pub fn lookup(image: &TextureImage, interpolation: Interpolation, uv: Vec2) -> Vec3 {
+    match interpolation {
+        // Wraps and weighs on its own (the light kinds share it).
+        Interpolation::BilinearCentered => image.centred_bilinear(uv),
+        Interpolation::Nearest => course_lookup(image, uv, false),
+        Interpolation::Bilinear => course_lookup(image, uv, true),
+    }
+}
+
+/// The course's lookups: the texel the point lies in, or blended with the next ones.
+fn course_lookup(image: &TextureImage, uv: Vec2, bilinear: bool) -> Vec3 {
     let wrapped = uv - uv.floor();
     if !wrapped.is_finite() {
         return Vec3::ZERO;
     }
     let x = wrapped.x * image.width as f32;
     let y = wrapped.y * image.height as f32;
-    match interpolation {
-        Interpolation::Nearest => texel(image, x.floor() as i64, y.floor() as i64),
-        Interpolation::Bilinear => {
-            let (p, q) = (x.floor(), y.floor());
-            let (dx, dy) = (x - p, y - q);
-            let (p, q) = (p as i64, q as i64);
-            texel(image, p, q) * (1.0 - dx) * (1.0 - dy)
-                + texel(image, p + 1, q) * dx * (1.0 - dy)
-                + texel(image, p, q + 1) * (1.0 - dx) * dy
-                + texel(image, p + 1, q + 1) * dx * dy
-        }
-        Interpolation::BilinearCentered => image.centred_bilinear(uv),
+    let (p, q) = (x.floor(), y.floor());
+    let (dx, dy) = (x - p, y - q);
+    let (p, q) = (p as i64, q as i64);
+    if !bilinear {
+        return texel(image, p, q);
     }
+    texel(image, p, q) * (1.0 - dx) * (1.0 - dy)
+        + texel(image, p + 1, q) * dx * (1.0 - dy)
+        + texel(image, p, q + 1) * (1.0 - dx) * dy
+        + texel(image, p + 1, q + 1) * dx * dy
 }
 
 #[cfg(test)]
