@@ -39,6 +39,28 @@ fn mtl_colour_with_two_numbers_is_an_error_not_a_panic() {
     assert_contains(&err, &["short_kd.mtl: Kd needs 3 numbers", "(line 2)"]);
 }
 
+/// Found by fuzzing the MTL reader: a statement tobj cannot parse was "invalid MTL file:
+/// material parse error" naming the OBJ, with no line.
+#[test]
+fn mtl_statements_tobj_cannot_parse_name_the_mtl_and_the_line() {
+    let dir = temp_dir("mtl-statements");
+    let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+    std::fs::write(dir.join("m.obj"), obj).unwrap();
+    let cases = [
+        ("Ns shiny", "Ns needs a number"),
+        ("d", "d needs a number"),
+        ("illum 300", "illum needs a whole number from 0 to 255"),
+        ("map_Kd", "map_Kd needs a file name"),
+    ];
+    for (statement, expected) in cases {
+        std::fs::write(dir.join("m.mtl"), format!("newmtl red\nKd 1 1 1\n{statement}\n")).unwrap();
+        let scene = scene_with("[[objects]]\ntype = \"mesh\"\nfile = \"m.obj\"\n");
+        let err = embray::scene::load_str(&scene, &dir.join("s.toml")).unwrap_err().to_string();
+        assert_contains(&err, &[&format!("m.mtl: {expected}"), "(line 3)"]);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 fn ply_object(file: &str) -> String {
     scene_with(&format!("[[objects]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"{file}\"\n"))
 }

@@ -105,9 +105,16 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
             return Err(tobj::LoadError::MaterialParseError);
         }
         let loaded = tobj::load_mtl_buf(&mut mtl_text.as_bytes());
-        if let Ok((materials, _)) = &loaded {
-            for m in materials {
-                mtl_of_material.borrow_mut().insert(m.name.clone(), mtl.clone());
+        match &loaded {
+            Ok((materials, _)) => {
+                for m in materials {
+                    mtl_of_material.borrow_mut().insert(m.name.clone(), mtl.clone());
+                }
+            }
+            // What the scan does not foresee still names the MTL file, not the OBJ.
+            Err(e) => {
+                let problem = format!("invalid MTL file: {e}");
+                *mtl_error.borrow_mut() = Some(obj_ref.error(&mtl, problem, Line(None)));
             }
         }
         loaded

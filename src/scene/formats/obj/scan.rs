@@ -1,6 +1,6 @@
 //! A pass over OBJ and MTL text before tobj sees it, for the problems tobj reports without
 //! a line (or not at all, or by panicking): non-finite coordinates, out-of-range face
-//! indices, colour statements with fewer than 3 numbers.
+//! indices, MTL statements tobj cannot parse.
 
 /// A problem with its 1-based line.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -150,14 +150,32 @@ fn check_face_vertex(word: &str, seen: &[usize; 3], totals: &[usize; 3]) -> Resu
 /// tobj panics on a colour statement (`Ka`, `Kd`, `Ks`, `Ke`) with fewer than 3 values.
 pub(crate) fn scan_mtl(text: &str) -> Result<(), ScanProblem> {
     for (n, line) in text.lines().enumerate() {
+        let problem = |message: String| ScanProblem { line: n + 1, message };
+        let line = line.trim();
         let mut words = line.split_whitespace();
-        if let Some(keyword @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next() {
-            if words.count() < 3 {
-                return Err(ScanProblem {
-                    line: n + 1,
-                    message: format!("{keyword} needs 3 numbers"),
-                });
+        let Some(keyword) = words.next() else { continue };
+        let number = |w: Option<&str>| w.is_some_and(|w| w.parse::<f32>().is_ok());
+        // The statements tobj parses, checked as it parses them (it fails without a line).
+        match keyword {
+            "Ka" | "Kd" | "Ks" | "Ke"
+                if words.clone().take(3).filter(|w| w.parse::<f32>().is_ok()).count() < 3 =>
+            {
+                return Err(problem(format!("{keyword} needs 3 numbers")));
             }
+            "Ns" | "Ni" | "d" if !number(words.next()) => {
+                return Err(problem(format!("{keyword} needs a number")));
+            }
+            "illum" if words.next().is_none_or(|w| w.parse::<u8>().is_err()) => {
+                return Err(problem("illum needs a whole number from 0 to 255".into()));
+            }
+            "newmtl" | "map_Ka" | "map_Kd" | "map_Ks" | "map_Bump" | "map_bump" | "map_Ns"
+            | "map_ns" | "map_NS" | "bump" | "map_d"
+                if words.next().is_none() =>
+            {
+                let what = if keyword == "newmtl" { "a material name" } else { "a file name" };
+                return Err(problem(format!("{keyword} needs {what}")));
+            }
+            _ => {}
         }
     }
     Ok(())
