@@ -69,9 +69,7 @@ impl PngComparison {
 pub fn read_rgb(path: &Path) -> Result<RgbImage, CompareError> {
     let error = |message: String| CompareError::Read { path: path.to_path_buf(), message };
     let bytes = crate::scene::read_input_bytes(path).map_err(|e| error(e.to_string()))?;
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
-        .with_guessed_format()
-        .map_err(|e| error(e.to_string()))?;
+    let mut reader = crate::image_decode::reader(&bytes).map_err(error)?;
     // The header's size is checked before the decoder allocates for it: a render's size at
     // most, as any image embray wrote is.
     let mut limits = image::Limits::default();

@@ -23,6 +23,7 @@ pub mod exr_rgb;
 pub mod film;
 pub mod float_error;
 pub mod fuzz;
+pub mod image_decode;
 pub mod image_error;
 pub mod info;
 pub mod input_file;

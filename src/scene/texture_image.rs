@@ -31,18 +31,6 @@ impl ImageRef<'_> {
     }
 }
 
-/// Whether a JPEG's last scan is followed by the end-of-image marker (FF D9). Inside scan
-/// data an FF byte is always followed by 00 or a restart marker, so FF D9 after the last
-/// start-of-scan (FF DA) is the end of the image, never pixel data; an embedded thumbnail's
-/// markers all come before the main image's scans.
-fn jpeg_is_complete(bytes: &[u8]) -> bool {
-    let last = |marker: u8| bytes.windows(2).rposition(|w| w == [0xFF, marker]);
-    match (last(0xDA), last(0xD9)) {
-        (Some(scan), Some(end)) => end > scan,
-        _ => false,
-    }
-}
-
 /// sRGB's transfer function, from an encoded value in [0, 1] to linear.
 fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
@@ -52,26 +40,15 @@ fn srgb_to_linear(c: f32) -> f32 {
 /// otherwise they keep the file's own units (0–255 for 8-bit files, 0–65535 for 16-bit).
 pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
     let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
-    let reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
-        .with_guessed_format()
-        .map_err(|e| at.error(e.to_string()))?;
-    if reader.format().is_none() {
-        return Err(at.error("not a PNG, JPEG or BMP image"));
-    }
-    // The JPEG decoder fills what a cut file lacks with grey and says nothing.
-    if reader.format() == Some(image::ImageFormat::Jpeg) && !jpeg_is_complete(&bytes) {
-        return Err(at.error("the JPEG ends before its end-of-image marker: the file is cut short"));
-    }
-    let (width, height) = reader.into_dimensions().map_err(|e| at.error(e.to_string()))?;
+    let checked = || crate::image_decode::reader(&bytes).map_err(|e| at.error(e));
+    let (width, height) = checked()?.into_dimensions().map_err(|e| at.error(e.to_string()))?;
     let texels = u64::from(width) * u64::from(height);
     if texels == 0 || texels > MAX_TEXTURE_TEXELS {
         return Err(at.error(format!(
             "{width} × {height} texels; a texture takes 1 to {MAX_TEXTURE_TEXELS} texels"
         )));
     }
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(&bytes))
-        .with_guessed_format()
-        .map_err(|e| at.error(e.to_string()))?;
+    let mut reader = checked()?;
     let mut limits = image::Limits::default();
     limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 16);
     reader.limits(limits);

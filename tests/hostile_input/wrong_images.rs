@@ -114,3 +114,18 @@ fn an_obj_vertex_at_4e10_names_the_mesh_file() {
         ],
     );
 }
+
+/// A JPEG cut short decodes with its missing rows grey: `compare` measured a difference
+/// against an image the file does not hold (a texture cut short was already refused).
+#[test]
+fn compare_refuses_a_jpeg_cut_short() {
+    let scratch = Scratch::new();
+    let noise =
+        image::RgbImage::from_fn(64, 64, |x, y| image::Rgb([(x * 7) as u8, (y * 5) as u8, 9]));
+    let mut jpeg = Vec::new();
+    noise.write_to(&mut std::io::Cursor::new(&mut jpeg), image::ImageFormat::Jpeg).unwrap();
+    scratch.write("whole.jpg", &jpeg);
+    scratch.write("cut.jpg", &jpeg[..jpeg.len() * 2 / 3]);
+    accepted_in(&scratch, &["compare", "whole.jpg", "whole.jpg"]);
+    refused_in(&scratch, &["compare", "whole.jpg", "cut.jpg"], &["cut.jpg", "cut short"]);
+}

@@ -1,0 +1,31 @@
+//! The checks every PNG, JPEG or BMP input gets before the `image` crate decodes it
+//! (textures, radiance maps, `compare`'s images): a known format, and a JPEG that is not
+//! cut short (its decoder fills what a cut file lacks with grey and says nothing).
+
+use image::{ImageFormat, ImageReader};
+use std::io::Cursor;
+
+/// A reader of `bytes` whose format is known and which, if a JPEG, is complete.
+pub fn reader(bytes: &[u8]) -> Result<ImageReader<Cursor<&[u8]>>, String> {
+    let reader =
+        ImageReader::new(Cursor::new(bytes)).with_guessed_format().map_err(|e| e.to_string())?;
+    match reader.format() {
+        None => Err("not a PNG, JPEG or BMP image".into()),
+        Some(ImageFormat::Jpeg) if !jpeg_is_complete(bytes) => {
+            Err("the JPEG ends before its end-of-image marker: the file is cut short".into())
+        }
+        Some(_) => Ok(reader),
+    }
+}
+
+/// Whether a JPEG's last scan is followed by the end-of-image marker (FF D9). Inside scan
+/// data an FF byte is always followed by 00 or a restart marker, so FF D9 after the last
+/// start-of-scan (FF DA) is the end of the image, never pixel data; an embedded thumbnail's
+/// markers all come before the main image's scans.
+fn jpeg_is_complete(bytes: &[u8]) -> bool {
+    let last = |marker: u8| bytes.windows(2).rposition(|w| w == [0xFF, marker]);
+    match (last(0xDA), last(0xD9)) {
+        (Some(scan), Some(end)) => end > scan,
+        _ => false,
+    }
+}
