@@ -71,6 +71,8 @@ pub fn read(bytes: &[u8]) -> Result<(u32, u32, Vec<Vec3>), String> {
         (_, _, _, Some(y)) => (y.clone(), y.clone(), y),
         _ => return Err("it has neither R, G, B channels nor a Y channel".to_owned()),
     };
+    // The other channels (depth, normals, …) go before the texels are made.
+    drop(layer);
     let pixels = width * height;
     if [r.len(), g.len(), b.len()].iter().any(|&n| n != pixels) {
         return Err("its channels hold fewer values than its size".to_owned());

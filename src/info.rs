@@ -72,6 +72,16 @@ pub fn describe(scene: &SceneDesc) -> String {
     }
     let moving = scene.objects.iter().filter(|o| o.is_moving()).count();
     out += &format!("moving objects: {moving}\n");
+    let mib = |backend: crate::accel::BackendKind| {
+        let estimate = crate::scene::budget::memory_needed(scene, backend.bytes_per_triangle());
+        estimate.bytes as f64 / 1048576.0
+    };
+    out += &format!(
+        "memory estimate: {:.1} MiB on embree, {:.1} MiB on obvhs ({})\n",
+        mib(crate::accel::BackendKind::Embree),
+        mib(crate::accel::BackendKind::Obvhs),
+        crate::scene::budget::memory_needed(scene, 0)
+    );
     match to_render_scene(scene, RenderSpace::Cameraworld, EffectsMode::Auto) {
         Ok(render_scene) => {
             out += &format!(

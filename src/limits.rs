@@ -30,23 +30,37 @@ pub const MAX_WORLD_COORDINATE: f64 = 1e12;
 /// The smallest `f_number`: a lens faster than f/0.01 is an infinite aperture in all but name.
 pub const MIN_F_NUMBER: f64 = 0.01;
 
-/// Bytes per pixel a render holds at its peak: the exact fixed-point sums of every pixel,
-/// the film resolved from them, and the EXR channels and PNG pixels while encoding.
-/// Measured as the peak resident memory of `embray render` (Cornell box, 1 spp, either
-/// backend): 257 bytes per pixel at 2048² and 4096², 259–268 at 1024² with the fixed part;
-/// `tests/memory_model.rs` holds the estimate between the measured peak and 1.5 times it.
+// The memory model: a render's peak resident memory is BASE_BYTES plus a cost per pixel,
+// object placement, mesh triangle and texture texel, each measured by
+// `scripts/memory_model.py` (peak RSS of `embray render` as one count grows, both backends,
+// path tracer and Whitted alike) and checked by `tests/memory_model.rs` (the estimate
+// covers the measured peak and stays within 1.5 times it).
+
+/// Bytes per pixel: the exact fixed-point sums of every pixel, the film resolved from them,
+/// and the EXR channels and PNG pixels while encoding (measured: 257).
 pub const BYTES_PER_PIXEL: u64 = 270;
 /// Bytes every render holds whatever its size: the binary, the runtime, Embree's library
 /// and the bundled scenes (measured: 10–14 MiB beyond the pixels; 24 leaves room for
 /// another machine's Embree kernels).
 pub const BASE_BYTES: u64 = 24 << 20;
 /// Bytes per object placement: the scene description, its render-space instance and its
-/// share of the top-level BVH (measured: 540 per `repeat` copy).
-pub const BYTES_PER_OBJECT: u64 = 640;
-/// Bytes per mesh triangle: f64 positions and indices, the render-space copy, the BVH
-/// (Embree 67, obvhs 93 bytes per triangle) and, for meshes up to 32k triangles, the kept
-/// triangle planes (44).
-pub const BYTES_PER_TRIANGLE: u64 = 200;
+/// share of the top-level BVH (measured: 1047 on Embree, 957 on obvhs).
+pub const BYTES_PER_OBJECT: u64 = 1100;
+/// Bytes per mesh triangle on Embree: f64 positions and indices, the render-space copy,
+/// Embree's BVH and its build (measured: 161).
+pub const BYTES_PER_TRIANGLE_EMBREE: u64 = 175;
+/// Bytes per mesh triangle on obvhs: as on Embree, with obvhs's BVH and the memory its
+/// build holds at its peak (measured: 330).
+pub const BYTES_PER_TRIANGLE_OBVHS: u64 = 345;
+/// Bytes per texel of a PNG, JPEG or BMP image: the texels (12 bytes) and, while loading,
+/// the image as decoded (measured: 18, 8-bit RGB noise).
+pub const BYTES_PER_TEXEL: u64 = 20;
+/// Bytes per texel of an EXR image: the texels and, while loading, its channels as
+/// decoded (measured: 25 for a map with R, G, B, Z and normals, as embray writes them).
+pub const BYTES_PER_HDR_TEXEL: u64 = 30;
+/// Bytes per texel of an environment map's sampling table, beyond the texel itself
+/// (measured: 22).
+pub const BYTES_PER_SAMPLED_TEXEL: u64 = 24;
 
 /// The memory this process may still use: the smallest of the kernel's MemAvailable, the
 /// cgroup's limit (in a container) and `EMBRAY_MAX_MEMORY` (bytes: a budget for a shared

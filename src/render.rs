@@ -106,7 +106,7 @@ pub fn render_part(
         return Err(RenderError::Option { what: "pixels × spp", value: samples, max });
     }
     part.check((desc.camera.width, desc.camera.height), TILE_SIZE, options.spp.max(1))?;
-    crate::scene::budget::check_memory(desc)?;
+    crate::scene::budget::check_memory(desc, options.backend.bytes_per_triangle())?;
     let run = || -> Result<PartOutput, RenderError> {
         let scene = prepare_scene(desc, options)?;
         let build_start = Instant::now();

@@ -10,6 +10,16 @@ pub enum BackendKind {
     Obvhs,
 }
 
+impl BackendKind {
+    /// The memory one mesh triangle costs a render on this backend (`crate::limits`).
+    pub fn bytes_per_triangle(self) -> u64 {
+        match self {
+            BackendKind::Embree => crate::limits::BYTES_PER_TRIANGLE_EMBREE,
+            BackendKind::Obvhs => crate::limits::BYTES_PER_TRIANGLE_OBVHS,
+        }
+    }
+}
+
 /// How long a backend may spend building its BVH to make traversal faster.
 ///
 /// Measured here (`benches/throughput.rs`, one thread, 256×256 camera rays): with Embree

@@ -2,32 +2,25 @@
 //! coordinate range and the memory the render will need against the memory the machine has.
 
 use crate::limits::{
-    BASE_BYTES, BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_TRIANGLE, MAX_COORDINATE,
-    MAX_WORLD_COORDINATE, memory_available,
+    BASE_BYTES, BYTES_PER_HDR_TEXEL, BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL,
+    BYTES_PER_TEXEL, MAX_COORDINATE, MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc};
+use crate::texels::TextureImage;
 use glam::DVec3;
 use std::collections::HashSet;
+use std::sync::Arc;
 
 #[derive(Debug, thiserror::Error)]
 pub enum LimitError {
     #[error(
-        "{}: rendering it needs about {:.1} GiB of memory ({width}x{height} pixels at \
-         {BYTES_PER_PIXEL} bytes each, {objects} object placements, {triangles} mesh \
-         triangles), but only {:.1} GiB are available; lower camera.resolution (or the \
-         CENG795 ImageResolution), or the number of objects and repeat copies",
-        .file.display(), gib(*.needed), gib(*.available)
+        "{}: rendering it needs about {} of memory ({}), but only {} are \
+         available; lower camera.resolution (or the CENG795 ImageResolution), the number of \
+         objects and repeat copies, or the size of the textures",
+        .file.display(), size(.estimate.bytes), .estimate, size(*.available)
     )]
-    Memory {
-        file: std::path::PathBuf,
-        needed: u64,
-        available: u64,
-        width: u32,
-        height: u32,
-        objects: usize,
-        triangles: u64,
-    },
+    Memory { file: std::path::PathBuf, estimate: MemoryEstimate, available: u64 },
     #[error(
         "{}: {what} reaches the coordinate {value:e}, beyond the supported range ±{limit:e} \
          ({frame}, after --offset); {advice}",
@@ -43,44 +36,103 @@ pub enum LimitError {
     },
 }
 
-fn gib(bytes: u64) -> f64 {
-    bytes as f64 / (1u64 << 30) as f64
+/// A memory size in GiB, or in MiB below one GiB.
+fn size(bytes: u64) -> String {
+    match bytes >= 1 << 30 {
+        true => format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64),
+        false => format!("{:.1} MiB", bytes as f64 / (1u64 << 20) as f64),
+    }
 }
 
-/// The memory a render of `desc` needs, in bytes (an estimate from the counts above).
-pub fn memory_needed(desc: &SceneDesc) -> (u64, usize, u64) {
+/// The memory a render needs, in bytes, and the counts it is estimated from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MemoryEstimate {
+    pub bytes: u64,
+    pub width: u32,
+    pub height: u32,
+    pub pixels: u64,
+    pub objects: u64,
+    pub triangles: u64,
+    pub texels: u64,
+    /// Of those, texels of EXR images (dearer to load).
+    pub hdr_texels: u64,
+    /// Texels of images that also get a sampling table (environment maps).
+    pub sampled_texels: u64,
+}
+
+impl std::fmt::Display for MemoryEstimate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}x{} pixels, {} object placements, {} mesh triangles, {} texture texels",
+            self.width, self.height, self.objects, self.triangles, self.texels
+        )
+    }
+}
+
+/// The memory a render of `desc` needs on a backend whose BVH and build take
+/// `bytes_per_triangle` (`BackendKind::bytes_per_triangle`): the counts of what the render
+/// holds, each at its measured cost (`crate::limits`). Shared meshes and images count once.
+pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64) -> MemoryEstimate {
     let pixels = u64::from(desc.camera.width) * u64::from(desc.camera.height);
     let mut meshes = HashSet::new();
     let mut triangles = 0u64;
     for object in &desc.objects {
         if let ShapeDesc::Mesh(mesh) = &object.shape {
-            if meshes.insert(std::sync::Arc::as_ptr(mesh)) {
+            if meshes.insert(Arc::as_ptr(mesh)) {
                 triangles += mesh.indices.len() as u64;
             }
         }
     }
+    let mut images = HashSet::new();
+    let (mut texels, mut hdr_texels, mut sampled_texels) = (0u64, 0u64, 0u64);
+    let mut count = |image: &Arc<TextureImage>, sampled: bool| {
+        let n = u64::from(image.width) * u64::from(image.height);
+        if images.insert(Arc::as_ptr(image)) {
+            texels += n;
+            hdr_texels += if image.hdr { n } else { 0 };
+        }
+        if sampled {
+            sampled_texels += n;
+        }
+    };
+    desc.materials.iter().flat_map(|m| m.images()).for_each(|i| count(i, false));
+    let background = desc.settings.background_texture.as_ref().and_then(|t| t.image());
+    background.into_iter().for_each(|i| count(i, false));
+    desc.lights.iter().filter_map(|l| l.image()).for_each(|(i, sampled)| count(i, sampled));
+    let objects = desc.objects.len() as u64;
     // Saturating: counts from a file may be absurd, and an estimate that wrapped would pass.
-    let bytes = pixels
-        .saturating_mul(BYTES_PER_PIXEL)
-        .saturating_add(BASE_BYTES)
-        .saturating_add((desc.objects.len() as u64).saturating_mul(BYTES_PER_OBJECT))
-        .saturating_add(triangles.saturating_mul(BYTES_PER_TRIANGLE));
-    (bytes, desc.objects.len(), triangles)
+    let bytes = [
+        (pixels, BYTES_PER_PIXEL),
+        (objects, BYTES_PER_OBJECT),
+        (triangles, bytes_per_triangle),
+        (texels - hdr_texels, BYTES_PER_TEXEL),
+        (hdr_texels, BYTES_PER_HDR_TEXEL),
+        (sampled_texels, BYTES_PER_SAMPLED_TEXEL),
+    ]
+    .iter()
+    .fold(BASE_BYTES, |sum, (count, each)| sum.saturating_add(count.saturating_mul(*each)));
+    let (width, height) = (desc.camera.width, desc.camera.height);
+    MemoryEstimate {
+        bytes,
+        width,
+        height,
+        pixels,
+        objects,
+        triangles,
+        texels,
+        hdr_texels,
+        sampled_texels,
+    }
 }
 
 /// Refuses a render whose estimated memory exceeds what the machine has.
-pub fn check_memory(desc: &SceneDesc) -> Result<(), LimitError> {
-    let (needed, objects, triangles) = memory_needed(desc);
+pub fn check_memory(desc: &SceneDesc, bytes_per_triangle: u64) -> Result<(), LimitError> {
+    let estimate = memory_needed(desc, bytes_per_triangle);
     match memory_available() {
-        Some(available) if needed > available => Err(LimitError::Memory {
-            file: desc.source.clone(),
-            needed,
-            available,
-            width: desc.camera.width,
-            height: desc.camera.height,
-            objects,
-            triangles,
-        }),
+        Some(available) if estimate.bytes > available => {
+            Err(LimitError::Memory { file: desc.source.clone(), estimate, available })
+        }
         _ => Ok(()),
     }
 }
@@ -199,7 +251,7 @@ mod tests {
         for space in [RenderSpace::World, RenderSpace::Cameraworld, RenderSpace::Camera] {
             check_coordinates(&scene, space).unwrap();
         }
-        check_memory(&scene).unwrap();
+        check_memory(&scene, crate::limits::BYTES_PER_TRIANGLE_OBVHS).unwrap();
         scene.translate(DVec3::new(1e9, 0.0, 0.0));
         // Far out, the camera-relative spaces still hold it; f32 world space cannot.
         check_coordinates(&scene, RenderSpace::Cameraworld).unwrap();
@@ -216,7 +268,7 @@ mod tests {
     fn the_largest_resolution_needs_more_than_this_machine_has() {
         let mut scene = crate::scene::load(&crate::bundled::default_scene()).unwrap();
         (scene.camera.width, scene.camera.height) = (16384, 16384);
-        let (needed, _, _) = memory_needed(&scene);
+        let needed = memory_needed(&scene, crate::limits::BYTES_PER_TRIANGLE_EMBREE).bytes;
         assert!(needed > 24 << 30, "{needed}");
     }
 }

@@ -53,6 +53,17 @@ pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, Scene
     limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 16);
     reader.limits(limits);
     let decoded = reader.decode().map_err(|e| at.error(e.to_string()))?;
+    drop(bytes);
+    // Straight from the decoded channels to linear texels: no f32 copy of the image between
+    // (the peak was the file, the decoded image and two 12-byte copies per texel).
+    let texel = |c: [f32; 3], full_scale: f32| {
+        let c = glam::Vec3::from_array(c) / full_scale;
+        if decode_srgb {
+            glam::Vec3::new(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z))
+        } else {
+            (c * full_scale).round()
+        }
+    };
     let sixteen_bit = matches!(
         decoded.color(),
         image::ColorType::L16
@@ -60,19 +71,13 @@ pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, Scene
             | image::ColorType::Rgb16
             | image::ColorType::Rgba16
     );
-    let full_scale = if sixteen_bit { 65535.0 } else { 255.0 };
-    let rgb = decoded.into_rgb32f();
-    let texels = rgb
-        .pixels()
-        .map(|p| {
-            let c = glam::Vec3::from_array(p.0);
-            if decode_srgb {
-                glam::Vec3::new(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z))
-            } else {
-                (c * full_scale).round()
-            }
-        })
-        .collect();
+    let texels: Vec<glam::Vec3> = if sixteen_bit {
+        let rgb = decoded.into_rgb16();
+        rgb.pixels().map(|p| texel(p.0.map(f32::from), 65535.0)).collect()
+    } else {
+        let rgb = decoded.into_rgb8();
+        rgb.pixels().map(|p| texel(p.0.map(f32::from), 255.0)).collect()
+    };
     Ok(Arc::new(TextureImage {
         file: at.image.clone(),
         width,
@@ -101,22 +106,22 @@ pub fn load_radiance(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImag
             "{width} × {height} texels; a radiance map takes 1 to {MAX_TEXTURE_TEXELS} texels"
         )));
     }
-    let (_, _, pixels) = crate::exr_rgb::read(&bytes).map_err(|e| at.error(e))?;
-    let mut out = Vec::with_capacity(pixels.len());
-    for (i, c) in pixels.into_iter().enumerate() {
+    let (_, _, mut texels) = crate::exr_rgb::read(&bytes).map_err(|e| at.error(e))?;
+    drop(bytes);
+    for (i, c) in texels.iter_mut().enumerate() {
         if !c.is_finite() {
             let (x, y) = (i as u64 % width, i as u64 / width);
             return Err(
                 at.error(format!("texel ({x}, {y}) is not finite: {} {} {}", c.x, c.y, c.z))
             );
         }
-        out.push(c.max(glam::Vec3::ZERO));
+        *c = c.max(glam::Vec3::ZERO);
     }
     Ok(Arc::new(TextureImage {
         file: at.image.clone(),
         width: width as u32,
         height: height as u32,
-        texels: out,
+        texels,
         srgb_decoded: false,
         hdr: true,
     }))

@@ -99,3 +99,25 @@ fn a_convergence_reference_on_a_fifo_is_refused() {
     let args = ["bench", "convergence", "s.toml", "--reference", "ref.exr", "--spps", "1"];
     refused_in(&scratch, &args, &["ref.exr", "a FIFO"]);
 }
+
+/// Texture images count in the estimate (they did not: a scene of many large textures was
+/// accepted under any budget and died loading them or rendering).
+#[test]
+fn texture_texels_count_in_the_memory_estimate() {
+    let scratch = Scratch::new();
+    image::RgbImage::new(1024, 1024).save(scratch.path("t.png")).unwrap();
+    let textured = scene("").replace(
+        "albedo = [0.5, 0.5, 0.5]",
+        "albedo = [0.5, 0.5, 0.5]\ntexture = { type = \"image\", file = \"t.png\" }",
+    );
+    scratch.write("s.toml", textured);
+    let before = scratch.snapshot();
+    // 24 MiB fixed, 20 MiB of texels: refused under a 40 MiB budget.
+    let mut command = scratch.command(&["render", "s.toml"]);
+    let run =
+        crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "41943040").output().unwrap());
+    run.assert_no_panic();
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    run.assert_says(&["s.toml", "needs about 44.0 MiB", "1048576 texture texels", "only 40.0 MiB", "size of the textures"]);
+    assert_eq!(scratch.snapshot(), before);
+}

@@ -43,6 +43,15 @@ impl LightKind for Environment {
         &["file", "radiance", "scale", "encoding", "mapping", "to_world", "interpolation"];
     const ONE_PER_SCENE: bool = true;
 
+    const SAMPLES_ITS_IMAGE: bool = true;
+
+    fn image(&self) -> Option<&Arc<TextureImage>> {
+        match &self.map {
+            EnvironmentMap::Image(image) => Some(image),
+            EnvironmentMap::Constant(_) => None,
+        }
+    }
+
     fn read(p: &Params, resources: &dyn Resources) -> Result<Self, ParamError> {
         let encoding = p.opt_choice("encoding", &ENCODINGS)?;
         let map = match (p.has("file"), p.has("radiance")) {

@@ -23,7 +23,9 @@ pub use spot::{Spot, SpotCone, SpotProfile, SpotTexture};
 
 use super::{DirectionalLight, Emitter, EnvironmentLight, PointLight};
 use crate::params::{ParamError, ParamSink, Params, Resources};
+use crate::texels::TextureImage;
 use glam::{DAffine3, DVec3, Vec3};
+use std::sync::Arc;
 
 /// The render-space lights the kinds compile into, gathered before the light set is made.
 #[derive(Default)]
@@ -60,6 +62,12 @@ pub trait LightKind: Sized {
         0.0
     }
     fn compile(&self, render_from_world: &DAffine3, parts: &mut LightParts);
+    /// The image it emits through, if any (for the memory estimate).
+    fn image(&self) -> Option<&Arc<TextureImage>> {
+        None
+    }
+    /// Its image gets a sampling table (a probability per texel).
+    const SAMPLES_ITS_IMAGE: bool = false;
 }
 
 /// The largest coordinate difference between `p` and `origin` (NaN stays NaN).
@@ -130,6 +138,15 @@ macro_rules! light_kinds {
 
             pub fn reach(&self, origin: DVec3) -> f64 {
                 match self { $(LightDesc::$variant(light) => light.reach(origin)),* }
+            }
+
+            /// The image it emits through, and whether it gets a sampling table.
+            pub fn image(&self) -> Option<(&Arc<TextureImage>, bool)> {
+                match self {
+                    $(LightDesc::$variant(light) => {
+                        light.image().map(|i| (i, <$kind>::SAMPLES_ITS_IMAGE))
+                    }),*
+                }
             }
 
             pub fn compile(&self, render_from_world: &DAffine3, parts: &mut LightParts) {

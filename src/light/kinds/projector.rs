@@ -29,6 +29,10 @@ impl LightKind for Projector {
         &["position", "direction", "up", "fov", "image", "scale"];
     const ONLY_SAMPLED: bool = true;
 
+    fn image(&self) -> Option<&Arc<TextureImage>> {
+        self.image.as_ref()
+    }
+
     fn read(p: &Params, resources: &dyn Resources) -> Result<Self, ParamError> {
         let position = p.vec3("position")?;
         let direction = p.direction("direction")?;

@@ -60,6 +60,10 @@ impl LightKind for Spot {
     ];
     const ONLY_SAMPLED: bool = true;
 
+    fn image(&self) -> Option<&Arc<TextureImage>> {
+        self.texture.as_ref().map(|(image, _)| image)
+    }
+
     fn read(p: &Params, resources: &dyn Resources) -> Result<Self, ParamError> {
         let position = p.vec3("position")?;
         let intensity = p.color("intensity")?;

@@ -42,6 +42,22 @@ pub struct MaterialDesc {
     pub phong: Option<PhongDesc>,
 }
 
+impl MaterialDesc {
+    /// The images its textures look up (for the memory estimate).
+    pub fn images(&self) -> impl Iterator<Item = &std::sync::Arc<crate::texels::TextureImage>> {
+        let opacity = match &self.opacity {
+            Some(Opacity::Texture(t)) => Some(t),
+            _ => None,
+        };
+        [&self.texture, &self.specular_texture, &self.normal_map]
+            .into_iter()
+            .flatten()
+            .chain(self.bump_map.as_ref().map(|b| &b.texture))
+            .chain(opacity)
+            .filter_map(TextureDesc::image)
+    }
+}
+
 impl Default for MaterialDesc {
     fn default() -> Self {
         MaterialDesc {

@@ -72,6 +72,16 @@ pub enum Pattern {
     Image { image: std::sync::Arc<TextureImage>, interpolation: Interpolation, normalizer: f32 },
 }
 
+impl TextureDesc {
+    /// The image it looks up, if it is an image texture.
+    pub fn image(&self) -> Option<&std::sync::Arc<TextureImage>> {
+        match &self.pattern {
+            Pattern::Image { image, .. } => Some(image),
+            _ => None,
+        }
+    }
+}
+
 /// How Perlin noise in [-1, 1] becomes a grey level in [0, 1].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum NoiseConversion {
