@@ -7,13 +7,13 @@ use crate::distributed::{Part, PartError};
 use crate::film::{Film, Tile, tiles};
 use crate::integrator::{PathSample, Tracer};
 use crate::ray::{Hit, Ray};
+use crate::render_passes::{Passes, Progress, add_tile, pass_ranges};
 use crate::render_scene::RenderScene;
 use crate::sample_sums::{FilmSums, PixelSums};
 use crate::sampling::{SLOT_LENS, SLOT_TIME, SampleStream};
 use crate::scene::SceneDesc;
 use crate::stats::RenderStats;
 use glam::{DVec3, Vec2, Vec3};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
@@ -24,6 +24,9 @@ use std::time::{Duration, Instant};
 pub const TILE_SIZE: u32 = 16;
 
 pub use crate::render_options::RenderOptions;
+
+/// What a render calls after each pass with the sums so far and the samples per pixel done.
+pub type OnPass<'a> = dyn FnMut(&FilmSums, u32) + Send + 'a;
 
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
@@ -44,6 +47,9 @@ pub enum RenderError {
 #[derive(Debug)]
 pub struct RenderOutput {
     pub film: Film,
+    /// Samples per pixel rendered: all of them unless `stopped`.
+    pub spp_done: u32,
+    pub stopped: Option<crate::render_stop::StopReason>,
     pub stats: RenderStats,
     pub backend: &'static str,
     /// Which of `stats.traversal` the backend filled in.
@@ -66,10 +72,21 @@ pub fn prepare_scene(
     Ok(to_render_scene(&desc, options.render_space, options.effects_mode)?)
 }
 
-/// Renders `desc` from start to finish.
+/// Renders `desc` from start to finish (or until `options.stop`).
 pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput, RenderError> {
-    let part = render_part(desc, options, Part::WHOLE)?;
+    render_with(desc, options, &mut |_, _| {})
+}
+
+/// As [`render`], handing every pass's sums so far to `on_pass` (for checkpoints).
+pub fn render_with(
+    desc: &SceneDesc,
+    options: &RenderOptions,
+    on_pass: &mut OnPass<'_>,
+) -> Result<RenderOutput, RenderError> {
+    let part = render_part_with(desc, options, Part::WHOLE, on_pass)?;
     Ok(RenderOutput {
+        spp_done: part.spp_done,
+        stopped: part.stopped,
         film: part.sums.resolve(),
         stats: part.stats,
         backend: part.backend,
@@ -83,6 +100,8 @@ pub fn render(desc: &SceneDesc, options: &RenderOptions) -> Result<RenderOutput,
 #[derive(Debug)]
 pub struct PartOutput {
     pub sums: FilmSums,
+    pub spp_done: u32,
+    pub stopped: Option<crate::render_stop::StopReason>,
     pub stats: RenderStats,
     pub backend: &'static str,
     pub observes: crate::accel::Observes,
@@ -96,6 +115,16 @@ pub fn render_part(
     options: &RenderOptions,
     part: Part,
 ) -> Result<PartOutput, RenderError> {
+    render_part_with(desc, options, part, &mut |_, _| {})
+}
+
+/// As [`render_part`], handing every pass to `on_pass` (see [`render_passes`]).
+pub fn render_part_with(
+    desc: &SceneDesc,
+    options: &RenderOptions,
+    part: Part,
+    on_pass: &mut OnPass<'_>,
+) -> Result<PartOutput, RenderError> {
     check_options(options)?;
     // Saturating: a product past u64 is past the limit too, and must not wrap under it.
     let samples = u64::from(desc.camera.width)
@@ -107,7 +136,7 @@ pub fn render_part(
     }
     part.check((desc.camera.width, desc.camera.height), TILE_SIZE, options.spp.max(1))?;
     crate::scene::budget::check_memory(desc, options.backend.bytes_per_triangle())?;
-    let run = || -> Result<PartOutput, RenderError> {
+    let mut run = move || -> Result<PartOutput, RenderError> {
         let scene = prepare_scene(desc, options)?;
         let build_start = Instant::now();
         let accel_options =
@@ -115,10 +144,12 @@ pub fn render_part(
         let accel = accel::build(options.backend, &scene, &accel_options)?;
         let build_time = build_start.elapsed();
         let render_start = Instant::now();
-        let (sums, stats) = render_sums(&scene, accel.as_ref(), options, part);
+        let passes = render_passes(&scene, accel.as_ref(), options, part, on_pass);
         Ok(PartOutput {
-            sums,
-            stats,
+            sums: passes.sums,
+            stats: passes.stats,
+            spp_done: passes.spp_done,
+            stopped: passes.stopped,
             backend: accel.name(),
             observes: accel.observes(),
             build_time,
@@ -212,7 +243,7 @@ fn render_tile(
     samples: std::ops::Range<u32>,
     options: &RenderOptions,
     scratch: &mut TileScratch,
-) -> TileResult {
+) -> Option<TileResult> {
     let scene = tracer.scene();
     let width = (tile.x1 - tile.x0) as usize;
     let n = width * (tile.y1 - tile.y0) as usize;
@@ -235,17 +266,25 @@ fn render_tile(
         Tracer::Path(path) if path.accel().prefers_batches() => Some(path),
         _ => None,
     };
+    // A stop ends the tile too (its pass is dropped), so that a long pass stops promptly.
+    let stopped = || options.stop.as_ref().is_some_and(|s| s.requested().is_some());
     let Some(path) = batched else {
         for (i, sums) in result.sums.iter_mut().enumerate() {
+            if i % 16 == 0 && stopped() {
+                return None;
+            }
             for s in samples.clone() {
                 let (ray, mut stream, backdrop, weight) =
                     camera_sample(scene, options, pixel(i), s, spp);
                 add(sums, tracer.trace(ray, backdrop, &mut stream, &mut result.stats), weight);
             }
         }
-        return result;
+        return Some(result);
     };
     for s in samples {
+        if stopped() {
+            return None;
+        }
         scratch.rays.clear();
         scratch.streams.clear();
         scratch.backdrops.clear();
@@ -268,7 +307,7 @@ fn render_tile(
             add(sums, sample, *weight);
         }
     }
-    result
+    Some(result)
 }
 
 /// Traces every pixel of `scene` with `accel` (see [`render_sums`]).
@@ -291,6 +330,20 @@ pub fn render_sums(
     options: &RenderOptions,
     part: Part,
 ) -> (FilmSums, RenderStats) {
+    let passes = render_passes(scene, accel, options, part, &mut |_, _| {});
+    (passes.sums, passes.stats)
+}
+
+/// As [`render_sums`], in passes over the whole part (`render_passes::pass_ranges`), each
+/// handed to `on_pass` with the samples per pixel done so far; stops before its last pass
+/// when `options.stop` asks (the pass in progress is dropped), with the passes done.
+pub fn render_passes(
+    scene: &RenderScene,
+    accel: &dyn Accel,
+    options: &RenderOptions,
+    part: Part,
+    on_pass: &mut OnPass<'_>,
+) -> Passes {
     let tracer = Tracer::new(
         options.integrator,
         scene,
@@ -302,41 +355,45 @@ pub fn render_sums(
     );
     let camera = &scene.camera;
     let all_tiles = part.tiles(&tiles(camera.width, camera.height, TILE_SIZE));
-    let samples = part.samples(options.spp.max(1));
-    let progress = if options.progress {
-        let bar = ProgressBar::with_draw_target(
-            Some(all_tiles.len() as u64),
-            ProgressDrawTarget::stderr(),
-        );
-        if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {percent:>3}% {elapsed}<{eta} {msg}")
-        {
-            bar.set_style(style);
-        }
-        bar
-    } else {
-        ProgressBar::hidden()
+    let passes = pass_ranges(part.samples(options.spp.max(1)));
+    let spp_total = passes.iter().map(|r| r.len() as u32).sum();
+    let units = (all_tiles.len() * passes.len()) as u64;
+    let progress = Progress::new(options.progress, units, spp_total);
+    let stop = || options.stop.as_ref().and_then(|s| s.requested());
+    let mut done = Passes {
+        sums: FilmSums::new(camera.width, camera.height),
+        stats: RenderStats::default(),
+        spp_done: 0,
+        stopped: None,
     };
-    let results: Vec<TileResult> = all_tiles
-        .par_iter()
-        .map_init(TileScratch::default, |scratch, &tile| {
-            let r = render_tile(&tracer, tile, samples.clone(), options, scratch);
-            progress.inc(1);
-            r
-        })
-        .collect();
-    progress.finish_and_clear();
-    let mut film = FilmSums::new(camera.width, camera.height);
-    let mut stats = RenderStats::default();
-    for r in results {
-        let mut sums = r.sums.into_iter();
-        for y in r.tile.y0..r.tile.y1 {
-            for x in r.tile.x0..r.tile.x1 {
-                let idx = film.index(x, y);
-                film.pixels[idx] = sums.next().unwrap_or_default();
-            }
+    for samples in passes {
+        let results: Vec<Option<TileResult>> = all_tiles
+            .par_iter()
+            .map_init(TileScratch::default, |scratch, &tile| {
+                // A stop drops the rest of the pass: the image keeps whole passes only.
+                if stop().is_some() {
+                    return None;
+                }
+                let r = render_tile(&tracer, tile, samples.clone(), options, scratch)?;
+                progress.tile_done(r.stats.total_rays());
+                Some(r)
+            })
+            .collect();
+        if let Some(reason) = stop().filter(|_| results.iter().any(Option::is_none)) {
+            done.stopped = Some(reason);
+            break;
         }
-        stats += r.stats;
+        for r in results.into_iter().flatten() {
+            add_tile(&mut done.sums, r.tile, &r.sums);
+            done.stats += r.stats;
+        }
+        done.spp_done += samples.len() as u32;
+        on_pass(&done.sums, done.spp_done);
+        if let Some(reason) = stop().filter(|_| done.spp_done < spp_total) {
+            done.stopped = Some(reason);
+            break;
+        }
     }
-    (film, stats)
+    progress.finish();
+    done
 }

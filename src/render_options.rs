@@ -40,6 +40,8 @@ pub struct RenderOptions {
     /// Each sample's radiance is scaled down to at most this in every channel (a firefly
     /// clamp: biased, darker where light is concentrated, but quiet at low spp).
     pub clamp: Option<f32>,
+    /// Stops a progressive render early (a signal, a time limit) with the passes done.
+    pub stop: Option<crate::render_stop::Stop>,
 }
 
 impl RenderOptions {
@@ -64,6 +66,7 @@ impl RenderOptions {
             sampler: SamplerKind::default(),
             energy: Default::default(),
             clamp: None,
+            stop: None,
         }
     }
 }

@@ -7,14 +7,18 @@ use super::render_args::RenderArgs;
 use anyhow::{Result, bail};
 use embray::distributed::Part;
 use embray::excerpt::excerpt;
+use embray::film::Film;
 use embray::output::stats::{StatsReport, stats_table};
 use embray::output::{
     DisplayLook, ImageFormat, OutputPlan, OutputSet, Target, camera_outputs, encode_display,
     encode_exr,
 };
-use embray::render::{RenderOptions, RenderOutput, render};
+use embray::render::{RenderOptions, RenderOutput, render_with};
+use embray::render_stop::{Stop, StopReason};
+use embray::sample_sums::FilmSums;
 use embray::scene::{SceneDesc, ceng795};
 use std::path::Path;
+use std::time::{Duration, Instant};
 
 /// One image of the run: the scene as its camera sees it and where its files go (the EXR,
 /// the display image, or both).
@@ -31,6 +35,7 @@ type DisplayTarget = (Target, ImageFormat);
 /// every output path is checked first (usable, not an input, not another output), and
 /// nothing is replaced unless every image was rendered and written.
 pub fn run(args: &RenderArgs) -> Result<()> {
+    let started = Instant::now();
     if let Some(text) = &args.part {
         return super::render_part::run(args, Part::parse(text, args.split)?);
     }
@@ -63,42 +68,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             args.look.photographic.check_curve(args.tonemap.resolve(&job.scene.settings))?;
         }
     }
-    let mut files = OutputSet::new();
-    let mut reports = Vec::new();
-    for job in &jobs {
-        let options = args.to_options(&job.scene)?;
-        let output = render(&job.scene, &options)?;
-        if output.film.color.iter().all(|c| *c == glam::Vec3::ZERO) && !args.quiet {
-            // A black image with exit 0 is the worst kind of silence: say what to look at.
-            super::console::note(
-                "warning: the image is black: no light reached the camera (an emitter facing \
-                 away from the scene (a quad emits along u × v), a light inside a closed \
-                 object, max_depth 0?); `embray info` lists the lights",
-            );
-        }
-        if let Some(exr) = &job.exr {
-            files.write(exr, |w| encode_exr(&output.film, w))?;
-        }
-        let curve = args.tonemap.resolve(&job.scene.settings);
-        let photographic = args.look.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
-        let look = DisplayLook {
-            curve,
-            exposure: args.look.exposure,
-            photographic: &photographic,
-            lut: lut.as_ref(),
-        };
-        if let Some((target, format)) = &job.display {
-            files.write(target, |w| encode_display(&output.film, &look, *format, w))?;
-        }
-        if let Some(target) = &stats_json {
-            let report = StatsReport::new(&output, &options);
-            files.write(target, |w| report.encode(w))?;
-        }
-        let written: Vec<&Path> =
-            job.exr.iter().chain(job.display.iter().map(|(t, _)| t)).map(|t| &*t.path).collect();
-        let line = summary(&output, &options, &written);
-        reports.push((line, stats_table(&output.stats, output.observes)));
-    }
+    let stop = Stop::new(args.time_limit.map(|s| started + Duration::from_secs_f64(s)));
+    stop.watch();
+    let rendered = render_jobs(args, &jobs, &stop, lut.as_ref(), stats_json.as_ref());
+    stop.unwatch();
+    let (files, reports, stopped) = rendered?;
     files.commit()?;
     for (line, table) in reports {
         if !args.quiet {
@@ -108,7 +82,109 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             out(table)?;
         }
     }
+    match stopped {
+        Some(Stopped { reason, skipped, .. }) => {
+            if !skipped.is_empty() {
+                note(format!("not rendered ({reason}): {}", skipped.join(", ")));
+            }
+            // A signal still ends the process as the signal would have: scripts see it.
+            if let StopReason::Signal(signal) = reason {
+                std::process::exit(128 + signal);
+            }
+            Ok(())
+        }
+        None => Ok(()),
+    }
+}
+
+/// A run that stopped early: why, and the images it did not render.
+struct Stopped {
+    reason: StopReason,
+    skipped: Vec<String>,
+}
+
+type Rendered = (OutputSet, Vec<(String, String)>, Option<Stopped>);
+
+/// Renders every job into `files` (not yet committed), until a stop.
+fn render_jobs(
+    args: &RenderArgs,
+    jobs: &[Job],
+    stop: &Stop,
+    lut: Option<&embray::output::Lut3d>,
+    stats_json: Option<&Target>,
+) -> Result<Rendered> {
+    let mut files = OutputSet::new();
+    let mut reports = Vec::new();
+    for (k, job) in jobs.iter().enumerate() {
+        let mut options = args.to_options(&job.scene)?;
+        options.stop = Some(stop.clone());
+        let curve = args.tonemap.resolve(&job.scene.settings);
+        let photographic = args.look.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
+        let look =
+            DisplayLook { curve, exposure: args.look.exposure, photographic: &photographic, lut };
+        let mut last_write = Instant::now();
+        let every = args.checkpoint_every.map(Duration::from_secs_f64);
+        let spp = options.spp.max(1);
+        let mut on_pass = |sums: &FilmSums, done: u32| {
+            if every.is_some_and(|every| last_write.elapsed() >= every) && done < spp {
+                checkpoint(job, &sums.resolve(), &look, done, spp);
+                last_write = Instant::now();
+            }
+        };
+        let output = render_with(&job.scene, &options, &mut on_pass)?;
+        if let (Some(reason), 0) = (output.stopped, output.spp_done) {
+            bail!("{reason} before the first pass over the image ended: no image written");
+        }
+        if output.film.color.iter().all(|c| *c == glam::Vec3::ZERO) && !args.quiet {
+            // A black image with exit 0 is the worst kind of silence: say what to look at.
+            super::console::note(
+                "warning: the image is black: no light reached the camera (an emitter facing \
+                 away from the scene (a quad emits along u × v), a light inside a closed \
+                 object, max_depth 0?); `embray info` lists the lights",
+            );
+        }
+        write_job(&mut files, job, &output.film, &look)?;
+        if let Some(target) = stats_json {
+            let report = StatsReport::new(&output, &options);
+            files.write(target, |w| report.encode(w))?;
+        }
+        let written: Vec<&Path> =
+            job.exr.iter().chain(job.display.iter().map(|(t, _)| t)).map(|t| &*t.path).collect();
+        let line = summary(&output, &options, &written);
+        reports.push((line, stats_table(&output.stats, output.observes)));
+        if let Some(reason) = output.stopped {
+            let skipped = jobs[k + 1..].iter().flat_map(|j| job_paths(j)).collect();
+            return Ok((files, reports, Some(Stopped { reason, skipped })));
+        }
+    }
+    Ok((files, reports, None))
+}
+
+/// The files a job writes, for messages.
+fn job_paths(job: &Job) -> Vec<String> {
+    let exr = job.exr.iter();
+    exr.chain(job.display.iter().map(|(t, _)| t)).map(|t| t.path.display().to_string()).collect()
+}
+
+/// Adds a job's images to `files`.
+fn write_job(files: &mut OutputSet, job: &Job, film: &Film, look: &DisplayLook) -> Result<()> {
+    if let Some(exr) = &job.exr {
+        files.write(exr, |w| encode_exr(film, w))?;
+    }
+    if let Some((target, format)) = &job.display {
+        files.write(target, |w| encode_display(film, look, *format, w))?;
+    }
     Ok(())
+}
+
+/// Writes the image so far over the job's outputs (each atomically); a failure is a
+/// warning, as the render goes on.
+fn checkpoint(job: &Job, film: &Film, look: &DisplayLook, done: u32, spp: u32) {
+    let mut files = OutputSet::new();
+    match write_job(&mut files, job, film, look).and_then(|()| Ok(files.commit()?)) {
+        Ok(()) => note(format!("checkpoint: {done} of {spp} spp → {}", job_paths(job).join(", "))),
+        Err(e) => note(format!("warning: checkpoint at {done} spp not written: {e:#}")),
+    }
 }
 
 /// Where a scene's images go. `-o` chooses the format by its extension: an EXR (with the
@@ -248,10 +324,13 @@ fn summary(output: &RenderOutput, options: &RenderOptions, written: &[&Path]) ->
     let seconds = output.render_time.as_secs_f64();
     let rays = output.stats.total_rays();
     format!(
-        "{}x{} @ {} spp ({} sampler) on {} ({}): build {:.1} ms, render {:.3} s, {} rays, {:.2} Mrays/s → {}",
+        "{}x{} @ {} ({} sampler) on {} ({}): build {:.1} ms, render {:.3} s, {} rays, {:.2} Mrays/s → {}",
         output.film.width,
         output.film.height,
-        options.spp,
+        match output.stopped {
+            Some(reason) => format!("{} of {} spp, {reason}", output.spp_done, options.spp.max(1)),
+            None => format!("{} spp", options.spp),
+        },
         options.sampler,
         output.backend,
         options.render_space,

@@ -108,6 +108,17 @@ pub struct RenderArgs {
     /// (biased: it darkens bright caustics and highlights; off by default).
     #[arg(long, allow_hyphen_values = true)]
     pub clamp: Option<f32>,
+    /// Stop after this many seconds (counted from the start of the command) and write the
+    /// image of the samples done so far: renders go in passes over the whole image, and the
+    /// pass in progress at the limit is dropped. Ctrl-C and SIGTERM stop the same way (a
+    /// second one quits at once).
+    #[arg(long, value_name = "SECONDS")]
+    pub time_limit: Option<f64>,
+    /// While rendering, write the image so far (every output, atomically replaced) after
+    /// each pass that ends at least this many seconds after the last such write, to look
+    /// at a long render while it runs.
+    #[arg(long, value_name = "SECONDS")]
+    pub checkpoint_every: Option<f64>,
     /// How rays leave surfaces: `robust` (error-bound offsets) or `epsilon=VALUE`.
     #[arg(long, value_parser = SpawnMode::parse, default_value = "robust")]
     pub spawn: SpawnMode,
@@ -205,6 +216,13 @@ impl RenderArgs {
         }
         if self.force_all_effects {
             options.effects_mode = EffectsMode::ForceAll;
+        }
+        for (flag, value) in
+            [("--time-limit", self.time_limit), ("--checkpoint-every", self.checkpoint_every)]
+        {
+            if let Some(seconds) = value.filter(|s| !(s.is_finite() && *s > 0.0 && *s < 1e9)) {
+                bail!("{flag} is {seconds}, but must be a number of seconds > 0");
+            }
         }
         options.progress = !self.quiet;
         Ok(options)

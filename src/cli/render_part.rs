@@ -29,6 +29,17 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
             );
         }
     }
+    for (flag, given) in [
+        ("--time-limit", args.time_limit.is_some()),
+        ("--checkpoint-every", args.checkpoint_every.is_some()),
+    ] {
+        if given {
+            bail!(
+                "{flag} cannot be used with --part: a part file holds all of its samples or \
+                 none (a part that did not finish is rendered again)"
+            );
+        }
+    }
     let mut plan = OutputPlan::new();
     if let Some(path) = &args.scene {
         plan.input("the scene", path);

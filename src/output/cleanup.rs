@@ -24,12 +24,22 @@ pub(crate) fn unregister(list: &mut Vec<PathBuf>, path: &Path) {
 }
 
 /// Starts the thread that, on SIGINT, SIGTERM or SIGHUP, removes every pending temporary
-/// file and exits with 128 + the signal number (as a shell reports a signal death).
+/// file and exits with 128 + the signal number (as a shell reports a signal death). While a
+/// progressive render is watching (`render_stop::Stop::watch`), the first signal only asks
+/// it to stop after its current pass and write what it has.
 pub fn remove_temp_files_on_signals() -> std::io::Result<()> {
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
     let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
     std::thread::Builder::new().name("signal cleanup".into()).spawn(move || {
-        if let Some(signal) = signals.forever().next() {
+        for signal in signals.forever() {
+            if crate::render_stop::take_signal(signal) {
+                let _ = std::io::Write::write_all(
+                    &mut std::io::stderr(),
+                    b"\nstopping: the pass in progress is dropped, the passes done are written \
+                      (again to quit at once)\n",
+                );
+                continue;
+            }
             let list = pending();
             for path in list.iter() {
                 let _ = std::fs::remove_file(path);

@@ -118,6 +118,12 @@ fn texture_texels_count_in_the_memory_estimate() {
         crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "41943040").output().unwrap());
     run.assert_no_panic();
     assert_eq!(run.code, Some(1), "{}", run.stderr);
-    run.assert_says(&["s.toml", "needs about 44.0 MiB", "1048576 texture texels", "only 40.0 MiB", "size of the textures"]);
+    run.assert_says(&[
+        "s.toml",
+        "needs about 44.0 MiB",
+        "1048576 texture texels",
+        "only 40.0 MiB",
+        "size of the textures",
+    ]);
     assert_eq!(scratch.snapshot(), before);
 }

@@ -1,0 +1,147 @@
+//! Progressive renders: Ctrl-C, SIGTERM and `--time-limit` write a complete image of the
+//! passes done (the spp reached said on the console), `--checkpoint-every` writes the image
+//! while rendering, progress lines go into pipes, and a render that runs to its end is the
+//! same, byte for byte, with or without these.
+
+mod common;
+
+use common::command::{GOOD_SCENE, embray, temp_dir};
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+/// Starts `embray render s.toml --spp 1000000 -o out.exr` in `dir`, lets it render for a
+/// while, sends `signal`, and returns the exit code and standard error.
+fn interrupted(dir: &std::path::Path, signal: i32) -> (Option<i32>, String) {
+    let child = Command::new(env!("CARGO_BIN_EXE_embray"))
+        .args(["render", "s.toml", "--spp", "1000000", "-o", "out.exr"])
+        .current_dir(dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Passes of 1, 1, 2, 4, … spp of 192 pixels: many are done within a second.
+    std::thread::sleep(Duration::from_millis(1500));
+    // SAFETY: the pid is our own child, still running (it renders a million spp).
+    assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
+    let out = child.wait_with_output().unwrap();
+    (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+/// The spp the summary line says were done ("… @ 37 of 1000000 spp, …").
+fn spp_done(stderr: &str) -> u32 {
+    let at = stderr.find(" of 1000000 spp").expect("the spp reached is said");
+    stderr[..at].rsplit(' ').next().unwrap().parse().unwrap()
+}
+
+#[test]
+fn ctrl_c_and_sigterm_write_the_passes_done() {
+    for (signal, name, code) in [(libc::SIGINT, "Ctrl-C", 130), (libc::SIGTERM, "SIGTERM", 143)] {
+        let dir = temp_dir(&format!("interrupt-{signal}"));
+        std::fs::write(dir.join("s.toml"), GOOD_SCENE).unwrap();
+        let (exit, stderr) = interrupted(&dir, signal);
+        assert_eq!(exit, Some(code), "{stderr}");
+        assert!(stderr.contains(&format!("interrupted ({name})")), "{stderr}");
+        let done = spp_done(&stderr);
+        assert!(done >= 2 && done < 1_000_000, "{stderr}");
+        // An image of the passes done: the sphere lit, no NaN.
+        let film = embray::bench::convergence::read_reference(&dir.join("out.exr")).unwrap();
+        assert!(film.color.iter().all(|c| c.is_finite()));
+        assert!(film.color.iter().any(|c| c.max_element() > 0.1));
+        assert!(dir.join("out.png").exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+#[test]
+fn a_time_limit_writes_the_passes_done_and_succeeds() {
+    let dir = temp_dir("time-limit");
+    std::fs::write(dir.join("s.toml"), GOOD_SCENE).unwrap();
+    let args = [
+        "render",
+        "s.toml",
+        "--spp",
+        "1000000",
+        "--time-limit",
+        "1.5",
+        "--checkpoint-every",
+        "0.3",
+        "-o",
+        "out.exr",
+    ];
+    let out = embray(&args, &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("--time-limit reached"), "{stderr}");
+    assert!(stderr.contains("checkpoint: "), "checkpoints while rendering: {stderr}");
+    assert!(spp_done(&stderr) >= 2, "{stderr}");
+    embray::bench::convergence::read_reference(&dir.join("out.exr")).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Passes add exact sums: a render that runs to the end is the image it was before passes,
+/// limits and checkpoints or not.
+#[test]
+fn a_render_that_ends_is_the_same_with_a_limit_and_checkpoints() {
+    let dir = temp_dir("progressive-same");
+    std::fs::write(dir.join("s.toml"), GOOD_SCENE).unwrap();
+    let plain = ["render", "s.toml", "--spp", "40", "-q", "-o", "a.exr"];
+    assert!(embray(&plain, &dir).status.success());
+    let limited = [
+        "render",
+        "s.toml",
+        "--spp",
+        "40",
+        "-q",
+        "-o",
+        "b.exr",
+        "--time-limit",
+        "1000",
+        "--checkpoint-every",
+        "1000",
+    ];
+    assert!(embray(&limited, &dir).status.success());
+    assert_eq!(
+        std::fs::read(dir.join("a.exr")).unwrap(),
+        std::fs::read(dir.join("b.exr")).unwrap()
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn progress_lines_go_into_a_pipe() {
+    let dir = temp_dir("progress-pipe");
+    std::fs::write(dir.join("s.toml"), GOOD_SCENE).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_embray"))
+        .args(["render", "s.toml", "--spp", "64", "-o", "out.exr"])
+        .env("EMBRAY_PROGRESS_SECONDS", "0")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let line = stderr.lines().find(|l| l.starts_with("rendering:")).expect("a progress line");
+    for part in [" % (about ", " of 64 spp), ", " M rays/s, ", " s left"] {
+        assert!(line.contains(part), "{line}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn limits_and_checkpoints_are_refused_for_parts_and_bad_values() {
+    let dir = temp_dir("progressive-refused");
+    std::fs::write(dir.join("s.toml"), GOOD_SCENE).unwrap();
+    let cases: [(&[&str], &str); 3] = [
+        (&["--part", "0/2", "--time-limit", "5"], "--time-limit cannot be used with --part"),
+        (&["--time-limit", "0"], "--time-limit is 0, but must be a number of seconds > 0"),
+        (&["--checkpoint-every", "nan"], "--checkpoint-every is NaN"),
+    ];
+    for (extra, expected) in cases {
+        let mut args = vec!["render", "s.toml"];
+        args.extend(extra);
+        let out = embray(&args, &dir);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert!(stderr.contains(expected), "{stderr}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
