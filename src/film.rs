@@ -73,6 +73,29 @@ pub struct Tile {
     pub y1: u32,
 }
 
+impl Tile {
+    /// Whether the two share a pixel.
+    pub fn meets(&self, other: &Tile) -> bool {
+        self.x0 < other.x1 && other.x0 < self.x1 && self.y0 < other.y1 && other.y0 < self.y1
+    }
+}
+
+impl Film {
+    /// The pixels of `window` (inside the film) as a film of their own.
+    pub fn cropped(&self, window: Tile) -> Film {
+        let mut out = Film::new(window.x1 - window.x0, window.y1 - window.y0);
+        for y in window.y0..window.y1 {
+            for x in window.x0..window.x1 {
+                let (from, to) = (self.index(x, y), out.index(x - window.x0, y - window.y0));
+                out.color[to] = self.color[from];
+                out.depth[to] = self.depth[from];
+                out.normal[to] = self.normal[from];
+            }
+        }
+        out
+    }
+}
+
 /// Square tiles of side `size` covering the image, in row-major order.
 pub fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     let mut out = Vec::new();

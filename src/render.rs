@@ -87,7 +87,10 @@ pub fn render_with(
     Ok(RenderOutput {
         spp_done: part.spp_done,
         stopped: part.stopped,
-        film: part.sums.resolve(),
+        film: match options.crop {
+            Some(window) => part.sums.resolve().cropped(window),
+            None => part.sums.resolve(),
+        },
         stats: part.stats,
         backend: part.backend,
         observes: part.observes,
@@ -354,7 +357,10 @@ pub fn render_passes(
         options.energy,
     );
     let camera = &scene.camera;
-    let all_tiles = part.tiles(&tiles(camera.width, camera.height, TILE_SIZE));
+    let mut all_tiles = part.tiles(&tiles(camera.width, camera.height, TILE_SIZE));
+    if let Some(window) = options.crop {
+        all_tiles.retain(|t| t.meets(&window));
+    }
     let passes = pass_ranges(part.samples(options.spp.max(1)));
     let spp_total = passes.iter().map(|r| r.len() as u32).sum();
     let units = (all_tiles.len() * passes.len()) as u64;

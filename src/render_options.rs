@@ -40,6 +40,9 @@ pub struct RenderOptions {
     /// Each sample's radiance is scaled down to at most this in every channel (a firefly
     /// clamp: biased, darker where light is concentrated, but quiet at low spp).
     pub clamp: Option<f32>,
+    /// Renders only these pixels of the image (a preview window): the tiles that meet it
+    /// are traced as in the whole render, so its pixels are the whole render's, bit for bit.
+    pub crop: Option<crate::film::Tile>,
     /// Stops a progressive render early (a signal, a time limit) with the passes done.
     pub stop: Option<crate::render_stop::Stop>,
 }
@@ -66,6 +69,7 @@ impl RenderOptions {
             sampler: SamplerKind::default(),
             energy: Default::default(),
             clamp: None,
+            crop: None,
             stop: None,
         }
     }

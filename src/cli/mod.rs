@@ -8,6 +8,7 @@ mod console;
 mod convert;
 mod info;
 mod merge;
+mod preview;
 mod render;
 mod render_args;
 mod render_part;

@@ -53,7 +53,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                       files are named by -o and --png",
                 );
             }
-            let scene = load_scene(args.scene.as_deref(), &args.defines)?;
+            if args.camera.is_some() {
+                bail!(
+                    "--camera chooses among the cameras of a CENG795 .xml file; this scene has one"
+                );
+            }
+            let mut scene = load_scene(args.scene.as_deref(), &args.defines)?;
+            super::preview::apply(args, &mut scene)?;
             plan.inputs_read(&embray::input_file::files_read());
             let (exr, display) = scene_outputs(args, &mut plan)?;
             vec![Job { scene, exr, display }]
@@ -153,7 +159,7 @@ fn render_jobs(
         let line = summary(&output, &options, &written);
         reports.push((line, stats_table(&output.stats, output.observes)));
         if let Some(reason) = output.stopped {
-            let skipped = jobs[k + 1..].iter().flat_map(|j| job_paths(j)).collect();
+            let skipped = jobs[k + 1..].iter().flat_map(job_paths).collect();
             return Ok((files, reports, Some(Stopped { reason, skipped })));
         }
     }
@@ -268,6 +274,10 @@ fn png_target(
 /// the same stem, or, for a one-camera file, to -o/--png when given.
 fn ceng795_jobs(args: &RenderArgs, path: &Path, plan: &mut OutputPlan) -> Result<Vec<Job>> {
     let cameras = embray::scene::xml::load(path, &args.defines)?;
+    let mut cameras = super::preview::select_cameras(cameras, args.camera.as_deref(), path)?;
+    for camera in &mut cameras {
+        super::preview::apply(args, &mut camera.scene)?;
+    }
     plan.inputs_read(&embray::input_file::files_read());
     if cameras.len() > 1 {
         for (flag, given) in [

@@ -108,6 +108,17 @@ pub struct RenderArgs {
     /// (biased: it darkens bright caustics and highlights; off by default).
     #[arg(long, allow_hyphen_values = true)]
     pub clamp: Option<f32>,
+    /// Render at WIDTHxHEIGHT instead of the scene's size, with the same view (a preview).
+    #[arg(long, value_name = "WxH")]
+    pub resolution: Option<String>,
+    /// Render only the pixels X0..X1, Y0..Y1 of the image (X1, Y1 excluded; after
+    /// --resolution): the same pixels as the whole render gives, bit for bit.
+    #[arg(long, value_name = "X0,Y0,X1,Y1")]
+    pub crop: Option<String>,
+    /// One camera of a multi-camera CENG795 file: its ImageName (with or without the
+    /// extension) or its position from 1; -o and --part then work as for any scene.
+    #[arg(long, value_name = "NAME|N")]
+    pub camera: Option<String>,
     /// Stop after this many seconds (counted from the start of the command) and write the
     /// image of the samples done so far: renders go in passes over the whole image, and the
     /// pass in progress at the limit is dropped. Ctrl-C and SIGTERM stop the same way (a
@@ -223,6 +234,11 @@ impl RenderArgs {
             if let Some(seconds) = value.filter(|s| !(s.is_finite() && *s > 0.0 && *s < 1e9)) {
                 bail!("{flag} is {seconds}, but must be a number of seconds > 0");
             }
+        }
+        if let Some(text) = &self.crop {
+            let window =
+                super::preview::parse_crop(text, (scene.camera.width, scene.camera.height))?;
+            options.crop = Some(window);
         }
         options.progress = !self.quiet;
         Ok(options)

@@ -32,11 +32,13 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
     for (flag, given) in [
         ("--time-limit", args.time_limit.is_some()),
         ("--checkpoint-every", args.checkpoint_every.is_some()),
+        ("--crop", args.crop.is_some()),
     ] {
         if given {
             bail!(
-                "{flag} cannot be used with --part: a part file holds all of its samples or \
-                 none (a part that did not finish is rendered again)"
+                "{flag} cannot be used with --part: a part file holds all of its samples of \
+                 its share of the whole image, or nothing (a part that did not finish is \
+                 rendered again)"
             );
         }
     }
@@ -44,13 +46,15 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
     if let Some(path) = &args.scene {
         plan.input("the scene", path);
     }
-    let scene = match args.scene.as_deref() {
+    let mut scene = match args.scene.as_deref() {
         Some(path) if embray::scene::ceng795::is_ceng795_path(path) => {
-            let mut cameras = embray::scene::xml::load(path, &args.defines)?;
+            let cameras = embray::scene::xml::load(path, &args.defines)?;
+            let mut cameras =
+                super::preview::select_cameras(cameras, args.camera.as_deref(), path)?;
             if cameras.len() != 1 {
                 bail!(
-                    "'{}' has {} cameras; --part renders one image: convert it with `embray \
-                     convert` and split one camera's TOML",
+                    "'{}' has {} cameras; --part renders one image: choose one with \
+                     --camera",
                     path.display(),
                     cameras.len()
                 );
@@ -59,6 +63,7 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         }
         path => super::load_scene(path, &args.defines)?,
     };
+    super::preview::apply(args, &mut scene)?;
     plan.inputs_read(&embray::input_file::files_read());
     let output = args.output.clone().unwrap_or_else(|| default_part_path(part));
     let target = plan.output(
