@@ -41,7 +41,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Render a scene to EXR (with depth and normal AOVs) and PNG.
-    Render(RenderArgs),
+    Render(Box<RenderArgs>),
     /// Measure renders over backends, render spaces and offsets.
     #[command(subcommand)]
     Bench(BenchCommand),
