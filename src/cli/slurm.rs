@@ -169,17 +169,32 @@ fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[Stri
     let super::Command::Render(render) = cli.command else {
         bail!("the render options (after --) are not `embray render` options");
     };
-    if embray::scene::ceng795::is_ceng795_path(scene) {
-        let cameras = embray::scene::xml::load(scene, &render.defines)?.len();
-        if cameras != 1 {
+    let mut desc = if embray::scene::ceng795::is_ceng795_path(scene) {
+        let cameras = embray::scene::xml::load(scene, &render.defines)?;
+        let mut cameras =
+            super::preview::select_cameras(cameras, render.camera.as_deref(), scene)?;
+        if cameras.len() != 1 {
             bail!(
-                "'{}' has {cameras} cameras; a split render is one image: convert it with \
-                 `embray convert` and submit one camera's TOML",
-                scene.display()
+                "'{}' has {} cameras; a split render is one image: choose one with --camera \
+                 (after --)",
+                scene.display(),
+                cameras.len()
             );
         }
+        cameras.swap_remove(0).scene
+    } else {
+        super::load_scene(Some(scene), &render.defines)?
+    };
+    super::preview::apply(&render, &mut desc)?;
+    for (flag, given) in [
+        ("--time-limit", render.time_limit.is_some()),
+        ("--checkpoint-every", render.checkpoint_every.is_some()),
+        ("--crop", render.crop.is_some()),
+    ] {
+        if given {
+            bail!("{flag} cannot be used for a split render: each part renders all its samples");
+        }
     }
-    let desc = super::load_scene(Some(scene), &render.defines)?;
     let options = render.to_options(&desc)?;
     let part = Part { index: 0, count: parts, split };
     let size = (desc.camera.width, desc.camera.height);
