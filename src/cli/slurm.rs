@@ -171,8 +171,7 @@ fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[Stri
     };
     let mut desc = if embray::scene::ceng795::is_ceng795_path(scene) {
         let cameras = embray::scene::xml::load(scene, &render.defines)?;
-        let mut cameras =
-            super::preview::select_cameras(cameras, render.camera.as_deref(), scene)?;
+        let mut cameras = super::preview::select_cameras(cameras, render.camera.as_deref(), scene)?;
         if cameras.len() != 1 {
             bail!(
                 "'{}' has {} cameras; a split render is one image: choose one with --camera \
