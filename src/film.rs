@@ -12,6 +12,12 @@ pub struct Film {
     pub depth: Vec<f32>,
     /// Mean world-space shading normal at the first hit (zero where every sample missed).
     pub normal: Vec<Vec3>,
+    /// Mean first-hit albedo (zero where every sample missed).
+    pub albedo: Vec<Vec3>,
+    /// The sample variance of each pixel's samples, per channel.
+    pub variance: Vec<Vec3>,
+    /// The fraction of samples that hit something.
+    pub alpha: Vec<f32>,
 }
 
 impl Film {
@@ -23,6 +29,9 @@ impl Film {
             color: vec![Vec3::ZERO; n],
             depth: vec![f32::INFINITY; n],
             normal: vec![Vec3::ZERO; n],
+            albedo: vec![Vec3::ZERO; n],
+            variance: vec![Vec3::ZERO; n],
+            alpha: vec![0.0; n],
         }
     }
 
@@ -90,6 +99,9 @@ impl Film {
                 out.color[to] = self.color[from];
                 out.depth[to] = self.depth[from];
                 out.normal[to] = self.normal[from];
+                out.albedo[to] = self.albedo[from];
+                out.variance[to] = self.variance[from];
+                out.alpha[to] = self.alpha[from];
             }
         }
         out

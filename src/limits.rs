@@ -36,9 +36,10 @@ pub const MIN_F_NUMBER: f64 = 0.01;
 // path tracer and Whitted alike) and checked by `tests/memory_model.rs` (the estimate
 // covers the measured peak and stays within 1.5 times it).
 
-/// Bytes per pixel: the exact fixed-point sums of every pixel, the film resolved from them,
-/// and the EXR channels and PNG pixels while encoding (measured: 257).
-pub const BYTES_PER_PIXEL: u64 = 270;
+/// Bytes per pixel: the exact fixed-point sums of every pixel (colour, depth, normal,
+/// albedo, squares for the variance), the film resolved from them, and the EXR channels and
+/// PNG pixels while encoding (measured: 280, with every AOV written or none).
+pub const BYTES_PER_PIXEL: u64 = 300;
 /// Bytes every render holds whatever its size: the binary, the runtime, Embree's library
 /// and the bundled scenes (measured: 10–14 MiB beyond the pixels; 24 leaves room for
 /// another machine's Embree kernels).

@@ -15,6 +15,7 @@ use crate::scene::SceneDesc;
 use crate::stats::RenderStats;
 use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
+use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
 /// Side of the square tiles rayon schedules, one task each (`par_iter` over the tiles,
@@ -263,7 +264,7 @@ fn render_tile(
             _ => sample.radiance,
         };
         // The box filter's weight is exactly 1, and x · 1 is x: its renders are unchanged.
-        sums.add_sample(radiance * weight, sample.depth, sample.normal)
+        sums.add_sample(radiance * weight, sample.depth, sample.normal, sample.albedo)
     };
     let batched = match tracer {
         Tracer::Path(path) if path.accel().prefers_batches() => Some(path),
@@ -339,7 +340,7 @@ pub fn render_sums(
 
 /// As [`render_sums`], in passes over the whole part (`render_passes::pass_ranges`), each
 /// handed to `on_pass` with the samples per pixel done so far; stops before its last pass
-/// when `options.stop` asks (the pass in progress is dropped), with the passes done.
+/// when `options.stop` asks (no new tile is started; the tiles done keep their samples).
 pub fn render_passes(
     scene: &RenderScene,
     accel: &dyn Accel,
@@ -373,25 +374,33 @@ pub fn render_passes(
         stopped: None,
     };
     for samples in passes {
-        let results: Vec<Option<TileResult>> = all_tiles
-            .par_iter()
-            .map_init(TileScratch::default, |scratch, &tile| {
-                // A stop drops the rest of the pass: the image keeps whole passes only.
-                if stop().is_some() {
-                    return None;
-                }
-                let r = render_tile(&tracer, tile, samples.clone(), options, scratch)?;
-                progress.tile_done(r.stats.total_rays());
-                Some(r)
-            })
-            .collect();
-        if let Some(reason) = stop().filter(|_| results.iter().any(Option::is_none)) {
+        // Each tile is added to the film as it ends (exact sums: in any order), so no copy
+        // of the image's sums is held per pass. A stop leaves the tiles of the pass not yet
+        // done: they keep one pass fewer (every pixel is the mean of its own samples).
+        let film = Mutex::new((
+            std::mem::replace(&mut done.sums, FilmSums::new(0, 0)),
+            RenderStats::default(),
+            0usize,
+        ));
+        all_tiles.par_iter().for_each_init(TileScratch::default, |scratch, &tile| {
+            if stop().is_some() {
+                return;
+            }
+            let Some(r) = render_tile(&tracer, tile, samples.clone(), options, scratch) else {
+                return;
+            };
+            progress.tile_done(r.stats.total_rays());
+            let mut film = film.lock().unwrap_or_else(PoisonError::into_inner);
+            add_tile(&mut film.0, r.tile, &r.sums);
+            film.1 += r.stats;
+            film.2 += 1;
+        });
+        let (sums, stats, tiles_done) = film.into_inner().unwrap_or_else(PoisonError::into_inner);
+        done.sums = sums;
+        done.stats += stats;
+        if let Some(reason) = stop().filter(|_| tiles_done < all_tiles.len()) {
             done.stopped = Some(reason);
             break;
-        }
-        for r in results.into_iter().flatten() {
-            add_tile(&mut done.sums, r.tile, &r.sums);
-            done.stats += r.stats;
         }
         done.spp_done += samples.len() as u32;
         on_pass(&done.sums, done.spp_done);

@@ -71,13 +71,32 @@ pub struct PixelSums {
     pub depth_samples: u32,
     /// World-space shading normals at the first hit.
     pub normal: [i128; 3],
+    /// First-hit albedos (over the samples that hit something).
+    pub albedo: [i128; 3],
+    /// Squared sample values, for the per-pixel sample variance.
+    pub square: [i128; 3],
 }
 
 impl PixelSums {
-    /// Adds one sample: its radiance and, where it hit something, its depth and normal.
-    pub fn add_sample(&mut self, radiance: Vec3, depth: Option<f32>, normal: Option<Vec3>) {
-        for (sum, v) in self.color.iter_mut().zip(radiance.to_array()) {
+    /// Adds one sample: its radiance and, where it hit something, its depth, normal and
+    /// albedo.
+    pub fn add_sample(
+        &mut self,
+        radiance: Vec3,
+        depth: Option<f32>,
+        normal: Option<Vec3>,
+        albedo: Option<Vec3>,
+    ) {
+        for ((sum, square), v) in
+            self.color.iter_mut().zip(&mut self.square).zip(radiance.to_array())
+        {
             *sum += to_fixed(v);
+            *square += to_fixed(v * v);
+        }
+        if let Some(a) = albedo {
+            for (sum, v) in self.albedo.iter_mut().zip(a.to_array()) {
+                *sum += to_fixed(v);
+            }
         }
         self.samples += 1;
         if let Some(d) = depth {
@@ -103,18 +122,18 @@ impl PixelSums {
             depth: self.depth.checked_add(other.depth)?,
             depth_samples: self.depth_samples.checked_add(other.depth_samples)?,
             normal: add3(self.normal, other.normal)?,
+            albedo: add3(self.albedo, other.albedo)?,
+            square: add3(self.square, other.square)?,
         })
     }
 
-    /// The pixel's mean colour, mean depth (+∞ where no sample hit) and mean normal
-    /// direction (zero where none hit).
-    pub fn resolve(&self) -> (Vec3, f32, Vec3) {
+    /// The pixel's values: its mean colour and the AOVs.
+    pub fn resolve(&self) -> Resolved {
         let mean = |sum: i128, n: u32| from_fixed(sum) / n.max(1) as f64;
-        let color = DVec3::new(
-            mean(self.color[0], self.samples),
-            mean(self.color[1], self.samples),
-            mean(self.color[2], self.samples),
-        );
+        let mean3 = |sums: [i128; 3], n: u32| {
+            DVec3::new(mean(sums[0], n), mean(sums[1], n), mean(sums[2], n))
+        };
+        let color = mean3(self.color, self.samples);
         let depth = if self.depth_samples > 0 {
             mean(self.depth, self.depth_samples) as f32
         } else {
@@ -125,8 +144,35 @@ impl PixelSums {
             from_fixed(self.normal[1]),
             from_fixed(self.normal[2]),
         );
-        (color.as_vec3(), depth, normal.normalize_or_zero().as_vec3())
+        // The unbiased sample variance of the samples (not of their mean: divide by spp).
+        let n = f64::from(self.samples);
+        let variance = match self.samples {
+            0 | 1 => DVec3::ZERO,
+            _ => ((mean3(self.square, self.samples) - color * color) * (n / (n - 1.0)))
+                .max(DVec3::ZERO),
+        };
+        Resolved {
+            color: color.as_vec3(),
+            depth,
+            normal: normal.normalize_or_zero().as_vec3(),
+            albedo: mean3(self.albedo, self.depth_samples).as_vec3(),
+            variance: variance.as_vec3(),
+            alpha: (f64::from(self.depth_samples) / n.max(1.0)) as f32,
+        }
     }
+}
+
+/// One pixel's values (`PixelSums::resolve`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Resolved {
+    pub color: Vec3,
+    /// Mean distance to the first hit over the samples that hit; +∞ where none did.
+    pub depth: f32,
+    pub normal: Vec3,
+    pub albedo: Vec3,
+    pub variance: Vec3,
+    /// The fraction of samples that hit something.
+    pub alpha: f32,
 }
 
 /// The sums of every pixel of an image (or of the part of it one task rendered).
@@ -152,10 +198,13 @@ impl FilmSums {
     pub fn resolve(&self) -> Film {
         let mut film = Film::new(self.width, self.height);
         for (i, sums) in self.pixels.iter().enumerate() {
-            let (color, depth, normal) = sums.resolve();
-            film.color[i] = color;
-            film.depth[i] = depth;
-            film.normal[i] = normal;
+            let pixel = sums.resolve();
+            film.color[i] = pixel.color;
+            film.depth[i] = pixel.depth;
+            film.normal[i] = pixel.normal;
+            film.albedo[i] = pixel.albedo;
+            film.variance[i] = pixel.variance;
+            film.alpha[i] = pixel.alpha;
         }
         film
     }
@@ -236,15 +285,15 @@ mod tests {
             (0..97).map(|i| ((i * 7919) % 1000) as f32 * 0.37e-3 + 1e-7).collect();
         let mut whole = PixelSums::default();
         for v in &values {
-            whole.add_sample(Vec3::splat(*v), Some(*v), None);
+            whole.add_sample(Vec3::splat(*v), Some(*v), None, Some(Vec3::splat(*v)));
         }
         for cut in [1usize, 13, 50, 96] {
             let (mut a, mut b) = (PixelSums::default(), PixelSums::default());
             for v in &values[cut..] {
-                b.add_sample(Vec3::splat(*v), Some(*v), None);
+                b.add_sample(Vec3::splat(*v), Some(*v), None, Some(Vec3::splat(*v)));
             }
             for v in &values[..cut] {
-                a.add_sample(Vec3::splat(*v), Some(*v), None);
+                a.add_sample(Vec3::splat(*v), Some(*v), None, Some(Vec3::splat(*v)));
             }
             assert_eq!(b.checked_add(&a), Some(whole), "cut at {cut}");
         }
@@ -253,15 +302,18 @@ mod tests {
     #[test]
     fn resolve_gives_means_and_marks_pixels_nothing_hit() {
         let mut sums = PixelSums::default();
-        sums.add_sample(Vec3::new(1.0, 2.0, 3.0), None, None);
-        sums.add_sample(Vec3::new(3.0, 2.0, 1.0), None, None);
-        let (color, depth, normal) = sums.resolve();
-        assert_eq!(color, Vec3::splat(2.0));
-        assert_eq!(depth, f32::INFINITY);
-        assert_eq!(normal, Vec3::ZERO);
-        sums.add_sample(Vec3::ZERO, Some(4.0), Some(Vec3::new(0.0, 0.0, 2.0)));
-        let (_, depth, normal) = sums.resolve();
-        assert_eq!(depth, 4.0);
-        assert_eq!(normal, Vec3::Z);
+        sums.add_sample(Vec3::new(1.0, 2.0, 3.0), None, None, None);
+        sums.add_sample(Vec3::new(3.0, 2.0, 1.0), None, None, None);
+        let pixel = sums.resolve();
+        assert_eq!(pixel.color, Vec3::splat(2.0));
+        assert_eq!(pixel.depth, f32::INFINITY);
+        assert_eq!((pixel.normal, pixel.albedo, pixel.alpha), (Vec3::ZERO, Vec3::ZERO, 0.0));
+        // Sample variance of (1, 3), (2, 2), (3, 1): 2, 0, 2.
+        assert_eq!(pixel.variance, Vec3::new(2.0, 0.0, 2.0));
+        let albedo = Vec3::new(0.5, 0.25, 1.0);
+        sums.add_sample(Vec3::ZERO, Some(4.0), Some(Vec3::new(0.0, 0.0, 2.0)), Some(albedo));
+        let pixel = sums.resolve();
+        assert_eq!((pixel.depth, pixel.normal, pixel.albedo), (4.0, Vec3::Z, albedo));
+        assert_eq!(pixel.alpha, 1.0 / 3.0);
     }
 }

@@ -61,7 +61,8 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     let (meta, stats) = (&merged.meta, merged.stats);
     let film = merged.sums.resolve();
     let mut files = OutputSet::new();
-    files.write(&exr, |w| encode_exr(&film, w))?;
+    let aovs = embray::output::Aovs::parse(&meta.aovs).map_err(anyhow::Error::msg)?;
+    files.write(&exr, |w| encode_exr(&film, aovs, w))?;
     if let Some(png) = &png {
         let curve: ToneMap = meta.png.curve.parse().context("the parts' PNG settings")?;
         let [key, burn_out, saturation, gamma] = meta.png.photographic;

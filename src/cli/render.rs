@@ -8,6 +8,7 @@ use anyhow::{Result, bail};
 use embray::distributed::Part;
 use embray::excerpt::excerpt;
 use embray::film::Film;
+use embray::output::Aovs;
 use embray::output::stats::{StatsReport, stats_table};
 use embray::output::{
     DisplayLook, ImageFormat, OutputPlan, OutputSet, Target, camera_outputs, encode_display,
@@ -133,7 +134,7 @@ fn render_jobs(
         let spp = options.spp.max(1);
         let mut on_pass = |sums: &FilmSums, done: u32| {
             if every.is_some_and(|every| last_write.elapsed() >= every) && done < spp {
-                checkpoint(job, &sums.resolve(), &look, done, spp);
+                checkpoint(job, &sums.resolve(), &look, args.aovs, done, spp);
                 last_write = Instant::now();
             }
         };
@@ -149,7 +150,7 @@ fn render_jobs(
                  object, max_depth 0?); `embray info` lists the lights",
             );
         }
-        write_job(&mut files, job, &output.film, &look)?;
+        write_job(&mut files, job, &output.film, &look, args.aovs)?;
         if let Some(target) = stats_json {
             let report = StatsReport::new(&output, &options);
             files.write(target, |w| report.encode(w))?;
@@ -173,9 +174,15 @@ fn job_paths(job: &Job) -> Vec<String> {
 }
 
 /// Adds a job's images to `files`.
-fn write_job(files: &mut OutputSet, job: &Job, film: &Film, look: &DisplayLook) -> Result<()> {
+fn write_job(
+    files: &mut OutputSet,
+    job: &Job,
+    film: &Film,
+    look: &DisplayLook,
+    aovs: Aovs,
+) -> Result<()> {
     if let Some(exr) = &job.exr {
-        files.write(exr, |w| encode_exr(film, w))?;
+        files.write(exr, |w| encode_exr(film, aovs, w))?;
     }
     if let Some((target, format)) = &job.display {
         files.write(target, |w| encode_display(film, look, *format, w))?;
@@ -185,9 +192,9 @@ fn write_job(files: &mut OutputSet, job: &Job, film: &Film, look: &DisplayLook) 
 
 /// Writes the image so far over the job's outputs (each atomically); a failure is a
 /// warning, as the render goes on.
-fn checkpoint(job: &Job, film: &Film, look: &DisplayLook, done: u32, spp: u32) {
+fn checkpoint(job: &Job, film: &Film, look: &DisplayLook, aovs: Aovs, done: u32, spp: u32) {
     let mut files = OutputSet::new();
-    match write_job(&mut files, job, film, look).and_then(|()| Ok(files.commit()?)) {
+    match write_job(&mut files, job, film, look, aovs).and_then(|()| Ok(files.commit()?)) {
         Ok(()) => note(format!("checkpoint: {done} of {spp} spp → {}", job_paths(job).join(", "))),
         Err(e) => note(format!("warning: checkpoint at {done} spp not written: {e:#}")),
     }

@@ -108,6 +108,11 @@ pub struct RenderArgs {
     /// (biased: it darkens bright caustics and highlights; off by default).
     #[arg(long, allow_hyphen_values = true)]
     pub clamp: Option<f32>,
+    /// The EXR's channels beside R, G, B: a comma list of depth (Z), normal (N.X/Y/Z),
+    /// albedo (albedo.R/G/B), variance (variance.R/G/B, the samples' variance), alpha (A:
+    /// the fraction of samples that hit something); `none` for the beauty alone.
+    #[arg(long, value_parser = |s: &str| embray::output::Aovs::parse(s), default_value = "depth,normal")]
+    pub aovs: embray::output::Aovs,
     /// Render at WIDTHxHEIGHT instead of the scene's size, with the same view (a preview).
     #[arg(long, value_name = "WxH")]
     pub resolution: Option<String>,
@@ -120,9 +125,9 @@ pub struct RenderArgs {
     #[arg(long, value_name = "NAME|N")]
     pub camera: Option<String>,
     /// Stop after this many seconds (counted from the start of the command) and write the
-    /// image of the samples done so far: renders go in passes over the whole image, and the
-    /// pass in progress at the limit is dropped. Ctrl-C and SIGTERM stop the same way (a
-    /// second one quits at once).
+    /// image of the samples done so far: renders go in passes over the whole image, and at
+    /// the limit no new tile is started. Ctrl-C and SIGTERM stop the same way (a second one
+    /// quits at once).
     #[arg(long, value_name = "SECONDS")]
     pub time_limit: Option<f64>,
     /// While rendering, write the image so far (every output, atomically replaced) after

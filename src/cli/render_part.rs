@@ -92,6 +92,7 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         spp: options.spp,
         tile_size: TILE_SIZE,
         part,
+        aovs: args.aovs.to_string(),
         png: PngSettings {
             curve: args.tonemap.resolve(&scene.settings).to_string(),
             exposure: args.look.exposure,

@@ -10,7 +10,7 @@ use sha2::{Digest, Sha256};
 use std::path::PathBuf;
 
 /// The format of part files this build writes and reads.
-pub const PART_FORMAT: &str = "embray-part-1";
+pub const PART_FORMAT: &str = "embray-part-2";
 
 /// How the final PNG is made (as the part's `embray render` command line said).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -41,6 +41,8 @@ pub struct PartMeta {
     pub tile_size: u32,
     pub part: Part,
     pub png: PngSettings,
+    /// The EXR's AOVs (an `output::Aovs` list), for the merged image.
+    pub aovs: String,
     pub stats: RenderStats,
     /// How long the part took where it ran (reported, never compared).
     pub timing: PartTiming,
@@ -75,6 +77,7 @@ impl PartMeta {
             ("split", format!("{} into {} parts", self.part.split, self.part.count)),
             ("tile size", self.tile_size.to_string()),
             ("PNG settings", format!("{:?}", self.png)),
+            ("AOVs", self.aovs.clone()),
         ]
     }
 }

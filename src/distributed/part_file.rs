@@ -12,7 +12,10 @@ use std::path::Path;
 /// The header attribute holding the metadata.
 const META_ATTRIBUTE: &str = "embray.part";
 /// The summed quantities, in `PixelSums` order.
-const QUANTITIES: [&str; 7] = ["R", "G", "B", "Z", "N.X", "N.Y", "N.Z"];
+const QUANTITIES: [&str; 13] = [
+    "R", "G", "B", "Z", "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B", "square.R",
+    "square.G", "square.B",
+];
 const WORDS: usize = 4;
 /// Bytes a pixel takes in the file before compression (the size cap on reading it).
 pub const BYTES_PER_PIXEL: u64 = ((QUANTITIES.len() * WORDS + 2) * 4) as u64;
@@ -59,7 +62,9 @@ fn quantity(sums: &PixelSums, q: usize) -> i128 {
     match q {
         0..=2 => sums.color[q],
         3 => sums.depth,
-        _ => sums.normal[q - 4],
+        4..=6 => sums.normal[q - 4],
+        7..=9 => sums.albedo[q - 7],
+        _ => sums.square[q - 10],
     }
 }
 
@@ -67,7 +72,9 @@ fn set_quantity(sums: &mut PixelSums, q: usize, value: i128) {
     match q {
         0..=2 => sums.color[q] = value,
         3 => sums.depth = value,
-        _ => sums.normal[q - 4] = value,
+        4..=6 => sums.normal[q - 4] = value,
+        7..=9 => sums.albedo[q - 7] = value,
+        _ => sums.square[q - 10] = value,
     }
 }
 
@@ -272,6 +279,7 @@ mod tests {
             spp: 4,
             tile_size: 16,
             part,
+            aovs: "depth,normal".into(),
             png: super::super::PngSettings {
                 curve: "aces".into(),
                 exposure: 0.0,
@@ -302,7 +310,7 @@ mod tests {
                 for x in t.x0..t.x1 {
                     let i = sums.index(x, y);
                     let v = Vec3::new(x as f32, -(y as f32), 1e-3 * i as f32);
-                    sums.pixels[i].add_sample(v, Some(1e9), Some(Vec3::Y));
+                    sums.pixels[i].add_sample(v, Some(1e9), Some(Vec3::Y), Some(v));
                 }
             }
         }
@@ -329,7 +337,7 @@ mod tests {
             let mut sums = FilmSums::new(16, 16);
             for p in &mut sums.pixels {
                 for _ in 0..2 + index {
-                    p.add_sample(Vec3::ONE, None, None);
+                    p.add_sample(Vec3::ONE, None, None, None);
                 }
             }
             paths.push(write(&meta_of(index), &sums, &format!("coverage{index}")));

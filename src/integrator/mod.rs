@@ -25,6 +25,9 @@ pub struct PathSample {
     pub depth: Option<f32>,
     /// World-space shading normal at the first hit.
     pub normal: Option<Vec3>,
+    /// The first hit's albedo (the fraction of light its surface reflects; for the
+    /// `albedo` AOV, what a denoiser takes as the surface's colour).
+    pub albedo: Option<Vec3>,
 }
 
 /// The light-transport algorithm of one render.

@@ -63,6 +63,16 @@ impl SceneTracer<'_> {
         }
     }
 
+    /// The diffuse reflectance of `material` at `si` (its texture applied).
+    pub fn surface_albedo(&self, material: &Material, si: &SurfaceInteraction, time: f32) -> Vec3 {
+        match &material.texture {
+            None => material.albedo,
+            Some(texture) => {
+                texture.apply_to_albedo(material.albedo, self.texture_color(texture, si, time))
+            }
+        }
+    }
+
     /// `texture`'s colour at `si` (solid patterns in the hit object's own space at `time`).
     pub fn texture_color(&self, texture: &Texture, si: &SurfaceInteraction, time: f32) -> Vec3 {
         let p_object = if texture.needs_object_point() {

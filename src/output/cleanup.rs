@@ -35,7 +35,7 @@ pub fn remove_temp_files_on_signals() -> std::io::Result<()> {
             if crate::render_stop::take_signal(signal) {
                 let _ = std::io::Write::write_all(
                     &mut std::io::stderr(),
-                    b"\nstopping: the pass in progress is dropped, the passes done are written \
+                    b"\nstopping: no new tile is started, then the image is written \
                       (again to quit at once)\n",
                 );
                 continue;

@@ -1,31 +1,52 @@
 //! The linear EXR: float RGB plus depth `Z` and world-space normals `N.X N.Y N.Z`.
 
+use super::Aovs;
 use super::{OutputError, WriteSeek, write_one};
 use crate::film::Film;
 use std::path::Path;
 
 /// Writes `film` as EXR to `path` on its own (see `OutputSet` for a run's several outputs).
 pub fn write_exr(film: &Film, path: &Path) -> Result<(), OutputError> {
-    write_one(path, |w| encode_exr(film, w))
+    write_one(path, |w| encode_exr(film, Aovs::default(), w))
 }
 
-/// Encodes `film` as EXR into `sink`; every write error is returned.
-pub fn encode_exr(film: &Film, sink: &mut dyn WriteSeek) -> std::io::Result<()> {
+/// Encodes `film` as EXR with the AOVs `aovs` into `sink`; every write error is returned.
+pub fn encode_exr(film: &Film, aovs: Aovs, sink: &mut dyn WriteSeek) -> std::io::Result<()> {
     use exr::prelude::*;
     let size = Vec2(film.width as usize, film.height as usize);
     let channel = |name: &str, values: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(values));
     let component = |pick: fn(&glam::Vec3) -> f32, data: &[glam::Vec3]| -> Vec<f32> {
         data.iter().map(pick).collect()
     };
-    let channels = SmallVec::from_vec(vec![
+    let mut channels = vec![
         channel("R", component(|c| c.x, &film.color)),
         channel("G", component(|c| c.y, &film.color)),
         channel("B", component(|c| c.z, &film.color)),
-        channel("Z", film.depth.clone()),
-        channel("N.X", component(|c| c.x, &film.normal)),
-        channel("N.Y", component(|c| c.y, &film.normal)),
-        channel("N.Z", component(|c| c.z, &film.normal)),
-    ]);
+    ];
+    // Layers of three: directions as X Y Z, colours as R G B.
+    let mut three = |name: &str, [a, b, c]: [&str; 3], data: &[glam::Vec3]| {
+        channels.push(channel(&format!("{name}.{a}"), component(|v| v.x, data)));
+        channels.push(channel(&format!("{name}.{b}"), component(|v| v.y, data)));
+        channels.push(channel(&format!("{name}.{c}"), component(|v| v.z, data)));
+    };
+    if aovs.normal {
+        three("N", ["X", "Y", "Z"], &film.normal);
+    }
+    if aovs.albedo {
+        three("albedo", ["R", "G", "B"], &film.albedo);
+    }
+    if aovs.variance {
+        three("variance", ["R", "G", "B"], &film.variance);
+    }
+    if aovs.depth {
+        // Finite: 0 where no sample hit anything (`A` tells those pixels apart).
+        let depth = film.depth.iter().map(|d| if d.is_finite() { *d } else { 0.0 }).collect();
+        channels.push(channel("Z", depth));
+    }
+    if aovs.alpha {
+        channels.push(channel("A", film.alpha.clone()));
+    }
+    let channels = SmallVec::from_vec(channels);
     let layer = Layer::new(
         size,
         LayerAttributes::named("embray"),

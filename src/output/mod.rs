@@ -6,6 +6,7 @@
 //! mismatched or destroyed file behind. Interrupted runs remove their temporary files
 //! (`cleanup`).
 
+mod aovs;
 mod cleanup;
 mod exr;
 mod format;
@@ -19,6 +20,7 @@ mod target;
 pub mod tonemap;
 mod transaction;
 
+pub use aovs::Aovs;
 pub use cleanup::remove_temp_files_on_signals;
 pub use exr::{encode_exr, write_exr};
 pub use format::ImageFormat;

@@ -21,7 +21,7 @@ refused_cases! {
 }
 
 /// The estimate is checked against the machine's memory; a budget makes the case the same
-/// on any machine (16384² needs about 68 GiB, more than the 2-core reference machine has).
+/// on any machine (16384² needs about 75 GiB, more than the 2-core reference machine has).
 #[test]
 fn a_render_needing_more_memory_than_there_is_is_refused() {
     let scratch = Scratch::new();
@@ -34,7 +34,7 @@ fn a_render_needing_more_memory_than_there_is_is_refused() {
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     run.assert_says(&[
         "s.toml",
-        "16.9 GiB of memory",
+        "18.8 GiB of memory",
         "8192x8192",
         "only 1.0 GiB",
         "lower camera.resolution",

@@ -14,7 +14,7 @@ use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::sampling::{SampleStream, frame_from_normal};
 use crate::shading::bsdf::{Bsdf, Energy};
-use crate::shading::material::{MaskOpacity, Material};
+use crate::shading::material::MaskOpacity;
 use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
 use glam::{Mat3, Quat, Vec2, Vec3};
@@ -66,14 +66,6 @@ impl<'a> PathTracer<'a> {
     fn shading_frame(&self, normal: Vec3) -> Mat3 {
         let n = (self.sampling_from_render * normal).normalize();
         self.sampling_from_render.transpose() * frame_from_normal(n)
-    }
-
-    fn albedo(&self, material: &Material, si: &SurfaceInteraction, time: f32) -> Vec3 {
-        match &material.texture {
-            None => material.albedo,
-            Some(texture) => texture
-                .apply_to_albedo(material.albedo, self.tracer.texture_color(texture, si, time)),
-        }
     }
 
     /// The first hit along a camera ray past the emitting surfaces it meets: with
@@ -197,7 +189,7 @@ impl<'a> PathTracer<'a> {
             if self.max_depth == 0 || depth == bounces {
                 break;
             }
-            let albedo = self.albedo(material, &si, ray.time);
+            let albedo = self.tracer.surface_albedo(material, &si, ray.time);
             let course_specular = match (&material.specular_texture, &material.phong) {
                 (Some(t), Some(_)) => self.tracer.texture_color(t, &si, ray.time),
                 (_, phong) => phong.as_ref().map_or(Vec3::ZERO, |p| p.specular),
@@ -217,6 +209,9 @@ impl<'a> PathTracer<'a> {
             };
             let bsdf = if bump_shadowing { bsdf.with_bump_shadowing(unmapped) } else { bsdf };
             let wo = -ray.dir.normalize();
+            if depth == 0 {
+                result.albedo = Some(bsdf.albedo_bound(wo).min(Vec3::ONE));
+            }
             if bsdf.has_smooth_lobe() {
                 let direct = self.direct_light(&si, &bsdf, wo, ray.time, stream, stats);
                 result.radiance += throughput * direct;

@@ -153,6 +153,9 @@ impl<'a> WhittedTracer<'a> {
                 Some(self.tracer.scene.camera.world_from_render_rotation * si.shading_normal);
         }
         let material = &self.tracer.scene.materials[si.material as usize];
+        if camera_ray {
+            first.albedo = Some(self.tracer.surface_albedo(material, &si, ray.time).min(Vec3::ONE));
+        }
         let wo = -ray.dir.normalize();
         // The course shades every surface but the inside of a dielectric, dielectrics too
         // (their ambient, diffuse and specular terms are usually zero, but not always:
