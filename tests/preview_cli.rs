@@ -89,9 +89,9 @@ const TWO_CAMERAS: &str = r#"<Scene>
       <ImageResolution>8 8</ImageResolution><ImageName>front.png</ImageName>
     </Camera>
     <Camera id="2">
-      <Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>
+      <Position>0 0 0</Position><Gaze>0.2 0 -1</Gaze><Up>0 1 0</Up>
       <NearPlane>-1 1 -1 1</NearPlane><NearDistance>1</NearDistance>
-      <ImageResolution>6 4</ImageResolution><ImageName>side.png</ImageName>
+      <ImageResolution>8 8</ImageResolution><ImageName>side.png</ImageName>
     </Camera>
   </Cameras>
   <Lights><AmbientLight>25 25 25</AmbientLight>
@@ -115,6 +115,25 @@ fn one_camera_of_several_is_chosen_by_name_or_position() {
     // With one camera chosen, -o names its image (it was refused for a multi-camera file).
     run_ok(&["render", "s.xml", "-q", "--camera", "1", "-o", "first.exr"], &dir);
     assert_eq!(read_reference(&dir.join("first.exr")).unwrap().width, 8);
+    // Parts of two cameras of one file (same size) do not merge.
+    run_ok(
+        &[
+            "render", "s.xml", "-q", "--camera", "front", "--part", "0/2", "--split", "samples",
+            "--spp", "2", "-o", "p0.exr",
+        ],
+        &dir,
+    );
+    run_ok(
+        &[
+            "render", "s.xml", "-q", "--camera", "side", "--part", "1/2", "--split", "samples",
+            "--spp", "2", "-o", "p1.exr",
+        ],
+        &dir,
+    );
+    let out = embray(&["merge", "p0.exr", "p1.exr", "-o", "m.exr"], &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("camera differs"), "{stderr}");
     let out = embray(&["render", "s.xml", "--camera", "top"], &dir);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1));

@@ -33,6 +33,16 @@ fn spp_done(stderr: &str) -> u32 {
     stderr[..at].rsplit(' ').next().unwrap().parse().unwrap()
 }
 
+/// The `embray` text attribute of the EXR at `path` (how the image was made).
+fn embray_attribute(path: &std::path::Path) -> String {
+    let meta = exr::meta::MetaData::read_from_file(path, false).unwrap();
+    let value = meta.headers[0].own_attributes.other.get(&exr::prelude::Text::from("embray"));
+    match value {
+        Some(exr::meta::attribute::AttributeValue::Text(text)) => text.to_string(),
+        other => panic!("no embray attribute: {other:?}"),
+    }
+}
+
 #[test]
 fn ctrl_c_and_sigterm_write_the_passes_done() {
     for (signal, name, code) in [(libc::SIGINT, "Ctrl-C", 130), (libc::SIGTERM, "SIGTERM", 143)] {
@@ -48,6 +58,15 @@ fn ctrl_c_and_sigterm_write_the_passes_done() {
         assert!(film.color.iter().all(|c| c.is_finite()));
         assert!(film.color.iter().any(|c| c.max_element() > 0.1));
         assert!(dir.join("out.png").exists());
+        // The EXR says how far it got, and why it stopped.
+        let said = embray_attribute(&dir.join("out.exr"));
+        for line in [
+            format!("spp: {done}\n"),
+            "spp_requested: 1000000\n".into(),
+            format!("stopped: interrupted ({name})\n"),
+        ] {
+            assert!(said.contains(&line), "{line:?} not in {said}");
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -62,7 +62,8 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     let film = merged.sums.resolve();
     let mut files = OutputSet::new();
     let aovs = embray::output::Aovs::parse(&meta.aovs).map_err(anyhow::Error::msg)?;
-    files.write(&exr, |w| encode_exr(&film, aovs, w))?;
+    let attributes = meta.image_attributes(meta.spp, None);
+    files.write(&exr, |w| encode_exr(&film, aovs, &attributes, w))?;
     if let Some(png) = &png {
         let curve: ToneMap = meta.png.curve.parse().context("the parts' PNG settings")?;
         let [key, burn_out, saturation, gamma] = meta.png.photographic;

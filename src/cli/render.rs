@@ -4,8 +4,10 @@
 use super::console::{note, out};
 use super::load_scene;
 use super::render_args::RenderArgs;
+use super::render_part::part_meta;
 use anyhow::{Result, bail};
 use embray::distributed::Part;
+use embray::distributed::{PartMeta, PartTiming};
 use embray::excerpt::excerpt;
 use embray::film::Film;
 use embray::output::Aovs;
@@ -77,7 +79,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     let stop = Stop::new(args.time_limit.map(|s| started + Duration::from_secs_f64(s)));
     stop.watch();
-    let rendered = render_jobs(args, &jobs, &stop, lut.as_ref(), stats_json.as_ref());
+    let scene_hash = embray::distributed::hash_files(&embray::scene::files_read())?;
+    let rendered = render_jobs(args, &scene_hash, &jobs, &stop, lut.as_ref(), stats_json.as_ref());
     stop.unwatch();
     let (files, reports, stopped) = rendered?;
     files.commit()?;
@@ -104,6 +107,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
 }
 
+/// The EXR's AOVs and text attributes.
+type ExrLook = (Aovs, Vec<(String, String)>);
+
 /// A run that stopped early: why, and the images it did not render.
 struct Stopped {
     reason: StopReason,
@@ -115,6 +121,7 @@ type Rendered = (OutputSet, Vec<(String, String)>, Option<Stopped>);
 /// Renders every job into `files` (not yet committed), until a stop.
 fn render_jobs(
     args: &RenderArgs,
+    scene_hash: &str,
     jobs: &[Job],
     stop: &Stop,
     lut: Option<&embray::output::Lut3d>,
@@ -132,9 +139,12 @@ fn render_jobs(
         let mut last_write = Instant::now();
         let every = args.checkpoint_every.map(Duration::from_secs_f64);
         let spp = options.spp.max(1);
+        let (hash, whole) = (scene_hash.to_owned(), Part::WHOLE);
+        let timing = PartTiming::default();
+        let meta = part_meta(args, &job.scene, &options, whole, hash, Default::default(), timing)?;
         let mut on_pass = |sums: &FilmSums, done: u32| {
             if every.is_some_and(|every| last_write.elapsed() >= every) && done < spp {
-                checkpoint(job, &sums.resolve(), &look, args.aovs, done, spp);
+                checkpoint(job, &sums.resolve(), &look, &meta, args.aovs, done);
                 last_write = Instant::now();
             }
         };
@@ -150,7 +160,9 @@ fn render_jobs(
                  object, max_depth 0?); `embray info` lists the lights",
             );
         }
-        write_job(&mut files, job, &output.film, &look, args.aovs)?;
+        let stopped = output.stopped.map(|reason| reason.to_string());
+        let exr_look = (args.aovs, meta.image_attributes(output.spp_done, stopped));
+        write_job(&mut files, job, &output.film, &look, &exr_look)?;
         if let Some(target) = stats_json {
             let report = StatsReport::new(&output, &options);
             files.write(target, |w| report.encode(w))?;
@@ -179,10 +191,10 @@ fn write_job(
     job: &Job,
     film: &Film,
     look: &DisplayLook,
-    aovs: Aovs,
+    exr_look: &ExrLook,
 ) -> Result<()> {
     if let Some(exr) = &job.exr {
-        files.write(exr, |w| encode_exr(film, aovs, w))?;
+        files.write(exr, |w| encode_exr(film, exr_look.0, &exr_look.1, w))?;
     }
     if let Some((target, format)) = &job.display {
         files.write(target, |w| encode_display(film, look, *format, w))?;
@@ -192,9 +204,11 @@ fn write_job(
 
 /// Writes the image so far over the job's outputs (each atomically); a failure is a
 /// warning, as the render goes on.
-fn checkpoint(job: &Job, film: &Film, look: &DisplayLook, aovs: Aovs, done: u32, spp: u32) {
+fn checkpoint(job: &Job, film: &Film, look: &DisplayLook, meta: &PartMeta, aovs: Aovs, done: u32) {
+    let spp = meta.spp.max(1);
+    let exr_look = (aovs, meta.image_attributes(done, Some("in progress (a checkpoint)".into())));
     let mut files = OutputSet::new();
-    match write_job(&mut files, job, film, look, aovs).and_then(|()| Ok(files.commit()?)) {
+    match write_job(&mut files, job, film, look, &exr_look).and_then(|()| Ok(files.commit()?)) {
         Ok(()) => note(format!("checkpoint: {done} of {spp} spp → {}", job_paths(job).join(", "))),
         Err(e) => note(format!("warning: checkpoint at {done} spp not written: {e:#}")),
     }

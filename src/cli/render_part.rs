@@ -72,49 +72,20 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         false,
     )?;
     let options = args.to_options(&scene)?;
-    let photographic = args.look.photographic.resolve(scene.settings.tonemap.as_ref())?;
     let files = embray::scene::files_read();
     let scene_hash = hash_files(&files)?;
     let rendered = render_part(&scene, &options, part)?;
-    let uses_embree = options.backend == embray::accel::BackendKind::Embree;
-    let meta = PartMeta {
-        format: embray::distributed::PART_FORMAT.to_owned(),
-        embray_version: env!("CARGO_PKG_VERSION").to_owned(),
-        embree: uses_embree.then(embray::accel::embree_library).flatten().map(|l| l.to_string()),
-        scene: args
-            .scene
-            .as_ref()
-            .map_or("(built-in Cornell box)".to_owned(), |p| p.display().to_string()),
-        scene_hash,
-        options: options_fingerprint(&options),
-        width: scene.camera.width,
-        height: scene.camera.height,
-        spp: options.spp,
-        tile_size: TILE_SIZE,
-        part,
-        aovs: args.aovs.to_string(),
-        png: PngSettings {
-            curve: args.tonemap.resolve(&scene.settings).to_string(),
-            exposure: args.look.exposure,
-            photographic: [
-                photographic.key,
-                photographic.burn_out,
-                photographic.saturation,
-                photographic.gamma,
-            ],
-        },
-        stats: rendered.stats,
-        timing: PartTiming {
-            build_seconds: rendered.build_time.as_secs_f64(),
-            render_seconds: rendered.render_time.as_secs_f64(),
-            cpu_seconds: embray::distributed::process_cpu_seconds(),
-            threads: options.threads.unwrap_or_else(rayon::current_num_threads),
-            host: std::fs::read_to_string("/proc/sys/kernel/hostname")
-                .unwrap_or_default()
-                .trim()
-                .to_owned(),
-        },
+    let timing = PartTiming {
+        build_seconds: rendered.build_time.as_secs_f64(),
+        render_seconds: rendered.render_time.as_secs_f64(),
+        cpu_seconds: embray::distributed::process_cpu_seconds(),
+        threads: options.threads.unwrap_or_else(rayon::current_num_threads),
+        host: std::fs::read_to_string("/proc/sys/kernel/hostname")
+            .unwrap_or_default()
+            .trim()
+            .to_owned(),
     };
+    let meta = part_meta(args, &scene, &options, part, scene_hash, rendered.stats, timing)?;
     let mut set = OutputSet::new();
     set.write(&target, |w| encode_part(&meta, &rendered.sums, w))?;
     set.commit()?;
@@ -135,4 +106,49 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         ));
     }
     Ok(())
+}
+
+/// The metadata of a render of `scene` (`part` of it): what a part file holds, and what a
+/// final EXR says about itself (`PartMeta::image_attributes`).
+pub fn part_meta(
+    args: &RenderArgs,
+    scene: &embray::scene::SceneDesc,
+    options: &embray::render::RenderOptions,
+    part: Part,
+    scene_hash: String,
+    stats: embray::stats::RenderStats,
+    timing: PartTiming,
+) -> Result<PartMeta> {
+    let photographic = args.look.photographic.resolve(scene.settings.tonemap.as_ref())?;
+    let uses_embree = options.backend == embray::accel::BackendKind::Embree;
+    Ok(PartMeta {
+        format: embray::distributed::PART_FORMAT.to_owned(),
+        embray_version: env!("CARGO_PKG_VERSION").to_owned(),
+        embree: uses_embree.then(embray::accel::embree_library).flatten().map(|l| l.to_string()),
+        scene: args
+            .scene
+            .as_ref()
+            .map_or("(built-in Cornell box)".to_owned(), |p| p.display().to_string()),
+        scene_hash,
+        options: options_fingerprint(options),
+        camera: embray::distributed::camera_fingerprint(&scene.camera),
+        width: scene.camera.width,
+        height: scene.camera.height,
+        spp: options.spp,
+        tile_size: TILE_SIZE,
+        part,
+        aovs: args.aovs.to_string(),
+        png: PngSettings {
+            curve: args.tonemap.resolve(&scene.settings).to_string(),
+            exposure: args.look.exposure,
+            photographic: [
+                photographic.key,
+                photographic.burn_out,
+                photographic.saturation,
+                photographic.gamma,
+            ],
+        },
+        stats,
+        timing,
+    })
 }

@@ -35,6 +35,9 @@ pub struct PartMeta {
     pub scene_hash: String,
     /// Every render option that can change the image, as text.
     pub options: String,
+    /// The camera rendered (`camera_fingerprint`): parts of one scene file's different
+    /// cameras, or of different `--resolution`s, never merge.
+    pub camera: String,
     pub width: u32,
     pub height: u32,
     pub spp: u32,
@@ -73,6 +76,7 @@ impl PartMeta {
             ("Embree library", format!("{:?}", self.embree)),
             ("scene contents (SHA-256)", self.scene_hash.clone()),
             ("image size", format!("{}x{}", self.width, self.height)),
+            ("camera", self.camera.clone()),
             ("spp", self.spp.to_string()),
             ("split", format!("{} into {} parts", self.part.split, self.part.count)),
             ("tile size", self.tile_size.to_string()),
@@ -103,8 +107,43 @@ pub fn process_cpu_seconds() -> f64 {
 /// The render options that decide the image, as text: the options less the thread count and
 /// the progress bar, which do not change a pixel.
 pub fn options_fingerprint(options: &RenderOptions) -> String {
-    let canonical = RenderOptions { threads: None, progress: false, ..options.clone() };
+    let canonical =
+        RenderOptions { threads: None, progress: false, stop: None, crop: None, ..options.clone() };
     format!("{canonical:?}")
+}
+
+impl PartMeta {
+    /// What a final EXR of this render says about how it was made (the `embray` text
+    /// attribute, `name: value` lines): the same for the whole render and for the merge of its parts, so that
+    /// the two stay one file byte for byte. Times are left out for that reason (they are in
+    /// `--stats-json` and the part files). `spp_done` is below `spp` for a stopped render.
+    pub fn image_attributes(
+        &self,
+        spp_done: u32,
+        stopped: Option<String>,
+    ) -> Vec<(String, String)> {
+        let mut fields = vec![
+            ("version", self.embray_version.clone()),
+            ("embree", self.embree.clone().unwrap_or_else(|| "not used".into())),
+            ("scene", self.scene.clone()),
+            ("scene_sha256", self.scene_hash.clone()),
+            ("camera", self.camera.clone()),
+            ("options", self.options.clone()),
+            ("spp", spp_done.to_string()),
+            ("spp_requested", self.spp.to_string()),
+            ("png", format!("{:?}", self.png)),
+            ("aovs", self.aovs.clone()),
+        ];
+        if let Some(reason) = stopped {
+            fields.push(("stopped", reason));
+        }
+        fields.into_iter().map(|(name, value)| (name.to_owned(), value)).collect()
+    }
+}
+
+/// The camera as text (every field: pose, field of view, lens, size).
+pub fn camera_fingerprint(camera: &crate::scene::CameraDesc) -> String {
+    format!("{camera:?}")
 }
 
 /// The first option that differs between two fingerprints, as `name: a vs b`.

@@ -12,7 +12,7 @@ pub mod slurm;
 
 pub use merge::{MergeError, Merged, check_parts, merge_parts};
 pub use metadata::{
-    PART_FORMAT, PartMeta, PartTiming, PngSettings, hash_files, options_difference,
-    options_fingerprint, process_cpu_seconds,
+    PART_FORMAT, PartMeta, PartTiming, PngSettings, camera_fingerprint, hash_files,
+    options_difference, options_fingerprint, process_cpu_seconds,
 };
 pub use part_file::{PartFileError, encode_part, read_part_meta, read_part_sums};

@@ -274,6 +274,7 @@ mod tests {
             scene: "test".into(),
             scene_hash: "0".into(),
             options: "test".into(),
+            camera: "test".into(),
             width,
             height,
             spp: 4,

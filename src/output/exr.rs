@@ -7,11 +7,20 @@ use std::path::Path;
 
 /// Writes `film` as EXR to `path` on its own (see `OutputSet` for a run's several outputs).
 pub fn write_exr(film: &Film, path: &Path) -> Result<(), OutputError> {
-    write_one(path, |w| encode_exr(film, Aovs::default(), w))
+    write_one(path, |w| encode_exr(film, Aovs::default(), &[], w))
 }
 
-/// Encodes `film` as EXR with the AOVs `aovs` into `sink`; every write error is returned.
-pub fn encode_exr(film: &Film, aovs: Aovs, sink: &mut dyn WriteSeek) -> std::io::Result<()> {
+/// Encodes `film` as EXR with the AOVs `aovs` and `attributes` (what made it) into `sink`;
+/// every write error is returned. The attributes go into one text attribute, `embray`, a
+/// line `name: value` each: the `exr` crate writes separate attributes in hash order, which
+/// would make the same image a different file each time. Characters outside Latin-1 (which
+/// the format requires) become `?`.
+pub fn encode_exr(
+    film: &Film,
+    aovs: Aovs,
+    attributes: &[(String, String)],
+    sink: &mut dyn WriteSeek,
+) -> std::io::Result<()> {
     use exr::prelude::*;
     let size = Vec2(film.width as usize, film.height as usize);
     let channel = |name: &str, values: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(values));
@@ -47,9 +56,20 @@ pub fn encode_exr(film: &Film, aovs: Aovs, sink: &mut dyn WriteSeek) -> std::io:
         channels.push(channel("A", film.alpha.clone()));
     }
     let channels = SmallVec::from_vec(channels);
+    let mut layer_attributes = LayerAttributes::named("embray");
+    if !attributes.is_empty() {
+        let lines: String =
+            attributes.iter().map(|(name, value)| format!("{name}: {value}\n")).collect();
+        let latin1: String =
+            lines.chars().map(|c| if (c as u32) < 256 { c } else { '?' }).collect();
+        if let (Some(name), Some(value)) = (Text::new_or_none("embray"), Text::new_or_none(&latin1))
+        {
+            layer_attributes.other.insert(name, AttributeValue::Text(value));
+        }
+    }
     let layer = Layer::new(
         size,
-        LayerAttributes::named("embray"),
+        layer_attributes,
         // Chunks in increasing order: with the default (unspecified) order they are written
         // as the compressor threads finish, and the same image gives different files.
         Encoding { line_order: LineOrder::Increasing, ..Encoding::FAST_LOSSLESS },
