@@ -1,7 +1,7 @@
 //! A render in passes over the whole image: each pass adds a range of sample indices of
-//! every pixel, so that a stop (`render_stop`) or a checkpoint has a complete image of the
-//! passes done. The sums are exact (`sample_sums`), so the passes add up to the same image
-//! bit for bit as one pass would.
+//! every pixel, so that a stop (`render_stop`) or a checkpoint has an image of every pixel
+//! (at most one pass apart after a stop). The sums are exact (`sample_sums`), so the passes
+//! add up to the same image bit for bit as one pass would.
 
 use crate::film::Tile;
 use crate::render_stop::StopReason;

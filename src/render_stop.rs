@@ -1,5 +1,5 @@
 //! Stopping a progressive render early with a complete image: on a signal (Ctrl-C, SIGTERM,
-//! SIGHUP) or at a time limit, the render finishes no new pass and returns the passes done.
+//! SIGHUP) or at a time limit, the render starts no new tile and returns what it has.
 //! A second signal quits at once (`output::cleanup` removes the temporary files).
 
 use std::sync::atomic::{AtomicI32, Ordering};

@@ -157,13 +157,6 @@ fn bad_previews_are_refused() {
         (&["--resolution", "0x5"], "--resolution is '0x5', but must be WIDTHxHEIGHT"),
         (&["--camera", "2"], "--camera chooses among the cameras of a CENG795 .xml file"),
     ];
-    for (extra, expected) in cases {
-        let mut args = vec!["render", "s.toml"];
-        args.extend(extra);
-        let out = embray(&args, &dir);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(1), "{stderr}");
-        assert!(stderr.contains(expected), "{stderr}");
-    }
+    common::command::assert_render_refusals(&dir, &cases);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -154,13 +154,6 @@ fn limits_and_checkpoints_are_refused_for_parts_and_bad_values() {
         (&["--time-limit", "0"], "--time-limit is 0, but must be a number of seconds > 0"),
         (&["--checkpoint-every", "nan"], "--checkpoint-every is NaN"),
     ];
-    for (extra, expected) in cases {
-        let mut args = vec!["render", "s.toml"];
-        args.extend(extra);
-        let out = embray(&args, &dir);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(1), "{stderr}");
-        assert!(stderr.contains(expected), "{stderr}");
-    }
+    common::command::assert_render_refusals(&dir, &cases);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -7,14 +7,6 @@ use embray::scene::SceneDesc;
 use embray::scene::ceng795::CameraScene;
 use std::path::Path;
 
-/// `--resolution` applied to a loaded scene.
-pub fn apply(args: &super::render_args::RenderArgs, scene: &mut SceneDesc) -> Result<()> {
-    if let Some(text) = &args.resolution {
-        set_resolution(scene, parse_resolution(text)?);
-    }
-    Ok(())
-}
-
 /// `WxH` → (W, H), each 1 to the largest resolution.
 pub fn parse_resolution(text: &str) -> Result<(u32, u32)> {
     let max = embray::limits::MAX_RESOLUTION;

@@ -47,6 +47,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         plan.input("the scene", path);
     }
     let lut = super::read_lut(args.look.lut.as_deref(), &mut plan)?;
+    // The scene's files are what is read from here on (the LUT grades the PNG only).
+    let read_before_scene = embray::scene::files_read().len();
     let jobs = match args.scene.as_deref().filter(|p| ceng795::is_ceng795_path(p)) {
         Some(path) => ceng795_jobs(args, path, &mut plan)?,
         None => {
@@ -62,7 +64,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                 );
             }
             let mut scene = load_scene(args.scene.as_deref(), &args.defines)?;
-            super::preview::apply(args, &mut scene)?;
+            args.apply_preview(&mut scene)?;
             plan.inputs_read(&embray::input_file::files_read());
             let (exr, display) = scene_outputs(args, &mut plan)?;
             vec![Job { scene, exr, display }]
@@ -79,7 +81,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     let stop = Stop::new(args.time_limit.map(|s| started + Duration::from_secs_f64(s)));
     stop.watch();
-    let scene_hash = embray::distributed::hash_files(&embray::scene::files_read())?;
+    let scene_files = embray::scene::files_read().split_off(read_before_scene);
+    let scene_hash = embray::distributed::hash_files(&scene_files)?;
     let rendered = render_jobs(args, &scene_hash, &jobs, &stop, lut.as_ref(), stats_json.as_ref());
     stop.unwatch();
     let (files, reports, stopped) = rendered?;
@@ -297,7 +300,7 @@ fn ceng795_jobs(args: &RenderArgs, path: &Path, plan: &mut OutputPlan) -> Result
     let cameras = embray::scene::xml::load(path, &args.defines)?;
     let mut cameras = super::preview::select_cameras(cameras, args.camera.as_deref(), path)?;
     for camera in &mut cameras {
-        super::preview::apply(args, &mut camera.scene)?;
+        args.apply_preview(&mut camera.scene)?;
     }
     plan.inputs_read(&embray::input_file::files_read());
     if cameras.len() > 1 {

@@ -183,6 +183,14 @@ impl RenderArgs {
         self.png.clone().unwrap_or_else(|| exr.with_extension("png"))
     }
 
+    /// `--resolution` applied to a loaded scene.
+    pub fn apply_preview(&self, scene: &mut SceneDesc) -> Result<()> {
+        if let Some(text) = &self.resolution {
+            super::preview::set_resolution(scene, super::preview::parse_resolution(text)?);
+        }
+        Ok(())
+    }
+
     pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {
         let mut options = RenderOptions::for_scene(scene);
         if let Some(spp) = self.spp {

@@ -63,7 +63,7 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         }
         path => super::load_scene(path, &args.defines)?,
     };
-    super::preview::apply(args, &mut scene)?;
+    args.apply_preview(&mut scene)?;
     plan.inputs_read(&embray::input_file::files_read());
     let output = args.output.clone().unwrap_or_else(|| default_part_path(part));
     let target = plan.output(

@@ -184,7 +184,7 @@ fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[Stri
     } else {
         super::load_scene(Some(scene), &render.defines)?
     };
-    super::preview::apply(&render, &mut desc)?;
+    render.apply_preview(&mut desc)?;
     for (flag, given) in [
         ("--time-limit", render.time_limit.is_some()),
         ("--checkpoint-every", render.checkpoint_every.is_some()),

@@ -11,6 +11,18 @@ pub fn embray(args: &[&str], dir: &Path) -> Output {
         .expect("embray runs")
 }
 
+/// Each `render s.toml EXTRA…` in `dir` must fail with exit 1 and say its expected words.
+pub fn assert_render_refusals(dir: &Path, cases: &[(&[&str], &str)]) {
+    for (extra, expected) in cases {
+        let mut args = vec!["render", "s.toml"];
+        args.extend(*extra);
+        let out = embray(&args, dir);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains(expected), "{args:?}: {stderr}");
+    }
+}
+
 pub fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("embray-test-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
