@@ -6,7 +6,7 @@
 use glam::Vec3;
 
 /// Runs an OpenEXR read that may panic on hostile bytes: the `exr` crate multiplies sizes
-/// from a header without overflow checks (found by `tests/reader_proptest.rs`), which panics
+/// from a header without overflow checks (found by fuzzing the reference reader, `tests/reader_fuzz.rs`), which panics
 /// in a build with overflow checks. The panic becomes an error naming no file (the caller
 /// adds it).
 pub fn guarded<T>(read: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
