@@ -216,15 +216,7 @@ pub fn render_passes(
     part: Part,
     on_pass: &mut OnPass<'_>,
 ) -> Passes {
-    let tracer = Tracer::new(
-        options.integrator,
-        scene,
-        accel,
-        options.max_depth,
-        options.light_samples,
-        options.spawn,
-        options.energy,
-    );
+    let tracer = Tracer::new(scene, accel, options);
     let camera = &scene.camera;
     let mut all_tiles = part.tiles(&tiles(camera.width, camera.height, TILE_SIZE));
     if let Some(window) = options.crop {

@@ -40,6 +40,9 @@ pub struct RenderOptions {
     /// Each sample's radiance is scaled down to at most this in every channel (a firefly
     /// clamp: biased, darker where light is concentrated, but quiet at low spp).
     pub clamp: Option<f32>,
+    /// Camera hits record their albedo (for the `albedo` AOV; off, it is not computed and
+    /// sums to zero).
+    pub first_hit_albedo: bool,
     /// Renders only these pixels of the image (a preview window): the tiles that meet it
     /// are traced as in the whole render, so its pixels are the whole render's, bit for bit.
     pub crop: Option<crate::film::Tile>,
@@ -69,6 +72,7 @@ impl RenderOptions {
             sampler: SamplerKind::default(),
             energy: Default::default(),
             clamp: None,
+            first_hit_albedo: false,
             crop: None,
             stop: None,
         }

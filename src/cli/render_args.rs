@@ -183,6 +183,18 @@ impl RenderArgs {
         self.png.clone().unwrap_or_else(|| exr.with_extension("png"))
     }
 
+    /// The first option given that only a whole render has (a part holds all the samples
+    /// of its share of the image, or nothing).
+    pub fn whole_render_only_flag(&self) -> Option<&'static str> {
+        [
+            ("--time-limit", self.time_limit.is_some()),
+            ("--checkpoint-every", self.checkpoint_every.is_some()),
+            ("--crop", self.crop.is_some()),
+        ]
+        .into_iter()
+        .find_map(|(flag, given)| given.then_some(flag))
+    }
+
     /// `--resolution` applied to a loaded scene.
     pub fn apply_preview(&self, scene: &mut SceneDesc) -> Result<()> {
         if let Some(text) = &self.resolution {
@@ -253,6 +265,7 @@ impl RenderArgs {
                 super::preview::parse_crop(text, (scene.camera.width, scene.camera.height))?;
             options.crop = Some(window);
         }
+        options.first_hit_albedo = self.aovs.albedo;
         options.progress = !self.quiet;
         Ok(options)
     }

@@ -29,18 +29,11 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
             );
         }
     }
-    for (flag, given) in [
-        ("--time-limit", args.time_limit.is_some()),
-        ("--checkpoint-every", args.checkpoint_every.is_some()),
-        ("--crop", args.crop.is_some()),
-    ] {
-        if given {
-            bail!(
-                "{flag} cannot be used with --part: a part file holds all of its samples of \
-                 its share of the whole image, or nothing (a part that did not finish is \
-                 rendered again)"
-            );
-        }
+    if let Some(flag) = args.whole_render_only_flag() {
+        bail!(
+            "{flag} cannot be used with --part: a part file holds all of its samples of its \
+             share of the whole image, or nothing (a part that did not finish is rendered again)"
+        );
     }
     let mut plan = OutputPlan::new();
     if let Some(path) = &args.scene {

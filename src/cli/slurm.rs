@@ -185,14 +185,8 @@ fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[Stri
         super::load_scene(Some(scene), &render.defines)?
     };
     render.apply_preview(&mut desc)?;
-    for (flag, given) in [
-        ("--time-limit", render.time_limit.is_some()),
-        ("--checkpoint-every", render.checkpoint_every.is_some()),
-        ("--crop", render.crop.is_some()),
-    ] {
-        if given {
-            bail!("{flag} cannot be used for a split render: each part renders all its samples");
-        }
+    if let Some(flag) = render.whole_render_only_flag() {
+        bail!("{flag} cannot be used for a split render: each part renders all its samples");
     }
     let options = render.to_options(&desc)?;
     let part = Part { index: 0, count: parts, split };

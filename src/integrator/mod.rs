@@ -7,10 +7,10 @@ pub mod whitted;
 
 use crate::accel::Accel;
 use crate::ray::Ray;
+use crate::render_options::RenderOptions;
 use crate::render_scene::RenderScene;
 use crate::sampling::SampleStream;
 use crate::scene::IntegratorKind;
-use crate::shading::spawn::SpawnMode;
 use crate::stats::RenderStats;
 use glam::Vec3;
 pub use path::PathTracer;
@@ -37,22 +37,21 @@ pub enum Tracer<'a> {
 }
 
 impl<'a> Tracer<'a> {
-    /// `max_depth` counts surface interactions (the path tracer) or bounces after the
-    /// camera ray (Whitted); `light_samples` is the path tracer's shadow rays to emitters.
-    pub fn new(
-        kind: IntegratorKind,
-        scene: &'a RenderScene,
-        accel: &'a dyn Accel,
-        max_depth: u32,
-        light_samples: u32,
-        spawn: SpawnMode,
-        energy: crate::shading::bsdf::Energy,
-    ) -> Self {
-        let tracer = SceneTracer { scene, accel, spawn };
-        match kind {
-            IntegratorKind::Path => {
-                Tracer::Path(PathTracer::new(tracer, max_depth, light_samples, energy))
-            }
+    /// The tracer `options` ask for: their integrator, `max_depth` (surface interactions
+    /// for the path tracer, bounces after the camera ray for Whitted), the path tracer's
+    /// shadow rays per shading point, spawning, lobe energy, and whether the first hit's
+    /// albedo is wanted (the `albedo` AOV; not computed otherwise).
+    pub fn new(scene: &'a RenderScene, accel: &'a dyn Accel, options: &RenderOptions) -> Self {
+        let first_hit_albedo = options.first_hit_albedo;
+        let tracer = SceneTracer { scene, accel, spawn: options.spawn, first_hit_albedo };
+        let max_depth = options.max_depth;
+        match options.integrator {
+            IntegratorKind::Path => Tracer::Path(PathTracer::new(
+                tracer,
+                max_depth,
+                options.light_samples,
+                options.energy,
+            )),
             IntegratorKind::Whitted => Tracer::Whitted(WhittedTracer::new(tracer, max_depth)),
         }
     }

@@ -20,6 +20,8 @@ pub(crate) struct SceneTracer<'a> {
     pub scene: &'a RenderScene,
     pub accel: &'a dyn Accel,
     pub spawn: SpawnMode,
+    /// Whether camera hits record their albedo (`PathSample::albedo`).
+    pub first_hit_albedo: bool,
 }
 
 impl SceneTracer<'_> {

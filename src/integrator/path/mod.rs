@@ -209,7 +209,7 @@ impl<'a> PathTracer<'a> {
             };
             let bsdf = if bump_shadowing { bsdf.with_bump_shadowing(unmapped) } else { bsdf };
             let wo = -ray.dir.normalize();
-            if depth == 0 {
+            if depth == 0 && self.tracer.first_hit_albedo {
                 result.albedo = Some(bsdf.albedo_bound(wo).min(Vec3::ONE));
             }
             if bsdf.has_smooth_lobe() {

@@ -153,7 +153,7 @@ impl<'a> WhittedTracer<'a> {
                 Some(self.tracer.scene.camera.world_from_render_rotation * si.shading_normal);
         }
         let material = &self.tracer.scene.materials[si.material as usize];
-        if camera_ray {
+        if camera_ray && self.tracer.first_hit_albedo {
             first.albedo = Some(self.tracer.surface_albedo(material, &si, ray.time).min(Vec3::ONE));
         }
         let wo = -ray.dir.normalize();
