@@ -50,3 +50,4 @@ pub mod splitmix;
 pub mod stats;
 pub mod texels;
 pub mod transform;
+pub mod unlit_emitters;

@@ -51,6 +51,8 @@ pub struct RenderOutput {
     pub observes: crate::accel::Observes,
     pub build_time: Duration,
     pub render_time: Duration,
+    /// What the scene does that is likely a mistake (`unlit_emitters`).
+    pub warnings: Vec<String>,
 }
 
 /// The render-space scene for `desc` under `options` (offset applied first, in world space).
@@ -91,6 +93,7 @@ pub fn render_with(
         observes: part.observes,
         build_time: part.build_time,
         render_time: part.render_time,
+        warnings: part.warnings,
     })
 }
 
@@ -105,6 +108,7 @@ pub struct PartOutput {
     pub observes: crate::accel::Observes,
     pub build_time: Duration,
     pub render_time: Duration,
+    pub warnings: Vec<String>,
 }
 
 /// Renders `part` of `desc` (all of it for `Part::WHOLE`).
@@ -136,6 +140,7 @@ pub fn render_part_with(
     crate::scene::budget::check_memory(desc, options.backend.bytes_per_triangle())?;
     let mut run = move || -> Result<PartOutput, RenderError> {
         let scene = prepare_scene(desc, options)?;
+        let warnings = crate::unlit_emitters::emitters_facing_away(&scene);
         let build_start = Instant::now();
         let accel_options =
             AccelOptions { count_traversal: options.count_traversal, ..options.accel };
@@ -152,6 +157,7 @@ pub fn render_part_with(
             observes: accel.observes(),
             build_time,
             render_time: render_start.elapsed(),
+            warnings,
         })
     };
     match options.threads {

@@ -155,6 +155,9 @@ fn render_jobs(
         if let (Some(reason), 0) = (output.stopped, output.spp_done) {
             bail!("{reason} before the first pass over the image ended: no image written");
         }
+        for warning in output.warnings.iter().filter(|_| !args.quiet) {
+            super::console::note(format!("warning: {warning}"));
+        }
         if output.film.color.iter().all(|c| *c == glam::Vec3::ZERO) && !args.quiet {
             // A black image with exit 0 is the worst kind of silence: say what to look at.
             super::console::note(

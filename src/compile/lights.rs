@@ -33,7 +33,7 @@ fn emitters_of_instance(
     geom_id: u32,
     prototype: &Prototype,
     instance: &Instance,
-    emission: Vec3,
+    material: &Material,
 ) -> Option<(Vec<Emitter>, Vec<u32>)> {
     // Emitters that really move are not sampled: their emission is counted where rays hit
     // them (an emitter "moving" from a pose to the same pose is static).
@@ -43,6 +43,7 @@ fn emitters_of_instance(
         Placement::Moving { start, end } if start == end => Some(start.to_affine()),
         Placement::Moving { .. } => return None,
     };
+    let two_sided = material.two_sided_emission;
     match &prototype.geometry {
         Geometry::Triangles(mesh) => {
             let triangle = |prim: u32| {
@@ -76,7 +77,7 @@ fn emitters_of_instance(
                         EmitterShape::triangle(tri)
                     }
                 };
-                emitters.push(Emitter::new(geom_id, shape, emission, false));
+                emitters.push(Emitter::new(geom_id, shape, material.emission, two_sided));
             }
             Some((emitters, of_prim))
         }
@@ -87,7 +88,7 @@ fn emitters_of_instance(
                     EmitterShape::Ellipsoid(Box::new(Ellipsoid::new(s.center, s.radius, m)?))
                 }
             };
-            Some((vec![Emitter::new(geom_id, shape, emission, false)], vec![0]))
+            Some((vec![Emitter::new(geom_id, shape, material.emission, two_sided)], vec![0]))
         }
     }
 }
@@ -111,7 +112,7 @@ pub(super) fn compile_lights(
             .is_emissive()
             .then(|| {
                 let prototype = &prototypes[instance.prototype as usize];
-                emitters_of_instance(geom_id as u32, prototype, instance, material.emission)
+                emitters_of_instance(geom_id as u32, prototype, instance, material)
             })
             .flatten()
             .map(|(emitters, of_prim)| {

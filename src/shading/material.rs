@@ -20,6 +20,8 @@ pub struct Material {
     /// Emitted radiance, on the side the surface normal points to (a quad's u × v, a
     /// mesh's counter-clockwise winding, a sphere's outside).
     pub emission: Vec3,
+    /// Emits on both sides (`MaterialDesc::two_sided_emission`).
+    pub two_sided_emission: bool,
     pub specular: Specular,
     /// Microfacet α of the specular lobe (the path tracer).
     pub ggx_alpha: f32,
@@ -56,6 +58,7 @@ impl Default for Material {
         Material {
             albedo: Vec3::splat(0.8),
             emission: Vec3::ZERO,
+            two_sided_emission: false,
             specular: Specular::None,
             ggx_alpha: 0.0,
             distribution: Distribution::Ggx,
@@ -101,6 +104,7 @@ impl Material {
         Material {
             albedo: desc.albedo,
             emission: desc.emission,
+            two_sided_emission: desc.two_sided_emission,
             specular: desc.specular,
             // The scene's one roughness means a GGX α to the path tracer and the side of the
             // perturbation square to the course's Whitted model.
@@ -140,6 +144,11 @@ impl Material {
 
     pub fn is_emissive(&self) -> bool {
         self.emission.max_element() > 0.0
+    }
+
+    /// What it emits towards a ray that met it on its front (`front_face`) or back.
+    pub fn emission_seen(&self, front_face: bool) -> Vec3 {
+        if front_face || self.two_sided_emission { self.emission } else { Vec3::ZERO }
     }
 
     pub fn is_dielectric(&self) -> bool {

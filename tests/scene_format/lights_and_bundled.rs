@@ -10,6 +10,7 @@ fn new_light_types() {
          [[lights]]\ntype = \"directional\"\ndirection = [0, -2, 0]\nirradiance = [3, 3, 3]\n\
          [[lights]]\ntype = \"ambient\"\nradiance = [0.1, 0.2, 0.3]\n\
          [[lights]]\ntype = \"sphere\"\ncenter = [0, 5, 0]\nradius = 0.5\nemission = [20, 20, 20]\n\
+         two_sided = true\n\
          transform = [{ translate = [1, 0, 0] }]\n\
          [[lights]]\ntype = \"mesh\"\nfile = \"cube.ply\"\nemission = [2, 1, 0]\n\
          transform = [{ scale = 0.1 }]\n",
@@ -31,9 +32,14 @@ fn new_light_types() {
     assert_eq!(sphere.world_from_object, DAffine3::from_translation(DVec3::X));
     let lamp = &scene.materials[sphere.material as usize];
     assert_eq!((lamp.albedo, lamp.emission), (Vec3::ZERO, Vec3::splat(20.0)));
+    assert!(lamp.two_sided_emission);
     let mesh_light = &scene.objects[2];
     assert_eq!(mesh_light.name, "lights[3] (mesh light) (cube.ply)");
-    assert_eq!(scene.materials[mesh_light.material as usize].emission, Vec3::new(2.0, 1.0, 0.0));
+    let mesh_lamp = &scene.materials[mesh_light.material as usize];
+    assert_eq!(
+        (mesh_lamp.emission, mesh_lamp.two_sided_emission),
+        (Vec3::new(2.0, 1.0, 0.0), false)
+    );
     // The same file as objects[0]: one mesh.
     assert!(Arc::ptr_eq(mesh_of(&scene, 0), mesh_of(&scene, 2)));
 }
@@ -174,4 +180,19 @@ fn textured_instances_use_a_solid_checker() {
         (m.x_axis.length() - m.y_axis.length()).abs() > 0.1
     }));
     assert!(textured.iter().any(|o| o.world_from_object.translation != DVec3::ZERO));
+}
+
+#[test]
+fn a_two_sided_light_survives_the_toml_writer() {
+    let scene = load(&scene_with(
+        "[[lights]]\ntype = \"sphere\"\ncenter = [0, 5, 0]\nradius = 0.5\nemission = [2, 2, 2]\n\
+         two_sided = true\n",
+    ));
+    let path = data_dir().join("two_sided_back.toml");
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(data_dir().join("meshes"));
+    let text = writer.toml(&scene, &path, "round trip").unwrap();
+    assert!(text.contains("two_sided_emission = true"), "{text}");
+    let back = scene::load_str(&text, &path).unwrap();
+    let lamp = |s: &SceneDesc| material(s, "lights[0] (sphere light)").clone();
+    assert_eq!(lamp(&back), lamp(&scene));
 }

@@ -181,7 +181,7 @@ impl<'a> PathTracer<'a> {
                 result.normal =
                     Some(self.tracer.scene.camera.world_from_render_rotation * si.shading_normal);
             }
-            if material.is_emissive() && si.front_face {
+            if material.is_emissive() && (si.front_face || material.two_sided_emission) {
                 let weight =
                     if specular_bounce { 1.0 } else { self.emission_weight(from, &si, pdf_bsdf) };
                 result.radiance += throughput * material.emission * weight;

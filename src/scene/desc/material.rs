@@ -12,6 +12,8 @@ pub struct MaterialDesc {
     pub albedo: Vec3,
     /// Emitted radiance, on the side the surface normal points to.
     pub emission: Vec3,
+    /// Emits on both sides, not only where the normal points (`two_sided` lights).
+    pub two_sided_emission: bool,
     pub specular: Specular,
     /// Roughness α of the specular part (0 = perfectly smooth).
     pub roughness: f32,
@@ -64,6 +66,7 @@ impl Default for MaterialDesc {
             name: String::new(),
             albedo: Vec3::splat(0.8),
             emission: Vec3::ZERO,
+            two_sided_emission: false,
             specular: Specular::None,
             roughness: 0.0,
             distribution: Distribution::Ggx,

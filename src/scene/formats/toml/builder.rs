@@ -80,11 +80,17 @@ impl Builder<'_> {
     }
 
     /// An emissive, otherwise black material for a light named `item`.
-    pub(super) fn light_material(&mut self, item: &str, emission: glam::Vec3) -> u32 {
+    pub(super) fn light_material(
+        &mut self,
+        item: &str,
+        emission: glam::Vec3,
+        two_sided_emission: bool,
+    ) -> u32 {
         self.add_material(MaterialDesc {
             name: item.to_owned(),
             albedo: glam::Vec3::ZERO,
             emission,
+            two_sided_emission,
             ..Default::default()
         })
     }

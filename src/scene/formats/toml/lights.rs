@@ -57,12 +57,15 @@ impl Builder<'_> {
     ) -> Result<(), SceneError> {
         let (kind, allowed): (&str, &[&str]) = match l.kind {
             EmissiveShapeKind::Quad => {
-                ("quad light", &["type", "corner", "u", "v", "emission", "transform"])
+                ("quad light", &["type", "corner", "u", "v", "emission", "two_sided", "transform"])
             }
-            EmissiveShapeKind::Sphere => {
-                ("sphere light", &["type", "center", "radius", "emission", "transform"])
+            EmissiveShapeKind::Sphere => (
+                "sphere light",
+                &["type", "center", "radius", "emission", "two_sided", "transform"],
+            ),
+            EmissiveShapeKind::Mesh => {
+                ("mesh light", &["type", "file", "emission", "two_sided", "transform"])
             }
-            EmissiveShapeKind::Mesh => ("mesh light", &["type", "file", "emission", "transform"]),
         };
         let path = path.clone();
         let item = format!("{path} ({kind})");
@@ -71,6 +74,7 @@ impl Builder<'_> {
             ("u", l.u.is_some()),
             ("v", l.v.is_some()),
             ("emission", l.emission.is_some()),
+            ("two_sided", l.two_sided.is_some()),
             ("center", l.center.is_some()),
             ("radius", l.radius.is_some()),
             ("file", l.file.is_some()),
@@ -78,6 +82,7 @@ impl Builder<'_> {
         ];
         let ctx = self.ctx;
         ctx.check_fields(&path, &item, &present, allowed)?;
+        let two_sided = l.two_sided.unwrap_or(false);
         let emission = |ctx: &Ctx| -> Result<glam::Vec3, SceneError> {
             let emission = ctx.required(&path, &item, "emission", l.emission)?;
             ctx.color(&path.key("emission"), emission, false)
@@ -91,7 +96,7 @@ impl Builder<'_> {
                 let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
                 let mesh = quad_mesh(dvec(corner), dvec(u), dvec(v))
                     .map_err(|p| self.degenerate(&path, &item, p))?;
-                let material = self.light_material(&item, emission);
+                let material = self.light_material(&item, emission, two_sided);
                 let shape = ShapeDesc::Mesh(Arc::new(mesh));
                 self.push(item, shape, material, Placement::fixed(world_from_object), None);
             }
@@ -101,7 +106,7 @@ impl Builder<'_> {
                 let radius = ctx.positive(&path.key("radius"), radius)?;
                 let emission = emission(ctx)?;
                 let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
-                let material = self.light_material(&item, emission);
+                let material = self.light_material(&item, emission, two_sided);
                 let shape = ShapeDesc::Sphere { center: dvec(center), radius };
                 self.push(item, shape, material, Placement::fixed(world_from_object), None);
             }
@@ -109,7 +114,7 @@ impl Builder<'_> {
                 let file = ctx.required(&path, &item, "file", l.file.as_deref())?;
                 let emission = emission(ctx)?;
                 let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
-                let material = self.light_material(&item, emission);
+                let material = self.light_material(&item, emission, two_sided);
                 let mesh_ref = mesh_ref(ctx, self.base_dir, &path, file);
                 let (_, models) = self.meshes.models(&mesh_ref, None, self.warnings)?;
                 for model in models {

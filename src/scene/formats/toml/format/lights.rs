@@ -27,6 +27,9 @@ pub(crate) struct EmissiveShapeToml {
     pub u: Option<Vec3>,
     pub v: Option<Vec3>,
     pub emission: Option<Vec3>,
+    /// Emits on both sides (a quad emits only towards u × v, a mesh towards its
+    /// counter-clockwise side, a sphere outwards).
+    pub two_sided: Option<bool>,
     pub center: Option<Vec3>,
     pub radius: Option<f64>,
     pub file: Option<String>,

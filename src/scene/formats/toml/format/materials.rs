@@ -48,6 +48,7 @@ pub(crate) struct MaterialToml {
     pub kind: Option<MaterialKind>,
     pub albedo: Option<Vec3>,
     pub emission: Option<Vec3>,
+    pub two_sided_emission: Option<bool>,
     pub reflectance: Option<Vec3>,
     pub roughness: Option<f64>,
     pub distribution: Option<DistributionToml>,

@@ -13,10 +13,11 @@ use glam::DAffine3;
 use std::path::Path;
 
 /// Fields every material type takes.
-pub(super) const COMMON: [&str; 12] = [
+pub(super) const COMMON: [&str; 13] = [
     "type",
     "albedo",
     "emission",
+    "two_sided_emission",
     "texture",
     "specular_texture",
     "normal_map",
@@ -205,6 +206,7 @@ pub(crate) fn material(
         name: name.to_owned(),
         albedo,
         emission,
+        two_sided_emission: m.two_sided_emission.unwrap_or(false),
         specular,
         roughness,
         distribution,

@@ -53,6 +53,9 @@ pub(super) fn write_material(
     if m.emission != Vec3::ZERO {
         let _ = writeln!(out, "emission = {}", c3(m.emission));
     }
+    if m.two_sided_emission {
+        let _ = writeln!(out, "two_sided_emission = true");
+    }
     match m.specular {
         Specular::None => {}
         Specular::Mirror { reflectance } => {
