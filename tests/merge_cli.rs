@@ -142,3 +142,52 @@ fn bad_part_options_are_refused_before_rendering() {
     assert_eq!(files.len(), 1, "nothing but the scene: {files:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The RGB pixels of an EXR.
+fn pixels(path: &Path) -> Vec<glam::Vec3> {
+    embray::exr_rgb::read(&std::fs::read(path).unwrap()).unwrap().2
+}
+
+#[test]
+fn a_partial_merge_previews_the_parts_there_are() {
+    let dir = rendered("partial");
+    let out = embray(&["merge", "p0.exr", "p2.exr", "--partial", "-o", "preview.exr"], &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("parts 1/3 missing") && stderr.contains("merged 2 of 3 parts"),
+        "{stderr}"
+    );
+    // Tile t belongs to part t mod 3: the 16×16 tiles of part 1 are black, the others are
+    // the whole render's pixels exactly.
+    let (whole, preview) = (pixels(&dir.join("whole.exr")), pixels(&dir.join("preview.exr")));
+    let tiles_across = 40usize.div_ceil(16);
+    for (i, (w, p)) in whole.iter().zip(&preview).enumerate() {
+        let (x, y) = (i % 40, i / 40);
+        let tile = (y / 16) * tiles_across + x / 16;
+        let expected = if tile % 3 == 1 { glam::Vec3::ZERO } else { *w };
+        assert_eq!(*p, expected, "pixel ({x}, {y}) of tile {tile}");
+    }
+    // Of a samples split, the image of the samples there are, and the spp it holds.
+    for i in 0..4 {
+        let (part, path) = (format!("{i}/4"), format!("s{i}.exr"));
+        ok(
+            &["render", "scene.toml", "-q", "--part", &part, "--split", "samples", "-o", &path],
+            &dir,
+        );
+    }
+    let out = embray(&["merge", "s3.exr", "s1.exr", "--partial", "-o", "some.exr"], &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("parts 0/4, 2/4 missing") && stderr.contains("@ 2 spp"), "{stderr}");
+    let some = pixels(&dir.join("some.exr"));
+    assert!(some.iter().all(|c| c.is_finite()) && some != whole && some.iter().any(|c| c.x > 0.0));
+    // With every part, --partial is the merge: the whole render.
+    ok(&["merge", "s0.exr", "s1.exr", "s2.exr", "s3.exr", "--partial", "-o", "all.exr"], &dir);
+    assert_eq!(
+        std::fs::read(dir.join("all.exr")).unwrap(),
+        std::fs::read(dir.join("whole.exr")).unwrap()
+    );
+    // Without --partial, still refused.
+    assert_refused(&dir, &["s3.exr", "s1.exr"], &["2 of the 4 parts are missing", "--partial"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -3,7 +3,7 @@
 use super::console::note;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use embray::distributed::merge_parts;
+use embray::distributed::{merge_parts, merge_some_parts};
 use embray::output::{
     DisplayLook, ImageFormat, OutputPlan, OutputSet, Photographic, ToneMap, encode_display,
     encode_exr,
@@ -25,6 +25,11 @@ pub struct MergeArgs {
     /// A 3-D LUT (.cube) applied to the PNG last, as a grading look.
     #[arg(long, value_name = "FILE.cube", requires = "png")]
     pub lut: Option<PathBuf>,
+    /// Merge the parts there are into a preview, saying which are missing: missing tiles
+    /// stay black (alpha 0); missing sample ranges are left out of every pixel's mean (the
+    /// EXR records the spp reached).
+    #[arg(long)]
+    pub partial: bool,
     /// No summary line.
     #[arg(short, long)]
     pub quiet: bool,
@@ -57,12 +62,19 @@ pub fn run(args: &MergeArgs) -> Result<()> {
             None => ImageFormat::Png,
         },
     };
-    let merged = merge_parts(&args.parts)?;
+    let merged =
+        if args.partial { merge_some_parts(&args.parts)? } else { merge_parts(&args.parts)? };
     let (meta, stats) = (&merged.meta, merged.stats);
     let film = merged.sums.resolve();
     let mut files = OutputSet::new();
     let aovs = embray::output::Aovs::parse(&meta.aovs).map_err(anyhow::Error::msg)?;
-    let attributes = meta.image_attributes(meta.spp, None);
+    let count = meta.part.count;
+    let missing: Vec<String> = merged.missing.iter().map(|i| format!("{i}/{count}")).collect();
+    let partial = (!missing.is_empty()).then(|| {
+        let split = meta.part.split;
+        format!("a partial merge ({split} split): parts {} missing", missing.join(", "))
+    });
+    let attributes = meta.image_attributes(merged.spp_reached(), partial.clone());
     files.write(&exr, |w| encode_exr(&film, aovs, &attributes, w))?;
     if let Some(png) = &png {
         let curve: ToneMap = meta.png.curve.parse().context("the parts' PNG settings")?;
@@ -77,18 +89,22 @@ pub fn run(args: &MergeArgs) -> Result<()> {
         files.write(png, |w| encode_display(&film, &look, display_format, w))?;
     }
     files.commit()?;
+    if let Some(partial) = partial.filter(|_| !args.quiet) {
+        note(format!("warning: {partial}; the image is a preview"));
+    }
     if !args.quiet {
         let render: f64 = merged.timings.iter().map(|t| t.render_seconds).sum();
         let longest = merged.timings.iter().map(|t| t.render_seconds).fold(0.0, f64::max);
         let cpu: f64 = merged.timings.iter().map(|t| t.cpu_seconds).sum();
         note(format!(
-            "merged {} parts ({} split) of {}x{} @ {} spp, {} rays in all (parts rendered for \
+            "merged {} of {} parts ({} split) of {}x{} @ {} spp, {} rays in all (parts rendered for \
              {render:.3} s in all, the longest {longest:.3} s; {cpu:.2} s of CPU), in {:.3} s → {}{}",
+            merged.timings.len(),
             meta.part.count,
             meta.part.split,
             meta.width,
             meta.height,
-            meta.spp,
+            merged.spp_reached(),
             stats.total_rays(),
             start.elapsed().as_secs_f64(),
             args.output.display(),

@@ -2,7 +2,7 @@
 //! add their exact sums, one part in memory at a time.
 
 use super::metadata::{PartMeta, PartTiming, options_difference};
-use super::part::Part;
+use super::part::{Part, Split};
 use super::part_file::{PartFileError, read_part_meta, read_part_sums};
 use crate::sample_sums::FilmSums;
 use crate::stats::RenderStats;
@@ -23,7 +23,8 @@ pub enum MergeError {
     Duplicate { part: Part, first: PathBuf, second: PathBuf },
     #[error(
         "{} of the {count} parts {} missing: {list} (parts count from 0; `embray slurm resume` or \
-         `embray render SCENE --part I/{count}` makes them)",
+         `embray render SCENE --part I/{count}` makes them; `embray merge --partial` previews the \
+         parts there are)",
         .missing.len(),
         if .missing.len() == 1 { "is" } else { "are" },
         list = .missing.iter().map(|i| format!("{i}/{count}")).collect::<Vec<_>>().join(", ")
@@ -46,6 +47,16 @@ pub enum MergeError {
 /// Reads every part's metadata and checks that they are the parts of one render, each
 /// exactly once. Returns them in part order.
 pub fn check_parts(paths: &[PathBuf]) -> Result<Vec<(PathBuf, PartMeta)>, MergeError> {
+    let (parts, missing) = check_some_parts(paths)?;
+    match missing.first() {
+        None => Ok(parts),
+        Some(_) => Err(MergeError::Missing { missing, count: parts[0].1.part.count }),
+    }
+}
+
+/// As [`check_parts`], allowing parts to be missing: the parts given, in part order, and
+/// the indices of those not given.
+fn check_some_parts(paths: &[PathBuf]) -> Result<(Vec<(PathBuf, PartMeta)>, Vec<u32>), MergeError> {
     let Some(first_path) = paths.first() else {
         return Err(MergeError::Empty);
     };
@@ -85,10 +96,7 @@ pub fn check_parts(paths: &[PathBuf]) -> Result<Vec<(PathBuf, PartMeta)>, MergeE
     }
     let missing: Vec<u32> =
         slots.iter().enumerate().filter(|(_, s)| s.is_none()).map(|(i, _)| i as u32).collect();
-    if !missing.is_empty() {
-        return Err(MergeError::Missing { missing, count: first.part.count });
-    }
-    Ok(slots.into_iter().flatten().collect())
+    Ok((slots.into_iter().flatten().collect(), missing))
 }
 
 /// What merging gave.
@@ -100,11 +108,37 @@ pub struct Merged {
     pub stats: RenderStats,
     /// Each part's times, in part order.
     pub timings: Vec<PartTiming>,
+    /// The parts not given (only a partial merge has any).
+    pub missing: Vec<u32>,
+}
+
+impl Merged {
+    /// Samples per pixel the merged image holds where its parts rendered: all of them,
+    /// but for missing sample ranges.
+    pub fn spp_reached(&self) -> u32 {
+        let meta = &self.meta;
+        let lost = |&index| Part { index, ..meta.part }.samples(meta.spp).len() as u32;
+        match meta.part.split {
+            Split::Samples => meta.spp - self.missing.iter().map(lost).sum::<u32>(),
+            Split::Tiles => meta.spp,
+        }
+    }
 }
 
 /// The merged sums of the parts `paths`, checked by [`check_parts`] first.
 pub fn merge_parts(paths: &[PathBuf]) -> Result<Merged, MergeError> {
     let parts = check_parts(paths)?;
+    merge_checked(parts, Vec::new())
+}
+
+/// A preview from the parts that exist: as [`merge_parts`], but parts may be missing (their
+/// tiles stay black with alpha 0, or their sample ranges are left out of every mean).
+pub fn merge_some_parts(paths: &[PathBuf]) -> Result<Merged, MergeError> {
+    let (parts, missing) = check_some_parts(paths)?;
+    merge_checked(parts, missing)
+}
+
+fn merge_checked(parts: Vec<(PathBuf, PartMeta)>, missing: Vec<u32>) -> Result<Merged, MergeError> {
     let (_, first) = &parts[0];
     check_merge_memory(first.width, first.height)?;
     let mut total = FilmSums::new(first.width, first.height);
@@ -133,7 +167,9 @@ pub fn merge_parts(paths: &[PathBuf]) -> Result<Merged, MergeError> {
         stats += meta.stats;
     }
     // Each part exactly once and each part's layout exact: every pixel has every sample.
-    if let Some(i) = total.pixels.iter().position(|p| p.samples != first.spp) {
+    if let Some(i) =
+        total.pixels.iter().position(|p| p.samples != first.spp).filter(|_| missing.is_empty())
+    {
         let (x, y) = ((i % first.width as usize) as u32, (i / first.width as usize) as u32);
         let (path, meta) = &parts[0];
         let found = total.pixels[i].samples;
@@ -147,7 +183,7 @@ pub fn merge_parts(paths: &[PathBuf]) -> Result<Merged, MergeError> {
         });
     }
     let timings = parts.iter().map(|(_, m)| m.timing.clone()).collect();
-    Ok(Merged { sums: total, meta: first.clone(), stats, timings })
+    Ok(Merged { sums: total, meta: first.clone(), stats, timings, missing })
 }
 
 /// The merge holds the merged sums and one part's: refused before allocating when that

@@ -10,7 +10,7 @@ mod metadata;
 mod part_file;
 pub mod slurm;
 
-pub use merge::{MergeError, Merged, check_parts, merge_parts};
+pub use merge::{MergeError, Merged, check_parts, merge_parts, merge_some_parts};
 pub use metadata::{
     PART_FORMAT, PartMeta, PartTiming, PngSettings, camera_fingerprint, hash_files,
     options_difference, options_fingerprint, process_cpu_seconds,
