@@ -44,9 +44,12 @@ pub enum MergeError {
     Memory { width: u32, height: u32, needed: u64, available: u64 },
 }
 
+/// A part file's path and metadata.
+pub type PartFile = (PathBuf, PartMeta);
+
 /// Reads every part's metadata and checks that they are the parts of one render, each
 /// exactly once. Returns them in part order.
-pub fn check_parts(paths: &[PathBuf]) -> Result<Vec<(PathBuf, PartMeta)>, MergeError> {
+pub fn check_parts(paths: &[PathBuf]) -> Result<Vec<PartFile>, MergeError> {
     let (parts, missing) = check_some_parts(paths)?;
     match missing.first() {
         None => Ok(parts),
@@ -56,7 +59,7 @@ pub fn check_parts(paths: &[PathBuf]) -> Result<Vec<(PathBuf, PartMeta)>, MergeE
 
 /// As [`check_parts`], allowing parts to be missing: the parts given, in part order, and
 /// the indices of those not given.
-fn check_some_parts(paths: &[PathBuf]) -> Result<(Vec<(PathBuf, PartMeta)>, Vec<u32>), MergeError> {
+fn check_some_parts(paths: &[PathBuf]) -> Result<(Vec<PartFile>, Vec<u32>), MergeError> {
     let Some(first_path) = paths.first() else {
         return Err(MergeError::Empty);
     };
