@@ -25,6 +25,21 @@ fn main() {
     if mitsuba_data.is_dir() {
         println!("cargo:rustc-cfg=mitsuba_data");
     }
+    // The oidn crate links OIDN_DIR/lib (scripts/oidn-runtime.sh makes it); an rpath lets the
+    // binaries find it there without LD_LIBRARY_PATH.
+    if std::env::var_os("CARGO_FEATURE_DENOISE").is_some() {
+        println!("cargo:rerun-if-env-changed=OIDN_DIR");
+        match std::env::var_os("OIDN_DIR") {
+            Some(dir) => {
+                let lib = std::path::Path::new(&dir).join("lib");
+                println!("cargo:rustc-link-arg=-Wl,-rpath,{}", lib.display());
+            }
+            None => println!(
+                "cargo:warning=the denoise feature needs OIDN_DIR: \
+                 export OIDN_DIR=$(bash scripts/oidn-runtime.sh)"
+            ),
+        }
+    }
     // Cargo compiles this script with `feature = "embree"` exactly when it sets
     // CARGO_FEATURE_EMBREE; the cfg is needed anyway, since bindgen is only a build
     // dependency with that feature.

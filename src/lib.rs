@@ -17,6 +17,7 @@ pub mod color;
 pub mod compare;
 pub mod compare_linear;
 pub mod compile;
+pub mod denoise;
 pub mod distributed;
 pub mod excerpt;
 pub mod exr_rgb;

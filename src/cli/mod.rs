@@ -11,6 +11,7 @@ mod merge;
 mod preview;
 mod render;
 mod render_args;
+mod render_outputs;
 mod render_part;
 mod slurm;
 mod tonemap;

@@ -4,35 +4,21 @@
 use super::console::{note, out};
 use super::load_scene;
 use super::render_args::RenderArgs;
+use super::render_outputs::{DisplayTarget, Job, ceng795_jobs, job_paths, scene_outputs};
 use super::render_part::part_meta;
 use anyhow::{Result, bail};
 use embray::distributed::Part;
 use embray::distributed::{PartMeta, PartTiming};
-use embray::excerpt::excerpt;
 use embray::film::Film;
 use embray::output::Aovs;
 use embray::output::stats::{StatsReport, stats_table};
-use embray::output::{
-    DisplayLook, ImageFormat, OutputPlan, OutputSet, Target, camera_outputs, encode_display,
-    encode_exr,
-};
+use embray::output::{DisplayLook, OutputPlan, OutputSet, Target, encode_display, encode_exr};
 use embray::render::{RenderOptions, RenderOutput, render_with};
 use embray::render_stop::{Stop, StopReason};
 use embray::sample_sums::FilmSums;
-use embray::scene::{SceneDesc, ceng795};
+use embray::scene::ceng795;
 use std::path::Path;
 use std::time::{Duration, Instant};
-
-/// One image of the run: the scene as its camera sees it and where its files go (the EXR,
-/// the display image, or both).
-struct Job {
-    scene: SceneDesc,
-    exr: Option<Target>,
-    display: Option<DisplayTarget>,
-}
-
-/// Where a display image goes, and as what.
-type DisplayTarget = (Target, ImageFormat);
 
 /// Renders the scene (every camera of a CENG795 file), then commits all the files together:
 /// every output path is checked first (usable, not an input, not another output), and
@@ -67,9 +53,18 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             args.apply_preview(&mut scene)?;
             plan.inputs_read(&embray::input_file::files_read());
             let (exr, display) = scene_outputs(args, &mut plan)?;
-            vec![Job { scene, exr, display }]
+            vec![Job::new(scene, exr, display)]
         }
     };
+    let mut jobs = jobs;
+    if args.denoise {
+        if !embray::denoise::BUILT_IN {
+            bail!(embray::denoise::DenoiseError::NotBuiltIn);
+        }
+        for job in &mut jobs {
+            job.plan_denoised(&mut plan)?;
+        }
+    }
     let stats_json =
         args.stats_json.as_deref().map(|p| plan.output("--stats-json", p, false)).transpose()?;
     for job in &jobs {
@@ -168,14 +163,23 @@ fn render_jobs(
         }
         let stopped = output.stopped.map(|reason| reason.to_string());
         let exr_look = (args.aovs, meta.image_attributes(output.spp_done, stopped));
-        write_job(&mut files, job, &output.film, &look, &exr_look)?;
+        write_images(&mut files, (&job.exr, &job.display), &output.film, &look, &exr_look)?;
+        if let Some((exr, display)) = &job.denoised {
+            let started = Instant::now();
+            let color = embray::denoise::denoise(&output.film)?;
+            let film = Film { color, ..output.film.clone() };
+            let (aovs, mut attributes) = exr_look;
+            attributes.push(("denoised".into(), embray::denoise::DENOISER.into()));
+            write_images(&mut files, (exr, display), &film, &look, &(aovs, attributes))?;
+            if !args.quiet {
+                note(format!("denoised in {:.2} s", started.elapsed().as_secs_f64()));
+            }
+        }
         if let Some(target) = stats_json {
             let report = StatsReport::new(&output, &options);
             files.write(target, |w| report.encode(w))?;
         }
-        let written: Vec<&Path> =
-            job.exr.iter().chain(job.display.iter().map(|(t, _)| t)).map(|t| &*t.path).collect();
-        let line = summary(&output, &options, &written);
+        let line = summary(&output, &options, &job.paths());
         reports.push((line, stats_table(&output.stats, output.observes)));
         if let Some(reason) = output.stopped {
             let skipped = jobs[k + 1..].iter().flat_map(job_paths).collect();
@@ -185,24 +189,18 @@ fn render_jobs(
     Ok((files, reports, None))
 }
 
-/// The files a job writes, for messages.
-fn job_paths(job: &Job) -> Vec<String> {
-    let exr = job.exr.iter();
-    exr.chain(job.display.iter().map(|(t, _)| t)).map(|t| t.path.display().to_string()).collect()
-}
-
-/// Adds a job's images to `files`.
-fn write_job(
+/// Adds an image's EXR and display image (where wanted) to `files`.
+fn write_images(
     files: &mut OutputSet,
-    job: &Job,
+    (exr, display): (&Option<Target>, &Option<DisplayTarget>),
     film: &Film,
     look: &DisplayLook,
     exr_look: &ExrLook,
 ) -> Result<()> {
-    if let Some(exr) = &job.exr {
+    if let Some(exr) = exr {
         files.write(exr, |w| encode_exr(film, exr_look.0, &exr_look.1, w))?;
     }
-    if let Some((target, format)) = &job.display {
+    if let Some((target, format)) = display {
         files.write(target, |w| encode_display(film, look, *format, w))?;
     }
     Ok(())
@@ -214,147 +212,17 @@ fn checkpoint(job: &Job, film: &Film, look: &DisplayLook, meta: &PartMeta, aovs:
     let spp = meta.spp.max(1);
     let exr_look = (aovs, meta.image_attributes(done, Some("in progress (a checkpoint)".into())));
     let mut files = OutputSet::new();
-    match write_job(&mut files, job, film, look, &exr_look).and_then(|()| Ok(files.commit()?)) {
-        Ok(()) => note(format!("checkpoint: {done} of {spp} spp → {}", job_paths(job).join(", "))),
+    let targets = (&job.exr, &job.display);
+    match write_images(&mut files, targets, film, look, &exr_look)
+        .and_then(|()| Ok(files.commit()?))
+    {
+        Ok(()) => {
+            let paths = job.exr.iter().chain(job.display.iter().map(|(t, _)| t));
+            let paths: Vec<String> = paths.map(|t| t.path.display().to_string()).collect();
+            note(format!("checkpoint: {done} of {spp} spp → {}", paths.join(", ")))
+        }
         Err(e) => note(format!("warning: checkpoint at {done} spp not written: {e:#}")),
     }
-}
-
-/// Where a scene's images go. `-o` chooses the format by its extension: an EXR (with the
-/// PNG beside it, or `--png`), or only a PNG or JPEG; `--png` alone writes only that image;
-/// with neither, both are named after the scene (`cornell.exr`, `cornell.png`).
-fn scene_outputs(
-    args: &RenderArgs,
-    plan: &mut OutputPlan,
-) -> Result<(Option<Target>, Option<DisplayTarget>)> {
-    let display_format = |path: &Path| -> Result<ImageFormat> {
-        match ImageFormat::of_path(path, "--png").map_err(anyhow::Error::msg)? {
-            Some(ImageFormat::Exr) => {
-                bail!("--png '{}' names an EXR: the EXR is -o's", path.display())
-            }
-            Some(format) => Ok(format),
-            None => Ok(ImageFormat::Png),
-        }
-    };
-    let Some(output) = &args.output else {
-        if let Some(png) = &args.png {
-            let target = plan.output("--png", png, false)?;
-            return Ok((None, Some((target, display_format(png)?))));
-        }
-        let stem = args.scene.clone().unwrap_or_else(embray::bundled::default_scene);
-        let stem = stem.file_stem().map_or("render".into(), |s| s.to_string_lossy());
-        let exr = plan.output("the EXR (default)", Path::new(&format!("{stem}.exr")), false)?;
-        let png = Path::new(&format!("{stem}.png")).to_path_buf();
-        let png = plan.output("the PNG (default)", &png, false)?;
-        return Ok((Some(exr), Some((png, ImageFormat::Png))));
-    };
-    let target = plan.output("-o", output, false)?;
-    match ImageFormat::of_path(output, "-o").map_err(anyhow::Error::msg)? {
-        Some(format) if format.is_display() => {
-            if args.png.is_some() {
-                bail!(
-                    "-o '{}' is the display image already; --png would name a second one \
-                     (give -o an .exr to write both)",
-                    output.display()
-                );
-            }
-            Ok((None, Some((target, format))))
-        }
-        format => {
-            if format.is_none() && !target.is_stream() {
-                bail!(
-                    "-o '{}' has no extension: name the format (.exr, .png, .jpg or .jpeg)",
-                    output.display()
-                );
-            }
-            let png = png_target(args, &target, &args.png_path(), false, plan)?;
-            let format = display_format(&png.path)?;
-            Ok((Some(target), Some((png, format))))
-        }
-    }
-}
-
-/// The PNG target. A PNG named after a device EXR (`-o /dev/null` → `/dev/null.png`) would
-/// create a file among the devices, so it must be named.
-fn png_target(
-    args: &RenderArgs,
-    exr: &Target,
-    png: &Path,
-    new_folders: bool,
-    plan: &mut OutputPlan,
-) -> Result<Target> {
-    if args.png.is_some() {
-        return Ok(plan.output("--png", png, new_folders)?);
-    }
-    if exr.is_stream() && args.output.is_some() {
-        bail!(
-            "-o '{}' is a device or FIFO, so the PNG's default name '{}' (the EXR's with .png) \
-             is not used: name the PNG with --png (e.g. --png /dev/null)",
-            exr.path.display(),
-            png.display()
-        );
-    }
-    Ok(plan.output("the PNG (named after the EXR)", png, new_folders)?)
-}
-
-/// The jobs of a CENG795 file: each camera to its ImageName (PNG) in --out-dir and an EXR of
-/// the same stem, or, for a one-camera file, to -o/--png when given.
-fn ceng795_jobs(args: &RenderArgs, path: &Path, plan: &mut OutputPlan) -> Result<Vec<Job>> {
-    let cameras = embray::scene::xml::load(path, &args.defines)?;
-    let mut cameras = super::preview::select_cameras(cameras, args.camera.as_deref(), path)?;
-    for camera in &mut cameras {
-        args.apply_preview(&mut camera.scene)?;
-    }
-    plan.inputs_read(&embray::input_file::files_read());
-    if cameras.len() > 1 {
-        for (flag, given) in [
-            ("-o", args.output.is_some()),
-            ("--png", args.png.is_some()),
-            ("--stats-json", args.stats_json.is_some()),
-        ] {
-            if given {
-                bail!(
-                    "{flag} names one file, but '{}' has {} cameras: their images are written \
-                     to --out-dir under their ImageName",
-                    path.display(),
-                    cameras.len()
-                );
-            }
-        }
-    }
-    if cameras.len() == 1 && (args.output.is_some() || args.png.is_some()) {
-        // One camera named by -o/--png: the formats follow the names, as for any scene.
-        let (exr, display) = scene_outputs(args, plan)?;
-        let scene = cameras.into_iter().next().unwrap().scene;
-        return Ok(vec![Job { scene, exr, display }]);
-    }
-    let new_folders = args.output.is_none();
-    let mut jobs = Vec::new();
-    for camera in cameras {
-        let (exr, png) = camera_outputs(
-            &camera.image_name,
-            &args.out_dir,
-            args.output.as_deref(),
-            args.png.as_deref(),
-        );
-        let exr_what = match &args.output {
-            Some(_) => "-o".to_owned(),
-            None => format!("the EXR of camera '{}'", excerpt(&camera.image_name)),
-        };
-        let exr = plan.output(&exr_what, &exr, new_folders)?;
-        let png = if args.png.is_none() && args.output.is_none() {
-            let what = format!("the PNG of camera '{}'", excerpt(&camera.image_name));
-            plan.output(&what, &png, new_folders)?
-        } else {
-            png_target(args, &exr, &png, new_folders, plan)?
-        };
-        jobs.push(Job {
-            scene: camera.scene,
-            exr: Some(exr),
-            display: Some((png, ImageFormat::Png)),
-        });
-    }
-    Ok(jobs)
 }
 
 fn summary(output: &RenderOutput, options: &RenderOptions, written: &[&Path]) -> String {

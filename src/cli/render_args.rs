@@ -113,6 +113,11 @@ pub struct RenderArgs {
     /// the fraction of samples that hit something); `none` for the beauty alone.
     #[arg(long, value_parser = |s: &str| embray::output::Aovs::parse(s), default_value = "depth,normal")]
     pub aovs: embray::output::Aovs,
+    /// Also write the beauty denoised by Intel Open Image Denoise, beside each image
+    /// (NAME.denoised.exr, NAME.denoised.png), guided by the first hit's albedo and normal.
+    /// Needs a build with `--features denoise` (README: Denoising).
+    #[arg(long)]
+    pub denoise: bool,
     /// Render at WIDTHxHEIGHT instead of the scene's size, with the same view (a preview).
     #[arg(long, value_name = "WxH")]
     pub resolution: Option<String>,
@@ -190,6 +195,7 @@ impl RenderArgs {
             ("--time-limit", self.time_limit.is_some()),
             ("--checkpoint-every", self.checkpoint_every.is_some()),
             ("--crop", self.crop.is_some()),
+            ("--denoise", self.denoise),
         ]
         .into_iter()
         .find_map(|(flag, given)| given.then_some(flag))
@@ -265,7 +271,7 @@ impl RenderArgs {
                 super::preview::parse_crop(text, (scene.camera.width, scene.camera.height))?;
             options.crop = Some(window);
         }
-        options.first_hit_albedo = self.aovs.albedo;
+        options.first_hit_albedo = self.aovs.albedo || self.denoise;
         options.progress = !self.quiet;
         Ok(options)
     }
