@@ -166,3 +166,55 @@ fn an_unknown_aov_is_refused() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The relative mean squared error of an EXR's RGB against a reference's, (x − r)² / (r² +
+/// 0.01) per channel: an error measure the lamp's bright pixels do not swamp.
+fn relative_mse(image: &std::path::Path, reference: &std::path::Path) -> f64 {
+    let read = |p: &std::path::Path| embray::exr_rgb::read(&std::fs::read(p).unwrap()).unwrap().2;
+    let (image, reference) = (read(image), read(reference));
+    assert_eq!(image.len(), reference.len());
+    let per_channel = image.iter().zip(&reference).flat_map(|(x, r)| {
+        (0..3).map(move |c| ((x[c] - r[c]) as f64).powi(2) / ((r[c] as f64).powi(2) + 0.01))
+    });
+    per_channel.sum::<f64>() / (3 * image.len()) as f64
+}
+
+#[test]
+#[cfg_attr(
+    not(feature = "denoise"),
+    ignore = "denoising is not built in: OIDN_DIR=$(bash scripts/oidn-runtime.sh) cargo test --features denoise"
+)]
+fn denoising_brings_a_noisy_render_closer_to_the_reference() {
+    let dir = temp_dir("denoise");
+    let cornell = common::repo_path("scenes/cornell.toml");
+    let cornell = cornell.to_str().unwrap();
+    let render = |spp: &str, out: &str, extra: &[&str]| {
+        let mut args = vec!["render", cornell, "--resolution", "64x64", "--spp", spp, "-o", out];
+        args.extend(extra);
+        let result = embray(&args, &dir);
+        assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+        String::from_utf8_lossy(&result.stderr).into_owned()
+    };
+    render("512", "reference.exr", &["-q"]);
+    let said = render("4", "noisy.exr", &["--denoise"]);
+    assert!(said.contains("noisy.denoised.exr") && said.contains("denoised in"), "{said}");
+    assert!(dir.join("noisy.denoised.png").is_file());
+    let noisy = relative_mse(&dir.join("noisy.exr"), &dir.join("reference.exr"));
+    let denoised = relative_mse(&dir.join("noisy.denoised.exr"), &dir.join("reference.exr"));
+    println!("relative MSE against 512 spp: noisy {noisy:.4}, denoised {denoised:.4}");
+    assert!(denoised < 0.25 * noisy, "noisy {noisy}, denoised {denoised}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+#[cfg(not(feature = "denoise"))]
+fn denoise_without_the_denoiser_is_refused_before_rendering() {
+    let dir = temp_dir("no-denoise");
+    let cornell = common::repo_path("scenes/cornell.toml");
+    let out = embray(&["render", cornell.to_str().unwrap(), "--denoise", "-o", "x.exr"], &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("not built into") && stderr.contains("--features denoise"), "{stderr}");
+    assert!(!dir.join("x.exr").exists() && !dir.join("x.denoised.exr").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
