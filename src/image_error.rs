@@ -4,8 +4,12 @@ use crate::film::Film;
 
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct ImageError {
-    /// Σ(a−b)² / Σ b² over all channels.
+    /// Σ(a−b)² / Σ b² over all channels: weighted by energy, so a light's bright pixels
+    /// can dominate it.
     pub relative_mse: f64,
+    /// The mean over pixel channels of (a−b)² / (b² + 0.01): the per-pixel relative MSE
+    /// denoising work reports, in which every pixel counts alike.
+    pub pixel_relative_mse: f64,
     /// Largest absolute difference of any channel.
     pub max_abs: f64,
     /// Fraction of pixels with a channel off by more than 1 % of the reference's mean value.
@@ -24,6 +28,7 @@ pub fn image_error(test: &Film, reference: &Film) -> ImageError {
     let mean = reference.color.iter().map(|c| c.element_sum() as f64).sum::<f64>()
         / (3.0 * reference.color.len().max(1) as f64);
     let (mut err2, mut ref2, mut max_abs, mut off, mut non_finite) = (0.0, 0.0, 0.0f64, 0, 0);
+    let mut pixel_relative = 0.0;
     for (a, b) in test.color.iter().zip(&reference.color) {
         if !a.is_finite() {
             non_finite += 1;
@@ -31,6 +36,8 @@ pub fn image_error(test: &Film, reference: &Film) -> ImageError {
         }
         let d = (*a - *b).as_dvec3();
         err2 += d.length_squared();
+        let b2 = b.as_dvec3() * b.as_dvec3();
+        pixel_relative += (d * d / (b2 + 0.01)).element_sum();
         ref2 += b.as_dvec3().length_squared();
         max_abs = max_abs.max(d.abs().max_element());
         if d.abs().max_element() > 0.01 * mean {
@@ -39,6 +46,7 @@ pub fn image_error(test: &Film, reference: &Film) -> ImageError {
     }
     ImageError {
         relative_mse: if ref2 > 0.0 { err2 / ref2 } else { err2 },
+        pixel_relative_mse: pixel_relative / (3 * (test.color.len() - non_finite).max(1)) as f64,
         max_abs,
         fraction_off: off as f64 / test.color.len().max(1) as f64,
         non_finite,
@@ -61,5 +69,16 @@ mod tests {
         let e = image_error(&b, &a);
         assert_eq!(e.non_finite, 1);
         assert!((e.max_abs - 1.0).abs() < 1e-12 && e.fraction_off == 0.5);
+        // Only the finite pixel counts: 1² / (2² + 0.01) per channel.
+        assert!((e.pixel_relative_mse - 1.0 / 4.01).abs() < 1e-9, "{}", e.pixel_relative_mse);
+        // Energy-weighted against per pixel: the bright pixel's error swamps the first, not
+        // the second.
+        let mut c = a.clone();
+        c.color = vec![Vec3::splat(1.5), Vec3::splat(2.2)];
+        let e = image_error(&c, &a);
+        let expected_relative = (3.0 * 0.25 + 3.0 * 0.04) / (3.0 + 12.0);
+        let expected_pixel = (0.25 / 1.01 + 0.04 / 4.01) / 2.0;
+        assert!((e.relative_mse - expected_relative).abs() < 1e-6, "{}", e.relative_mse);
+        assert!((e.pixel_relative_mse - expected_pixel).abs() < 1e-6, "{}", e.pixel_relative_mse);
     }
 }

@@ -17,6 +17,9 @@ pub struct TextureImage {
     pub srgb_decoded: bool,
     /// True if the texels are an EXR file's linear values (high dynamic range).
     pub hdr: bool,
+    /// True if the file's rows are stored bottom row first, so that v runs up the image as
+    /// OBJ/MTL texture coordinates do (`flip_v`), where embray's run down.
+    pub rows_flipped: bool,
 }
 
 impl TextureImage {

@@ -261,3 +261,66 @@ fn a_specular_texture_drives_the_path_tracers_course_lobe() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A unit quad in an OBJ whose MTL material paints it with `map_Kd`, OBJ texture coordinates
+/// (v up), seen face on.
+fn obj_with_map_kd(dir: &Path, map_kd: &str) -> Result<embray::scene::SceneDesc, String> {
+    std::fs::write(
+        dir.join("quad.obj"),
+        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+         vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl painted\nf 1/1 2/2 3/3 4/4\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("quad.mtl"), format!("newmtl painted\nKd 0.5 0.5 0.5\n{map_kd}\n"))
+        .unwrap();
+    let text = r#"
+[camera]
+lookfrom = [0.5, 0.5, 2.0]
+lookat = [0.5, 0.5, 0.0]
+vfov = 20.0
+resolution = [8, 8]
+
+[[objects]]
+type = "mesh"
+file = "quad.obj"
+
+[[lights]]
+type = "point"
+position = [0.5, 0.5, 2.0]
+intensity = [4.0, 4.0, 4.0]
+"#;
+    embray::scene::load_str(text, &dir.join("scene.toml")).map_err(|e| e.to_string())
+}
+
+#[test]
+fn an_mtl_map_kd_paints_its_mesh_the_right_way_up() {
+    let dir = temp_dir("texture-mtl");
+    // The image's top half red, its bottom half blue.
+    write_png(
+        &dir.join("paint.png"),
+        2,
+        8,
+        |_, y| if y < 4 { [230, 20, 20] } else { [20, 20, 230] },
+    );
+    let scene = obj_with_map_kd(&dir, "map_Kd paint.png").unwrap();
+    let mut options = options(&scene, embray::accel::BackendKind::default_compiled(), 1);
+    options.first_hit_albedo = true;
+    let film = render_ok(&scene, &options).film;
+    // The top of the quad (v = 1) shows the image's top row.
+    let (top, bottom) = (film.albedo[film.index(4, 1)], film.albedo[film.index(4, 6)]);
+    assert!(top.x > 0.5 && top.z < 0.05, "top {top}");
+    assert!(bottom.z > 0.5 && bottom.x < 0.05, "bottom {bottom}");
+    // The TOML writer keeps it (the image named with flip_v).
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
+    writer.write(&scene, &dir.join("back.toml"), "round trip").unwrap();
+    assert!(std::fs::read_to_string(dir.join("back.toml")).unwrap().contains("flip_v = true"));
+    let back = embray::scene::load(&dir.join("back.toml")).unwrap();
+    let texture = |s: &embray::scene::SceneDesc| s.materials.iter().find_map(|m| m.texture.clone());
+    assert_eq!(texture(&back), texture(&scene));
+    // A missing image names itself, the MTL file, its line and the material.
+    let err = obj_with_map_kd(&dir, "map_Kd -s 2 2 1 gone.png").unwrap_err();
+    for part in ["gone.png", "quad.mtl", "line 3", "map_Kd of material 'painted'"] {
+        assert!(err.contains(part), "'{part}' not in: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -95,13 +95,15 @@ fn compare_linear(a: &Path, b: &Path) -> Result<()> {
     let [rb, gb, bb] = c.mean_b.to_array();
     out(format!(
         "{}x{} linear: channel means [{ra:.6}, {ga:.6}, {ba:.6}] vs [{rb:.6}, {gb:.6}, {bb:.6}] \
-         (largest difference {:.4} %); RMSE {:.6}, relative MSE {:.4e}, max abs {:.6}; \
+         (largest difference {:.4} %); RMSE {:.6}, relative MSE {:.4e} (Σ err² / Σ ref²), \
+         per-pixel relMSE {:.4e}, max abs {:.6}; \
          {:.4} % of pixels off by more than 1 % of the second's mean{}\n",
         c.width,
         c.height,
         100.0 * c.mean_relative_difference(),
         c.rmse,
         c.error.relative_mse,
+        c.error.pixel_relative_mse,
         c.error.max_abs,
         100.0 * c.error.fraction_off,
         if c.error.non_finite > 0 {

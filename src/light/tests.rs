@@ -204,6 +204,7 @@ fn mitsubas_spot_falls_off_linearly_in_angle_and_projects_its_image() {
         texels: vec![Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)],
         srgb_decoded: true,
         hdr: false,
+        rows_flipped: false,
     };
     let spot = Spot {
         position: glam::DVec3::ZERO,

@@ -85,7 +85,21 @@ pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, Scene
         texels,
         srgb_decoded: decode_srgb,
         hdr: false,
+        rows_flipped: false,
     }))
+}
+
+/// `image` upside down (`TextureImage::rows_flipped`): for texture coordinates whose v runs
+/// up the image.
+pub fn with_rows_flipped(image: &TextureImage) -> Arc<TextureImage> {
+    let width = image.width as usize;
+    let texels = image.texels.chunks_exact(width).rev().flatten().copied().collect();
+    Arc::new(TextureImage {
+        texels,
+        rows_flipped: !image.rows_flipped,
+        file: image.file.clone(),
+        ..*image
+    })
 }
 
 /// The first four bytes of every OpenEXR file.
@@ -124,6 +138,7 @@ pub fn load_radiance(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImag
         texels,
         srgb_decoded: false,
         hdr: true,
+        rows_flipped: false,
     }))
 }
 

@@ -156,7 +156,7 @@ mod tests {
     #[test]
     fn a_slightly_rough_coating_lets_through_what_a_smooth_one_does() {
         for distribution in [Distribution::Ggx, Distribution::Beckmann] {
-            let microfacet = Microfacet { distribution, alpha: 0.01 };
+            let microfacet = Microfacet::isotropic(distribution, 0.01);
             let (rough, smooth) = (Coating::new(1.5, Some(microfacet)), Coating::new(1.5, None));
             for cos in [0.95, 0.7, 0.4] {
                 let (r, s) = (rough.transmittance(cos), smooth.transmittance(cos));
@@ -169,7 +169,7 @@ mod tests {
 
     #[test]
     fn a_rough_coating_lets_less_through_at_grazing_angles_than_at_normal_incidence() {
-        let microfacet = Microfacet { distribution: Distribution::Ggx, alpha: 0.5 };
+        let microfacet = Microfacet::isotropic(Distribution::Ggx, 0.5);
         let coating = Coating::new(1.5, Some(microfacet));
         let (normal, grazing) = (coating.transmittance(1.0), coating.transmittance(0.1));
         assert!(normal > 0.9 && normal < 0.97, "{normal}");

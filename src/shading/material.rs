@@ -23,8 +23,12 @@ pub struct Material {
     /// Emits on both sides (`MaterialDesc::two_sided_emission`).
     pub two_sided_emission: bool,
     pub specular: Specular,
-    /// Microfacet α of the specular lobe (the path tracer).
+    /// Microfacet α of the specular lobe (the path tracer), along the shading frame's
+    /// tangent where `ggx_alpha_v` differs.
     pub ggx_alpha: f32,
+    /// α along the bitangent (the tangent is ∂p/∂u's direction): `ggx_alpha` unless the
+    /// roughness is anisotropic.
+    pub ggx_alpha_v: f32,
     /// The distribution `ggx_alpha` is the α of.
     pub distribution: Distribution,
     /// What a plastic's coating lets through (set by `from_desc` for plastics).
@@ -61,6 +65,7 @@ impl Default for Material {
             two_sided_emission: false,
             specular: Specular::None,
             ggx_alpha: 0.0,
+            ggx_alpha_v: 0.0,
             distribution: Distribution::Ggx,
             coating: None,
             opacity: None,
@@ -88,10 +93,9 @@ pub enum MaskOpacity {
 /// The coating table of a plastic (integrated once per material, not per hit).
 fn coating(desc: &MaterialDesc) -> Option<Box<Coating>> {
     let Specular::Plastic { ior, .. } = desc.specular else { return None };
-    let rough = desc.roughness >= SMOOTH_ROUGHNESS;
-    let microfacet =
-        Microfacet { distribution: desc.distribution, alpha: desc.roughness.max(1e-4) };
-    Some(Box::new(Coating::new(ior, rough.then_some(microfacet))))
+    let material = Material::from_desc_without_coating(desc);
+    let microfacet = material.is_rough().then(|| material.microfacet());
+    Some(Box::new(Coating::new(ior, microfacet)))
 }
 
 impl Material {
@@ -101,6 +105,10 @@ impl Material {
     }
 
     pub fn from_desc(desc: &MaterialDesc) -> Self {
+        Material { coating: coating(desc), ..Self::from_desc_without_coating(desc) }
+    }
+
+    fn from_desc_without_coating(desc: &MaterialDesc) -> Self {
         Material {
             albedo: desc.albedo,
             emission: desc.emission,
@@ -109,8 +117,9 @@ impl Material {
             // The scene's one roughness means a GGX α to the path tracer and the side of the
             // perturbation square to the course's Whitted model.
             ggx_alpha: desc.roughness,
+            ggx_alpha_v: desc.roughness_v.unwrap_or(desc.roughness),
             distribution: desc.distribution,
-            coating: coating(desc),
+            coating: None,
             opacity: desc.opacity.as_ref().map(|o| match o {
                 Opacity::Constant(c) => MaskOpacity::Constant(*c),
                 Opacity::Texture(t) => MaskOpacity::Texture(Texture::from_desc(t)),
@@ -140,6 +149,26 @@ impl Material {
             .filter(|p| p.specular.max_element() > 0.0 || self.specular_texture.is_some())
             .map(|p| LobeAlbedo::new(&p.brdf, p.exponent));
         Material { phong, course_lobe_albedo, ..self }
+    }
+
+    /// The specular lobe's microfacet distribution (α at least 10⁻⁴).
+    pub fn microfacet(&self) -> Microfacet {
+        Microfacet {
+            distribution: self.distribution,
+            alpha_x: self.ggx_alpha.max(1e-4),
+            alpha_y: self.ggx_alpha_v.max(1e-4),
+        }
+    }
+
+    /// Whether the specular lobe is rough (not a delta), along either axis.
+    pub fn is_rough(&self) -> bool {
+        self.ggx_alpha.max(self.ggx_alpha_v) >= SMOOTH_ROUGHNESS
+    }
+
+    /// Whether the roughness differs along the tangent and the bitangent (the shading
+    /// frame must then follow ∂p/∂u).
+    pub fn is_anisotropic(&self) -> bool {
+        self.ggx_alpha != self.ggx_alpha_v
     }
 
     pub fn is_emissive(&self) -> bool {

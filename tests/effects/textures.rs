@@ -47,6 +47,7 @@ fn image_material() -> MaterialDesc {
         texels,
         srgb_decoded: false,
         hdr: false,
+        rows_flipped: false,
     };
     MaterialDesc {
         texture: Some(TextureDesc {

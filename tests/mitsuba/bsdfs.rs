@@ -68,9 +68,13 @@ fn each_family_reads_with_mitsubas_defaults() {
 fn what_is_not_modelled_is_refused_by_name_and_line() {
     let cases = [
         (
-            "<bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.1\"/>\
+            "<bsdf type=\"roughplastic\"><float name=\"alpha_u\" value=\"0.1\"/>\
              <float name=\"alpha_v\" value=\"0.3\"/></bsdf>",
-            "anisotropic roughness",
+            "roughplastic takes one alpha",
+        ),
+        (
+            "<bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.1\"/></bsdf>",
+            "alpha_u and alpha_v are given together",
         ),
         (
             "<bsdf type=\"roughplastic\"><string name=\"distribution\" value=\"phong\"/></bsdf>",

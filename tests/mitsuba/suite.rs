@@ -10,12 +10,13 @@ use embray::mitsuba_rule::judge;
 use std::path::{Path, PathBuf};
 
 /// The suite's scenes that embray renders; every other one must be refused.
-const RENDERED: [&str; 13] = [
+const RENDERED: [&str; 14] = [
     "test_arealight_path",
     "test_bumpmap_path",
     "test_constant_path",
     "test_directional_direct",
     "test_envmap_path",
+    "test_normalmap_identity_roughconductor_path",
     "test_normalmap_path",
     "test_orthographic_path",
     "test_pointlight_path",

@@ -68,6 +68,19 @@ impl<'a> PathTracer<'a> {
         self.sampling_from_render.transpose() * frame_from_normal(n)
     }
 
+    /// The shading frame whose tangent follows ∂p/∂u, as Mitsuba's does: anisotropic
+    /// roughness is measured along it. Where there is no such direction, any frame.
+    fn tangent_frame(&self, si: &SurfaceInteraction, time: f32) -> Mat3 {
+        let n = si.shading_normal;
+        let tangent = crate::shading::normal_map::uv_derivatives(self.tracer.scene, si, time)
+            .map(|d| (d.dpdu - n * n.dot(d.dpdu)).normalize_or_zero())
+            .filter(|s| *s != Vec3::ZERO);
+        match tangent {
+            Some(s) => Mat3::from_cols(s, n.cross(s), n),
+            None => self.shading_frame(n),
+        }
+    }
+
     /// The first hit along a camera ray past the emitting surfaces it meets: with
     /// `hide_emitters` camera rays go through them (Mitsuba's rule), lighting what is behind.
     fn past_emitters(
@@ -194,7 +207,11 @@ impl<'a> PathTracer<'a> {
                 (Some(t), Some(_)) => self.tracer.texture_color(t, &si, ray.time),
                 (_, phong) => phong.as_ref().map_or(Vec3::ZERO, |p| p.specular),
             };
-            let frame = self.shading_frame(si.shading_normal);
+            let frame = if material.is_anisotropic() {
+                self.tangent_frame(&si, ray.time)
+            } else {
+                self.shading_frame(si.shading_normal)
+            };
             let bsdf = Bsdf::with_reflectances(
                 material,
                 albedo,

@@ -15,8 +15,12 @@ pub struct MaterialDesc {
     /// Emits on both sides, not only where the normal points (`two_sided` lights).
     pub two_sided_emission: bool,
     pub specular: Specular,
-    /// Roughness α of the specular part (0 = perfectly smooth).
+    /// Roughness α of the specular part (0 = perfectly smooth); along ∂p/∂u where
+    /// `roughness_v` is given.
     pub roughness: f32,
+    /// Anisotropic roughness: α along the bitangent (Mitsuba's `alpha_v`, `roughness`
+    /// being its `alpha_u`). `None`: isotropic.
+    pub roughness_v: Option<f32>,
     /// The microfacet distribution `roughness` is the α of.
     pub distribution: Distribution,
     /// Fraction of the light that meets the surface at all (Mitsuba's `mask`); the rest
@@ -69,6 +73,7 @@ impl Default for MaterialDesc {
             two_sided_emission: false,
             specular: Specular::None,
             roughness: 0.0,
+            roughness_v: None,
             distribution: Distribution::Ggx,
             opacity: None,
             one_sided: false,

@@ -70,6 +70,8 @@ pub enum Pattern {
     /// An image looked up at the texture coordinates (repeating outside [0, 1]; v = 0 is
     /// the image's top row), divided by `normalizer`.
     Image { image: std::sync::Arc<TextureImage>, interpolation: Interpolation, normalizer: f32 },
+    /// One value everywhere, unclamped (Mitsuba's `rawconstant`).
+    Constant(Vec3),
 }
 
 impl TextureDesc {

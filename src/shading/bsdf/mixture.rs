@@ -129,10 +129,7 @@ impl Mixture {
             diffuse,
             specular: material.specular,
             coupling,
-            microfacet: Microfacet {
-                distribution: material.distribution,
-                alpha: material.ggx_alpha.max(1e-4),
-            },
+            microfacet: material.microfacet(),
             delta_specular: material.specular_is_delta(),
             front_face,
             p_specular,

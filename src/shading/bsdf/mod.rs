@@ -13,8 +13,7 @@ pub use coupling::Energy;
 
 use crate::scene::Specular;
 use crate::shading::coating::Coating;
-use crate::shading::material::{Material, SMOOTH_ROUGHNESS};
-use crate::shading::microfacet::Microfacet;
+use crate::shading::material::Material;
 use glam::{Mat3, Vec2, Vec3};
 use mixture::Mixture;
 use plastic::Plastic;
@@ -108,9 +107,8 @@ impl Bsdf {
         front_face: bool,
         energy: Energy,
     ) -> Self {
-        let rough = material.ggx_alpha >= SMOOTH_ROUGHNESS;
-        let microfacet =
-            Microfacet { distribution: material.distribution, alpha: material.ggx_alpha.max(1e-4) };
+        let rough = material.is_rough();
+        let microfacet = material.microfacet();
         let scatter = match material.specular {
             Specular::Dielectric { ior, .. } if rough => {
                 Scatter::RoughDielectric(RoughDielectric::new(ior, front_face, microfacet))

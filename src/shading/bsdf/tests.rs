@@ -4,7 +4,7 @@
 
 use super::test_grid::Grid;
 use super::*;
-use crate::scene::CourseBrdf;
+use crate::scene::{CourseBrdf, Distribution};
 use crate::shading::course_brdf::cos_weighted;
 use crate::shading::fresnel::{fresnel_conductor, fresnel_dielectric};
 use crate::splitmix::SplitMix64;
@@ -31,6 +31,7 @@ fn conductor(roughness: f32, reflectance: Vec3) -> Material {
         albedo: Vec3::ZERO,
         specular: Specular::Conductor { eta, k, reflectance },
         ggx_alpha: roughness,
+        ggx_alpha_v: roughness,
         ..Default::default()
     }
 }
@@ -40,8 +41,14 @@ fn rough_mirror(roughness: f32, albedo: Vec3) -> Material {
         albedo,
         specular: Specular::Mirror { reflectance: Vec3::splat(0.6) },
         ggx_alpha: roughness,
+        ggx_alpha_v: roughness,
         ..Default::default()
     }
+}
+
+/// `material` with α `alpha_v` along the bitangent.
+fn anisotropic(material: Material, alpha_v: f32) -> Material {
+    Material { ggx_alpha_v: alpha_v, ..material }
 }
 
 fn directions() -> [Vec3; 3] {
@@ -55,6 +62,11 @@ fn every_smooth_lobe_samples_its_own_density() {
         ("ggx conductor α 0.3", conductor(0.3, Vec3::ONE)),
         ("ggx conductor α 0.05", conductor(0.05, Vec3::ONE)),
         ("lambert + ggx mirror α 0.2", rough_mirror(0.2, Vec3::splat(0.8))),
+        ("ggx conductor α 0.3 × 0.05", anisotropic(conductor(0.3, Vec3::ONE), 0.05)),
+        ("beckmann conductor α 0.05 × 0.4", {
+            let m = anisotropic(conductor(0.05, Vec3::ONE), 0.4);
+            Material { distribution: Distribution::Beckmann, ..m }
+        }),
     ];
     let course_models = crate::shading::course_brdf::MODELS;
     let lambert = || Material::diffuse(Vec3::splat(0.5));

@@ -42,6 +42,7 @@ fn rough_glass(alpha: f32, distribution: Distribution) -> Material {
         albedo: Vec3::ZERO,
         specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
         ggx_alpha: alpha,
+        ggx_alpha_v: alpha,
         distribution,
         ..Default::default()
     }
@@ -76,6 +77,11 @@ fn plastics_and_rough_glass_sample_their_own_density() {
             ));
         }
     }
+    cases.push((
+        "anisotropic glass GGX α 0.3 × 0.05".into(),
+        Material { ggx_alpha_v: 0.05, ..rough_glass(0.3, Distribution::Ggx) },
+        true,
+    ));
     cases.push((
         "smooth plastic".into(),
         plastic(Vec3::splat(0.5), 0.0, Distribution::Ggx, false),

@@ -59,6 +59,7 @@ mod tests {
             texels,
             srgb_decoded: false,
             hdr: false,
+            rows_flipped: false,
         }
     }
 

@@ -60,6 +60,7 @@ impl Texture {
             Pattern::Image { image, interpolation, normalizer } => {
                 image::lookup(image, *interpolation, uv) / *normalizer
             }
+            Pattern::Constant(value) => *value,
         }
     }
 

@@ -1,5 +1,7 @@
-//! OBJ files (through tobj) → meshes, one per OBJ model/material, with their MTL colours.
+//! OBJ files (through tobj) → meshes, one per OBJ model/material, with their MTL colours
+//! and diffuse images.
 
+mod mtl_texture;
 mod scan;
 
 use crate::scene::desc::MeshData;
@@ -44,6 +46,8 @@ pub(crate) struct ObjMaterial {
     pub name: String,
     pub albedo: Vec3,
     pub emission: Vec3,
+    /// `map_Kd`: replaces `albedo`.
+    pub texture: Option<crate::scene::TextureDesc>,
 }
 
 pub(crate) struct ObjModel {
@@ -79,6 +83,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     let mtl_error: RefCell<Option<SceneError>> = RefCell::new(None);
     let missing_mtl: RefCell<Vec<String>> = RefCell::new(Vec::new());
     let mtl_of_material: RefCell<HashMap<String, PathBuf>> = RefCell::new(HashMap::new());
+    let mtl_texts: RefCell<HashMap<PathBuf, String>> = RefCell::new(HashMap::new());
     let material_loader = |mtl_name: &Path| -> tobj::MTLLoadResult {
         let mtl = obj_dir.join(mtl_name);
         let mtl_text = match crate::input_file::read_text(&mtl) {
@@ -105,6 +110,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
             return Err(tobj::LoadError::MaterialParseError);
         }
         let loaded = tobj::load_mtl_buf(&mut mtl_text.as_bytes());
+        mtl_texts.borrow_mut().insert(mtl.clone(), mtl_text);
         match &loaded {
             Ok((materials, _)) => {
                 for m in materials {
@@ -160,6 +166,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     warnings.extend(missing_mtl);
 
     let mtl_of_material = mtl_of_material.into_inner();
+    let mtl_texts = mtl_texts.into_inner();
     let mut used: HashMap<usize, usize> = HashMap::new();
     let mut loaded = LoadedObj { models: Vec::new(), materials: Vec::new() };
     for model in models {
@@ -175,13 +182,16 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
                     Some(&index) => index,
                     None => {
                         let mtl = mtl_of_material.get(&m.name).map_or(obj, PathBuf::as_path);
-                        let material =
+                        let mut material =
                             obj_material(m).map_err(|p| obj_ref.error(mtl, p, Line(None)))?;
+                        let mtl_text = mtl_texts.get(mtl).map_or("", String::as_str);
+                        material.texture =
+                            mtl_texture::diffuse_texture(m, mtl, mtl_text, warnings)?;
                         let ignored = ignored_statements(m);
                         if !ignored.is_empty() {
                             warnings.push(format!(
-                                "{}: material '{}': {} not used (embray reads Kd and Ke from \
-                                 MTL files): it renders as a Lambertian Kd; give the object a \
+                                "{}: material '{}': {} not used (embray reads Kd, map_Kd and Ke \
+                                 from MTL files): it renders as a Lambertian Kd; give the object a \
                                  scene material for more",
                                 mtl.display(),
                                 crate::excerpt::excerpt(&m.name),
@@ -263,6 +273,7 @@ fn obj_material(m: &tobj::Material) -> Result<ObjMaterial, String> {
         name: name.clone(),
         albedo: Vec3::from_array(albedo),
         emission: Vec3::from_array(emission),
+        texture: None,
     })
 }
 
@@ -270,7 +281,6 @@ fn obj_material(m: &tobj::Material) -> Result<ObjMaterial, String> {
 fn ignored_statements(m: &tobj::Material) -> Vec<&'static str> {
     let nonzero = |c: Option<[f32; 3]>| c.is_some_and(|c| c.iter().any(|&v| v != 0.0));
     let textures = [
-        ("map_Kd", &m.diffuse_texture),
         ("map_Ks", &m.specular_texture),
         ("map_Bump/norm", &m.normal_texture),
         ("map_Ns", &m.shininess_texture),
@@ -319,7 +329,7 @@ mod tests {
             dissolve: Some(0.5),
             ..plain
         };
-        assert_eq!(ignored_statements(&rich), ["map_Kd", "Ks", "d (transparency)"]);
+        assert_eq!(ignored_statements(&rich), ["Ks", "d (transparency)"]);
     }
 
     #[test]

@@ -188,6 +188,7 @@ impl Builder<'_> {
                             name: format!("{file}: {}", mtl.name),
                             albedo: mtl.albedo,
                             emission: mtl.emission,
+                            texture: mtl.texture.clone(),
                             ..Default::default()
                         });
                         self.mtl_materials.insert((key.clone(), m), index);

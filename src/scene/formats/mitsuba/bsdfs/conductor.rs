@@ -4,7 +4,7 @@
 use super::super::ior::conductor_ior;
 use super::super::tree::Element;
 use super::super::values::{ColorUse, color, property};
-use super::{MICROFACET, check_properties, microfacet, reflectance};
+use super::{MICROFACET, Roughness, check_properties, microfacet, reflectance};
 use crate::scene::desc::{MaterialDesc, Specular};
 use crate::scene::error::SceneError;
 use glam::{DVec3, Vec3};
@@ -21,9 +21,13 @@ pub(super) fn conductor(
     }
     check_properties(element, &known)?;
     let reflectance = reflectance(element, "specular_reflectance")?.unwrap_or(Vec3::ONE);
-    let (distribution, roughness) =
-        if rough { microfacet(element)? } else { (Default::default(), 0.0) };
-    let none = MaterialDesc { distribution, roughness, ..none };
+    let r = if rough { microfacet(element)? } else { Roughness::SMOOTH };
+    let none = MaterialDesc {
+        distribution: r.distribution,
+        roughness: r.alpha,
+        roughness_v: r.alpha_v,
+        ..none
+    };
     let named = property(element, "string", "material");
     let find = |name: &str| element.children.iter().find(|c| c.attr("name") == Some(name));
     let named_none = named.map_or(Ok(true), |m| m.required("value").map(|v| v == "none"))?;

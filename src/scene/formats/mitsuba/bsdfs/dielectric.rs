@@ -3,7 +3,7 @@
 
 use super::super::ior::dielectric_ior;
 use super::super::tree::Element;
-use super::{MICROFACET, check_properties, microfacet, unit_only};
+use super::{MICROFACET, Roughness, check_properties, microfacet, unit_only};
 use crate::scene::desc::{MaterialDesc, Specular};
 use crate::scene::error::SceneError;
 use glam::Vec3;
@@ -20,13 +20,13 @@ pub(super) fn dielectric(
     }
     check_properties(element, &known)?;
     unit_only(element, &["specular_reflectance", "specular_transmittance"])?;
-    let (distribution, roughness) =
-        if rough { microfacet(element)? } else { (Default::default(), 0.0) };
+    let r = if rough { microfacet(element)? } else { Roughness::SMOOTH };
     let ior = relative_ior(element, "bk7")?;
     Ok(MaterialDesc {
         specular: Specular::Dielectric { ior, absorption: Vec3::ZERO },
-        distribution,
-        roughness,
+        distribution: r.distribution,
+        roughness: r.alpha,
+        roughness_v: r.alpha_v,
         one_sided: false,
         ..none
     })

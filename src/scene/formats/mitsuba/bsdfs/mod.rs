@@ -155,9 +155,22 @@ fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError>
 /// The parameters of a microfacet distribution every rough BSDF takes.
 const MICROFACET: [&str; 5] = ["alpha", "alpha_u", "alpha_v", "distribution", "sample_visible"];
 
-/// The distribution and its α (Mitsuba's defaults: Beckmann, 0.1); anisotropic roughness
-/// and a textured α are refused.
-fn microfacet(element: &Element) -> Result<(Distribution, f32), SceneError> {
+/// A rough BSDF's distribution and α (along ∂p/∂u), and α along the bitangent where it
+/// differs (`alpha_u` ≠ `alpha_v`).
+struct Roughness {
+    distribution: Distribution,
+    alpha: f32,
+    alpha_v: Option<f32>,
+}
+
+impl Roughness {
+    const SMOOTH: Roughness =
+        Roughness { distribution: Distribution::Ggx, alpha: 0.0, alpha_v: None };
+}
+
+/// The distribution and its α (Mitsuba's defaults: Beckmann, 0.1), or `alpha_u` and
+/// `alpha_v`; a textured α is refused.
+fn microfacet(element: &Element) -> Result<Roughness, SceneError> {
     let distribution = match property(element, "string", "distribution") {
         None => Distribution::Beckmann,
         Some(d) => match d.required("value")?.to_ascii_lowercase().as_str() {
@@ -181,23 +194,26 @@ fn microfacet(element: &Element) -> Result<(Distribution, f32), SceneError> {
     }
     let (u, v) = (float(element, "alpha_u")?, float(element, "alpha_v")?);
     if u.is_some() || v.is_some() {
-        if u != v {
-            return Err(element.error("anisotropic roughness (alpha_u ≠ alpha_v) is not supported"));
+        if u.is_none() || v.is_none() {
+            return Err(element.error("alpha_u and alpha_v are given together"));
         }
         if float(element, "alpha")?.is_some() {
             return Err(element.error("give either alpha or alpha_u and alpha_v, not both"));
         }
     }
     let alpha = float(element, "alpha")?.or(u).unwrap_or(0.1);
-    if !(0.0..=1.0).contains(&alpha) {
-        return Err(element.error(format!("alpha is {alpha}, but must be in [0, 1]")));
+    for (name, value) in [("alpha", Some(alpha)), ("alpha_v", v)] {
+        if let Some(value) = value.filter(|a| !(0.0..=1.0).contains(a)) {
+            return Err(element.error(format!("{name} is {value}, but must be in [0, 1]")));
+        }
     }
     if super::values::boolean(element, "sample_visible")? == Some(false) {
         return Err(
             element.error("sample_visible = false is not supported (visible normals are sampled)")
         );
     }
-    Ok((distribution, alpha as f32))
+    let alpha_v = v.filter(|&v| Some(v) != u).map(|v| v as f32);
+    Ok(Roughness { distribution, alpha: alpha as f32, alpha_v })
 }
 
 /// An `<rgb>`/`<spectrum>` reflectance named `name`, each component in [0, 1].

@@ -5,7 +5,8 @@ use super::super::tree::{Element, FileResolver};
 use super::super::values::boolean;
 use super::dielectric::relative_ior;
 use super::{
-    MICROFACET, check_properties, microfacet, reflectance, reflectance_texture, unit_only,
+    MICROFACET, Roughness, check_properties, microfacet, reflectance, reflectance_texture,
+    unit_only,
 };
 use crate::scene::desc::{MaterialDesc, Specular};
 use crate::scene::error::SceneError;
@@ -26,8 +27,11 @@ pub(super) fn plastic(
     }
     check_properties(element, &known)?;
     unit_only(element, &["specular_reflectance"])?;
-    let (distribution, roughness) =
-        if rough { microfacet(element)? } else { (Default::default(), 0.0) };
+    let r = if rough { microfacet(element)? } else { Roughness::SMOOTH };
+    if r.alpha_v.is_some() {
+        return Err(element.error("roughplastic takes one alpha (alpha_u = alpha_v)"));
+    }
+    let (distribution, roughness) = (r.distribution, r.alpha);
     let ior = relative_ior(element, "polypropylene")?;
     if ior == 1.0 {
         return Err(element.error("int_ior and ext_ior must differ (a coating must be seen)"));

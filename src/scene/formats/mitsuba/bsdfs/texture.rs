@@ -2,7 +2,7 @@
 //! mask's opacity.
 
 use super::super::tree::{Element, FileResolver};
-use super::super::values::{boolean, property};
+use super::super::values::{ColorUse, boolean, color, number_attr, property, vec3};
 use super::reflectance;
 use crate::scene::desc::{Interpolation, Pattern, TextureDesc, TextureMode};
 use crate::scene::error::{Line, SceneError};
@@ -56,9 +56,26 @@ pub(super) fn reflectance_texture(
                 odd: color_of("color1", 0.2)?,
             }
         }
+        "rawconstant" => {
+            let value = texture
+                .children
+                .iter()
+                .find(|c| c.attr("name") == Some("value"))
+                .ok_or_else(|| texture.error("a rawconstant needs a `value`"))?;
+            let value = match value.tag.as_str() {
+                "vector" | "point" => vec3(value, false)?,
+                "rgb" => color(value, ColorUse::Unbounded)?,
+                "float" => DVec3::splat(number_attr(value, "value")?),
+                other => {
+                    return Err(value.error(format!("a rawconstant's value cannot be <{other}>")));
+                }
+            };
+            Pattern::Constant(value.as_vec3())
+        }
         other => {
             return Err(texture.error(format!(
-                "the texture '{other}' is not supported yet (bitmap and checkerboard are)"
+                "the texture '{other}' is not supported yet (bitmap, checkerboard and \
+                 rawconstant are)"
             )));
         }
     };

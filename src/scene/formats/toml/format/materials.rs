@@ -40,6 +40,15 @@ pub(crate) enum MetalPreset {
     Aluminium,
 }
 
+/// `roughness = 0.2`, or `roughness = [0.3, 0.05]`: anisotropic, α along ∂p/∂u, then along
+/// the bitangent.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub(crate) enum RoughnessToml {
+    Isotropic(f64),
+    Anisotropic([f64; 2]),
+}
+
 /// A material; like objects, one flat struct whose fields `materials` checks per type.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -50,7 +59,7 @@ pub(crate) struct MaterialToml {
     pub emission: Option<Vec3>,
     pub two_sided_emission: Option<bool>,
     pub reflectance: Option<Vec3>,
-    pub roughness: Option<f64>,
+    pub roughness: Option<RoughnessToml>,
     pub distribution: Option<DistributionToml>,
     pub nonlinear: Option<bool>,
     pub opacity: Option<OpacityToml>,
@@ -103,6 +112,8 @@ pub(crate) enum TextureKind {
     Checker,
     Perlin,
     Image,
+    /// One `value` everywhere, as it is (a normal map's flat normal is [0.5, 0.5, 1]).
+    Constant,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -153,9 +164,12 @@ pub(crate) struct TextureToml {
     pub white: Option<Vec3>,
     pub conversion: Option<NoiseConversionToml>,
     pub file: Option<String>,
+    pub value: Option<Vec3>,
     pub interpolation: Option<InterpolationToml>,
     pub encoding: Option<ImageEncodingToml>,
     pub normalizer: Option<f64>,
+    /// The image's v runs up (OBJ/MTL's convention) instead of down.
+    pub flip_v: Option<bool>,
     /// A bump map's height per unit of texture value.
     pub factor: Option<f64>,
     /// What a bump map's heights are measured in.

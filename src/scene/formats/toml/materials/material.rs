@@ -6,6 +6,7 @@ use crate::scene::desc::{Distribution, MaterialDesc, Opacity, PhongDesc, Specula
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::format::{
     BumpHeightsToml, DistributionToml, MaterialKind, MaterialToml, MetalPreset, OpacityToml,
+    RoughnessToml,
 };
 use crate::scene::formats::toml::source_map::FieldPath;
 use crate::scene::formats::toml::validate::Ctx;
@@ -107,13 +108,22 @@ pub(crate) fn material(
     };
     let albedo = ctx.color(&path.key("albedo"), m.albedo.unwrap_or([default_albedo; 3]), true)?;
     let emission = ctx.color(&path.key("emission"), m.emission.unwrap_or([0.0; 3]), false)?;
-    let roughness = match m.roughness {
-        Some(r) => {
-            let field = path.key("roughness");
-            ctx.non_negative(&field, r)?;
-            ctx.f32(&field, r)?
+    let field = path.key("roughness");
+    let alpha = |r: f64| -> Result<f32, SceneError> {
+        ctx.non_negative(&field, r)?;
+        ctx.f32(&field, r)
+    };
+    let (roughness, roughness_v) = match m.roughness {
+        Some(RoughnessToml::Isotropic(r)) => (alpha(r)?, None),
+        Some(RoughnessToml::Anisotropic([u, v])) => {
+            if kind == MaterialKind::Plastic {
+                let requirement = "one number: a plastic's coating is isotropic";
+                ctx.require(false, &field, "a pair", requirement)?;
+            }
+            let (u, v) = (alpha(u)?, alpha(v)?);
+            (u, (v != u).then_some(v))
         }
-        None => 0.0,
+        None => (0.0, None),
     };
     let reflectance =
         |ctx: &Ctx| ctx.color(&path.key("reflectance"), m.reflectance.unwrap_or([1.0; 3]), true);
@@ -209,6 +219,7 @@ pub(crate) fn material(
         two_sided_emission: m.two_sided_emission.unwrap_or(false),
         specular,
         roughness,
+        roughness_v,
         distribution,
         opacity,
         one_sided: m.one_sided.unwrap_or(false),

@@ -48,6 +48,7 @@ pub(super) fn kind_name_of(t: &TextureToml) -> &'static str {
         TextureKind::Checker => "checker",
         TextureKind::Perlin => "perlin",
         TextureKind::Image => "image",
+        TextureKind::Constant => "constant",
     }
 }
 
@@ -64,7 +65,10 @@ pub(super) fn texture_desc(
         TextureKind::Checker3d => ("checker3d", &["scale", "even", "odd"]),
         TextureKind::Checker => ("checker", &["scale", "offset", "black", "white"]),
         TextureKind::Perlin => ("perlin", &["scale", "conversion"]),
-        TextureKind::Image => ("image", &["file", "interpolation", "encoding", "normalizer"]),
+        TextureKind::Constant => ("constant", &["value"]),
+        TextureKind::Image => {
+            ("image", &["file", "interpolation", "encoding", "normalizer", "flip_v"])
+        }
     };
     let item = format!("{path} ({kind_name})");
     let mut allowed = vec!["type"];
@@ -85,9 +89,11 @@ pub(super) fn texture_desc(
         ("white", t.white.is_some()),
         ("conversion", t.conversion.is_some()),
         ("file", t.file.is_some()),
+        ("value", t.value.is_some()),
         ("interpolation", t.interpolation.is_some()),
         ("encoding", t.encoding.is_some()),
         ("normalizer", t.normalizer.is_some()),
+        ("flip_v", t.flip_v.is_some()),
         ("factor", t.factor.is_some()),
         ("heights", t.heights.is_some()),
     ];
@@ -129,6 +135,12 @@ pub(super) fn texture_desc(
                 NoiseConversionToml::Linear => NoiseConversion::Linear,
             },
         },
+        TextureKind::Constant => {
+            let value = ctx.required(path, &item, "value", t.value)?;
+            let ok = value.iter().all(|v| v.is_finite() && v.abs() <= f32::MAX as f64);
+            ctx.require(ok, &path.key("value"), format!("{value:?}"), "three finite numbers")?;
+            Pattern::Constant(glam::DVec3::from_array(value).as_vec3())
+        }
         TextureKind::Image => {
             let file = ctx.required(path, &item, "file", t.file.as_deref())?;
             let default = if matches!(usage, Use::Normal | Use::Bump) {
@@ -150,8 +162,12 @@ pub(super) fn texture_desc(
                 item: path.key("file").to_string(),
                 line: ctx.line(&path.key("file")),
             };
+            let image = crate::scene::texture_image::load_radiance(&at, srgb)?;
             Pattern::Image {
-                image: crate::scene::texture_image::load_radiance(&at, srgb)?,
+                image: match t.flip_v {
+                    Some(true) => crate::scene::texture_image::with_rows_flipped(&image),
+                    _ => image,
+                },
                 interpolation: match t.interpolation.unwrap_or(InterpolationToml::Bilinear) {
                     InterpolationToml::Nearest => Interpolation::Nearest,
                     InterpolationToml::Bilinear => Interpolation::Bilinear,

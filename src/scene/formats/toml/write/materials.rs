@@ -80,8 +80,11 @@ pub(super) fn write_material(
         }
     }
     // A diffuse material's roughness means nothing to either integrator.
-    if m.roughness != 0.0 && m.specular != Specular::None {
-        let _ = writeln!(out, "roughness = {:?}", m.roughness);
+    if (m.roughness != 0.0 || m.roughness_v.is_some()) && m.specular != Specular::None {
+        let _ = match m.roughness_v {
+            Some(v) => writeln!(out, "roughness = [{:?}, {v:?}]", m.roughness),
+            None => writeln!(out, "roughness = {:?}", m.roughness),
+        };
         if m.distribution != Distribution::Ggx {
             let _ = writeln!(out, "distribution = \"{}\"", m.distribution.name());
         }
@@ -192,6 +195,7 @@ pub(super) fn texture_toml(t: &TextureDesc, with_mode: bool) -> Result<String, T
                 c3(*odd)
             )
         }
+        Pattern::Constant(value) => format!("type = \"constant\", value = {}", c3(*value)),
         Pattern::CourseChecker { scale, offset, black, white } => {
             at_most_one(black.max(*white))?;
             format!(
@@ -216,8 +220,10 @@ pub(super) fn texture_toml(t: &TextureDesc, with_mode: bool) -> Result<String, T
             } else {
                 format!("encoding = \"raw\", normalizer = {}", f(*normalizer as f64))
             };
+            let flip = if image.rows_flipped { ", flip_v = true" } else { "" };
             format!(
-                "type = \"image\", file = {}, interpolation = \"{interpolation}\", {encoding}",
+                "type = \"image\", file = {}, interpolation = \"{interpolation}\", \
+                 {encoding}{flip}",
                 quoted(&file.to_string_lossy())
             )
         }
