@@ -98,7 +98,7 @@ def main():
         print(f"| {spp} | {t_noisy:.3f} | {e_noisy:.3e} | {t_den:.3f} | {e_den:.3e} |")
     print(f"denoiser time: median {statistics.median(r[5] for r in rows):.3f} s")
     denoised_curve = [(r[3], r[4]) for r in rows]
-    print("\n| error (relMSE) | noisy reaches it in (s) | denoised in (s) | speed-up |")
+    print("\n| error (per-pixel relMSE) | noisy reaches it in (s) | denoised in (s) | speed-up |")
     print("|---|---|---|---|")
     for spp, t_noisy, e_noisy, *_ in rows:
         text, t_den = time_to(e_noisy, denoised_curve)
