@@ -29,6 +29,9 @@ pub struct Material {
     /// α along the bitangent (the tangent is ∂p/∂u's direction): `ggx_alpha` unless the
     /// roughness is anisotropic.
     pub ggx_alpha_v: f32,
+    /// α along the tangent and the bitangent looked up per hit (each texture's mean
+    /// channel), in place of `ggx_alpha` and `ggx_alpha_v`.
+    pub roughness_textures: Option<Box<[Texture; 2]>>,
     /// The distribution `ggx_alpha` is the α of.
     pub distribution: Distribution,
     /// What a plastic's coating lets through (set by `from_desc` for plastics).
@@ -66,6 +69,7 @@ impl Default for Material {
             specular: Specular::None,
             ggx_alpha: 0.0,
             ggx_alpha_v: 0.0,
+            roughness_textures: None,
             distribution: Distribution::Ggx,
             coating: None,
             opacity: None,
@@ -118,6 +122,10 @@ impl Material {
             // perturbation square to the course's Whitted model.
             ggx_alpha: desc.roughness,
             ggx_alpha_v: desc.roughness_v.unwrap_or(desc.roughness),
+            roughness_textures: desc
+                .roughness_textures
+                .as_deref()
+                .map(|[u, v]| Box::new([Texture::from_desc(u), Texture::from_desc(v)])),
             distribution: desc.distribution,
             coating: None,
             opacity: desc.opacity.as_ref().map(|o| match o {
@@ -153,10 +161,16 @@ impl Material {
 
     /// The specular lobe's microfacet distribution (α at least 10⁻⁴).
     pub fn microfacet(&self) -> Microfacet {
+        self.microfacet_at((self.ggx_alpha, self.ggx_alpha_v))
+    }
+
+    /// Its distribution with the α (along the tangent, the bitangent) of one hit, where
+    /// `roughness_textures` gave them.
+    pub fn microfacet_at(&self, (alpha_u, alpha_v): (f32, f32)) -> Microfacet {
         Microfacet {
             distribution: self.distribution,
-            alpha_x: self.ggx_alpha.max(1e-4),
-            alpha_y: self.ggx_alpha_v.max(1e-4),
+            alpha_x: alpha_u.max(1e-4),
+            alpha_y: alpha_v.max(1e-4),
         }
     }
 
@@ -168,7 +182,7 @@ impl Material {
     /// Whether the roughness differs along the tangent and the bitangent (the shading
     /// frame must then follow ∂p/∂u).
     pub fn is_anisotropic(&self) -> bool {
-        self.ggx_alpha != self.ggx_alpha_v
+        self.ggx_alpha != self.ggx_alpha_v || self.roughness_textures.is_some()
     }
 
     pub fn is_emissive(&self) -> bool {
@@ -189,7 +203,7 @@ impl Material {
     pub fn specular_is_delta(&self) -> bool {
         match self.specular {
             Specular::None => false,
-            _ => self.ggx_alpha < SMOOTH_ROUGHNESS,
+            _ => !self.is_rough(),
         }
     }
 }

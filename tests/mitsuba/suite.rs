@@ -10,7 +10,7 @@ use embray::mitsuba_rule::judge;
 use std::path::{Path, PathBuf};
 
 /// The suite's scenes that embray renders; every other one must be refused.
-const RENDERED: [&str; 14] = [
+const RENDERED: [&str; 15] = [
     "test_arealight_path",
     "test_bumpmap_path",
     "test_constant_path",
@@ -25,6 +25,7 @@ const RENDERED: [&str; 14] = [
     "test_roughplastic_linear_path",
     "test_spot_direct",
     "test_textured_diffuse_path",
+    "test_textured_roughconductor_path",
 ];
 
 fn mitsuba_data() -> PathBuf {

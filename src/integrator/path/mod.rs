@@ -212,10 +212,15 @@ impl<'a> PathTracer<'a> {
             } else {
                 self.shading_frame(si.shading_normal)
             };
+            let roughness = material.roughness_textures.as_deref().map(|[u, v]| {
+                let alpha = |t| self.tracer.texture_color(t, &si, ray.time).element_sum() / 3.0;
+                (alpha(u), alpha(v))
+            });
             let bsdf = Bsdf::with_reflectances(
                 material,
                 albedo,
                 course_specular,
+                roughness,
                 frame,
                 si.front_face,
                 self.energy,

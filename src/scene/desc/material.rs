@@ -21,6 +21,10 @@ pub struct MaterialDesc {
     /// Anisotropic roughness: α along the bitangent (Mitsuba's `alpha_v`, `roughness`
     /// being its `alpha_u`). `None`: isotropic.
     pub roughness_v: Option<f32>,
+    /// α along ∂p/∂u and across it, looked up per hit (each texture's mean channel) in
+    /// place of `roughness` and `roughness_v` (Mitsuba's textured `alpha`, `alpha_u`,
+    /// `alpha_v`).
+    pub roughness_textures: Option<Box<[TextureDesc; 2]>>,
     /// The microfacet distribution `roughness` is the α of.
     pub distribution: Distribution,
     /// Fraction of the light that meets the surface at all (Mitsuba's `mask`); the rest
@@ -60,6 +64,7 @@ impl MaterialDesc {
             .flatten()
             .chain(self.bump_map.as_ref().map(|b| &b.texture))
             .chain(opacity)
+            .chain(self.roughness_textures.iter().flat_map(|t| t.iter()))
             .filter_map(TextureDesc::image)
     }
 }
@@ -74,6 +79,7 @@ impl Default for MaterialDesc {
             specular: Specular::None,
             roughness: 0.0,
             roughness_v: None,
+            roughness_textures: None,
             distribution: Distribution::Ggx,
             opacity: None,
             one_sided: false,

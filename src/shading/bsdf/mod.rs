@@ -13,7 +13,7 @@ pub use coupling::Energy;
 
 use crate::scene::Specular;
 use crate::shading::coating::Coating;
-use crate::shading::material::Material;
+use crate::shading::material::{Material, SMOOTH_ROUGHNESS};
 use glam::{Mat3, Vec2, Vec3};
 use mixture::Mixture;
 use plastic::Plastic;
@@ -94,7 +94,16 @@ impl Bsdf {
     pub fn new(material: &Material, albedo: Vec3, frame: Mat3, front_face: bool) -> Self {
         let course_specular = material.phong.as_ref().map_or(Vec3::ZERO, |p| p.specular);
         let energy = Energy::Conserving;
-        Self::with_reflectances(material, albedo, course_specular, frame, front_face, energy)
+        let roughness = None;
+        Self::with_reflectances(
+            material,
+            albedo,
+            course_specular,
+            roughness,
+            frame,
+            front_face,
+            energy,
+        )
     }
 
     /// `new` with the course model's specular reflectance given (a `specular_texture`'s
@@ -103,12 +112,15 @@ impl Bsdf {
         material: &Material,
         albedo: Vec3,
         course_specular: Vec3,
+        roughness: Option<(f32, f32)>,
         frame: Mat3,
         front_face: bool,
         energy: Energy,
     ) -> Self {
-        let rough = material.is_rough();
-        let microfacet = material.microfacet();
+        let (rough, microfacet) = match roughness {
+            None => (material.is_rough(), material.microfacet()),
+            Some((u, v)) => (u.max(v) >= SMOOTH_ROUGHNESS, material.microfacet_at((u, v))),
+        };
         let scatter = match material.specular {
             Specular::Dielectric { ior, .. } if rough => {
                 Scatter::RoughDielectric(RoughDielectric::new(ior, front_face, microfacet))
@@ -127,6 +139,7 @@ impl Bsdf {
                 material,
                 albedo,
                 course_specular,
+                microfacet,
                 frame,
                 front_face,
                 energy,

@@ -10,10 +10,12 @@ mod texture;
 
 use super::tree::{Element, FileResolver};
 use super::values::{ColorUse, color, float, property};
-use crate::scene::desc::{BumpMapDesc, BumpScale, Distribution, MaterialDesc, Opacity};
+use crate::scene::desc::{
+    BumpMapDesc, BumpScale, Distribution, MaterialDesc, Opacity, TextureDesc,
+};
 use crate::scene::error::SceneError;
 use glam::{DVec3, Vec3};
-use texture::reflectance_texture;
+use texture::{float_texture, reflectance_texture};
 
 /// The BSDFs this reader knows, for messages.
 pub(super) const SUPPORTED: &str = "diffuse, twosided, mask, normalmap, bumpmap, conductor, \
@@ -44,7 +46,7 @@ pub(super) fn bsdf(
             if inner.opacity.is_some() {
                 return Err(element.error("a mask inside a mask is not supported"));
             }
-            let opacity = match reflectance_texture(element, "opacity", ids, files)? {
+            let opacity = match float_texture(element, "opacity", ids, files)? {
                 Some(texture) => Opacity::Texture(texture),
                 None => {
                     let value = float(element, "opacity")?.unwrap_or(0.5);
@@ -81,7 +83,7 @@ pub(super) fn bsdf(
                 return Err(element.error("bumpmap takes one height <texture>"));
             };
             check_properties(element, &["scale", name])?;
-            let texture = reflectance_texture(element, name, ids, files)?
+            let texture = float_texture(element, name, ids, files)?
                 .ok_or_else(|| element.error("bumpmap needs a height <texture>"))?;
             if inner.normal_map.is_some() || inner.bump_map.is_some() {
                 return Err(element.error("a normal or bump map inside another is not supported"));
@@ -101,8 +103,16 @@ pub(super) fn bsdf(
             }
             Ok(material)
         }
-        "conductor" | "roughconductor" => conductor::conductor(element, kind, none),
-        "dielectric" | "roughdielectric" => dielectric::dielectric(element, kind, none),
+        "conductor" | "roughconductor" => {
+            let roughness_textures = roughness_textures(element, ids, files)?;
+            let material = conductor::conductor(element, kind, none)?;
+            Ok(MaterialDesc { roughness_textures, ..material })
+        }
+        "dielectric" | "roughdielectric" => {
+            let roughness_textures = roughness_textures(element, ids, files)?;
+            let material = dielectric::dielectric(element, kind, none)?;
+            Ok(MaterialDesc { roughness_textures, ..material })
+        }
         "plastic" | "roughplastic" => plastic::plastic(element, kind, none, ids, files),
         other => Err(element
             .error(format!("the BSDF '{other}' is not supported yet (supported: {SUPPORTED})"))),
@@ -183,14 +193,9 @@ fn microfacet(element: &Element) -> Result<Roughness, SceneError> {
             }
         },
     };
-    for name in ["alpha", "alpha_u", "alpha_v"] {
-        let textured = element
-            .children
-            .iter()
-            .find(|c| c.attr("name") == Some(name) && matches!(c.tag.as_str(), "texture" | "ref"));
-        if let Some(texture) = textured {
-            return Err(texture.error(format!("a textured `{name}` is not supported yet")));
-        }
+    if ROUGHNESS_NAMES.iter().any(|name| texture_child(element, name).is_some()) {
+        // `roughness_textures` reads them; the numbers here are not used.
+        return Ok(Roughness { distribution, alpha: 0.1, alpha_v: None });
     }
     let (u, v) = (float(element, "alpha_u")?, float(element, "alpha_v")?);
     if u.is_some() || v.is_some() {
@@ -214,6 +219,43 @@ fn microfacet(element: &Element) -> Result<Roughness, SceneError> {
     }
     let alpha_v = v.filter(|&v| Some(v) != u).map(|v| v as f32);
     Ok(Roughness { distribution, alpha: alpha as f32, alpha_v })
+}
+
+const ROUGHNESS_NAMES: [&str; 3] = ["alpha", "alpha_u", "alpha_v"];
+
+/// The `<texture>` (or reference to one) named `name`.
+fn texture_child<'a>(element: &'a Element, name: &str) -> Option<&'a Element> {
+    element
+        .children
+        .iter()
+        .find(|c| c.attr("name") == Some(name) && matches!(c.tag.as_str(), "texture" | "ref"))
+}
+
+/// A textured roughness: `alpha`, or `alpha_u` and `alpha_v`, where one of them is a
+/// `<texture>` (a number beside one is a constant texture); `None` if none is textured.
+fn roughness_textures(
+    element: &Element,
+    ids: &super::Ids,
+    files: &FileResolver,
+) -> Result<Option<Box<[TextureDesc; 2]>>, SceneError> {
+    if !ROUGHNESS_NAMES.iter().any(|name| texture_child(element, name).is_some()) {
+        return Ok(None);
+    }
+    let read = |name: &str| -> Result<Option<TextureDesc>, SceneError> {
+        if let Some(texture) = float_texture(element, name, ids, files)? {
+            return Ok(Some(texture));
+        }
+        Ok(float(element, name)?.map(|alpha| TextureDesc {
+            pattern: crate::scene::Pattern::Constant(Vec3::splat(alpha as f32)),
+            mode: Default::default(),
+            texture_from_object: glam::DAffine3::IDENTITY,
+        }))
+    };
+    match (read("alpha")?, read("alpha_u")?, read("alpha_v")?) {
+        (Some(alpha), None, None) => Ok(Some(Box::new([alpha.clone(), alpha]))),
+        (None, Some(u), Some(v)) => Ok(Some(Box::new([u, v]))),
+        _ => Err(element.error("give either alpha or alpha_u and alpha_v, not both")),
+    }
 }
 
 /// An `<rgb>`/`<spectrum>` reflectance named `name`, each component in [0, 1].

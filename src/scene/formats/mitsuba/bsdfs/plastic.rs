@@ -28,6 +28,9 @@ pub(super) fn plastic(
     check_properties(element, &known)?;
     unit_only(element, &["specular_reflectance"])?;
     let r = if rough { microfacet(element)? } else { Roughness::SMOOTH };
+    if super::roughness_textures(element, ids, files)?.is_some() {
+        return Err(element.error("a textured alpha on a plastic is not supported"));
+    }
     if r.alpha_v.is_some() {
         return Err(element.error("roughplastic takes one alpha (alpha_u = alpha_v)"));
     }

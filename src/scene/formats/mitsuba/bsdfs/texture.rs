@@ -9,6 +9,25 @@ use crate::scene::error::{Line, SceneError};
 use crate::scene::texture_image::{ImageRef, load};
 use glam::{DAffine3, DVec3, Vec3};
 
+/// A `<texture name="…">` read as a number (a roughness, a mask's opacity, a bump map's
+/// height): as `reflectance_texture`, but a checkerboard's colours change places, since
+/// Mitsuba's checkerboard gives `color0` where u's and v's halves differ when a number is
+/// looked up (`eval_1`) and where they agree when a colour is (`eval`).
+pub(super) fn float_texture(
+    element: &Element,
+    name: &str,
+    ids: &super::super::Ids,
+    files: &FileResolver,
+) -> Result<Option<TextureDesc>, SceneError> {
+    let texture = reflectance_texture(element, name, ids, files)?;
+    Ok(texture.map(|t| match t.pattern {
+        Pattern::Checker2d { scale, even, odd } => {
+            TextureDesc { pattern: Pattern::Checker2d { scale, even: odd, odd: even }, ..t }
+        }
+        _ => t,
+    }))
+}
+
 /// A `<texture name="…">` (bitmap or checkerboard) for the reflectance `name`.
 pub(super) fn reflectance_texture(
     element: &Element,
@@ -47,8 +66,13 @@ pub(super) fn reflectance_texture(
             Pattern::Image { image, interpolation, normalizer }
         }
         "checkerboard" => {
+            // A colour, or a number for a float texture (a roughness).
             let color_of = |name: &str, default: f64| -> Result<Vec3, SceneError> {
-                Ok(reflectance(texture, name)?.unwrap_or(Vec3::splat(default as f32)))
+                if let Some(rgb) = reflectance(texture, name)? {
+                    return Ok(rgb);
+                }
+                let number = super::super::values::float(texture, name)?;
+                Ok(Vec3::splat(number.unwrap_or(default) as f32))
             };
             Pattern::Checker2d {
                 scale: 2.0,

@@ -220,6 +220,7 @@ pub(crate) fn material(
         specular,
         roughness,
         roughness_v,
+        roughness_textures: None,
         distribution,
         opacity,
         one_sided: m.one_sided.unwrap_or(false),

@@ -41,6 +41,9 @@ pub(super) fn write_material(
         }
     };
     at_most_one("the albedo", m.albedo)?;
+    if m.roughness_textures.is_some() {
+        return Err(unsupported("a textured roughness has no TOML form yet".to_owned()));
+    }
     let _ = writeln!(out, "\n[materials.{}]", quoted(name));
     let kind = match m.specular {
         Specular::None => "diffuse",
