@@ -28,24 +28,11 @@ if [ -e "$DIR/lib/libembree4.so" ] && [ -e "$DIR/include/embree4/rtcore.h" ]; th
     exit 0
 fi
 
-if ! python3 -m pip --version >/dev/null 2>&1; then
-    SUDO=""
-    if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-    echo "embree4-runtime: installing python3-pip with apt-get (to download the wheel)" >&2
-    $SUDO apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
-        python3-pip >/dev/null
-fi
-
+# shellcheck source=scripts/pypi-wheel.sh
+source "scripts/pypi-wheel.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-
-# The wheel's libraries do not depend on the Python version; pinning one makes the download
-# the same file on every machine.
-echo "embree4-runtime: downloading embreex==$VERSION from PyPI" >&2
-python3 -m pip download --quiet --no-deps --only-binary=:all: \
-    --platform manylinux_2_28_x86_64 --python-version 3.11 \
-    -d "$work" "embreex==$VERSION" >&2
+download_wheel embree4-runtime "embreex==$VERSION" manylinux_2_28_x86_64 "$work"
 python3 -m zipfile -e "$work"/embreex-*.whl "$work/wheel"
 
 mkdir -p "$work/prefix/lib" "$work/prefix/include"

@@ -27,22 +27,11 @@ if [ -e "$DIR/lib/libOpenImageDenoise.so" ] && [ -e "$DIR/lib/libOpenImageDenois
     exit 0
 fi
 
-if ! python3 -m pip --version >/dev/null 2>&1; then
-    SUDO=""
-    if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-    echo "oidn-runtime: installing python3-pip with apt-get (to download the wheel)" >&2
-    $SUDO apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
-        python3-pip >/dev/null
-fi
-
+# shellcheck source=scripts/pypi-wheel.sh
+source "$(dirname "$0")/pypi-wheel.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-
-echo "oidn-runtime: downloading pyoidn==$VERSION from PyPI (88 MB)" >&2
-python3 -m pip download --quiet --no-deps --only-binary=:all: \
-    --platform manylinux2014_x86_64 --python-version 3.11 \
-    -d "$work" "pyoidn==$VERSION" >&2
+download_wheel oidn-runtime "pyoidn==$VERSION" manylinux2014_x86_64 "$work"   # 88 MB
 wheel=$(ls "$work"/pyoidn-*.whl)
 mkdir -p "$work/prefix/lib"
 # Only the CPU libraries: the wheel's GPU devices and SYCL runtime are most of its size.
