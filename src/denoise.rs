@@ -24,6 +24,29 @@ pub enum DenoiseError {
     NotBuiltIn,
     #[error("Open Image Denoise failed: {0}")]
     Oidn(String),
+    #[error(
+        "rendering and denoising {estimate} needs about {} MiB, more than the {} MiB \
+         available (the denoiser adds {} bytes a pixel; render smaller or without --denoise)",
+        .needed >> 20, .available >> 20, crate::limits::DENOISE_BYTES_PER_PIXEL
+    )]
+    Memory { estimate: crate::scene::budget::MemoryEstimate, needed: u64, available: u64 },
+}
+
+/// Refuses, before anything is rendered, a render of `desc` that could not also be denoised
+/// in the memory there is (`BackendKind::bytes_per_triangle` as for the render's own check).
+pub fn check_memory(
+    desc: &crate::scene::SceneDesc,
+    bytes_per_triangle: u64,
+) -> Result<(), DenoiseError> {
+    let estimate = crate::scene::budget::memory_needed(desc, bytes_per_triangle);
+    let denoiser = estimate.pixels.saturating_mul(crate::limits::DENOISE_BYTES_PER_PIXEL);
+    let needed = estimate.bytes.saturating_add(denoiser);
+    match crate::limits::memory_available() {
+        Some(available) if needed > available => {
+            Err(DenoiseError::Memory { estimate, needed, available })
+        }
+        _ => Ok(()),
+    }
 }
 
 /// The denoised beauty of `film` (its albedo AOV must have been rendered:

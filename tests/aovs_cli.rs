@@ -203,6 +203,18 @@ fn denoising_brings_a_noisy_render_closer_to_the_reference() {
     let denoised = relative_mse(&dir.join("noisy.denoised.exr"), &dir.join("reference.exr"));
     println!("relative MSE against 512 spp: noisy {noisy:.4}, denoised {denoised:.4}");
     assert!(denoised < 0.25 * noisy, "noisy {noisy}, denoised {denoised}");
+    // A render that fits in 2 GB but whose denoising would not (2000² pixels: about 1.2 GB
+    // to render, 2 GB more to denoise) is refused before anything is rendered.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_embray"))
+        .args(["render", cornell, "--resolution", "2000x2000", "--denoise", "-o", "big.exr"])
+        .env("EMBRAY_MAX_MEMORY", "2000000000")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("denoising") && stderr.contains("MiB available"), "{stderr}");
+    assert!(!dir.join("big.exr").exists() && !dir.join("big.denoised.exr").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

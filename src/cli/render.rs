@@ -63,6 +63,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
         for job in &mut jobs {
             job.plan_denoised(&mut plan)?;
+            let bytes_per_triangle = args.to_options(&job.scene)?.backend.bytes_per_triangle();
+            embray::denoise::check_memory(&job.scene, bytes_per_triangle)?;
         }
     }
     let stats_json =
