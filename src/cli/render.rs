@@ -63,14 +63,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
         for job in &mut jobs {
             job.plan_denoised(&mut plan)?;
-            let bytes_per_triangle = args.to_options(&job.scene)?.backend.bytes_per_triangle();
-            embray::denoise::check_memory(&job.scene, bytes_per_triangle)?;
         }
     }
     let stats_json =
         args.stats_json.as_deref().map(|p| plan.output("--stats-json", p, false)).transpose()?;
     for job in &jobs {
-        args.to_options(&job.scene)?;
+        let options = args.to_options(&job.scene)?;
+        if args.denoise {
+            embray::denoise::check_memory(&job.scene, options.backend.bytes_per_triangle())?;
+        }
         args.look.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
         if job.display.is_some() {
             args.look.photographic.check_curve(args.tonemap.resolve(&job.scene.settings))?;

@@ -95,9 +95,8 @@ pub enum MaskOpacity {
 }
 
 /// The coating table of a plastic (integrated once per material, not per hit).
-fn coating(desc: &MaterialDesc) -> Option<Box<Coating>> {
-    let Specular::Plastic { ior, .. } = desc.specular else { return None };
-    let material = Material::from_desc_without_coating(desc);
+fn coating(material: &Material) -> Option<Box<Coating>> {
+    let Specular::Plastic { ior, .. } = material.specular else { return None };
     let microfacet = material.is_rough().then(|| material.microfacet());
     Some(Box::new(Coating::new(ior, microfacet)))
 }
@@ -109,7 +108,8 @@ impl Material {
     }
 
     pub fn from_desc(desc: &MaterialDesc) -> Self {
-        Material { coating: coating(desc), ..Self::from_desc_without_coating(desc) }
+        let material = Self::from_desc_without_coating(desc);
+        Material { coating: coating(&material), ..material }
     }
 
     fn from_desc_without_coating(desc: &MaterialDesc) -> Self {

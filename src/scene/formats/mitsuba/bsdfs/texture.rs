@@ -10,22 +10,14 @@ use crate::scene::texture_image::{ImageRef, load};
 use glam::{DAffine3, DVec3, Vec3};
 
 /// A `<texture name="…">` read as a number (a roughness, a mask's opacity, a bump map's
-/// height): as `reflectance_texture`, but a checkerboard's colours change places, since
-/// Mitsuba's checkerboard gives `color0` where u's and v's halves differ when a number is
-/// looked up (`eval_1`) and where they agree when a colour is (`eval`).
+/// height); see `texture`.
 pub(super) fn float_texture(
     element: &Element,
     name: &str,
     ids: &super::super::Ids,
     files: &FileResolver,
 ) -> Result<Option<TextureDesc>, SceneError> {
-    let texture = reflectance_texture(element, name, ids, files)?;
-    Ok(texture.map(|t| match t.pattern {
-        Pattern::Checker2d { scale, even, odd } => {
-            TextureDesc { pattern: Pattern::Checker2d { scale, even: odd, odd: even }, ..t }
-        }
-        _ => t,
-    }))
+    texture(element, name, ids, files, true)
 }
 
 /// A `<texture name="…">` (bitmap or checkerboard) for the reflectance `name`.
@@ -34,6 +26,19 @@ pub(super) fn reflectance_texture(
     name: &str,
     ids: &super::super::Ids,
     files: &FileResolver,
+) -> Result<Option<TextureDesc>, SceneError> {
+    texture(element, name, ids, files, false)
+}
+
+/// The texture `name`, looked up as a number (`as_number`) or a colour: Mitsuba's
+/// checkerboard gives `color0` where u's and v's halves agree when a colour is looked up
+/// (`eval`), and where they differ when a number is (`eval_1`).
+fn texture(
+    element: &Element,
+    name: &str,
+    ids: &super::super::Ids,
+    files: &FileResolver,
+    as_number: bool,
 ) -> Result<Option<TextureDesc>, SceneError> {
     let Some(texture) = element
         .children
@@ -74,11 +79,9 @@ pub(super) fn reflectance_texture(
                 let number = super::super::values::float(texture, name)?;
                 Ok(Vec3::splat(number.unwrap_or(default) as f32))
             };
-            Pattern::Checker2d {
-                scale: 2.0,
-                even: color_of("color0", 0.4)?,
-                odd: color_of("color1", 0.2)?,
-            }
+            let (color0, color1) = (color_of("color0", 0.4)?, color_of("color1", 0.2)?);
+            let (even, odd) = if as_number { (color1, color0) } else { (color0, color1) };
+            Pattern::Checker2d { scale: 2.0, even, odd }
         }
         "rawconstant" => {
             let value = texture
