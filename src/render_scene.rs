@@ -26,6 +26,8 @@ pub struct TriangleMesh {
     pub normals: Option<Vec<Vec3>>,
     /// Per-vertex texture coordinates, if the mesh has them.
     pub uvs: Option<Vec<Vec2>>,
+    /// Named per-vertex or per-triangle values (`mesh_attribute` textures look them up).
+    pub attributes: Vec<crate::scene::MeshAttribute>,
     /// Each triangle's plane, kept for small meshes (see `CACHED_PLANES`); empty otherwise.
     planes: Vec<TrianglePlane>,
 }
@@ -43,7 +45,14 @@ impl TriangleMesh {
         normals: Option<Vec<Vec3>>,
         uvs: Option<Vec<Vec2>>,
     ) -> Self {
-        let mut mesh = TriangleMesh { positions, indices, normals, uvs, planes: Vec::new() };
+        let mut mesh = TriangleMesh {
+            positions,
+            indices,
+            normals,
+            uvs,
+            attributes: Vec::new(),
+            planes: Vec::new(),
+        };
         // A bad index keeps no planes: the backends report it when they build.
         let vertex = |i: u32| mesh.positions.get(i as usize).copied();
         if mesh.indices.len() <= CACHED_PLANES {
@@ -55,6 +64,22 @@ impl TriangleMesh {
                 .unwrap_or_default();
         }
         mesh
+    }
+
+    /// This mesh with its named attributes.
+    pub fn with_attributes(self, attributes: Vec<crate::scene::MeshAttribute>) -> Self {
+        TriangleMesh { attributes, ..self }
+    }
+
+    /// The value of the attribute `name` at barycentric coordinates `barycentric` of
+    /// triangle `prim` (a per-vertex one interpolated), or `None` if the mesh has none.
+    pub fn attribute(&self, name: &str, prim: u32, barycentric: Vec2) -> Option<Vec3> {
+        let attribute = self.attributes.iter().find(|a| a.name == name)?;
+        if attribute.per_face() {
+            return Some(attribute.value(prim as usize));
+        }
+        let [a, b, c] = self.indices[prim as usize].map(|i| attribute.value(i as usize));
+        Some(a * (1.0 - barycentric.x - barycentric.y) + b * barycentric.x + c * barycentric.y)
     }
 
     pub fn triangle(&self, prim: u32) -> [Vec3; 3] {

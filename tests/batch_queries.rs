@@ -241,6 +241,7 @@ fn ties_on_a_shared_edge_are_broken_as_single_rays_do() {
         indices: vec![[0, 1, 2], [0, 2, 3]],
         normals: None,
         uvs: None,
+        attributes: Vec::new(),
     };
     let mut desc = build::scene(build::camera([0.5, 0.5, 3.0], [0.5, 0.5, 0.0], 40.0, 16, 16));
     desc.materials.push(MaterialDesc { name: "grey".into(), ..Default::default() });

@@ -48,6 +48,7 @@ fn inward_cube() -> Arc<MeshData> {
         indices: outward.indices.iter().map(|t| [t[0], t[2], t[1]]).collect(),
         normals: None,
         uvs: None,
+        attributes: Vec::new(),
     })
 }
 

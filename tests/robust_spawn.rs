@@ -140,7 +140,8 @@ fn rays_leaving_sliver_triangles_never_hit_them_again() {
         positions.push(DVec3::new(5e3, 0.0, z + 0.013));
         indices.push([base, base + 1, base + 2]);
     }
-    let mesh = Arc::new(MeshData { positions, indices, normals: None, uvs: None });
+    let mesh =
+        Arc::new(MeshData { positions, indices, normals: None, uvs: None, attributes: Vec::new() });
     let tilt = DAffine3::from_translation(DVec3::new(3e5, 1e5, -2e5))
         * DAffine3::from_axis_angle(DVec3::new(0.3, 1.0, 0.5).normalize(), 0.7);
     let eye = tilt.transform_point3(DVec3::new(4000.0, 0.5, 0.4));

@@ -37,7 +37,7 @@ pub fn displaced_sphere(triangles: usize) -> MeshData {
             }
         }
     }
-    MeshData { positions, indices, normals: None, uvs: None }
+    MeshData { positions, indices, normals: None, uvs: None, attributes: Vec::new() }
 }
 
 /// The displaced sphere on a ground quad, lit by a point light.
@@ -59,6 +59,7 @@ pub fn displaced_sphere_scene(triangles: usize, width: u32, height: u32) -> Scen
         indices: vec![[0, 2, 1], [0, 3, 2]],
         normals: None,
         uvs: None,
+        attributes: Vec::new(),
     };
     let material =
         MaterialDesc { name: "grey".into(), albedo: Vec3::splat(0.7), ..Default::default() };

@@ -47,7 +47,8 @@ fn place_mesh(
     } else {
         mesh.indices.clone()
     };
-    Ok(TriangleMesh::new(positions, indices, normals, mesh.uvs.clone()))
+    let baked = TriangleMesh::new(positions, indices, normals, mesh.uvs.clone());
+    Ok(baked.with_attributes(mesh.attributes.clone()))
 }
 
 /// Translation · rotation · scale of `m`, or `None` if `m` shears.

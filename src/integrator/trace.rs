@@ -77,6 +77,9 @@ impl SceneTracer<'_> {
 
     /// `texture`'s colour at `si` (solid patterns in the hit object's own space at `time`).
     pub fn texture_color(&self, texture: &Texture, si: &SurfaceInteraction, time: f32) -> Vec3 {
+        if let Some((name, scale)) = texture.mesh_attribute() {
+            return crate::shading::texture::mesh_attribute(self.scene, name, si) * scale;
+        }
         let p_object = if texture.needs_object_point() {
             let placement = &self.scene.instances[si.geom_id as usize].placement;
             placement.texture_object_from_render(time).transform_point3(si.surface.point)

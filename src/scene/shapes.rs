@@ -32,6 +32,7 @@ pub(crate) fn quad_mesh(corner: DVec3, u: DVec3, v: DVec3) -> Result<MeshData, S
             Vec2::new(1.0, 1.0),
             Vec2::new(0.0, 1.0),
         ]),
+        attributes: Vec::new(),
     })
 }
 
@@ -69,7 +70,7 @@ pub(crate) fn box_mesh(min: DVec3, max: DVec3) -> Result<MeshData, String> {
         [4, 5, 7, 6], // +z
     ];
     let indices = FACES.iter().flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]]).collect();
-    Ok(MeshData { positions, indices, normals: None, uvs: None })
+    Ok(MeshData { positions, indices, normals: None, uvs: None, attributes: Vec::new() })
 }
 
 #[cfg(test)]

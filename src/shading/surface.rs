@@ -20,6 +20,9 @@ pub struct SurfaceInteraction {
     pub material: u32,
     pub geom_id: u32,
     pub prim_id: u32,
+    /// The hit's barycentric coordinates on triangle `prim_id` (weights of its second and
+    /// third vertex), for per-vertex mesh attributes.
+    pub barycentric: Vec2,
     /// The ray arrived on the side the surface's own normal points to (outside, for closed
     /// meshes wound counter-clockwise and for spheres).
     pub front_face: bool,
@@ -137,6 +140,7 @@ pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteract
         material: instance.material,
         geom_id: hit.geom_id,
         prim_id: hit.prim_id,
+        barycentric: Vec2::new(hit.u, hit.v),
         front_face,
     }
 }

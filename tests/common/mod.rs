@@ -164,6 +164,7 @@ pub mod build {
             indices: vec![[0, 1, 2], [0, 2, 3]],
             normals: None,
             uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y]),
+            attributes: Vec::new(),
         }))
     }
 
@@ -197,6 +198,6 @@ pub mod build {
         let quads =
             [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
         let indices = quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
-        Arc::new(MeshData { positions, indices, normals: None, uvs: None })
+        Arc::new(MeshData { positions, indices, normals: None, uvs: None, attributes: Vec::new() })
     }
 }

@@ -24,7 +24,13 @@ fn grid_mesh() -> std::sync::Arc<embray::scene::MeshData> {
             indices.push([b, c, d]);
         }
     }
-    std::sync::Arc::new(embray::scene::MeshData { positions, indices, normals: None, uvs: None })
+    std::sync::Arc::new(embray::scene::MeshData {
+        positions,
+        indices,
+        normals: None,
+        uvs: None,
+        attributes: Vec::new(),
+    })
 }
 
 fn instanced_scene(copies: usize) -> SceneDesc {

@@ -12,6 +12,8 @@ pub struct MeshData {
     pub indices: Vec<[u32; 3]>,
     pub normals: Option<Vec<DVec3>>,
     pub uvs: Option<Vec<Vec2>>,
+    /// Named per-vertex or per-triangle values (a PLY file's extra properties).
+    pub attributes: Vec<super::MeshAttribute>,
 }
 
 #[derive(Clone, Debug, PartialEq)]

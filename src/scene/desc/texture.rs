@@ -72,6 +72,9 @@ pub enum Pattern {
     Image { image: std::sync::Arc<TextureImage>, interpolation: Interpolation, normalizer: f32 },
     /// One value everywhere, unclamped (Mitsuba's `rawconstant`).
     Constant(Vec3),
+    /// The hit mesh's attribute `name` (`MeshAttribute`: per triangle, or per vertex
+    /// interpolated) times `scale` (Mitsuba's `mesh_attribute`).
+    MeshAttribute { name: String, scale: f32 },
 }
 
 impl TextureDesc {

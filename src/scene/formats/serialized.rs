@@ -122,7 +122,7 @@ pub(crate) fn parse(
         indices.push(triangle);
     }
     let normals = if face_normals { None } else { normals };
-    Ok(MeshData { positions, indices, normals, uvs })
+    Ok(MeshData { positions, indices, normals, uvs, attributes: Vec::new() })
 }
 
 /// Where mesh `index` starts, from the table at the end of the file (after its own 4-byte

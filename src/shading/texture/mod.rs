@@ -61,6 +61,8 @@ impl Texture {
                 image::lookup(image, *interpolation, uv) / *normalizer
             }
             Pattern::Constant(value) => *value,
+            // Only the hit knows its mesh: `mesh_attribute` is where the tracer looks them up.
+            Pattern::MeshAttribute { .. } => Vec3::ZERO,
         }
     }
 
@@ -103,6 +105,15 @@ impl Texture {
         }
     }
 
+    /// The mesh attribute this texture shows and its scale, if it is a `mesh_attribute`
+    /// texture.
+    pub fn mesh_attribute(&self) -> Option<(&str, f32)> {
+        match &self.pattern {
+            Pattern::MeshAttribute { name, scale } => Some((name, *scale)),
+            _ => None,
+        }
+    }
+
     pub fn needs_object_point(&self) -> bool {
         matches!(
             self.pattern,
@@ -117,6 +128,22 @@ impl Texture {
             TextureMode::Replace | TextureMode::ReplaceAll => color,
             TextureMode::Blend => (albedo + color) * 0.5,
         }
+    }
+}
+
+/// The value of the hit mesh's attribute `name` at `si` (black on spheres and on meshes
+/// without it, as Mitsuba's lookup of a missing attribute gives 0).
+pub fn mesh_attribute(
+    scene: &crate::render_scene::RenderScene,
+    name: &str,
+    si: &crate::shading::surface::SurfaceInteraction,
+) -> Vec3 {
+    let instance = &scene.instances[si.geom_id as usize];
+    match &scene.prototypes[instance.prototype as usize].geometry {
+        crate::render_scene::Geometry::Triangles(mesh) => {
+            mesh.attribute(name, si.prim_id, si.barycentric).unwrap_or(Vec3::ZERO)
+        }
+        crate::render_scene::Geometry::Sphere(_) => Vec3::ZERO,
     }
 }
 

@@ -234,7 +234,7 @@ impl Builder<'_, '_, '_> {
             })
             .collect::<Option<Vec<Vec2>>>();
         let normals = smooth.then(|| area_weighted_normals(&positions, &indices));
-        Ok(MeshData { positions, indices, normals, uvs })
+        Ok(MeshData { positions, indices, normals, uvs, attributes: Vec::new() })
     }
 
     /// The material of `node`; for an object light, a copy of it emitting `<Radiance>`.

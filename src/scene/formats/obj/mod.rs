@@ -250,7 +250,7 @@ fn mesh_data(mesh: &tobj::Mesh) -> Result<Option<MeshData>, String> {
         return Err("a texture coordinate is not finite".to_owned());
     }
     let indices = mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
-    Ok(Some(MeshData { positions, indices, normals, uvs }))
+    Ok(Some(MeshData { positions, indices, normals, uvs, attributes: Vec::new() }))
 }
 
 /// MTL `Kd` → albedo (default 0.8 grey), `Ke` → emission (default 0), validated.

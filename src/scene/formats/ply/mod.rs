@@ -11,10 +11,11 @@
 //! malformed input; its maintained fork needs a newer Rust than this crate's minimum. The
 //! format is small enough to read here, with precise errors.)
 
+mod attributes;
 mod header;
 mod values;
 
-use crate::scene::desc::MeshData;
+use crate::scene::desc::{MeshAttribute, MeshData};
 use glam::{DVec3, Vec2};
 use header::{Element, Encoding, Kind, parse_header, type_name};
 use values::{Ascii, Binary, ReadError, Values};
@@ -131,6 +132,26 @@ fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, 
         uvs: layout.uv.map(|_| Vec::new()),
         ..MeshData::default()
     };
+    let vertex_reserved = ["x", "y", "z", "nx", "ny", "nz", "u", "v", "s", "t"];
+    let vertex_reserved =
+        [&vertex_reserved[..], &["texture_u", "texture_v", "texture_s", "texture_t"]].concat();
+    let vertex_attributes =
+        attributes::attribute_layouts(vertex_element, "vertex", &vertex_reserved);
+    let face_attributes = match elements.iter().find(|e| e.name == "face") {
+        Some(face) => {
+            attributes::attribute_layouts(face, "face", &["vertex_indices", "vertex_index"])
+        }
+        None => Vec::new(),
+    };
+    mesh.attributes = vertex_attributes
+        .iter()
+        .chain(&face_attributes)
+        .map(|a| MeshAttribute {
+            name: a.name.clone(),
+            channels: a.properties.len(),
+            values: Vec::new(),
+        })
+        .collect();
     let mut has_face_element = false;
     // Property values of one element (scalars; lists are read separately).
     let mut row: Vec<f64> = Vec::new();
@@ -163,6 +184,7 @@ fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, 
                 ),
             };
             row.clear();
+            let triangles_before = mesh.indices.len();
             for (p, property) in element.properties.iter().enumerate() {
                 match property.kind {
                     Kind::Scalar(ty) => {
@@ -212,6 +234,29 @@ fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, 
             values
                 .end_record()
                 .map_err(|m| problem(values.line(), format!("{m} ({} {number})", element.name)))?;
+            if is_vertex || face_list.is_some() {
+                let (layouts, first, copies) = if is_vertex {
+                    (&vertex_attributes, 0, 1)
+                } else {
+                    (
+                        &face_attributes,
+                        vertex_attributes.len(),
+                        mesh.indices.len() - triangles_before,
+                    )
+                };
+                for (layout, attribute) in layouts.iter().zip(&mut mesh.attributes[first..]) {
+                    if let Some(&p) = layout.properties.iter().find(|&&p| !row[p].is_finite()) {
+                        let property = &element.properties[p].name;
+                        return Err(problem(
+                            values.line(),
+                            format!("{} {number} has a non-finite {property}", element.name),
+                        ));
+                    }
+                    for _ in 0..copies {
+                        attribute.values.extend(layout.properties.iter().map(|&p| row[p] as f32));
+                    }
+                }
+            }
             if is_vertex {
                 let [x, y, z] = layout.position.map(|i| row[i]);
                 let position = DVec3::new(x, y, z);

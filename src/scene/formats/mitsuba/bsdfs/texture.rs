@@ -99,10 +99,22 @@ fn texture(
             };
             Pattern::Constant(value.as_vec3())
         }
+        "mesh_attribute" => {
+            let name = property(texture, "string", "name")
+                .ok_or_else(|| texture.error("a mesh_attribute needs a `name`"))?
+                .required("value")?;
+            if !name.starts_with("vertex_") && !name.starts_with("face_") {
+                return Err(texture.error(format!(
+                    "the attribute name '{name}' must start with vertex_ or face_"
+                )));
+            }
+            let scale = super::super::values::float(texture, "scale")?.unwrap_or(1.0) as f32;
+            Pattern::MeshAttribute { name: name.to_owned(), scale }
+        }
         other => {
             return Err(texture.error(format!(
-                "the texture '{other}' is not supported yet (bitmap, checkerboard and \
-                 rawconstant are)"
+                "the texture '{other}' is not supported yet (bitmap, checkerboard, \
+                 rawconstant and mesh_attribute are)"
             )));
         }
     };

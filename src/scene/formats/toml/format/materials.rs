@@ -114,6 +114,8 @@ pub(crate) enum TextureKind {
     Image,
     /// One `value` everywhere, as it is (a normal map's flat normal is [0.5, 0.5, 1]).
     Constant,
+    /// The hit mesh's attribute `name` (a PLY file's `face_color`, `vertex_color`, …).
+    MeshAttribute,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -165,6 +167,8 @@ pub(crate) struct TextureToml {
     pub conversion: Option<NoiseConversionToml>,
     pub file: Option<String>,
     pub value: Option<Vec3>,
+    /// A `mesh_attribute` texture's attribute.
+    pub name: Option<String>,
     pub interpolation: Option<InterpolationToml>,
     pub encoding: Option<ImageEncodingToml>,
     pub normalizer: Option<f64>,

@@ -49,6 +49,7 @@ pub(super) fn kind_name_of(t: &TextureToml) -> &'static str {
         TextureKind::Perlin => "perlin",
         TextureKind::Image => "image",
         TextureKind::Constant => "constant",
+        TextureKind::MeshAttribute => "mesh_attribute",
     }
 }
 
@@ -66,6 +67,7 @@ pub(super) fn texture_desc(
         TextureKind::Checker => ("checker", &["scale", "offset", "black", "white"]),
         TextureKind::Perlin => ("perlin", &["scale", "conversion"]),
         TextureKind::Constant => ("constant", &["value"]),
+        TextureKind::MeshAttribute => ("mesh_attribute", &["name", "scale"]),
         TextureKind::Image => {
             ("image", &["file", "interpolation", "encoding", "normalizer", "flip_v"])
         }
@@ -90,6 +92,7 @@ pub(super) fn texture_desc(
         ("conversion", t.conversion.is_some()),
         ("file", t.file.is_some()),
         ("value", t.value.is_some()),
+        ("name", t.name.is_some()),
         ("interpolation", t.interpolation.is_some()),
         ("encoding", t.encoding.is_some()),
         ("normalizer", t.normalizer.is_some()),
@@ -141,6 +144,10 @@ pub(super) fn texture_desc(
             ctx.require(ok, &path.key("value"), format!("{value:?}"), "three finite numbers")?;
             Pattern::Constant(glam::DVec3::from_array(value).as_vec3())
         }
+        TextureKind::MeshAttribute => Pattern::MeshAttribute {
+            name: ctx.required(path, &item, "name", t.name.clone())?,
+            scale: scale(ctx)?,
+        },
         TextureKind::Image => {
             let file = ctx.required(path, &item, "file", t.file.as_deref())?;
             let default = if matches!(usage, Use::Normal | Use::Bump) {
