@@ -58,6 +58,15 @@ pub struct Material {
     /// `with_phong`), by which the path tracer keeps the material from reflecting more
     /// than it receives.
     pub course_lobe_albedo: Option<LobeAlbedo>,
+    /// Scatters as a mixture of two materials (`MaterialDesc::blend`).
+    pub blend: Option<Box<Blend>>,
+}
+
+/// `weight` of the second material's scattering and the rest of the first's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Blend {
+    pub weight: MaskOpacity,
+    pub materials: [Material; 2],
 }
 
 impl Default for Material {
@@ -82,6 +91,7 @@ impl Default for Material {
             bump_shadowing: false,
             phong: None,
             course_lobe_albedo: None,
+            blend: None,
         }
     }
 }
@@ -92,6 +102,13 @@ pub enum MaskOpacity {
     Constant(f32),
     /// The texture's mean channel.
     Texture(Texture),
+}
+
+fn mask_opacity(opacity: &Opacity) -> MaskOpacity {
+    match opacity {
+        Opacity::Constant(c) => MaskOpacity::Constant(*c),
+        Opacity::Texture(t) => MaskOpacity::Texture(Texture::from_desc(t)),
+    }
 }
 
 /// The coating table of a plastic (integrated once per material, not per hit).
@@ -128,10 +145,7 @@ impl Material {
                 .map(|[u, v]| Box::new([Texture::from_desc(u), Texture::from_desc(v)])),
             distribution: desc.distribution,
             coating: None,
-            opacity: desc.opacity.as_ref().map(|o| match o {
-                Opacity::Constant(c) => MaskOpacity::Constant(*c),
-                Opacity::Texture(t) => MaskOpacity::Texture(Texture::from_desc(t)),
-            }),
+            opacity: desc.opacity.as_ref().map(mask_opacity),
             one_sided: desc.one_sided,
             perturbation: desc.roughness,
             texture: desc.texture.as_ref().map(Texture::from_desc),
@@ -144,6 +158,15 @@ impl Material {
             bump_shadowing: desc.bump_shadowing,
             phong: None,
             course_lobe_albedo: None,
+            blend: desc.blend.as_deref().map(|b| {
+                Box::new(Blend {
+                    weight: mask_opacity(&b.weight),
+                    materials: [
+                        Material::from_desc(&b.materials[0]),
+                        Material::from_desc(&b.materials[1]),
+                    ],
+                })
+            }),
         }
         .with_phong(desc.phong.clone())
     }

@@ -101,6 +101,11 @@ fn what_is_not_modelled_is_refused_by_name_and_line() {
              <float name=\"ext_ior\" value=\"1.2\"/></bsdf>",
             "must differ",
         ),
+        (
+            "<bsdf type=\"diffuse\"><texture name=\"reflectance\" type=\"mesh_attribute\">\
+             <string name=\"name\" value=\"face_color\"/></texture></bsdf>",
+            "looks up the mesh attribute `face_color`, which the shape does not have (it has: none)",
+        ),
     ];
     for (i, (bsdf, expected)) in cases.into_iter().enumerate() {
         let message = material_of(&format!("m-refused-{i}"), bsdf).unwrap_err();

@@ -5,6 +5,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod blend;
 mod bsdfs;
 mod reader;
 mod suite;

@@ -10,12 +10,14 @@ use embray::mitsuba_rule::judge;
 use std::path::{Path, PathBuf};
 
 /// The suite's scenes that embray renders; every other one must be refused.
-const RENDERED: [&str; 15] = [
+const RENDERED: [&str; 17] = [
     "test_arealight_path",
     "test_bumpmap_path",
     "test_constant_path",
     "test_directional_direct",
     "test_envmap_path",
+    "test_mesh_attributes_1_face_direct",
+    "test_mesh_attributes_3_face_direct",
     "test_normalmap_identity_roughconductor_path",
     "test_normalmap_path",
     "test_orthographic_path",

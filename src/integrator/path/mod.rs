@@ -6,6 +6,7 @@
 //! Only the random dimensions the scene's effects call for are drawn.
 
 mod light_sampling;
+mod scattering;
 
 use super::PathSample;
 use super::trace::SceneTracer;
@@ -13,7 +14,7 @@ use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::sampling::{SampleStream, frame_from_normal};
-use crate::shading::bsdf::{Bsdf, Energy};
+use crate::shading::bsdf::Energy;
 use crate::shading::material::MaskOpacity;
 use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
@@ -202,33 +203,7 @@ impl<'a> PathTracer<'a> {
             if self.max_depth == 0 || depth == bounces {
                 break;
             }
-            let albedo = self.tracer.surface_albedo(material, &si, ray.time);
-            let course_specular = match (&material.specular_texture, &material.phong) {
-                (Some(t), Some(_)) => self.tracer.texture_color(t, &si, ray.time),
-                (_, phong) => phong.as_ref().map_or(Vec3::ZERO, |p| p.specular),
-            };
-            let frame = if material.is_anisotropic() {
-                self.tangent_frame(&si, ray.time)
-            } else {
-                self.shading_frame(si.shading_normal)
-            };
-            let roughness = material.roughness_textures.as_deref().map(|[u, v]| {
-                let alpha = |t| self.tracer.texture_color(t, &si, ray.time).element_sum() / 3.0;
-                (alpha(u), alpha(v))
-            });
-            let bsdf = Bsdf::with_reflectances(
-                material,
-                albedo,
-                course_specular,
-                roughness,
-                frame,
-                si.front_face,
-                self.energy,
-            );
-            let bsdf = match &material.opacity {
-                None => bsdf,
-                Some(opacity) => bsdf.with_opacity(self.opacity(opacity, &si, ray.time)),
-            };
+            let bsdf = self.scattering(material, &si, ray.time);
             let bsdf = if bump_shadowing { bsdf.with_bump_shadowing(unmapped) } else { bsdf };
             let wo = -ray.dir.normalize();
             if depth == 0 && self.tracer.first_hit_albedo {

@@ -50,15 +50,23 @@ pub struct MaterialDesc {
     pub bump_shadowing: bool,
     /// Terms only the course's Whitted shading model uses (ambient, Blinn-Phong highlight).
     pub phong: Option<PhongDesc>,
+    /// Scatters as a mixture of two materials instead of its own lobes (Mitsuba's
+    /// `blendbsdf`); its emission, opacity and mapped normals are still its own.
+    pub blend: Option<Box<BlendDesc>>,
+}
+
+/// `weight` of the second material's scattering and the rest of the first's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BlendDesc {
+    /// In [0, 1]: a constant or a texture's mean channel (as a mask's opacity).
+    pub weight: Opacity,
+    pub materials: [MaterialDesc; 2],
 }
 
 impl MaterialDesc {
     /// The images its textures look up (for the memory estimate).
     pub fn images(&self) -> impl Iterator<Item = &std::sync::Arc<crate::texels::TextureImage>> {
-        let opacity = match &self.opacity {
-            Some(Opacity::Texture(t)) => Some(t),
-            _ => None,
-        };
+        let opacity = self.opacity.as_ref().and_then(Opacity::texture);
         [&self.texture, &self.specular_texture, &self.normal_map]
             .into_iter()
             .flatten()
@@ -66,6 +74,39 @@ impl MaterialDesc {
             .chain(opacity)
             .chain(self.roughness_textures.iter().flat_map(|t| t.iter()))
             .filter_map(TextureDesc::image)
+            .chain(self.blend_images())
+    }
+
+    /// The mesh attributes its textures look up (`Pattern::MeshAttribute`), a blend's
+    /// included.
+    pub fn mesh_attributes(&self) -> Vec<&str> {
+        let blend = self.blend.as_deref();
+        let own = [&self.texture, &self.specular_texture, &self.normal_map]
+            .into_iter()
+            .flatten()
+            .chain(self.bump_map.as_ref().map(|b| &b.texture))
+            .chain(self.opacity.as_ref().and_then(Opacity::texture))
+            .chain(self.roughness_textures.iter().flat_map(|t| t.iter()))
+            .chain(blend.and_then(|b| b.weight.texture()));
+        let mut names: Vec<&str> = own
+            .filter_map(|t| match &t.pattern {
+                super::Pattern::MeshAttribute { name, .. } => Some(name.as_str()),
+                _ => None,
+            })
+            .collect();
+        for part in blend.iter().flat_map(|b| b.materials.iter()) {
+            names.extend(part.mesh_attributes());
+        }
+        names
+    }
+
+    /// The images a blend's weight and materials look up.
+    fn blend_images(
+        &self,
+    ) -> Box<dyn Iterator<Item = &std::sync::Arc<crate::texels::TextureImage>> + '_> {
+        let Some(blend) = &self.blend else { return Box::new(std::iter::empty()) };
+        let weight = blend.weight.texture().and_then(TextureDesc::image);
+        Box::new(weight.into_iter().chain(blend.materials.iter().flat_map(|m| m.images())))
     }
 }
 
@@ -89,6 +130,7 @@ impl Default for MaterialDesc {
             bump_map: None,
             bump_shadowing: false,
             phong: None,
+            blend: None,
         }
     }
 }
@@ -138,12 +180,22 @@ crate::choice::named_choices!(Distribution, "distribution", {
     Beckmann => "beckmann",
 });
 
-/// How much of a surface is there (Mitsuba's `mask` opacity).
+/// How much of a surface is there (Mitsuba's `mask` opacity), or any other number a
+/// texture may give per hit (a blend's weight).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Opacity {
     Constant(f32),
     /// The texture's mean channel.
     Texture(TextureDesc),
+}
+
+impl Opacity {
+    pub fn texture(&self) -> Option<&TextureDesc> {
+        match self {
+            Opacity::Texture(t) => Some(t),
+            Opacity::Constant(_) => None,
+        }
+    }
 }
 
 /// The course's shading terms (CENG795): ambient reflectance and a highlight, by default the

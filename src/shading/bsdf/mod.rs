@@ -4,6 +4,7 @@
 //! opacity wraps any of them: the rest of the light passes through unchanged. Directions
 //! are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
+mod blend;
 mod coupling;
 mod mixture;
 mod plastic;
@@ -14,6 +15,7 @@ pub use coupling::Energy;
 use crate::scene::Specular;
 use crate::shading::coating::Coating;
 use crate::shading::material::{Material, SMOOTH_ROUGHNESS};
+use blend::Blend;
 use glam::{Mat3, Vec2, Vec3};
 use mixture::Mixture;
 use plastic::Plastic;
@@ -66,17 +68,18 @@ impl BsdfSample {
     }
 }
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 enum Scatter {
     Mixture(Mixture),
     Plastic(Plastic),
     RoughDielectric(RoughDielectric),
+    Blend(Box<Blend>),
     /// A one-sided material seen from behind.
     Black,
 }
 
 /// The scattering function at one shading point.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Bsdf {
     scatter: Scatter,
     /// Local (tangent, bitangent, normal) → render space, for the kinds other than the
@@ -148,6 +151,13 @@ impl Bsdf {
         Bsdf { scatter, frame, opacity: 1.0, unmapped: None }
     }
 
+    /// `weight` (in [0, 1]) of `second`'s scattering and the rest of `first`'s, in `frame`
+    /// (the parts keep their own frames).
+    pub fn blend(first: Bsdf, second: Bsdf, weight: f32, frame: Mat3) -> Self {
+        let blend = Blend { parts: [first, second], weight: weight.clamp(0.0, 1.0) };
+        Bsdf { scatter: Scatter::Blend(Box::new(blend)), frame, opacity: 1.0, unmapped: None }
+    }
+
     /// This BSDF under a mask: only `opacity` of the light meets it, the rest passes on.
     pub fn with_opacity(self, opacity: f32) -> Self {
         Bsdf { opacity: opacity.clamp(0.0, 1.0), ..self }
@@ -179,6 +189,7 @@ impl Bsdf {
             && match &self.scatter {
                 Scatter::Mixture(m) => m.has_smooth_lobe(),
                 Scatter::Plastic(_) | Scatter::RoughDielectric(_) => true,
+                Scatter::Blend(b) => b.has_smooth_lobe(),
                 Scatter::Black => false,
             }
     }
@@ -186,7 +197,11 @@ impl Bsdf {
     /// True if light arriving from behind the surface can be scattered towards the front
     /// (rough glass): light sampling must then look on both sides.
     pub fn transmits(&self) -> bool {
-        matches!(self.scatter, Scatter::RoughDielectric(_))
+        match &self.scatter {
+            Scatter::RoughDielectric(_) => true,
+            Scatter::Blend(b) => b.transmits(),
+            _ => false,
+        }
     }
 
     /// An upper bound of the fraction of energy arriving from `wo` (render space) that this
@@ -196,6 +211,7 @@ impl Bsdf {
             Scatter::Mixture(m) => m.albedo_bound(wo),
             Scatter::Plastic(p) => p.albedo_bound(),
             Scatter::RoughDielectric(_) => Vec3::ONE,
+            Scatter::Blend(b) => b.albedo_bound(wo),
             Scatter::Black => Vec3::ZERO,
         };
         met * self.opacity + Vec3::splat(1.0 - self.opacity)
@@ -208,6 +224,7 @@ impl Bsdf {
             Scatter::Mixture(m) => m.eval(wo, wi),
             Scatter::Plastic(p) => p.eval(local(wo), local(wi)),
             Scatter::RoughDielectric(d) => d.eval(local(wo), local(wi)),
+            Scatter::Blend(b) => b.eval(wo, wi),
             Scatter::Black => (Vec3::ZERO, 0.0),
         };
         let value = match self.unmapped {
@@ -227,10 +244,12 @@ impl Bsdf {
         }
         // The weights f·cos/pdf of the rest are unchanged: both carry the opacity.
         let u_lobe = if self.opacity == 1.0 { u_lobe } else { u_lobe / self.opacity };
-        // The mixture keeps its own frame; the other kinds work in the local one.
+        // The mixture and a blend's parts keep their own frames; the other kinds work in the
+        // local one.
         let local = || self.frame.transpose() * wo;
         let mut sample = match &self.scatter {
             Scatter::Mixture(m) => return m.sample(wo, u_lobe, u).and_then(|s| self.masked(s)),
+            Scatter::Blend(b) => return b.sample(wo, u_lobe, u).and_then(|s| self.masked(s)),
             Scatter::Plastic(p) => p.sample(local(), u_lobe, u)?,
             Scatter::RoughDielectric(d) => d.sample(local(), u_lobe, u)?,
             Scatter::Black => return None,
@@ -256,5 +275,7 @@ impl Bsdf {
 mod test_grid;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_blend;
 #[cfg(test)]
 mod tests_kinds;

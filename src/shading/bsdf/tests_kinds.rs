@@ -170,7 +170,7 @@ fn bump_shadowing_darkens_the_terminator_and_refuses_light_from_the_other_side()
     let tilted = Vec3::new(0.5, 0.0, 1.0).normalize();
     let frame = crate::sampling::frame_from_normal(tilted);
     let plain = Bsdf::new(&material, material.albedo, frame, true);
-    let shadowed = plain.with_bump_shadowing(Vec3::Z);
+    let shadowed = plain.clone().with_bump_shadowing(Vec3::Z);
     let wo = Vec3::new(0.1, 0.2, 0.9).normalize();
     // Light above both normals: dimmed by at most the term's floor, more at grazing angles.
     let high = Vec3::new(0.2, 0.0, 0.95).normalize();
@@ -184,6 +184,6 @@ fn bump_shadowing_darkens_the_terminator_and_refuses_light_from_the_other_side()
     assert!(plain.eval(wo, below).0.x > 0.0);
     assert_eq!(shadowed.eval(wo, below), (Vec3::ZERO, 0.0));
     // An unmapped normal equal to the mapped one changes nothing.
-    let same = plain.with_bump_shadowing(tilted);
+    let same = plain.clone().with_bump_shadowing(tilted);
     assert!((same.eval(wo, high).0 - plain.eval(wo, high).0).abs().max_element() < 1e-6);
 }

@@ -151,7 +151,34 @@ impl Builder<'_> {
                 )));
             }
         };
+        self.check_attributes(element, &shapes, material)?;
         self.push_objects(&name, shapes, material, world_from_object, flip_normals);
+        Ok(())
+    }
+
+    /// Refuses a shape without a mesh attribute its material looks up (as Mitsuba does).
+    fn check_attributes(
+        &self,
+        element: &Element,
+        shapes: &[ShapeDesc],
+        material: u32,
+    ) -> Result<(), SceneError> {
+        for name in self.materials[material as usize].mesh_attributes() {
+            for shape in shapes {
+                let attributes = match shape {
+                    ShapeDesc::Mesh(mesh) => &mesh.attributes[..],
+                    ShapeDesc::Sphere { .. } => &[],
+                };
+                if !attributes.iter().any(|a| a.name == name) {
+                    let has: Vec<&str> = attributes.iter().map(|a| a.name.as_str()).collect();
+                    let has = if has.is_empty() { "none".to_owned() } else { has.join(", ") };
+                    return Err(element.error(format!(
+                        "its BSDF looks up the mesh attribute `{name}`, which the shape does not \
+                         have (it has: {has})"
+                    )));
+                }
+            }
+        }
         Ok(())
     }
 

@@ -82,3 +82,37 @@ fn ascii_values_that_shift_between_lines_are_errors() {
     assert!(err.message.contains("goes on after the last element"), "{}", err.message);
     assert_eq!(err.line, Some(24));
 }
+
+/// Extra properties become attributes as Mitsuba groups them: `red green blue` is
+/// `vertex_color`, `weight_0` is `face_weight`, `col_r col_g col_b` is `face_col_color`;
+/// a two-field group and a lone name without a postfix are ignored. A polygon's values
+/// repeat for each triangle of its fan.
+#[test]
+fn extra_properties_become_mitsubas_mesh_attributes() {
+    let text = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+        property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n\
+        property float uv_x\nproperty float uv_y\nproperty float temperature\n\
+        element face 2\nproperty list uchar int vertex_indices\nproperty float weight_0\n\
+        property float col_r\nproperty float col_g\nproperty float col_b\nend_header\n\
+        0 0 0 255 0 0 1 2 3\n1 0 0 0 255 0 1 2 3\n1 1 0 0 0 255 1 2 3\n0 1 0 9 9 9 1 2 3\n\
+        4 0 1 2 3 0.25 0.1 0.2 0.3\n3 0 2 3 0.75 0.4 0.5 0.6\n";
+    let mesh = parse(text.as_bytes()).unwrap();
+    let names: Vec<&str> = mesh.attributes.iter().map(|a| a.name.as_str()).collect();
+    assert_eq!(names, ["vertex_color", "face_weight", "face_col_color"]);
+    // Mitsuba keeps integer colours as they are (it warns that [0, 1] is expected).
+    assert_eq!(mesh.attributes[0].values[..6], [255.0, 0.0, 0.0, 0.0, 255.0, 0.0]);
+    assert_eq!(mesh.indices.len(), 3, "a quad and a triangle");
+    assert_eq!(mesh.attributes[1].values, [0.25, 0.25, 0.75]);
+    assert_eq!(mesh.attributes[2].value(1), glam::Vec3::new(0.1, 0.2, 0.3));
+    assert_eq!(mesh.attributes[2].value(2), glam::Vec3::new(0.4, 0.5, 0.6));
+}
+
+#[test]
+fn a_non_finite_attribute_is_named() {
+    let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+        property float z\nproperty float w_0\nelement face 1\n\
+        property list uchar int vertex_indices\nend_header\n\
+        0 0 0 1\n1 0 0 nan\n0 1 0 1\n3 0 1 2\n";
+    let err = parse(text.as_bytes()).unwrap_err();
+    assert_eq!((err.line, err.message.as_str()), (Some(12), "vertex 1 has a non-finite w_0"));
+}

@@ -76,6 +76,7 @@ pub(crate) fn scene_desc(
         let index = builder.add_material(material);
         builder.named.insert(name.clone(), index);
     }
+    materials::resolve_blends(&file.materials, &mut builder)?;
     let mut bounds = crate::scene::budget::MeshBounds::default();
     for (i, object) in file.objects.iter().enumerate() {
         let first = builder.objects.len();

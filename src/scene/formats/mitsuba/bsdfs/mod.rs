@@ -18,9 +18,9 @@ use glam::{DVec3, Vec3};
 use texture::{float_texture, reflectance_texture};
 
 /// The BSDFs this reader knows, for messages.
-pub(super) const SUPPORTED: &str = "diffuse, twosided, mask, normalmap, bumpmap, conductor, \
-                                    roughconductor, dielectric, roughdielectric, plastic, \
-                                    roughplastic";
+pub(super) const SUPPORTED: &str = "diffuse, twosided, mask, normalmap, bumpmap, blendbsdf, \
+                                    conductor, roughconductor, dielectric, roughdielectric, \
+                                    plastic, roughplastic";
 
 pub(super) fn bsdf(
     element: &Element,
@@ -38,7 +38,22 @@ pub(super) fn bsdf(
                 files,
                 "twosided takes one nested <bsdf> (two are not supported)",
             )?;
-            Ok(MaterialDesc { name: none.name, one_sided: false, ..inner })
+            Ok(MaterialDesc { name: none.name, ..two_sided(inner) })
+        }
+        "blendbsdf" => {
+            check_properties(element, &["weight"])?;
+            let parts = nested_bsdfs(element, ids, files)?;
+            let [first, second] = <[MaterialDesc; 2]>::try_from(parts)
+                .map_err(|_| element.error("blendbsdf takes two nested <bsdf>s"))?;
+            let weight = number_or_texture(element, "weight", None, ids, files)?;
+            if [&first, &second].iter().any(|m| m.normal_map.is_some() || m.bump_map.is_some()) {
+                // Each would shade with its own normal: one frame serves the mixture.
+                return Err(
+                    element.error("a normal or bump map inside a blendbsdf is not supported")
+                );
+            }
+            let blend = crate::scene::desc::BlendDesc { weight, materials: [first, second] };
+            Ok(MaterialDesc { blend: Some(Box::new(blend)), ..none })
         }
         "mask" => {
             check_properties(element, &["opacity"])?;
@@ -46,18 +61,7 @@ pub(super) fn bsdf(
             if inner.opacity.is_some() {
                 return Err(element.error("a mask inside a mask is not supported"));
             }
-            let opacity = match float_texture(element, "opacity", ids, files)? {
-                Some(texture) => Opacity::Texture(texture),
-                None => {
-                    let value = float(element, "opacity")?.unwrap_or(0.5);
-                    if !(0.0..=1.0).contains(&value) {
-                        return Err(
-                            element.error(format!("opacity is {value}, but must be in [0, 1]"))
-                        );
-                    }
-                    Opacity::Constant(value as f32)
-                }
-            };
+            let opacity = number_or_texture(element, "opacity", Some(0.5), ids, files)?;
             Ok(MaterialDesc { name: none.name, opacity: Some(opacity), ..inner })
         }
         "normalmap" => {
@@ -126,22 +130,67 @@ fn nested_bsdf(
     files: &FileResolver,
     otherwise: &str,
 ) -> Result<MaterialDesc, SceneError> {
-    let inner: Vec<&Element> = element
+    let mut inner = nested_bsdfs(element, ids, files)?;
+    match inner.len() {
+        1 => Ok(inner.remove(0)),
+        _ => Err(element.error(otherwise)),
+    }
+}
+
+/// The `<bsdf>`s (or references to them) inside `element`, in order.
+fn nested_bsdfs(
+    element: &Element,
+    ids: &super::Ids,
+    files: &FileResolver,
+) -> Result<Vec<MaterialDesc>, SceneError> {
+    element
         .children
         .iter()
         .filter(|c| c.tag == "bsdf" || (c.tag == "ref" && c.attr("name").is_none()))
-        .collect();
-    match inner[..] {
-        [one] => bsdf(ids.bsdf(one)?, ids, files),
-        _ => Err(element.error(otherwise)),
+        .map(|one| bsdf(ids.bsdf(one)?, ids, files))
+        .collect()
+}
+
+/// `material` scattering on both sides (`twosided`), a blend's materials too.
+fn two_sided(material: MaterialDesc) -> MaterialDesc {
+    let blend = material.blend.map(|b| {
+        let [first, second] = b.materials;
+        Box::new(crate::scene::desc::BlendDesc {
+            materials: [two_sided(first), two_sided(second)],
+            ..*b
+        })
+    });
+    MaterialDesc { one_sided: false, blend, ..material }
+}
+
+/// A number in [0, 1] (`default` where it may be left out) or a texture read as one: a
+/// mask's opacity, a blend's weight.
+fn number_or_texture(
+    element: &Element,
+    name: &str,
+    default: Option<f64>,
+    ids: &super::Ids,
+    files: &FileResolver,
+) -> Result<Opacity, SceneError> {
+    if let Some(texture) = float_texture(element, name, ids, files)? {
+        return Ok(Opacity::Texture(texture));
     }
+    let value = float(element, name)?
+        .or(default)
+        .ok_or_else(|| element.error(format!("the property `{name}` is missing")))?;
+    if !(0.0..=1.0).contains(&value) {
+        return Err(element.error(format!("{name} is {value}, but must be in [0, 1]")));
+    }
+    Ok(Opacity::Constant(value as f32))
 }
 
 /// Refuses a parameter (a property, a texture or a reference by `name`) the BSDF does not
 /// read, so that nothing in the file is silently ignored.
 fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError> {
-    let wrapper =
-        matches!(element.attr("type"), Some("twosided" | "mask" | "normalmap" | "bumpmap"));
+    let wrapper = matches!(
+        element.attr("type"),
+        Some("twosided" | "mask" | "normalmap" | "bumpmap" | "blendbsdf")
+    );
     for child in &element.children {
         if let Some(name) = child.attr("name") {
             if !known.contains(&name) {

@@ -12,6 +12,8 @@ pub(crate) enum MaterialKind {
     Conductor,
     Dielectric,
     Plastic,
+    /// `weight` of the second of two named `materials`, the rest of the first.
+    Blend,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -76,6 +78,10 @@ pub(crate) struct MaterialToml {
     pub bump_shadowing: Option<bool>,
     pub phong: Option<PhongToml>,
     pub brdf: Option<BrdfToml>,
+    /// A blend's share of its second material: a number or a texture's mean channel.
+    pub weight: Option<OpacityToml>,
+    /// A blend's two materials, by name.
+    pub materials: Option<Vec<String>>,
 }
 
 /// The CENG795 hw6 reflectance models, for the Whitted (course) integrator.

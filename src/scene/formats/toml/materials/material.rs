@@ -62,6 +62,14 @@ pub fn with_texture_space(material: &MaterialDesc, texture_from_object: DAffine3
     for texture in textures.into_iter().flatten() {
         texture.texture_from_object = texture_from_object;
     }
+    if let Some(blend) = &mut material.blend {
+        if let crate::scene::desc::Opacity::Texture(t) = &mut blend.weight {
+            t.texture_from_object = texture_from_object;
+        }
+        for part in &mut blend.materials {
+            *part = with_texture_space(part, texture_from_object);
+        }
+    }
     material
 }
 
@@ -84,9 +92,15 @@ pub(crate) fn material(
             ("dielectric", &["ior", "absorption", "roughness", "distribution"])
         }
         MaterialKind::Plastic => ("plastic", &["ior", "nonlinear", "roughness", "distribution"]),
+        MaterialKind::Blend => ("blend", &["weight", "materials"]),
     };
     let item = format!("{path} ({kind_name})");
-    let allowed: Vec<&str> = COMMON.iter().chain(own).copied().collect();
+    let common: &[&str] = match kind {
+        // Its materials scatter: only what is the surface's own is its.
+        MaterialKind::Blend => &super::blend::BLEND_COMMON,
+        _ => &COMMON,
+    };
+    let allowed: Vec<&str> = common.iter().chain(own).copied().collect();
     let present = [
         ("reflectance", m.reflectance.is_some()),
         ("roughness", m.roughness.is_some()),
@@ -97,11 +111,14 @@ pub(crate) fn material(
         ("absorption", m.absorption.is_some()),
         ("distribution", m.distribution.is_some()),
         ("nonlinear", m.nonlinear.is_some()),
+        ("weight", m.weight.is_some()),
+        ("materials", m.materials.is_some()),
     ];
     ctx.check_fields(&path, &item, &present, &allowed)?;
 
     let default_albedo = match kind {
         MaterialKind::Diffuse => 0.8,
+        MaterialKind::Blend => 0.0,
         // Mitsuba's default base.
         MaterialKind::Plastic => 0.5,
         _ => 0.0,
@@ -128,7 +145,7 @@ pub(crate) fn material(
     let reflectance =
         |ctx: &Ctx| ctx.color(&path.key("reflectance"), m.reflectance.unwrap_or([1.0; 3]), true);
     let specular = match kind {
-        MaterialKind::Diffuse => Specular::None,
+        MaterialKind::Diffuse | MaterialKind::Blend => Specular::None,
         MaterialKind::Mirror => Specular::Mirror { reflectance: reflectance(ctx)? },
         MaterialKind::Conductor => {
             let (eta, k) = conductor_index(&path, &item, m, ctx)?;
@@ -158,20 +175,16 @@ pub(crate) fn material(
         None | Some(DistributionToml::Ggx) => Distribution::Ggx,
         Some(DistributionToml::Beckmann) => Distribution::Beckmann,
     };
-    let opacity = match &m.opacity {
-        None => None,
-        Some(OpacityToml::Constant(value)) => {
-            let field = path.key("opacity");
-            ctx.require((0.0..=1.0).contains(value), &field, value, "in [0, 1]")?;
-            Some(Opacity::Constant(*value as f32))
+    let opacity = m
+        .opacity
+        .as_ref()
+        .map(|o| number_or_texture(&path.key("opacity"), o, ctx, base_dir))
+        .transpose()?;
+    let blend = match kind {
+        MaterialKind::Blend => {
+            Some(super::blend::unresolved_blend(&path, &item, m, ctx, base_dir)?)
         }
-        Some(OpacityToml::Texture(t)) => Some(Opacity::Texture(texture_desc(
-            &path.key("opacity"),
-            t,
-            Use::Specular,
-            ctx,
-            base_dir,
-        )?)),
+        _ => None,
     };
     let texture = m
         .texture
@@ -230,7 +243,26 @@ pub(crate) fn material(
         bump_map,
         bump_shadowing: m.bump_shadowing.unwrap_or(false),
         phong,
+        blend,
     })
+}
+
+/// A number in [0, 1] or a texture's mean channel: an opacity, a blend's weight.
+pub(super) fn number_or_texture(
+    field: &FieldPath,
+    value: &OpacityToml,
+    ctx: &Ctx,
+    base_dir: &Path,
+) -> Result<Opacity, SceneError> {
+    match value {
+        OpacityToml::Constant(value) => {
+            ctx.require((0.0..=1.0).contains(value), field, value, "in [0, 1]")?;
+            Ok(Opacity::Constant(*value as f32))
+        }
+        OpacityToml::Texture(t) => {
+            Ok(Opacity::Texture(texture_desc(field, t, Use::Specular, ctx, base_dir)?))
+        }
+    }
 }
 
 /// `preset`, or `eta` (each > 0) and `k` (each >= 0).

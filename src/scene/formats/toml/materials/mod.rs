@@ -2,9 +2,11 @@
 //! specular lobe chosen by `type`, emission, and the course's Phong terms. Each type takes
 //! only its own fields.
 
+mod blend;
 mod course;
 mod material;
 mod textures;
 
+pub(super) use blend::resolve_blends;
 pub use material::*;
 pub(crate) use textures::*;

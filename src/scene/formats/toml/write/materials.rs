@@ -4,7 +4,8 @@ use super::TomlWriteError;
 use super::values::{c3, f, quoted};
 use crate::choice::Choice;
 use crate::scene::desc::{
-    CourseBrdf, Distribution, MaterialDesc, Opacity, Pattern, Specular, TextureDesc, TextureMode,
+    BlendDesc, CourseBrdf, Distribution, MaterialDesc, Opacity, Pattern, Specular, TextureDesc,
+    TextureMode,
 };
 use glam::{DAffine3, Vec3};
 use std::fmt::Write as _;
@@ -43,6 +44,9 @@ pub(super) fn write_material(
     at_most_one("the albedo", m.albedo)?;
     if m.roughness_textures.is_some() {
         return Err(unsupported("a textured roughness has no TOML form yet".to_owned()));
+    }
+    if let Some(blend) = &m.blend {
+        return write_blend(m, blend, name, out);
     }
     let _ = writeln!(out, "\n[materials.{}]", quoted(name));
     let kind = match m.specular {
@@ -95,15 +99,7 @@ pub(super) fn write_material(
     if m.one_sided {
         let _ = writeln!(out, "one_sided = true");
     }
-    match &m.opacity {
-        None => {}
-        Some(Opacity::Constant(value)) => {
-            let _ = writeln!(out, "opacity = {value:?}");
-        }
-        Some(Opacity::Texture(t)) => {
-            let _ = writeln!(out, "opacity = {}", texture_toml(t, false)?);
-        }
-    }
+    write_number_or_texture(out, "opacity", m.opacity.as_ref())?;
     if let Some(t) = &m.texture {
         let _ = writeln!(out, "texture = {}", texture_toml(t, true)?);
     }
@@ -168,8 +164,53 @@ pub(super) fn write_material(
     Ok(())
 }
 
-/// The mesh as OBJ text: positions (and normals, texture coordinates) per vertex, one face
-/// per triangle with the same index for every attribute.
+/// `key = number` or `key = { texture }`, if there is one.
+fn write_number_or_texture(
+    out: &mut String,
+    key: &str,
+    value: Option<&Opacity>,
+) -> Result<(), TomlWriteError> {
+    match value {
+        None => {}
+        Some(Opacity::Constant(value)) => {
+            let _ = writeln!(out, "{key} = {value:?}");
+        }
+        Some(Opacity::Texture(t)) => {
+            let _ = writeln!(out, "{key} = {}", texture_toml(t, false)?);
+        }
+    }
+    Ok(())
+}
+
+/// A blend's table (its weight, what is the surface's own) and its two materials', named
+/// after it.
+fn write_blend(
+    m: &MaterialDesc,
+    blend: &BlendDesc,
+    name: &str,
+    out: &mut String,
+) -> Result<(), TomlWriteError> {
+    let parts = [format!("{name}/first"), format!("{name}/second")];
+    let _ = writeln!(out, "\n[materials.{}]\ntype = \"blend\"", quoted(name));
+    write_number_or_texture(out, "weight", Some(&blend.weight))?;
+    let _ = writeln!(out, "materials = [{}, {}]", quoted(&parts[0]), quoted(&parts[1]));
+    if m.emission != Vec3::ZERO {
+        let _ = writeln!(out, "emission = {}", c3(m.emission));
+    }
+    if m.two_sided_emission {
+        let _ = writeln!(out, "two_sided_emission = true");
+    }
+    write_number_or_texture(out, "opacity", m.opacity.as_ref())?;
+    if m.normal_map.is_some() || m.bump_map.is_some() {
+        let problem = "a blend's mapped normals have no TOML form yet".to_owned();
+        return Err(TomlWriteError::Unsupported { item: format!("material '{name}'"), problem });
+    }
+    for (part, part_name) in blend.materials.iter().zip(&parts) {
+        write_material(part, part_name, out)?;
+    }
+    Ok(())
+}
+
 /// The inline table of a texture; `with_mode` for the diffuse one (a specular texture
 /// always replaces).
 pub(super) fn texture_toml(t: &TextureDesc, with_mode: bool) -> Result<String, TomlWriteError> {
