@@ -112,3 +112,28 @@ fn what_is_not_modelled_is_refused_by_name_and_line() {
         assert_contains(&message, &[expected, "main.xml", "(line 15)"]);
     }
 }
+
+/// A spectrum file (`.spd`, found through `<path>` as Mitsuba finds it) converts as the
+/// same pairs given inline; a bad line is named with its file and line.
+#[test]
+fn a_spectrum_file_reads_as_its_pairs_inline() {
+    let inline = material_of(
+        "m-spd-inline",
+        "<bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"400:0.2, 550:0.6, 700:0.9\"/></bsdf>",
+    )
+    .unwrap();
+    let main = format!(
+        "<scene version=\"3.0.0\">\n<path value=\"data\"/><default name=\"spp\" value=\"1\"/>\
+         <default name=\"fov\" value=\"40\"/>{SENSOR}\n<shape type=\"cube\"><bsdf type=\"diffuse\">\
+         <spectrum name=\"reflectance\" filename=\"red.spd\"/></bsdf></shape>\n</scene>"
+    );
+    let spd = "# a reddish reflectance\n400 0.2\n550 0.6\n700 0.9\n";
+    let scene = load_mitsuba(&files("m-spd-file", &main, &[("data/red.spd", spd)]), &[]).unwrap();
+    let from_file = &scene.materials[scene.objects[0].material as usize];
+    assert_eq!(from_file.albedo, inline.albedo);
+    assert!(inline.albedo.x > inline.albedo.z, "{}", inline.albedo);
+    let bad = main.replace("red.spd", "bad.spd");
+    let path = files("m-spd-bad", &bad, &[("data/bad.spd", "400 0.2\n550 0.6 0.1\n")]);
+    let message = load_mitsuba(&path, &[]).unwrap_err();
+    assert_contains(&message, &["bad.spd, line 2: 3 numbers", "main.xml", "(line 15)"]);
+}

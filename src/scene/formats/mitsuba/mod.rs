@@ -11,6 +11,7 @@ mod metals;
 mod scalars;
 mod sensor;
 mod shapes;
+mod spd;
 mod spectrum;
 mod transform;
 mod tree;

@@ -1,6 +1,7 @@
 //! `<spectrum>` → linear sRGB as Mitsuba 3's RGB variants convert it: a constant is grey (an
 //! emitter's is D65's white); a wavelength:value list is integrated against the CIE 1931
-//! observer (times D65 unless it is emission), converted from XYZ and clamped.
+//! observer (times D65 unless it is emission), converted from XYZ and clamped. (A spectrum
+//! file arrives here as such a list: `spd`.)
 
 use super::cie::{D65, MAX_NM, MIN_NM, SAMPLES, X_BAR, Y_BAR, Z_BAR};
 use super::scalars::{ColorUse, numbers};
@@ -18,9 +19,6 @@ const Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_06;
 const D65_NORMALIZATION: f64 = 1.0 / 98.99741751876255;
 
 pub(super) fn to_rgb(element: &Element, usage: ColorUse) -> Result<DVec3, SceneError> {
-    if element.attr("filename").is_some() {
-        return Err(element.error("spectra from files are not supported yet (give value=…)"));
-    }
     let text = element.required("value")?;
     if !text.contains(':') {
         return match numbers(element, text)?[..] {

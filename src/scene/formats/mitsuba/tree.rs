@@ -145,6 +145,9 @@ impl Reader {
             .map(|(name, value)| Ok((name.clone(), self.substitute(&raw, value)?)))
             .collect::<Result<Vec<_>, SceneError>>()?;
         let mut element = Element { attrs, ..raw };
+        if element.tag == "spectrum" {
+            self.read_spectrum_file(&mut element)?;
+        }
         for child in node.children().filter(roxmltree::Node::is_element) {
             let child = self.element(child, file, doc, depth)?;
             match child.tag.as_str() {
@@ -176,6 +179,20 @@ impl Reader {
             }
         }
         Ok(element)
+    }
+
+    /// A `<spectrum filename="…">` given its file's pairs as its `value` (the file found
+    /// as Mitsuba finds it, through the `<path>` folders).
+    fn read_spectrum_file(&self, element: &mut Element) -> Result<(), SceneError> {
+        let Some(name) = element.attr("filename").map(str::to_owned) else { return Ok(()) };
+        if element.attr("value").is_some() {
+            return Err(element.error("a <spectrum> takes a value or a filename, not both"));
+        }
+        let list = super::spd::spectrum_file_as_list(&self.resolver.resolve(&name))
+            .map_err(|problem| element.error(problem))?;
+        element.attrs.retain(|(attr, _)| attr != "filename");
+        element.attrs.push(("value".to_owned(), list));
+        Ok(())
     }
 
     /// `value` with every `$name` replaced by its parameter.
