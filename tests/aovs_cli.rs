@@ -230,3 +230,46 @@ fn denoise_without_the_denoiser_is_refused_before_rendering() {
     assert!(!dir.join("x.exr").exists() && !dir.join("x.denoised.exr").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A Mitsuba scene's `aov` integrator chooses the EXR's AOVs (its nested integrator renders
+/// the image; an AOV embray does not write is named in a warning); `--aovs` overrides it.
+#[test]
+fn a_mitsuba_aov_integrator_chooses_the_aovs() {
+    let dir = temp_dir("aovs-mitsuba");
+    let scene = r#"<scene version="3.0.0">
+    <integrator type="aov">
+        <string name="aovs" value="dd.y:depth, alb:albedo, nn:sh_normal, pp:position"/>
+        <integrator type="path"><integer name="max_depth" value="3"/></integrator>
+    </integrator>
+    <sensor type="perspective">
+        <float name="fov" value="40"/>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+    </sensor>
+    <shape type="sphere"><point name="center" x="0" y="0" z="4"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.6, 0.9"/></bsdf></shape>
+    <emitter type="constant"/>
+</scene>"#;
+    std::fs::write(dir.join("s.xml"), scene).unwrap();
+    let out = embray(&["render", "s.xml", "--spp", "4", "-o", "a.exr"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("the AOVs position are not written"), "{stderr}");
+    let c = channels(&dir.join("a.exr"));
+    let mut names: Vec<&str> = c.keys().map(String::as_str).collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["B", "G", "N.X", "N.Y", "N.Z", "R", "Z", "albedo.B", "albedo.G", "albedo.R"]
+    );
+    let centre = 4 * 8 + 4;
+    assert_eq!(
+        [c["albedo.R"][centre], c["albedo.G"][centre], c["albedo.B"][centre]],
+        [0.3, 0.6, 0.9]
+    );
+    let out =
+        embray(&["render", "s.xml", "--spp", "1", "-q", "--aovs", "none", "-o", "b.exr"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let mut names: Vec<String> = channels(&dir.join("b.exr")).into_keys().collect();
+    names.sort();
+    assert_eq!(names, ["B", "G", "R"]);
+}

@@ -145,7 +145,7 @@ fn render_jobs(
         let meta = part_meta(args, &job.scene, &options, whole, hash, Default::default(), timing)?;
         let mut on_pass = |sums: &FilmSums, done: u32| {
             if every.is_some_and(|every| last_write.elapsed() >= every) && done < spp {
-                checkpoint(job, &sums.resolve(), &look, &meta, args.aovs, done);
+                checkpoint(job, &sums.resolve(), &look, &meta, args.aovs_for(&job.scene), done);
                 last_write = Instant::now();
             }
         };
@@ -165,7 +165,7 @@ fn render_jobs(
             );
         }
         let stopped = output.stopped.map(|reason| reason.to_string());
-        let exr_look = (args.aovs, meta.image_attributes(output.spp_done, stopped));
+        let exr_look = (args.aovs_for(&job.scene), meta.image_attributes(output.spp_done, stopped));
         write_images(&mut files, (&job.exr, &job.display), &output.film, &look, &exr_look)?;
         if let Some((exr, display)) = &job.denoised {
             let started = Instant::now();

@@ -111,8 +111,9 @@ pub struct RenderArgs {
     /// The EXR's channels beside R, G, B: a comma list of depth (Z), normal (N.X/Y/Z),
     /// albedo (albedo.R/G/B), variance (variance.R/G/B, the samples' variance), alpha (A:
     /// the fraction of samples that hit something); `none` for the beauty alone.
-    #[arg(long, value_parser = |s: &str| embray::output::Aovs::parse(s), default_value = "depth,normal")]
-    pub aovs: embray::output::Aovs,
+    /// [default: the scene's (a Mitsuba `aov` integrator's), else depth,normal]
+    #[arg(long, value_parser = |s: &str| embray::output::Aovs::parse(s))]
+    pub aovs: Option<embray::output::Aovs>,
     /// Also write the beauty denoised by Intel Open Image Denoise, beside each image
     /// (NAME.denoised.exr, NAME.denoised.png), guided by the first hit's albedo and normal.
     /// Needs a build with `--features denoise` (README: Denoising).
@@ -209,6 +210,11 @@ impl RenderArgs {
         Ok(())
     }
 
+    /// The AOVs `scene`'s EXR carries: `--aovs`, else the scene's, else depth and normal.
+    pub fn aovs_for(&self, scene: &SceneDesc) -> embray::output::Aovs {
+        self.aovs.or(scene.settings.aovs).unwrap_or_default()
+    }
+
     pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {
         let mut options = RenderOptions::for_scene(scene);
         if let Some(spp) = self.spp {
@@ -271,7 +277,7 @@ impl RenderArgs {
                 super::preview::parse_crop(text, (scene.camera.width, scene.camera.height))?;
             options.crop = Some(window);
         }
-        options.first_hit_albedo = self.aovs.albedo || self.denoise;
+        options.first_hit_albedo = self.aovs_for(scene).albedo || self.denoise;
         options.progress = !self.quiet;
         Ok(options)
     }

@@ -130,7 +130,7 @@ pub fn part_meta(
         spp: options.spp,
         tile_size: TILE_SIZE,
         part,
-        aovs: args.aovs.to_string(),
+        aovs: args.aovs_for(scene).to_string(),
         png: PngSettings {
             curve: args.tonemap.resolve(&scene.settings).to_string(),
             exposure: args.look.exposure,

@@ -51,6 +51,9 @@ pub struct RenderSettings {
     /// Camera rays do not see lights (emitters, the environment, the background): they
     /// only light the scene (Mitsuba's `hide_emitters`).
     pub hide_emitters: bool,
+    /// The AOVs the scene asks its EXR to carry (Mitsuba's `aov` integrator); `--aovs`
+    /// overrides them, and without either the EXR carries depth and normal.
+    pub aovs: Option<crate::output::Aovs>,
 }
 
 impl Default for RenderSettings {
@@ -65,6 +68,7 @@ impl Default for RenderSettings {
             background_texture: None,
             filter: Default::default(),
             hide_emitters: false,
+            aovs: None,
         }
     }
 }

@@ -118,6 +118,7 @@ pub fn load_str_with_warnings(
         background_texture: None,
         filter: Default::default(),
         hide_emitters: false,
+        aovs: None,
     };
     if let Some(node) = x.child(root, "BackgroundColor")? {
         settings.background = x.color(node)?;

@@ -222,6 +222,7 @@ pub(super) fn integrator(
             };
             Ok(())
         }
+        "aov" => aov_integrator(element, settings, warnings),
         "direct" => {
             settings.hide_emitters = boolean(element, "hide_emitters")?.unwrap_or(false);
             settings.integrator = IntegratorKind::Path;
@@ -229,7 +230,54 @@ pub(super) fn integrator(
             Ok(())
         }
         other => Err(element.error(format!(
-            "the integrator '{other}' is not supported (path, direct, ptracer, moment are)"
+            "the integrator '{other}' is not supported (path, direct, ptracer, moment, aov are)"
         ))),
     }
+}
+
+/// Mitsuba's `aov` integrator: its nested integrator renders the image, and its `aovs`
+/// (`label:type, …`) become the EXR's AOVs where embray has them (`depth`, `albedo`,
+/// `sh_normal` as embray's `Z`, `albedo.*`, `N.*` channels); the others are named in a
+/// warning.
+fn aov_integrator(
+    element: &Element,
+    settings: &mut RenderSettings,
+    warnings: &mut Vec<String>,
+) -> Result<(), SceneError> {
+    let nested: Vec<&Element> = element.children.iter().filter(|c| c.tag == "integrator").collect();
+    match nested[..] {
+        [] => {}
+        [inner] => integrator(inner, settings, warnings)?,
+        _ => {
+            return Err(element
+                .error("an aov integrator with more than one nested integrator is not supported"));
+        }
+    }
+    let list = super::values::property(element, "string", "aovs")
+        .ok_or_else(|| element.error("an aov integrator needs `aovs` (label:type, …)"))?;
+    let mut aovs = crate::output::Aovs::parse("none").expect("none is an AOV list");
+    let mut skipped = Vec::new();
+    for entry in list.required("value")?.split(',').map(str::trim).filter(|e| !e.is_empty()) {
+        let Some((_, kind)) = entry.split_once(':') else {
+            return Err(
+                list.error(format!("'{}' is not label:type", crate::excerpt::excerpt(entry)))
+            );
+        };
+        match kind.trim() {
+            "depth" => aovs.depth = true,
+            "albedo" => aovs.albedo = true,
+            "sh_normal" => aovs.normal = true,
+            other => skipped.push(other.to_owned()),
+        }
+    }
+    if !skipped.is_empty() {
+        warnings.push(format!(
+            "{}: line {}: the AOVs {} are not written (embray writes depth, albedo and sh_normal)",
+            element.file.display(),
+            element.line,
+            skipped.join(", ")
+        ));
+    }
+    settings.aovs = Some(aovs);
+    Ok(())
 }
