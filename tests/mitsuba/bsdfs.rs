@@ -106,6 +106,11 @@ fn what_is_not_modelled_is_refused_by_name_and_line() {
              <string name=\"name\" value=\"face_color\"/></texture></bsdf>",
             "looks up the mesh attribute `face_color`, which the shape does not have (it has: none)",
         ),
+        (
+            "<bsdf type=\"diffuse\"><texture name=\"reflectance\" type=\"checkerboard\">\
+             <string name=\"wrap_mode\" value=\"clamp\"/></texture></bsdf>",
+            "the checkerboard texture does not take `wrap_mode` (it takes: color0, color1, to_uv)",
+        ),
     ];
     for (i, (bsdf, expected)) in cases.into_iter().enumerate() {
         let message = material_of(&format!("m-refused-{i}"), bsdf).unwrap_err();
@@ -136,4 +141,22 @@ fn a_spectrum_file_reads_as_its_pairs_inline() {
     let path = files("m-spd-bad", &bad, &[("data/bad.spd", "400 0.2\n550 0.6 0.1\n")]);
     let message = load_mitsuba(&path, &[]).unwrap_err();
     assert_contains(&message, &["bad.spd, line 2: 3 numbers", "main.xml", "(line 15)"]);
+}
+
+/// `to_uv` other than a uniform scale maps the texture coordinates as Mitsuba's 2-D
+/// transform does (applied in the order written: here shifted, then scaled).
+#[test]
+fn to_uv_maps_texture_coordinates() {
+    let material = material_of(
+        "m-to-uv",
+        "<bsdf type=\"diffuse\"><texture name=\"reflectance\" type=\"checkerboard\">\
+         <transform name=\"to_uv\"><translate x=\"0.5\"/><scale x=\"2\" y=\"3\"/></transform>\
+         </texture></bsdf>",
+    )
+    .unwrap();
+    let pattern = material.texture.unwrap().pattern;
+    let embray::scene::Pattern::UvMapped(mapped) = pattern else { panic!("{pattern:?}") };
+    let at = mapped.uv_from_surface.transform_point2(glam::Vec2::new(0.25, 0.5));
+    assert_eq!(at, glam::Vec2::new(1.5, 1.5));
+    assert_eq!(mapped.wrap, embray::scene::Wrap::Repeat);
 }

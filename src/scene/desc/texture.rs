@@ -75,6 +75,30 @@ pub enum Pattern {
     /// The hit mesh's attribute `name` (`MeshAttribute`: per triangle, or per vertex
     /// interpolated) times `scale` (Mitsuba's `mesh_attribute`).
     MeshAttribute { name: String, scale: f32 },
+    /// A texture-coordinate pattern looked up at mapped coordinates (Mitsuba's `to_uv` and
+    /// `wrap_mode`).
+    UvMapped(Box<UvMapped>),
+}
+
+/// `inner` looked up at `uv_from_surface` of the surface's texture coordinates, wrapped.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UvMapped {
+    pub uv_from_surface: glam::Affine2,
+    pub wrap: Wrap,
+    /// An image or a 2-D checkerboard.
+    pub inner: Pattern,
+}
+
+/// What an image shows outside [0, 1]².
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Wrap {
+    /// The image again.
+    #[default]
+    Repeat,
+    /// The image mirrored at each edge.
+    Mirror,
+    /// The edge texels.
+    Clamp,
 }
 
 impl TextureDesc {
@@ -82,6 +106,10 @@ impl TextureDesc {
     pub fn image(&self) -> Option<&std::sync::Arc<TextureImage>> {
         match &self.pattern {
             Pattern::Image { image, .. } => Some(image),
+            Pattern::UvMapped(mapped) => match &mapped.inner {
+                Pattern::Image { image, .. } => Some(image),
+                _ => None,
+            },
             _ => None,
         }
     }

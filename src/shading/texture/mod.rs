@@ -4,7 +4,7 @@
 mod image;
 pub mod perlin;
 
-use crate::scene::{NoiseConversion, Pattern, TextureMode};
+use crate::scene::{NoiseConversion, Pattern, TextureMode, UvMapped, Wrap};
 use glam::{Affine3A, Vec2, Vec3};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -29,7 +29,7 @@ impl Texture {
     /// The colour at object-space point `p_object` with texture coordinates `uv`.
     pub fn eval(&self, p_object: Vec3, uv: Vec2) -> Vec3 {
         let p = match self.pattern {
-            Pattern::Checker2d { .. } | Pattern::Image { .. } => Vec3::ZERO,
+            Pattern::Checker2d { .. } | Pattern::Image { .. } | Pattern::UvMapped(_) => Vec3::ZERO,
             _ => self.texture_from_object.transform_point3(p_object),
         };
         self.eval_at(p, uv)
@@ -37,33 +37,7 @@ impl Texture {
 
     /// The colour at pattern-space point `p` with texture coordinates `uv`.
     fn eval_at(&self, p: Vec3, uv: Vec2) -> Vec3 {
-        let parity = |cells: &[f32]| cells.iter().map(|c| c.floor() as i64).sum::<i64>() & 1;
-        match &self.pattern {
-            Pattern::Checker2d { scale, even, odd } => {
-                if parity(&[uv.x * scale, uv.y * scale]) == 0 { *even } else { *odd }
-            }
-            Pattern::Checker3d { scale, even, odd } => {
-                let p = p * *scale;
-                if parity(&[p.x, p.y, p.z]) == 0 { *even } else { *odd }
-            }
-            Pattern::CourseChecker { scale, offset, black, white } => {
-                let odd = |c: f32| ((c + offset) * scale) as i64 % 2 != 0;
-                if (odd(p.x) != odd(p.y)) != odd(p.z) { *black } else { *white }
-            }
-            Pattern::Perlin { scale, conversion } => {
-                let n = perlin::noise(p * *scale);
-                Vec3::splat(match conversion {
-                    NoiseConversion::Absolute => n.abs(),
-                    NoiseConversion::Linear => (n + 1.0) * 0.5,
-                })
-            }
-            Pattern::Image { image, interpolation, normalizer } => {
-                image::lookup(image, *interpolation, uv) / *normalizer
-            }
-            Pattern::Constant(value) => *value,
-            // Only the hit knows its mesh: `mesh_attribute` is where the tracer looks them up.
-            Pattern::MeshAttribute { .. } => Vec3::ZERO,
-        }
+        pattern_at(&self.pattern, p, uv)
     }
 
     /// The gradient of this solid pattern's mean channel at `p_object`, with respect to
@@ -88,7 +62,11 @@ impl Texture {
     /// The step in texture coordinates over which a height field's slope is taken: one
     /// texel of an image, else a small fraction of the unit square.
     pub fn uv_step(&self) -> Vec2 {
-        match &self.pattern {
+        let pattern = match &self.pattern {
+            Pattern::UvMapped(mapped) => &mapped.inner,
+            pattern => pattern,
+        };
+        match pattern {
             Pattern::Image { image, .. } => {
                 Vec2::new(1.0 / image.width as f32, 1.0 / image.height as f32)
             }
@@ -101,6 +79,10 @@ impl Texture {
     pub fn value_scale(&self) -> f32 {
         match &self.pattern {
             Pattern::Image { normalizer, .. } => *normalizer,
+            Pattern::UvMapped(mapped) => match &mapped.inner {
+                Pattern::Image { normalizer, .. } => *normalizer,
+                _ => 1.0,
+            },
             _ => 1.0,
         }
     }
@@ -147,6 +129,64 @@ pub fn mesh_attribute(
     }
 }
 
+/// The colour of `pattern` at pattern-space point `p` with texture coordinates `uv`.
+fn pattern_at(pattern: &Pattern, p: Vec3, uv: Vec2) -> Vec3 {
+    let parity = |cells: &[f32]| cells.iter().map(|c| c.floor() as i64).sum::<i64>() & 1;
+    match pattern {
+        Pattern::Checker2d { scale, even, odd } => {
+            if parity(&[uv.x * scale, uv.y * scale]) == 0 {
+                *even
+            } else {
+                *odd
+            }
+        }
+        Pattern::Checker3d { scale, even, odd } => {
+            let p = p * *scale;
+            if parity(&[p.x, p.y, p.z]) == 0 { *even } else { *odd }
+        }
+        Pattern::CourseChecker { scale, offset, black, white } => {
+            let odd = |c: f32| ((c + offset) * scale) as i64 % 2 != 0;
+            if (odd(p.x) != odd(p.y)) != odd(p.z) { *black } else { *white }
+        }
+        Pattern::Perlin { scale, conversion } => {
+            let n = perlin::noise(p * *scale);
+            Vec3::splat(match conversion {
+                NoiseConversion::Absolute => n.abs(),
+                NoiseConversion::Linear => (n + 1.0) * 0.5,
+            })
+        }
+        Pattern::Image { image, interpolation, normalizer } => {
+            image::lookup(image, *interpolation, uv) / *normalizer
+        }
+        Pattern::Constant(value) => *value,
+        // Only the hit knows its mesh: `mesh_attribute` is where the tracer looks them up.
+        Pattern::MeshAttribute { .. } => Vec3::ZERO,
+        Pattern::UvMapped(mapped) => pattern_at(&mapped.inner, p, mapped_uv(mapped, uv)),
+    }
+}
+
+/// `uv` mapped and wrapped as `mapped` says, for its inner pattern.
+fn mapped_uv(mapped: &UvMapped, uv: Vec2) -> Vec2 {
+    let uv = mapped.uv_from_surface.transform_point2(uv);
+    let mirror = |t: f32| {
+        let t = t.rem_euclid(2.0);
+        if t > 1.0 { 2.0 - t } else { t }
+    };
+    let inside = match mapped.wrap {
+        Wrap::Repeat => return uv,
+        Wrap::Mirror => Vec2::new(mirror(uv.x), mirror(uv.y)),
+        Wrap::Clamp => uv.clamp(Vec2::ZERO, Vec2::ONE),
+    };
+    // An image's lookup repeats across its edges: kept off them, it shows the edge texels.
+    let Pattern::Image { image, interpolation, .. } = &mapped.inner else { return inside };
+    let size = Vec2::new(image.width as f32, image.height as f32);
+    let (low, high) = match interpolation {
+        crate::scene::Interpolation::BilinearCentered => (0.5 / size, 1.0 - 0.5 / size),
+        _ => (Vec2::ZERO, Vec2::splat(1.0 - f32::EPSILON / 2.0)),
+    };
+    inside.clamp(low, high)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -180,5 +220,39 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Mitsuba's `to_uv` and wrap modes on a 4 × 1 ramp (texels 0, 1, 2, 3) looked up
+    /// between texel centres: 1.2 repeats to 0.2, mirrors to 0.8, clamps to the last texel.
+    #[test]
+    fn mapped_coordinates_repeat_mirror_and_clamp() {
+        let ramp = crate::scene::TextureImage {
+            file: "ramp".into(),
+            width: 4,
+            height: 1,
+            texels: (0..4).map(|i| Vec3::splat(i as f32)).collect(),
+            srgb_decoded: false,
+            hdr: false,
+            rows_flipped: false,
+        };
+        let image = Pattern::Image {
+            image: std::sync::Arc::new(ramp),
+            interpolation: crate::scene::Interpolation::BilinearCentered,
+            normalizer: 1.0,
+        };
+        let at = |uv_from_surface, wrap, u: f32| {
+            let mapped = UvMapped { uv_from_surface, wrap, inner: image.clone() };
+            pattern_at(&Pattern::UvMapped(Box::new(mapped)), Vec3::ZERO, Vec2::new(u, 0.5)).x
+        };
+        let same = glam::Affine2::IDENTITY;
+        let close = |a: f32, b: f32| assert!((a - b).abs() < 1e-5, "{a} vs {b}");
+        close(at(same, Wrap::Repeat, 1.2), 0.3);
+        close(at(same, Wrap::Mirror, 1.2), 2.7);
+        close(at(same, Wrap::Clamp, 1.2), 3.0);
+        close(at(same, Wrap::Clamp, -0.4), 0.0);
+        // Shifted by half the image and scaled by 2: u = 0.1 looks up 0.7.
+        let shifted =
+            glam::Affine2::from_scale_angle_translation(Vec2::splat(2.0), 0.0, Vec2::new(0.5, 0.0));
+        close(at(shifted, Wrap::Repeat, 0.1), 2.3);
     }
 }

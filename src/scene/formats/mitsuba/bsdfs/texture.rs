@@ -4,7 +4,7 @@
 use super::super::tree::{Element, FileResolver};
 use super::super::values::{ColorUse, boolean, color, number_attr, property, vec3};
 use super::reflectance;
-use crate::scene::desc::{Interpolation, Pattern, TextureDesc, TextureMode};
+use crate::scene::desc::{Interpolation, Pattern, TextureDesc, TextureMode, UvMapped, Wrap};
 use crate::scene::error::{Line, SceneError};
 use crate::scene::texture_image::{ImageRef, load};
 use glam::{DAffine3, DVec3, Vec3};
@@ -51,7 +51,24 @@ fn texture(
     if texture.tag != "texture" {
         return Err(texture.error(format!("`{name}` must be a colour or a <texture>")));
     }
-    let pattern = match texture.required("type")? {
+    let kind = texture.required("type")?;
+    let known: &[&str] = match kind {
+        "bitmap" => &["filename", "filter_type", "wrap_mode", "raw", "to_uv", "format", "accel"],
+        "checkerboard" => &["color0", "color1", "to_uv"],
+        "rawconstant" => &["value"],
+        "mesh_attribute" => &["name", "scale"],
+        _ => &[],
+    };
+    if let Some(child) =
+        texture.children.iter().find(|c| !c.attr("name").is_some_and(|n| known.contains(&n)))
+    {
+        return Err(child.error(format!(
+            "the {kind} texture does not take {} (it takes: {})",
+            child.attr("name").map_or_else(|| format!("a <{}>", child.tag), |n| format!("`{n}`")),
+            known.join(", ")
+        )));
+    }
+    let pattern = match kind {
         "bitmap" => {
             let file = property(texture, "string", "filename")
                 .ok_or_else(|| texture.error("a bitmap needs a filename"))?;
@@ -118,24 +135,60 @@ fn texture(
             )));
         }
     };
-    let pattern = match (property(texture, "transform", "to_uv"), pattern) {
-        (None, pattern) => pattern,
-        // A uniform scale of the texture coordinates: more checks.
-        (Some(to_uv), Pattern::Checker2d { scale, even, odd }) => {
-            let m = super::super::transform::transform(to_uv)?;
-            let factor = m.matrix3.x_axis.x;
-            let uniform = m.matrix3 == glam::DMat3::from_diagonal(DVec3::new(factor, factor, 1.0))
-                || m.matrix3 == glam::DMat3::from_diagonal(DVec3::splat(factor));
-            if !uniform || m.translation != DVec3::ZERO || !(factor > 0.0) {
-                return Err(to_uv.error("to_uv other than a uniform scale is not supported yet"));
-            }
-            Pattern::Checker2d { scale: scale * factor as f32, even, odd }
-        }
-        (Some(to_uv), _) => return Err(to_uv.error("to_uv on a bitmap is not supported yet")),
-    };
+    let pattern = uv_mapped(texture, pattern)?;
     Ok(Some(TextureDesc {
         pattern,
         mode: TextureMode::Replace,
         texture_from_object: DAffine3::IDENTITY,
     }))
+}
+
+/// `pattern` with the texture's `to_uv` and `wrap_mode` applied (a uniform scale of a
+/// checkerboard's coordinates stays a checkerboard: more checks).
+fn uv_mapped(texture: &Element, pattern: Pattern) -> Result<Pattern, SceneError> {
+    let wrap = match property(texture, "string", "wrap_mode") {
+        None => Wrap::Repeat,
+        Some(w) => match w.required("value")? {
+            "repeat" => Wrap::Repeat,
+            "mirror" => Wrap::Mirror,
+            "clamp" => Wrap::Clamp,
+            other => {
+                return Err(w.error(format!(
+                    "the wrap_mode '{}' is not known (repeat, mirror or clamp)",
+                    crate::excerpt::excerpt(other)
+                )));
+            }
+        },
+    };
+    let Some(to_uv) = property(texture, "transform", "to_uv") else {
+        return Ok(match wrap {
+            Wrap::Repeat => pattern,
+            _ => Pattern::UvMapped(Box::new(UvMapped {
+                uv_from_surface: glam::Affine2::IDENTITY,
+                wrap,
+                inner: pattern,
+            })),
+        });
+    };
+    let m = super::super::transform::transform(to_uv)?;
+    if let Pattern::Checker2d { scale, even, odd } = pattern {
+        let factor = m.matrix3.x_axis.x;
+        let uniform = m.matrix3 == glam::DMat3::from_diagonal(DVec3::new(factor, factor, 1.0))
+            || m.matrix3 == glam::DMat3::from_diagonal(DVec3::splat(factor));
+        if uniform && m.translation == DVec3::ZERO && factor > 0.0 {
+            return Ok(Pattern::Checker2d { scale: scale * factor as f32, even, odd });
+        }
+    }
+    // Mitsuba's 2-D transform: the x and y rows and columns of the 3-D one, with its
+    // translation.
+    let uv_from_surface = glam::DAffine2::from_cols(
+        m.matrix3.x_axis.truncate(),
+        m.matrix3.y_axis.truncate(),
+        m.translation.truncate(),
+    );
+    if !uv_from_surface.is_finite() {
+        return Err(to_uv.error("to_uv is not finite"));
+    }
+    let uv_from_surface = glam::Affine2::from_mat3(glam::DMat3::from(uv_from_surface).as_mat3());
+    Ok(Pattern::UvMapped(Box::new(UvMapped { uv_from_surface, wrap, inner: pattern })))
 }

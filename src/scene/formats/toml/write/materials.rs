@@ -241,6 +241,9 @@ pub(super) fn texture_toml(t: &TextureDesc, with_mode: bool) -> Result<String, T
         }
         Pattern::Constant(value) => format!("type = \"constant\", value = {}", c3(*value)),
         // The writer's meshes are OBJ files, which keep no attributes.
+        Pattern::UvMapped(_) => {
+            return Err(unsupported("its texture coordinates are mapped (no TOML form yet)"));
+        }
         Pattern::MeshAttribute { .. } => return Err(unsupported("it looks up a mesh attribute")),
         Pattern::CourseChecker { scale, offset, black, white } => {
             at_most_one(black.max(*white))?;
