@@ -324,3 +324,38 @@ fn an_mtl_map_kd_paints_its_mesh_the_right_way_up() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A `mesh_attribute` texture shows a PLY file's face colours (each triangle of a polygon
+/// its polygon's), and a shape without the attribute is refused with the field's line.
+#[test]
+fn mesh_attributes_colour_their_faces_and_a_missing_one_is_refused() {
+    let dir = temp_dir("mesh-attribute-toml");
+    // Two quads side by side: red on the left, blue on the right.
+    let ply = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n\
+        property float z\nelement face 2\nproperty list uchar int vertex_indices\n\
+        property float color_0\nproperty float color_1\nproperty float color_2\nend_header\n\
+        0 0 0\n0.5 0 0\n1 0 0\n0 1 0\n0.5 1 0\n1 1 0\n\
+        4 0 1 4 3 0.8 0.1 0.1\n4 1 2 5 4 0.1 0.1 0.8\n";
+    std::fs::write(dir.join("halves.ply"), ply).unwrap();
+    let scene = |object: &str| {
+        format!(
+            "[camera]\nlookfrom = [0.5, 0.5, 2.0]\nlookat = [0.5, 0.5, 0.0]\nvfov = 28.0\n\
+             resolution = [16, 16]\n\n[render]\nmax_depth = 1\n\n[materials.m]\n\
+             texture = {{ type = \"mesh_attribute\", name = \"face_color\" }}\n\n\
+             [[objects]]\n{object}\nmaterial = \"m\"\n\n[[lights]]\ntype = \"point\"\n\
+             position = [0.5, 0.5, 2.0]\nintensity = [4.0, 4.0, 4.0]\n"
+        )
+    };
+    let text = scene("type = \"mesh\"\nfile = \"halves.ply\"");
+    let desc = embray::scene::load_str(&text, &dir.join("scene.toml")).expect("scene loads");
+    for backend in backends() {
+        let film = render_ok(&desc, &options(&desc, backend, 4)).film;
+        let (left, right) = (film.color[8 * 16 + 4], film.color[8 * 16 + 11]);
+        assert!(left.x > 4.0 * left.z && right.z > 4.0 * right.x, "{backend:?}: {left} {right}");
+    }
+    let text = scene("type = \"sphere\"\ncenter = [0.5, 0.5, 0.0]\nradius = 0.3");
+    let message = embray::scene::load_str(&text, &dir.join("scene.toml")).unwrap_err().to_string();
+    for part in ["objects[0].material", "mesh attribute `face_color`", "it has: none", "line"] {
+        assert!(message.contains(part), "{message}");
+    }
+}

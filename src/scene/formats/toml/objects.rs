@@ -64,6 +64,34 @@ impl Builder<'_> {
         Ok(Some(grid))
     }
 
+    /// Refuses a material that looks up a mesh attribute `shape` does not have.
+    fn check_attributes(
+        &self,
+        path: &FieldPath,
+        shape: &ShapeDesc,
+        material: u32,
+    ) -> Result<(), SceneError> {
+        let attributes = match shape {
+            ShapeDesc::Mesh(mesh) => &mesh.attributes[..],
+            ShapeDesc::Sphere { .. } => &[],
+        };
+        let material = &self.materials[material as usize];
+        let Some(missing) = material
+            .mesh_attributes()
+            .into_iter()
+            .find(|n| !attributes.iter().any(|a| a.name == *n))
+        else {
+            return Ok(());
+        };
+        let has: Vec<&str> = attributes.iter().map(|a| a.name.as_str()).collect();
+        let has = if has.is_empty() { "none".to_owned() } else { has.join(", ") };
+        Err(self.ctx.out_of_range(
+            &path.key("material"),
+            format!("'{}' (it looks up the mesh attribute `{missing}`)", material.name),
+            &format!("a material that looks up only attributes the shape has (it has: {has})"),
+        ))
+    }
+
     /// Adds the object, or one per copy of `grid`, all sharing `shape`.
     pub(super) fn push(
         &mut self,
@@ -161,6 +189,7 @@ impl Builder<'_> {
             }
         };
         let material = ctx.required(&path, &item, "material", material)?;
+        self.check_attributes(&path, &shape, material)?;
         self.push(item, shape, material, placement, grid);
         Ok(())
     }
@@ -201,7 +230,9 @@ impl Builder<'_> {
                 Some(model_name) => format!("{path} ({file}: {model_name})"),
                 None => format!("{path} ({file})"),
             };
-            self.push(name, ShapeDesc::Mesh(model.mesh), index, placement, grid);
+            let shape = ShapeDesc::Mesh(model.mesh);
+            self.check_attributes(path, &shape, index)?;
+            self.push(name, shape, index, placement, grid);
         }
         Ok(())
     }
