@@ -160,3 +160,26 @@ fn to_uv_maps_texture_coordinates() {
     assert_eq!(at, glam::Vec2::new(1.5, 1.5));
     assert_eq!(mapped.wrap, embray::scene::Wrap::Repeat);
 }
+
+/// A textured roughness (here α along ∂p/∂u a checkerboard, across it a number) is kept by
+/// `embray convert`: TOML `roughness = [{ texture }, { texture }]`.
+#[test]
+fn a_textured_roughness_converts_to_toml_and_back() {
+    let main = format!(
+        "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+         value=\"40\"/>{SENSOR}\n<shape type=\"cube\"><bsdf type=\"roughconductor\">\
+         <texture name=\"alpha_u\" type=\"checkerboard\"><float name=\"color0\" value=\"0.05\"/>\
+         <float name=\"color1\" value=\"0.4\"/></texture><float name=\"alpha_v\" value=\"0.2\"/>\
+         </bsdf></shape>\n</scene>"
+    );
+    let path = files("m-rough-texture-convert", &main, &[]);
+    let scene = load_mitsuba(&path, &[]).unwrap();
+    let dir = path.parent().unwrap();
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
+    writer.write(&scene, &dir.join("scene.toml"), "round trip").unwrap();
+    let back = embray::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let textures = |s: &embray::scene::SceneDesc| {
+        s.materials[s.objects[0].material as usize].roughness_textures.clone().expect("textured")
+    };
+    assert_eq!(textures(&back), textures(&scene));
+}

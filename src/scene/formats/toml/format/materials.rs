@@ -43,12 +43,14 @@ pub(crate) enum MetalPreset {
 }
 
 /// `roughness = 0.2`, or `roughness = [0.3, 0.05]`: anisotropic, α along ∂p/∂u, then along
-/// the bitangent.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+/// the bitangent; or a texture (α its mean channel per hit), or two.
+#[derive(Debug, Deserialize)]
 #[serde(untagged)]
 pub(crate) enum RoughnessToml {
     Isotropic(f64),
     Anisotropic([f64; 2]),
+    Texture(Box<TextureToml>),
+    Textures(Box<[TextureToml; 2]>),
 }
 
 /// A material; like objects, one flat struct whose fields `materials` checks per type.

@@ -6,7 +6,7 @@ use crate::scene::desc::{Distribution, MaterialDesc, Opacity, PhongDesc, Specula
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::format::{
     BumpHeightsToml, DistributionToml, MaterialKind, MaterialToml, MetalPreset, OpacityToml,
-    RoughnessToml,
+    RoughnessToml, TextureToml,
 };
 use crate::scene::formats::toml::source_map::FieldPath;
 use crate::scene::formats::toml::validate::Ctx;
@@ -130,17 +130,36 @@ pub(crate) fn material(
         ctx.non_negative(&field, r)?;
         ctx.f32(&field, r)
     };
-    let (roughness, roughness_v) = match m.roughness {
-        Some(RoughnessToml::Isotropic(r)) => (alpha(r)?, None),
+    let one_number = |what: &str| {
+        let requirement = "one number: a plastic's coating is isotropic and untextured";
+        ctx.require(kind != MaterialKind::Plastic, &field, what, requirement)
+    };
+    let texture =
+        |field: &FieldPath, t: &TextureToml| texture_desc(field, t, Use::Specular, ctx, base_dir);
+    // A textured α has a number too, for what is decided per material (rough or smooth):
+    // Mitsuba's default α.
+    let (roughness, roughness_v, roughness_textures) = match &m.roughness {
+        Some(RoughnessToml::Isotropic(r)) => (alpha(*r)?, None, None),
         Some(RoughnessToml::Anisotropic([u, v])) => {
-            if kind == MaterialKind::Plastic {
-                let requirement = "one number: a plastic's coating is isotropic";
-                ctx.require(false, &field, "a pair", requirement)?;
-            }
-            let (u, v) = (alpha(u)?, alpha(v)?);
-            (u, (v != u).then_some(v))
+            one_number("a pair")?;
+            let (u, v) = (alpha(*u)?, alpha(*v)?);
+            (u, (v != u).then_some(v), None)
         }
-        None => (0.0, None),
+        Some(RoughnessToml::Texture(t)) => {
+            one_number("a texture")?;
+            let t = texture(&field, t)?;
+            (0.1, None, Some(Box::new([t.clone(), t])))
+        }
+        Some(RoughnessToml::Textures(pair)) => {
+            one_number("textures")?;
+            let [u, v] = &**pair;
+            (
+                0.1,
+                None,
+                Some(Box::new([texture(&field.index(0), u)?, texture(&field.index(1), v)?])),
+            )
+        }
+        None => (0.0, None, None),
     };
     let reflectance =
         |ctx: &Ctx| ctx.color(&path.key("reflectance"), m.reflectance.unwrap_or([1.0; 3]), true);
@@ -233,7 +252,7 @@ pub(crate) fn material(
         specular,
         roughness,
         roughness_v,
-        roughness_textures: None,
+        roughness_textures,
         distribution,
         opacity,
         one_sided: m.one_sided.unwrap_or(false),

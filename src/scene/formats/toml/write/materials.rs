@@ -42,9 +42,6 @@ pub(super) fn write_material(
         }
     };
     at_most_one("the albedo", m.albedo)?;
-    if m.roughness_textures.is_some() {
-        return Err(unsupported("a textured roughness has no TOML form yet".to_owned()));
-    }
     if let Some(blend) = &m.blend {
         return write_blend(m, blend, name, out);
     }
@@ -88,9 +85,20 @@ pub(super) fn write_material(
     }
     // A diffuse material's roughness means nothing to either integrator.
     if (m.roughness != 0.0 || m.roughness_v.is_some()) && m.specular != Specular::None {
-        let _ = match m.roughness_v {
-            Some(v) => writeln!(out, "roughness = [{:?}, {v:?}]", m.roughness),
-            None => writeln!(out, "roughness = {:?}", m.roughness),
+        let _ = match &m.roughness_textures {
+            Some(pair) if pair[0] == pair[1] => {
+                writeln!(out, "roughness = {}", texture_toml(&pair[0], false)?)
+            }
+            Some(pair) => writeln!(
+                out,
+                "roughness = [{}, {}]",
+                texture_toml(&pair[0], false)?,
+                texture_toml(&pair[1], false)?
+            ),
+            None => match m.roughness_v {
+                Some(v) => writeln!(out, "roughness = [{:?}, {v:?}]", m.roughness),
+                None => writeln!(out, "roughness = {:?}", m.roughness),
+            },
         };
         if m.distribution != Distribution::Ggx {
             let _ = writeln!(out, "distribution = \"{}\"", m.distribution.name());
