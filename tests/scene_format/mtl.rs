@@ -147,3 +147,20 @@ fn a_hole_shows_the_light_behind_glass_refracts_it_and_a_mirror_the_dark_in_fron
     assert!(mirror < 0.2 * matte, "mirror {mirror}, matte {matte}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A missing library adds nothing to tobj's list of materials: the libraries after it still
+/// give their materials to the models that name them.
+#[test]
+fn a_missing_library_leaves_the_others_materials_in_place() {
+    let dir = four_quads("mtl-missing");
+    let obj = QUADS.replace("mtllib four.mtl", "mtllib gone.mtl\nmtllib four.mtl");
+    std::fs::write(dir.join("four.obj"), obj).unwrap();
+    let (scene, warnings) = scene::load_str_with_warnings(SCENE, &dir.join("scene.toml")).unwrap();
+    let names: Vec<&str> = scene.objects[..4]
+        .iter()
+        .map(|o| scene.materials[o.material as usize].name.as_str())
+        .collect();
+    assert_eq!(names, ["four.obj: matte", "four.obj: hole", "four.obj: glass", "four.obj: mirror"]);
+    assert!(warnings.iter().any(|w| w.contains("gone.mtl")), "{warnings:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -106,18 +106,18 @@ impl<'a> Given<'a> {
                 "kd" => set(&mut given.kd, colour(st, notes, 0.0..=1.0)?),
                 "ks" => set(&mut given.ks, colour(st, notes, 0.0..=1.0)?),
                 "ke" => set(&mut given.ke, colour(st, notes, 0.0..=f32::MAX)?),
-                "ka" => set(&mut given.ka, colour(st, notes, f32::MIN..=f32::MAX)?),
-                // Read only to be warned about (unless white): not being understood is no error.
-                "tf" => match colour(st, notes, f32::MIN..=f32::MAX) {
-                    Ok(tf) => set(&mut given.tf, tf),
-                    Err(_) => {
-                        notes.push(Note::new(
-                            st.line,
-                            "Tf is not understood (embray reads `Tf r g b`)",
-                        ));
-                        true
+                // Read only to be warned about: a value that cannot be read is no error.
+                "ka" | "tf" => {
+                    let slot = if canonical == "ka" { &mut given.ka } else { &mut given.tf };
+                    match colour(st, notes, f32::MIN..=f32::MAX) {
+                        Ok(c) => set(slot, c),
+                        Err(_) => {
+                            let message = format!("{} is not understood (3 numbers)", st.keyword);
+                            notes.push(Note::new(st.line, message));
+                            true
+                        }
                     }
-                },
+                }
                 "ns" => set(&mut given.ns, number(st, notes, 0.0..=f32::MAX)?),
                 // Checked where glass reads it: exporters write `Ni 0` for opaque materials.
                 "ni" => set(&mut given.ni, number(st, notes, f32::MIN..=f32::MAX)?),

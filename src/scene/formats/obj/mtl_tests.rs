@@ -187,6 +187,16 @@ fn what_is_not_used_is_noted_with_its_line() {
 }
 
 #[test]
+fn statements_read_only_to_be_warned_about_are_never_errors() {
+    let (m, warnings) = mapped("Tf spectral glass.rfl 1\nKa 1 nan 0");
+    assert_eq!(m, MaterialDesc::default());
+    assert_notes(
+        &warnings,
+        &[("Tf is not understood (3 numbers)", 2), ("Ka is not understood (3 numbers)", 3)],
+    );
+}
+
+#[test]
 fn bad_values_name_the_file_the_material_and_the_line() {
     let place = |line: usize| format!("(line {line}); named by objects[0] in 's.toml'");
     let cases = [
