@@ -114,8 +114,8 @@ impl Given<'_> {
 
     /// The lobe's α and its distribution: `Pr`² (GGX, the principled convention) where given,
     /// else from the Blinn-Phong exponent `Ns` the Beckmann α = √(2 / (Ns + 2)) whose
-    /// highlight has the same shape (Walter et al. 2007, eq. 25); smooth without either and
-    /// from `SMOOTH_NS`.
+    /// highlight has the same shape (Walter et al. 2007's Phong–Beckmann correspondence
+    /// αp = 2 αb⁻² − 2); smooth without either and from `SMOOTH_NS`.
     pub fn roughness(&self) -> (f32, Distribution) {
         match (self.pr, self.ns) {
             (Some(pr), _) => (pr.value * pr.value, Distribution::Ggx),
