@@ -244,6 +244,27 @@ mod tests {
         std::fs::remove_file(path).unwrap();
     }
 
+    #[test]
+    fn data_images_keep_file_units_and_give_the_alpha_where_asked() {
+        let path = std::env::temp_dir().join(format!("embray-tex-{}-a.png", std::process::id()));
+        image::RgbaImage::from_pixel(1, 1, image::Rgba([10, 20, 30, 40])).save(&path).unwrap();
+        let alpha = load_data(&at(&path), true).unwrap();
+        assert_eq!((alpha.image.texels[0], alpha.full_scale), (glam::Vec3::splat(40.0), 255.0));
+        assert!(alpha.alpha);
+        let colour = load_data(&at(&path), false).unwrap();
+        assert_eq!(colour.image.texels[0], glam::Vec3::new(10.0, 20.0, 30.0));
+        assert!(!colour.alpha);
+        let deep =
+            image::ImageBuffer::<image::Rgb<u16>, _>::from_pixel(1, 1, image::Rgb([1, 2, 65535]));
+        deep.save(&path).unwrap();
+        let deep = load_data(&at(&path), true).unwrap();
+        assert_eq!(
+            (deep.image.texels[0].z, deep.full_scale, deep.alpha),
+            (65535.0, 65535.0, false)
+        );
+        std::fs::remove_file(path).unwrap();
+    }
+
     /// CRC-32 (PNG's chunk checksum), so that a test can write a valid header.
     fn crc32(bytes: &[u8]) -> u32 {
         let mut crc = !0u32;

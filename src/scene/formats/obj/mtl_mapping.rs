@@ -12,7 +12,7 @@ use glam::Vec3;
 pub(super) enum Lobe {
     /// Lambertian `Kd` only (`illum` 0, 1, 10, or no `Ks`).
     Diffuse,
-    /// `Kd` under a dielectric coating whose reflectance is `Ks`'s (`illum` 2).
+    /// `Kd` under a white dielectric coating as strong as `Ks`'s mean (`illum` 2).
     Plastic,
     /// `Kd` and a mirror of reflectance `Ks` (`illum` 3, 5, 8).
     Mirror,
@@ -24,7 +24,7 @@ pub(super) enum Lobe {
 
 /// The `Ns` from which a surface counts as perfectly smooth: the top of the range the MTL
 /// specification gives (exporters clamp there; Blender writes it for roughness 0).
-pub(super) const SMOOTH_NS: f32 = 1000.0;
+const SMOOTH_NS: f32 = 1000.0;
 
 /// The index of refraction glass gets without `Ni`.
 const GLASS_IOR: f32 = 1.5;
