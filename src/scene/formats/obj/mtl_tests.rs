@@ -212,7 +212,9 @@ fn bad_values_name_the_file_the_material_and_the_line() {
         ("kd 1 1", "kd needs 3 numbers"),
         ("illum two", "illum needs a whole number from 0 to 255"),
         ("Ni 0\nillum 6", "Ni is 0, but glass needs Ni > 0"),
-        ("map_Kd -bm", "map_Kd the option -bm needs 1 value(s)"),
+        ("map_Kd -bm", "map_Kd gives -bm without its 1 value(s)"),
+        ("bump -bm x h.png", "bump gives -bm 'x', not a finite number"),
+        ("norm -s 2", "norm names no image file"),
     ];
     for (block, problem) in cases {
         let err = error(&format!("Kd 1 1 1\n{block}"));

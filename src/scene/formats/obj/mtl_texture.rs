@@ -57,11 +57,11 @@ pub(super) fn parse_map(value: &str) -> Result<MapStatement<'_>, String> {
             rest = after;
         }
         if values.len() < least {
-            return Err(format!("the option {option} needs {least} value(s)"));
+            return Err(format!("gives {option} without its {least} value(s)"));
         }
         if option == "-bm" {
             let bm = values[0].parse::<f32>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
-                format!("-bm needs a finite number, not '{}'", crate::excerpt::excerpt(values[0]))
+                format!("gives -bm '{}', not a finite number", crate::excerpt::excerpt(values[0]))
             })?;
             map.bump_multiplier = Some(bm);
         } else {
@@ -166,8 +166,8 @@ mod tests {
 
     #[test]
     fn bad_options_are_errors() {
-        assert_eq!(parse_map("-bm").unwrap_err(), "the option -bm needs 1 value(s)");
-        assert!(parse_map("-bm x h.png").unwrap_err().contains("-bm needs a finite number"));
+        assert_eq!(parse_map("-bm").unwrap_err(), "gives -bm without its 1 value(s)");
+        assert_eq!(parse_map("-bm x h.png").unwrap_err(), "gives -bm 'x', not a finite number");
         assert!(parse_map("-bm nan h.png").is_err());
         assert_eq!(parse_map("-s 2").unwrap_err(), "names no image file");
         assert_eq!(parse_map("  ").unwrap_err(), "names no image file");
