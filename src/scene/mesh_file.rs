@@ -18,7 +18,7 @@ pub(crate) struct Model {
     pub name: Option<String>,
     pub mesh: Arc<MeshData>,
     /// The MTL material: its index in the file (to share the scene material made from it)
-    /// and its colours.
+    /// and where it is defined.
     pub material: Option<(usize, ObjMaterial)>,
 }
 

@@ -36,9 +36,8 @@ fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
 }
 
-/// The image `at` names. `decode_srgb`: texels become linear [0, 1] through sRGB's curve;
-/// otherwise they keep the file's own units (0–255 for 8-bit files, 0–65535 for 16-bit).
-pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
+/// The image `at` names, decoded (its size checked first).
+fn decode(at: &ImageRef) -> Result<image::DynamicImage, SceneError> {
     let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
     let checked = || crate::image_decode::reader(&bytes).map_err(|e| at.error(e));
     let (width, height) = checked()?.into_dimensions().map_err(|e| at.error(e.to_string()))?;
@@ -52,8 +51,24 @@ pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, Scene
     let mut limits = image::Limits::default();
     limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 16);
     reader.limits(limits);
-    let decoded = reader.decode().map_err(|e| at.error(e.to_string()))?;
-    drop(bytes);
+    reader.decode().map_err(|e| at.error(e.to_string()))
+}
+
+fn is_sixteen_bit(decoded: &image::DynamicImage) -> bool {
+    matches!(
+        decoded.color(),
+        image::ColorType::L16
+            | image::ColorType::La16
+            | image::ColorType::Rgb16
+            | image::ColorType::Rgba16
+    )
+}
+
+/// The image `at` names. `decode_srgb`: texels become linear [0, 1] through sRGB's curve;
+/// otherwise they keep the file's own units (0–255 for 8-bit files, 0–65535 for 16-bit).
+pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
+    let decoded = decode(at)?;
+    let (width, height) = (decoded.width(), decoded.height());
     // Straight from the decoded channels to linear texels: no f32 copy of the image between
     // (the peak was the file, the decoded image and two 12-byte copies per texel).
     let texel = |c: [f32; 3], full_scale: f32| {
@@ -64,14 +79,7 @@ pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, Scene
             (c * full_scale).round()
         }
     };
-    let sixteen_bit = matches!(
-        decoded.color(),
-        image::ColorType::L16
-            | image::ColorType::La16
-            | image::ColorType::Rgb16
-            | image::ColorType::Rgba16
-    );
-    let texels: Vec<glam::Vec3> = if sixteen_bit {
+    let texels: Vec<glam::Vec3> = if is_sixteen_bit(&decoded) {
         let rgb = decoded.into_rgb16();
         rgb.pixels().map(|p| texel(p.0.map(f32::from), 65535.0)).collect()
     } else {
@@ -87,6 +95,46 @@ pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, Scene
         hdr: false,
         rows_flipped: false,
     }))
+}
+
+/// An image of data rather than colour (`load_data`).
+pub struct DataImage {
+    /// Texels in the file's own units, no sRGB curve.
+    pub image: Arc<TextureImage>,
+    /// The file's full scale (255 or 65535), which a texture divides by for [0, 1].
+    pub full_scale: f32,
+    /// Every texel is the file's alpha (as grey), not its colour.
+    pub alpha: bool,
+}
+
+/// The image `at` names as data (normals, heights, coverage). With `alpha`, a file that has
+/// an alpha channel gives its alpha, as grey: a coverage mask is the alpha of a PNG more
+/// often than its colour.
+pub fn load_data(at: &ImageRef, alpha: bool) -> Result<DataImage, SceneError> {
+    let decoded = decode(at)?;
+    let (width, height) = (decoded.width(), decoded.height());
+    let sixteen_bit = is_sixteen_bit(&decoded);
+    let alpha = alpha && decoded.color().has_alpha();
+    let texel = |[r, g, b, a]: [f32; 4]| {
+        if alpha { glam::Vec3::splat(a) } else { glam::Vec3::new(r, g, b) }
+    };
+    let (texels, full_scale): (Vec<glam::Vec3>, f32) = if sixteen_bit {
+        let rgba = decoded.into_rgba16();
+        (rgba.pixels().map(|p| texel(p.0.map(f32::from))).collect(), 65535.0)
+    } else {
+        let rgba = decoded.into_rgba8();
+        (rgba.pixels().map(|p| texel(p.0.map(f32::from))).collect(), 255.0)
+    };
+    let image = Arc::new(TextureImage {
+        file: at.image.clone(),
+        width,
+        height,
+        texels,
+        srgb_decoded: false,
+        hdr: false,
+        rows_flipped: false,
+    });
+    Ok(DataImage { image, full_scale, alpha })
 }
 
 /// `image` upside down (`TextureImage::rows_flipped`): for texture coordinates whose v runs
@@ -193,6 +241,27 @@ mod tests {
         let linear = load(&at(&path), true).unwrap();
         assert_eq!(linear.texels[0].x, 1.0);
         assert!((linear.texels[0].y - 0.2158605).abs() < 1e-5, "{}", linear.texels[0].y);
+        std::fs::remove_file(path).unwrap();
+    }
+
+    #[test]
+    fn data_images_keep_file_units_and_give_the_alpha_where_asked() {
+        let path = std::env::temp_dir().join(format!("embray-tex-{}-a.png", std::process::id()));
+        image::RgbaImage::from_pixel(1, 1, image::Rgba([10, 20, 30, 40])).save(&path).unwrap();
+        let alpha = load_data(&at(&path), true).unwrap();
+        assert_eq!((alpha.image.texels[0], alpha.full_scale), (glam::Vec3::splat(40.0), 255.0));
+        assert!(alpha.alpha);
+        let colour = load_data(&at(&path), false).unwrap();
+        assert_eq!(colour.image.texels[0], glam::Vec3::new(10.0, 20.0, 30.0));
+        assert!(!colour.alpha);
+        let deep =
+            image::ImageBuffer::<image::Rgb<u16>, _>::from_pixel(1, 1, image::Rgb([1, 2, 65535]));
+        deep.save(&path).unwrap();
+        let deep = load_data(&at(&path), true).unwrap();
+        assert_eq!(
+            (deep.image.texels[0].z, deep.full_scale, deep.alpha),
+            (65535.0, 65535.0, false)
+        );
         std::fs::remove_file(path).unwrap();
     }
 

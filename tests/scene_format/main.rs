@@ -32,5 +32,6 @@ fn ply_scene(file: &str, smooth: Option<bool>) -> String {
 
 mod lights_and_bundled;
 mod motion_and_meshes;
+mod mtl;
 mod ply;
 mod settings_and_materials;

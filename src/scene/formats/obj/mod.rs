@@ -1,17 +1,27 @@
-//! OBJ files (through tobj) → meshes, one per OBJ model/material, with their MTL colours
-//! and diffuse images.
+//! OBJ files (through tobj) → meshes, one per OBJ model/material, with where their MTL
+//! materials are defined (`mtl` makes them scene materials when a scene uses them).
 
+mod mtl;
+mod mtl_mapping;
+mod mtl_material;
+mod mtl_notes;
+#[cfg(test)]
+mod mtl_tests;
 mod mtl_texture;
 mod scan;
+
+pub(crate) use mtl::{ObjMaterial, material_desc};
+pub(crate) use mtl_notes::MtlNotes;
 
 use crate::scene::desc::MeshData;
 use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::obj::scan::{ScanProblem, scan_mtl, scan_obj};
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec2};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// The mesh file (OBJ or PLY) and the scene item that names it, for messages.
 pub(crate) struct ObjRef<'a> {
@@ -40,16 +50,6 @@ impl ObjRef<'_> {
     }
 }
 
-/// A material from the OBJ's MTL file, validated.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) struct ObjMaterial {
-    pub name: String,
-    pub albedo: Vec3,
-    pub emission: Vec3,
-    /// `map_Kd`: replaces `albedo`.
-    pub texture: Option<crate::scene::TextureDesc>,
-}
-
 pub(crate) struct ObjModel {
     pub name: String,
     pub mesh: MeshData,
@@ -60,7 +60,7 @@ pub(crate) struct ObjModel {
 pub(crate) struct LoadedObj {
     /// Models with at least one triangle.
     pub models: Vec<ObjModel>,
-    /// The MTL materials the models use.
+    /// The MTL materials the models use, not yet read.
     pub materials: Vec<ObjMaterial>,
 }
 
@@ -82,8 +82,8 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     let obj_dir = obj.parent().unwrap_or(Path::new("")).to_path_buf();
     let mtl_error: RefCell<Option<SceneError>> = RefCell::new(None);
     let missing_mtl: RefCell<Vec<String>> = RefCell::new(Vec::new());
-    let mtl_of_material: RefCell<HashMap<String, PathBuf>> = RefCell::new(HashMap::new());
-    let mtl_texts: RefCell<HashMap<PathBuf, String>> = RefCell::new(HashMap::new());
+    // Parallel to tobj's list of materials (every library's, in the order it reads them).
+    let sources: RefCell<Vec<ObjMaterial>> = RefCell::new(Vec::new());
     let material_loader = |mtl_name: &Path| -> tobj::MTLLoadResult {
         let mtl = obj_dir.join(mtl_name);
         let mtl_text = match crate::input_file::read_text(&mtl) {
@@ -110,11 +110,26 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
             return Err(tobj::LoadError::MaterialParseError);
         }
         let loaded = tobj::load_mtl_buf(&mut mtl_text.as_bytes());
-        mtl_texts.borrow_mut().insert(mtl.clone(), mtl_text);
         match &loaded {
             Ok((materials, _)) => {
-                for m in materials {
-                    mtl_of_material.borrow_mut().insert(m.name.clone(), mtl.clone());
+                let lines = mtl::newmtl_lines(&mtl_text);
+                if lines.len() != materials.len() {
+                    let problem = format!(
+                        "{} materials found but {} newmtl statements",
+                        materials.len(),
+                        lines.len()
+                    );
+                    *mtl_error.borrow_mut() = Some(obj_ref.error(&mtl, problem, Line(None)));
+                    return Err(tobj::LoadError::MaterialParseError);
+                }
+                let text: Arc<str> = Arc::from(mtl_text);
+                for (m, line) in materials.iter().zip(lines) {
+                    sources.borrow_mut().push(ObjMaterial {
+                        name: m.name.clone(),
+                        mtl: mtl.clone(),
+                        text: Arc::clone(&text),
+                        line,
+                    });
                 }
             }
             // What the scan does not foresee still names the MTL file, not the OBJ.
@@ -165,8 +180,11 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     }
     warnings.extend(missing_mtl);
 
-    let mtl_of_material = mtl_of_material.into_inner();
-    let mtl_texts = mtl_texts.into_inner();
+    let sources = sources.into_inner();
+    if sources.len() != materials.len() {
+        let problem = "the MTL materials could not be matched to their statements".to_owned();
+        return Err(obj_ref.error(obj, problem, Line(None)));
+    }
     let mut used: HashMap<usize, usize> = HashMap::new();
     let mut loaded = LoadedObj { models: Vec::new(), materials: Vec::new() };
     for model in models {
@@ -176,36 +194,13 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         else {
             continue;
         };
-        let material =
-            match model.mesh.material_id.and_then(|id| materials.get(id).map(|m| (id, m))) {
-                Some((id, m)) => Some(match used.get(&id) {
-                    Some(&index) => index,
-                    None => {
-                        let mtl = mtl_of_material.get(&m.name).map_or(obj, PathBuf::as_path);
-                        let mut material =
-                            obj_material(m).map_err(|p| obj_ref.error(mtl, p, Line(None)))?;
-                        let mtl_text = mtl_texts.get(mtl).map_or("", String::as_str);
-                        material.texture =
-                            mtl_texture::diffuse_texture(m, mtl, mtl_text, warnings)?;
-                        let ignored = ignored_statements(m);
-                        if !ignored.is_empty() {
-                            warnings.push(format!(
-                                "{}: material '{}': {} not used (embray reads Kd, map_Kd and Ke \
-                                 from MTL files): it renders as a Lambertian Kd; give the object a \
-                                 scene material for more",
-                                mtl.display(),
-                                crate::excerpt::excerpt(&m.name),
-                                ignored.join(", ")
-                                    + if ignored.len() == 1 { " is" } else { " are" }
-                            ));
-                        }
-                        loaded.materials.push(material);
-                        used.insert(id, loaded.materials.len() - 1);
-                        loaded.materials.len() - 1
-                    }
-                }),
-                None => None,
-            };
+        let material = model.mesh.material_id.and_then(|id| sources.get(id).map(|m| (id, m)));
+        let material = material.map(|(id, m)| {
+            *used.entry(id).or_insert_with(|| {
+                loaded.materials.push(m.clone());
+                loaded.materials.len() - 1
+            })
+        });
         loaded.models.push(ObjModel { name, mesh, material });
     }
     if loaded.models.is_empty() {
@@ -253,93 +248,9 @@ fn mesh_data(mesh: &tobj::Mesh) -> Result<Option<MeshData>, String> {
     Ok(Some(MeshData { positions, indices, normals, uvs, attributes: Vec::new() }))
 }
 
-/// MTL `Kd` → albedo (default 0.8 grey), `Ke` → emission (default 0), validated.
-fn obj_material(m: &tobj::Material) -> Result<ObjMaterial, String> {
-    let ke_param = m.unknown_param.get("Ke").and_then(|s| parse_rgb(s));
-    let albedo = m.diffuse.unwrap_or([0.8; 3]);
-    let emission = m.emissive.or(ke_param).unwrap_or([0.0; 3]);
-    let name = &m.name;
-    for (i, &c) in albedo.iter().enumerate() {
-        if !(0.0..=1.0).contains(&c) {
-            return Err(format!("material '{name}': Kd[{i}] is {c}, but must be in [0, 1]"));
-        }
-    }
-    for (i, &c) in emission.iter().enumerate() {
-        if !c.is_finite() || c < 0.0 {
-            return Err(format!("material '{name}': Ke[{i}] is {c}, but must be finite and >= 0"));
-        }
-    }
-    Ok(ObjMaterial {
-        name: name.clone(),
-        albedo: Vec3::from_array(albedo),
-        emission: Vec3::from_array(emission),
-        texture: None,
-    })
-}
-
-/// The statements of an MTL material that change its look but that embray does not read.
-fn ignored_statements(m: &tobj::Material) -> Vec<&'static str> {
-    let nonzero = |c: Option<[f32; 3]>| c.is_some_and(|c| c.iter().any(|&v| v != 0.0));
-    let textures = [
-        ("map_Ks", &m.specular_texture),
-        ("map_Bump/norm", &m.normal_texture),
-        ("map_Ns", &m.shininess_texture),
-        ("map_d", &m.dissolve_texture),
-    ];
-    let mut ignored: Vec<&'static str> =
-        textures.iter().filter(|(_, t)| t.is_some()).map(|(name, _)| *name).collect();
-    if nonzero(m.specular) {
-        ignored.push("Ks");
-    }
-    if m.dissolve.is_some_and(|d| d < 1.0) {
-        ignored.push("d (transparency)");
-    }
-    ignored
-}
-
-fn parse_rgb(text: &str) -> Option<[f32; 3]> {
-    let values: Vec<f32> =
-        text.split_whitespace().map(str::parse).collect::<Result<_, _>>().ok()?;
-    values.try_into().ok()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn material(diffuse: Option<[f32; 3]>, emissive: Option<[f32; 3]>) -> tobj::Material {
-        tobj::Material { name: "m".to_owned(), diffuse, emissive, ..Default::default() }
-    }
-
-    #[test]
-    fn mtl_colours_become_albedo_and_emission() {
-        let m = obj_material(&material(Some([0.5, 0.25, 0.0]), Some([2.0, 3.0, 4.0]))).unwrap();
-        assert_eq!((m.albedo, m.emission), (Vec3::new(0.5, 0.25, 0.0), Vec3::new(2.0, 3.0, 4.0)));
-        let m = obj_material(&material(None, None)).unwrap();
-        assert_eq!((m.albedo, m.emission), (Vec3::splat(0.8), Vec3::ZERO));
-    }
-
-    #[test]
-    fn what_an_mtl_says_but_embray_does_not_read_is_named() {
-        let plain = material(Some([0.5; 3]), None);
-        assert!(ignored_statements(&plain).is_empty());
-        let rich = tobj::Material {
-            diffuse_texture: Some("wood.png".into()),
-            specular: Some([0.5; 3]),
-            dissolve: Some(0.5),
-            ..plain
-        };
-        assert_eq!(ignored_statements(&rich), ["Ks", "d (transparency)"]);
-    }
-
-    #[test]
-    fn mtl_colours_out_of_range_are_rejected() {
-        let err = obj_material(&material(Some([0.5, 1.5, 0.0]), None)).unwrap_err();
-        assert_eq!(err, "material 'm': Kd[1] is 1.5, but must be in [0, 1]");
-        assert!(obj_material(&material(Some([f32::NAN, 0.0, 0.0]), None)).is_err());
-        assert!(obj_material(&material(None, Some([0.0, -1.0, 0.0]))).is_err());
-        assert!(obj_material(&material(None, Some([f32::INFINITY, 0.0, 0.0]))).is_err());
-    }
 
     #[test]
     fn mesh_indices_are_checked() {

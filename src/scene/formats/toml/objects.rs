@@ -6,6 +6,7 @@ use super::repeat::{Grid, Placement};
 use super::transform_list::fmt_vec;
 use crate::scene::desc::{MaterialDesc, ObjectDesc, ShapeDesc};
 use crate::scene::error::SceneError;
+use crate::scene::formats::obj;
 use crate::scene::formats::toml::format::{ObjectKind, ObjectToml, RepeatToml};
 use crate::scene::formats::toml::source_map::FieldPath;
 use crate::scene::shapes::{box_mesh, quad_mesh};
@@ -207,19 +208,16 @@ impl Builder<'_> {
     ) -> Result<(), SceneError> {
         let mesh_ref = mesh_ref(self.ctx, self.base_dir, path, file);
         let (key, models) = self.meshes.models(&mesh_ref, smooth, self.warnings)?;
+        let mut notes = obj::MtlNotes::default();
         for model in models {
             let index = match (material, model.material) {
                 (Some(index), _) => index,
                 (None, Some((m, mtl))) => match self.mtl_materials.get(&(key.clone(), m)) {
                     Some(&index) => index,
                     None => {
-                        let index = self.add_material(MaterialDesc {
-                            name: format!("{file}: {}", mtl.name),
-                            albedo: mtl.albedo,
-                            emission: mtl.emission,
-                            texture: mtl.texture.clone(),
-                            ..Default::default()
-                        });
+                        let desc = obj::material_desc(&mtl, &mesh_ref, &mut notes)?;
+                        let name = format!("{file}: {}", mtl.name);
+                        let index = self.add_material(MaterialDesc { name, ..desc });
                         self.mtl_materials.insert((key.clone(), m), index);
                         index
                     }
@@ -234,6 +232,7 @@ impl Builder<'_> {
             self.check_attributes(path, &shape, index)?;
             self.push(name, shape, index, placement, grid);
         }
+        notes.flush(self.warnings);
         Ok(())
     }
 }

@@ -171,8 +171,6 @@ pub(crate) fn material(
             Specular::Conductor { eta, k, reflectance: reflectance(ctx)? }
         }
         MaterialKind::Dielectric => {
-            // `roughness` is kept (GGX α) for renderers that support rough glass; the path
-            // tracer treats dielectrics as smooth.
             let field = path.key("ior");
             let ior = ctx.positive(&field, m.ior.unwrap_or(1.5))?;
             let ior = ctx.f32(&field, ior)?;
