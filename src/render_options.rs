@@ -14,6 +14,8 @@ use glam::DVec3;
 pub struct RenderOptions {
     pub spp: u32,
     pub max_depth: u32,
+    /// The interaction (from 1) from which Russian roulette may end a path.
+    pub rr_depth: u32,
     pub seed: u64,
     /// Jitter samples inside their strata (off: stratum centres, for reproducible tests).
     /// A Whitted render at 1 spp always samples pixel centres, as the course does.
@@ -56,6 +58,7 @@ impl RenderOptions {
         RenderOptions {
             spp: scene.settings.spp,
             max_depth: scene.settings.max_depth,
+            rr_depth: scene.settings.rr_depth,
             seed: 0,
             jitter: true,
             threads: None,

@@ -49,6 +49,7 @@ impl<'a> Tracer<'a> {
             IntegratorKind::Path => Tracer::Path(PathTracer::new(
                 tracer,
                 max_depth,
+                options.rr_depth,
                 options.light_samples,
                 options.energy,
             )),

@@ -276,3 +276,39 @@ fn an_envmap_is_oriented_as_in_mitsuba() {
     let turned = seen(r#"<transform name="to_world"><rotate y="1" angle="180"/></transform>"#);
     assert!(turned.z > 0.5 && turned.x < 0.01, "{turned}");
 }
+
+/// Integrators read their own parameters only: `rr_depth` (Mitsuba's default 5), `direct`'s
+/// `emitter_samples`; anything else is refused with the parameter and line.
+#[test]
+fn integrator_parameters_are_read_or_refused() {
+    let scene = |integrator: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+             value=\"40\"/>{SENSOR}\n{integrator}\n</scene>"
+        )
+    };
+    let load =
+        |name: &str, integrator: &str| load_mitsuba(&files(name, &scene(integrator), &[]), &[]);
+    let path = load("m-int-path", "<integrator type=\"path\"/>").unwrap();
+    assert_eq!(path.settings.rr_depth, 5);
+    let rr = load(
+        "m-int-rr",
+        "<integrator type=\"path\"><integer name=\"rr_depth\" value=\"9\"/></integrator>",
+    );
+    assert_eq!(rr.unwrap().settings.rr_depth, 9);
+    let direct = load(
+        "m-int-direct",
+        "<integrator type=\"direct\"><integer name=\"emitter_samples\" value=\"4\"/></integrator>",
+    )
+    .unwrap();
+    assert_eq!((direct.settings.light_samples, direct.settings.max_depth), (4, 1));
+    let message = load(
+        "m-int-bad",
+        "<integrator type=\"path\"><integer name=\"samples_per_pass\" value=\"4\"/></integrator>",
+    )
+    .unwrap_err();
+    assert_contains(
+        &message,
+        &["the path integrator does not take `samples_per_pass`", "(line 15)"],
+    );
+}

@@ -24,6 +24,8 @@ pub struct PathTracer<'a> {
     tracer: SceneTracer<'a>,
     /// Number of surface interactions that gather light (1 = direct lighting only).
     max_depth: u32,
+    /// The interaction (from 1) from which Russian roulette may end a path.
+    rr_depth: u32,
     /// Shadow rays to emitters per shading point.
     light_samples: u32,
     /// Rotation into the space where directions are sampled (see `sampling_from_world`).
@@ -45,13 +47,14 @@ impl<'a> PathTracer<'a> {
     pub(crate) fn new(
         tracer: SceneTracer<'a>,
         max_depth: u32,
+        rr_depth: u32,
         light_samples: u32,
         energy: Energy,
     ) -> Self {
         let sampling_from_render =
             sampling_from_world() * tracer.scene.camera.world_from_render_rotation;
         let light_samples = light_samples.max(1);
-        PathTracer { tracer, max_depth, light_samples, sampling_from_render, energy }
+        PathTracer { tracer, max_depth, rr_depth, light_samples, sampling_from_render, energy }
     }
 
     pub fn scene(&self) -> &RenderScene {
@@ -238,7 +241,7 @@ impl<'a> PathTracer<'a> {
                     _ => Vec3::ZERO,
                 };
             }
-            if depth >= 3 {
+            if depth + 1 >= self.rr_depth {
                 let survive = (throughput * eta_scale).max_element().min(0.95);
                 if u_survive >= survive {
                     break;

@@ -54,7 +54,13 @@ pub struct RenderSettings {
     /// The AOVs the scene asks its EXR to carry (Mitsuba's `aov` integrator); `--aovs`
     /// overrides them, and without either the EXR carries depth and normal.
     pub aovs: Option<crate::output::Aovs>,
+    /// The surface interaction, counted from 1 (as Mitsuba's `rr_depth` counts), from which
+    /// Russian roulette may end a path: 4 unless a scene says otherwise (Mitsuba's scenes: 5).
+    pub rr_depth: u32,
 }
+
+/// Where Russian roulette starts unless a scene says.
+pub const DEFAULT_RR_DEPTH: u32 = 4;
 
 impl Default for RenderSettings {
     fn default() -> Self {
@@ -69,6 +75,7 @@ impl Default for RenderSettings {
             filter: Default::default(),
             hide_emitters: false,
             aovs: None,
+            rr_depth: DEFAULT_RR_DEPTH,
         }
     }
 }

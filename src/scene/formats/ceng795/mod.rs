@@ -119,6 +119,7 @@ pub fn load_str_with_warnings(
         filter: Default::default(),
         hide_emitters: false,
         aovs: None,
+        rr_depth: crate::scene::DEFAULT_RR_DEPTH,
     };
     if let Some(node) = x.child(root, "BackgroundColor")? {
         settings.background = x.color(node)?;

@@ -160,6 +160,10 @@ pub(crate) fn settings(
         };
     }
     settings.hide_emitters = render.hide_emitters.unwrap_or(false);
+    if let Some(rr_depth) = render.rr_depth {
+        ctx.require(rr_depth >= 1, &path.key("rr_depth"), rr_depth, "at least 1")?;
+        settings.rr_depth = rr_depth;
+    }
     if let Some(filter) = &render.filter {
         settings.filter = pixel_filter(ctx, &path.key("filter"), filter)?;
     }

@@ -67,6 +67,7 @@ pub(crate) struct RenderToml {
     pub background_texture: Option<TextureToml>,
     pub filter: Option<FilterToml>,
     pub hide_emitters: Option<bool>,
+    pub rr_depth: Option<u32>,
 }
 
 /// `filter = { type = "gaussian", stddev = 0.5 }`: the pixel reconstruction filter.

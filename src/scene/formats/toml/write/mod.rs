@@ -209,6 +209,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
             let _ = writeln!(out, "filter = {{ type = \"lanczos\", lobes = {lobes:?} }}");
         }
     }
+    if s.rr_depth != crate::scene::DEFAULT_RR_DEPTH {
+        let _ = writeln!(out, "rr_depth = {}", s.rr_depth);
+    }
     if s.hide_emitters {
         let _ = writeln!(out, "hide_emitters = true");
     }
