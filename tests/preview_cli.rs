@@ -160,3 +160,27 @@ fn bad_previews_are_refused() {
     common::command::assert_render_refusals(&dir, &cases);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A crop the scene asks for (TOML `[render] crop`, Mitsuba's film crop) is rendered as
+/// `--crop` renders it; `--crop` overrides it; a crop outside the image is refused.
+#[test]
+fn a_scenes_own_crop_is_rendered_unless_the_command_line_says_otherwise() {
+    let dir = temp_dir("scene-crop");
+    let scene = GOOD_SCENE.replace("[16, 12]", "[40, 28]");
+    std::fs::write(dir.join("s.toml"), &scene).unwrap();
+    let own = format!("{scene}\n[render]\ncrop = [7, 5, 33, 21]\n");
+    std::fs::write(dir.join("own.toml"), &own).unwrap();
+    run_ok(&["render", "s.toml", "--spp", "2", "-q", "--crop", "7,5,33,21", "-o", "a.exr"], &dir);
+    run_ok(&["render", "own.toml", "--spp", "2", "-q", "-o", "b.exr"], &dir);
+    let (a, b) =
+        (read_reference(&dir.join("a.exr")).unwrap(), read_reference(&dir.join("b.exr")).unwrap());
+    assert_eq!((b.width, b.height), (26, 16));
+    assert_eq!(a.color, b.color);
+    run_ok(&["render", "own.toml", "--spp", "1", "-q", "--crop", "0,0,4,4", "-o", "c.exr"], &dir);
+    assert_eq!(read_reference(&dir.join("c.exr")).unwrap().width, 4);
+    std::fs::write(dir.join("bad.toml"), own.replace("33, 21]", "41, 21]")).unwrap();
+    let out = embray(&["render", "bad.toml", "--spp", "1", "-q", "-o", "d.exr"], &dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("render.crop"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -27,6 +27,7 @@ pub fn set_resolution(scene: &mut SceneDesc, (width, height): (u32, u32)) {
     let new_aspect = f64::from(width) / f64::from(height);
     camera.pixel_aspect *= old_aspect / new_aspect;
     (camera.width, camera.height) = (width, height);
+    scene.settings.crop = None;
 }
 
 /// `X0,Y0,X1,Y1` (pixels of the whole image, the second corner excluded) → the window.

@@ -272,11 +272,12 @@ impl RenderArgs {
                 bail!("{flag} is {seconds}, but must be a number of seconds > 0");
             }
         }
-        if let Some(text) = &self.crop {
-            let window =
-                super::preview::parse_crop(text, (scene.camera.width, scene.camera.height))?;
-            options.crop = Some(window);
-        }
+        options.crop = match &self.crop {
+            Some(text) => {
+                Some(super::preview::parse_crop(text, (scene.camera.width, scene.camera.height))?)
+            }
+            None => scene.settings.crop,
+        };
         options.first_hit_albedo = self.aovs_for(scene).albedo || self.denoise;
         options.progress = !self.quiet;
         Ok(options)

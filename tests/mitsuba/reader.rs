@@ -312,3 +312,24 @@ fn integrator_parameters_are_read_or_refused() {
         &["the path integrator does not take `samples_per_pass`", "(line 15)"],
     );
 }
+
+/// The film's crop window is the scene's crop (rendered as `--crop` renders); one that
+/// leaves the film is refused.
+#[test]
+fn a_film_crop_is_the_scenes_crop() {
+    let with_crop = |name: &str, crop: &str| {
+        let sensor = SENSOR.replace("<rfilter", &format!("{crop}<rfilter"));
+        let main = format!(
+            "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+             value=\"40\"/>{sensor}\n</scene>"
+        );
+        load_mitsuba(&files(name, &main, &[]), &[])
+    };
+    let crop = "<integer name=\"crop_offset_x\" value=\"4\"/><integer name=\"crop_offset_y\" \
+                value=\"2\"/><integer name=\"crop_width\" value=\"10\"/><integer \
+                name=\"crop_height\" value=\"8\"/>";
+    let scene = with_crop("m-crop", crop).unwrap();
+    assert_eq!(scene.settings.crop, Some(embray::film::Tile { x0: 4, y0: 2, x1: 14, y1: 10 }));
+    let message = with_crop("m-crop-out", &crop.replace("\"10\"", "\"30\"")).unwrap_err();
+    assert_contains(&message, &["the crop 30 × 8 at (4, 2) does not lie within the 32 × 24 film"]);
+}

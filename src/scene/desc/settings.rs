@@ -57,6 +57,9 @@ pub struct RenderSettings {
     /// The surface interaction, counted from 1 (as Mitsuba's `rr_depth` counts), from which
     /// Russian roulette may end a path: 4 unless a scene says otherwise (Mitsuba's scenes: 5).
     pub rr_depth: u32,
+    /// The window of the image the scene asks for (Mitsuba's film crop); `--crop` overrides
+    /// it and `--resolution` drops it (its pixels are the scene's).
+    pub crop: Option<crate::film::Tile>,
 }
 
 /// Where Russian roulette starts unless a scene says.
@@ -76,6 +79,7 @@ impl Default for RenderSettings {
             hide_emitters: false,
             aovs: None,
             rr_depth: DEFAULT_RR_DEPTH,
+            crop: None,
         }
     }
 }

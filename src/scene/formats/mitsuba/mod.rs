@@ -6,6 +6,8 @@
 mod bsdfs;
 mod cie;
 mod emitters;
+mod film;
+mod integrator;
 mod ior;
 mod metals;
 mod scalars;
@@ -132,7 +134,7 @@ pub fn load(
     };
     for child in &root.children {
         match child.tag.as_str() {
-            "integrator" => sensor::integrator(child, &mut settings, builder.warnings)?,
+            "integrator" => integrator::integrator(child, &mut settings, builder.warnings)?,
             "sensor" => {
                 if sensor.is_some() {
                     return Err(child.error("embray renders one sensor per scene"));
@@ -161,6 +163,7 @@ pub fn load(
         settings.spp = 4;
     }
     settings.filter = sensor.filter;
+    settings.crop = sensor.crop;
     let Builder { materials, objects, lights, .. } = builder;
     let scene = SceneDesc {
         source: path.to_path_buf(),

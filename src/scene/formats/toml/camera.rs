@@ -114,8 +114,10 @@ fn aperture(cam: &CameraToml, ctx: &Ctx) -> Result<f64, SceneError> {
     }
 }
 
+/// `[render]`; `camera` for the size a crop must lie within.
 pub(crate) fn settings(
     render: Option<&RenderToml>,
+    camera: &crate::scene::desc::CameraDesc,
     ctx: &Ctx,
 ) -> Result<RenderSettings, SceneError> {
     let mut settings = RenderSettings::default();
@@ -160,6 +162,15 @@ pub(crate) fn settings(
         };
     }
     settings.hide_emitters = render.hide_emitters.unwrap_or(false);
+    if let Some([x0, y0, x1, y1]) = render.crop {
+        let ok = x0 < x1 && y0 < y1 && x1 <= camera.width && y1 <= camera.height;
+        let requirement = format!(
+            "x0 < x1 ≤ {} and y0 < y1 ≤ {} (pixels of the image, the second corner excluded)",
+            camera.width, camera.height
+        );
+        ctx.require(ok, &path.key("crop"), format!("[{x0}, {y0}, {x1}, {y1}]"), &requirement)?;
+        settings.crop = Some(crate::film::Tile { x0, y0, x1, y1 });
+    }
     if let Some(rr_depth) = render.rr_depth {
         ctx.require(rr_depth >= 1, &path.key("rr_depth"), rr_depth, "at least 1")?;
         settings.rr_depth = rr_depth;

@@ -55,7 +55,7 @@ pub(crate) fn scene_desc(
     warnings: &mut Vec<String>,
 ) -> Result<SceneDesc, SceneError> {
     let camera = camera(&file.camera, ctx)?;
-    let mut settings = settings(file.render.as_ref(), ctx)?;
+    let mut settings = settings(file.render.as_ref(), &camera, ctx)?;
     if let Some(t) = file.render.as_ref().and_then(|r| r.background_texture.as_ref()) {
         settings.background_texture = Some(materials::background_texture(t, ctx, base_dir)?);
     }

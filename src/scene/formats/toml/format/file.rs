@@ -68,6 +68,8 @@ pub(crate) struct RenderToml {
     pub filter: Option<FilterToml>,
     pub hide_emitters: Option<bool>,
     pub rr_depth: Option<u32>,
+    /// `[x0, y0, x1, y1]`: the window of the image rendered (the second corner excluded).
+    pub crop: Option<[u32; 4]>,
 }
 
 /// `filter = { type = "gaussian", stddev = 0.5 }`: the pixel reconstruction filter.

@@ -209,6 +209,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
             let _ = writeln!(out, "filter = {{ type = \"lanczos\", lobes = {lobes:?} }}");
         }
     }
+    if let Some(t) = s.crop {
+        let _ = writeln!(out, "crop = [{}, {}, {}, {}]", t.x0, t.y0, t.x1, t.y1);
+    }
     if s.rr_depth != crate::scene::DEFAULT_RR_DEPTH {
         let _ = writeln!(out, "rr_depth = {}", s.rr_depth);
     }

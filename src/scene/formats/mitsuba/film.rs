@@ -1,0 +1,88 @@
+//! `<film>` (`hdrfilm`): the image size, its crop window and the reconstruction filter.
+
+use super::tree::Element;
+use super::values::{float, integer};
+use crate::film::Tile;
+use crate::sampling::filter::PixelFilter;
+use crate::scene::error::SceneError;
+
+pub(super) struct Film {
+    pub width: u32,
+    pub height: u32,
+    pub filter: PixelFilter,
+    /// The window `crop_offset_x/y`, `crop_width/height` keep (Mitsuba's crop), if smaller
+    /// than the film.
+    pub crop: Option<Tile>,
+}
+
+/// Mitsuba's film crop: a window of the image, offsets from its top left corner.
+fn film_crop(film: &Element, width: u32, height: u32) -> Result<Option<Tile>, SceneError> {
+    let read = |name: &str, default: u32| -> Result<u32, SceneError> {
+        let value = integer(film, name)?.unwrap_or(i64::from(default));
+        u32::try_from(value).map_err(|_| film.error(format!("{name} is {value}, but must be >= 0")))
+    };
+    let (x0, y0) = (read("crop_offset_x", 0)?, read("crop_offset_y", 0)?);
+    let (w, h) = (read("crop_width", width)?, read("crop_height", height)?);
+    let (x1, y1) = (x0.saturating_add(w), y0.saturating_add(h));
+    if w == 0 || h == 0 || x1 > width || y1 > height {
+        return Err(film.error(format!(
+            "the crop {w} × {h} at ({x0}, {y0}) does not lie within the {width} × {height} film"
+        )));
+    }
+    let whole = (x0, y0, x1, y1) == (0, 0, width, height);
+    Ok((!whole).then_some(Tile { x0, y0, x1, y1 }))
+}
+
+/// `hdrfilm`: the image size, the reconstruction filter and the crop window.
+pub(super) fn film(film: &Element, warnings: &mut Vec<String>) -> Result<Film, SceneError> {
+    let size = |name: &str, default: i64| -> Result<u32, SceneError> {
+        let value = integer(film, name)?.unwrap_or(default);
+        let max = i64::from(crate::limits::MAX_RESOLUTION);
+        if !(1..=max).contains(&value) {
+            return Err(film.error(format!("{name} is {value}, but must be 1 to {max}")));
+        }
+        Ok(value as u32)
+    };
+    let (width, height) = (size("width", 768)?, size("height", 576)?);
+    let crop = film_crop(film, width, height)?;
+    let filter = film.children.iter().find(|c| c.tag == "rfilter");
+    let filter_type = filter.map_or(Ok("gaussian"), |f| f.required("type"))?;
+    let parameter = |name: &str, default: f64| -> Result<f32, SceneError> {
+        let value = filter.map_or(Ok(None), |f| float(f, name))?.unwrap_or(default);
+        if !(value > 0.0 && value <= 16.0) {
+            let at = filter.unwrap_or(film);
+            return Err(at.error(format!("{name} is {value}, but must be in (0, 16] pixels")));
+        }
+        Ok(value as f32)
+    };
+    // The cubics' B and C may be 0 or negative.
+    let parameter_any = |name: &str, default: f64| -> Result<f32, SceneError> {
+        let value = filter.map_or(Ok(None), |f| float(f, name))?.unwrap_or(default);
+        if !(value.abs() <= 16.0) {
+            let at = filter.unwrap_or(film);
+            return Err(at.error(format!("{name} is {value}, but must be in [-16, 16]")));
+        }
+        Ok(value as f32)
+    };
+    let pixel_filter = match filter_type {
+        "box" => PixelFilter::Box,
+        "gaussian" => PixelFilter::Gaussian { stddev: parameter("stddev", 0.5)? },
+        "tent" => PixelFilter::Tent { radius: parameter("radius", 1.0)? },
+        "mitchell" => PixelFilter::Mitchell {
+            b: parameter_any("B", 1.0 / 3.0)?,
+            c: parameter_any("C", 1.0 / 3.0)?,
+        },
+        "catmullrom" => PixelFilter::Mitchell { b: 0.0, c: 0.5 },
+        "lanczos" => PixelFilter::Lanczos { lobes: parameter("lobes", 3.0)? },
+        other => {
+            warnings.push(format!(
+                "{}: line {}: the {other} reconstruction filter is not supported yet: the box \
+                 filter is used (each pixel averages its own samples)",
+                film.file.display(),
+                film.line
+            ));
+            PixelFilter::Box
+        }
+    };
+    Ok(Film { width, height, filter: pixel_filter, crop })
+}
