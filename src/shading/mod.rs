@@ -1,6 +1,7 @@
 //! What happens at a surface: materials and textures, microfacet distributions and
 //! coatings, BSDFs, the surface interaction at a hit, and how rays leave it.
 
+mod beckmann;
 pub mod bsdf;
 pub mod coating;
 pub mod course_brdf;

@@ -333,3 +333,18 @@ fn a_film_crop_is_the_scenes_crop() {
     let message = with_crop("m-crop-out", &crop.replace("\"10\"", "\"30\"")).unwrap_err();
     assert_contains(&message, &["the crop 30 × 8 at (4, 2) does not lie within the 32 × 24 film"]);
 }
+
+/// A sensor parameter embray does not read is refused, not ignored.
+#[test]
+fn an_unknown_sensor_parameter_is_refused() {
+    let sensor = SENSOR.replace(
+        "<float name=\"fov\"",
+        "<float name=\"near_clp\" value=\"1\"/><float name=\"fov\"",
+    );
+    let main = format!(
+        "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+         value=\"40\"/>{sensor}\n</scene>"
+    );
+    let message = load_mitsuba(&files("m-sensor-typo", &main, &[]), &[]).unwrap_err();
+    assert_contains(&message, &["the perspective sensor does not take `near_clp`"]);
+}

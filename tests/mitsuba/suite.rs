@@ -128,11 +128,13 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 /// these run everywhere): a GGX rough conductor with Mitsuba's measured gold under a point
 /// light and a constant sky; the disk, the cylinder, a serialized mesh, flipped normals and
 /// instances of a shapegroup; a projector, a textured spot light and hidden emitters; a
-/// thin lens.
+/// thin lens; a principal point offset on a non-square film, a blendbsdf weighted by a
+/// checkerboard on an analytic sphere (Mitsuba's uv), a Beckmann gold, a bitmap mapped by
+/// to_uv and mirrored, a spectrum file.
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
-    for name in ["rough_gold", "shapes", "emitters", "thinlens"] {
+    for name in ["rough_gold", "shapes", "emitters", "thinlens", "materials"] {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();
         let reference = refs.join(format!("{name}_48_ref_rgb.exr"));
         let variance = refs.join(format!("{name}_48_ref_rgb_var.exr"));

@@ -74,6 +74,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
              are)"
         )));
     }
+    check_sensor_properties(element, kind)?;
     let (mut width, mut height, mut spp) = (768u32, 576u32, None);
     // Mitsuba's default film: 768 × 576 with a Gaussian filter.
     let mut filter = PixelFilter::Gaussian { stddev: 0.5 };
@@ -105,9 +106,11 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     if left.dot(up.cross(dir)) <= 0.0 {
         return Err(element.error("a mirrored camera transform is not supported"));
     }
-    for name in ["principal_point_offset_x", "principal_point_offset_y"] {
-        if float(element, name)?.is_some_and(|v| v != 0.0) {
-            return Err(element.error(format!("`{name}` is not supported")));
+    for (name, default) in [("near_clip", 1e-2), ("far_clip", 1e4)] {
+        if float(element, name)?.is_some_and(|v| v != default) {
+            return Err(
+                element.error(format!("`{name}` other than {default} is not supported yet"))
+            );
         }
     }
     let aspect = f64::from(width) / f64::from(height);
@@ -125,6 +128,14 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     let vfov = (2.0 * ((0.5 * x_fov).to_radians().tan() / aspect).atan()).to_degrees();
     let mut camera = CameraDesc::pinhole(origin, origin + dir, vfov, width, height);
     camera.up = up;
+    // Mitsuba shifts the film sample by the offset, in film widths and heights: the window
+    // moves right and down (embray's shift is along right and up at unit distance).
+    let offset = |name| float(element, name).map(|v| v.unwrap_or(0.0));
+    let x_extent = 2.0 * (0.5 * x_fov).to_radians().tan();
+    camera.shift = glam::DVec2::new(
+        offset("principal_point_offset_x")? * x_extent,
+        -offset("principal_point_offset_y")? * x_extent / aspect,
+    );
     if kind == "thinlens" {
         let radius = float(element, "aperture_radius")?.unwrap_or(0.0);
         camera.aperture = 2.0 * radius;
@@ -132,4 +143,32 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         camera.lens_shape = LensShape::Disk;
     }
     Ok(Sensor { camera, spp, filter, crop })
+}
+
+/// Refuses a parameter the sensor does not read (`shutter_open`/`shutter_close` are read
+/// and unused: no Mitsuba scene embray reads moves).
+fn check_sensor_properties(element: &Element, kind: &str) -> Result<(), SceneError> {
+    let mut known = vec!["to_world", "near_clip", "far_clip", "shutter_open", "shutter_close"];
+    if kind != "orthographic" {
+        known.extend(["fov", "fov_axis", "focal_length"]);
+        known.extend(["principal_point_offset_x", "principal_point_offset_y"]);
+    }
+    if kind == "thinlens" {
+        known.extend(["aperture_radius", "focus_distance"]);
+    }
+    for child in &element.children {
+        match child.attr("name") {
+            Some(name) if !known.contains(&name) => {
+                return Err(child.error(format!(
+                    "the {kind} sensor does not take `{name}` (it takes: {})",
+                    known.join(", ")
+                )));
+            }
+            None if !matches!(child.tag.as_str(), "film" | "sampler") => {
+                return Err(child.error(format!("a sensor does not take a <{}>", child.tag)));
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }

@@ -142,7 +142,18 @@ impl Builder<'_> {
                 if !(radius > 0.0) {
                     return Err(element.error(format!("radius is {radius}, but must be > 0")));
                 }
-                vec![ShapeDesc::Sphere { center, radius }]
+                // Mitsuba's sphere is to_world · translate(center) · scale(radius) of the
+                // unit sphere, with u = φ/2π about its z axis and v = θ/π from +z; embray's
+                // measures u = ½ − atan2(z, x)/2π about y. Its frame turned (x, y, z) →
+                // (−x, z, y) makes the two the same coordinates.
+                let mitsuba_from_embray = glam::DMat3::from_cols(DVec3::NEG_X, DVec3::Z, DVec3::Y);
+                let own = DAffine3::from_translation(center)
+                    * DAffine3::from_scale(DVec3::splat(radius))
+                    * DAffine3::from_mat3(mitsuba_from_embray);
+                let shapes = vec![ShapeDesc::Sphere { center: DVec3::ZERO, radius: 1.0 }];
+                self.check_attributes(element, &shapes, material)?;
+                self.push_objects(&name, shapes, material, world_from_object * own, false);
+                return Ok(());
             }
             other => {
                 return Err(element.error(format!(
