@@ -8,6 +8,7 @@ use crate::scene::{Distribution, MaterialDesc, Opacity, PhongDesc, Specular};
 use crate::shading::coating::Coating;
 use crate::shading::course_lobe::LobeAlbedo;
 use crate::shading::microfacet::Microfacet;
+use crate::shading::principled::PrincipledMaterial;
 use glam::Vec3;
 
 /// Below this GGX α a lobe is treated as perfectly smooth (a delta distribution).
@@ -58,6 +59,8 @@ pub struct Material {
     /// `with_phong`), by which the path tracer keeps the material from reflecting more
     /// than it receives.
     pub course_lobe_albedo: Option<LobeAlbedo>,
+    /// Mitsuba's principled BSDF, its base colour `albedo` (or `texture`).
+    pub principled: Option<Box<PrincipledMaterial>>,
 }
 
 impl Default for Material {
@@ -82,6 +85,7 @@ impl Default for Material {
             bump_shadowing: false,
             phong: None,
             course_lobe_albedo: None,
+            principled: None,
         }
     }
 }
@@ -144,6 +148,10 @@ impl Material {
             bump_shadowing: desc.bump_shadowing,
             phong: None,
             course_lobe_albedo: None,
+            principled: desc
+                .principled
+                .as_deref()
+                .map(|p| Box::new(PrincipledMaterial::from_desc(p))),
         }
         .with_phong(desc.phong.clone())
     }
@@ -182,7 +190,9 @@ impl Material {
     /// Whether the roughness differs along the tangent and the bitangent (the shading
     /// frame must then follow ∂p/∂u).
     pub fn is_anisotropic(&self) -> bool {
-        self.ggx_alpha != self.ggx_alpha_v || self.roughness_textures.is_some()
+        self.ggx_alpha != self.ggx_alpha_v
+            || self.roughness_textures.is_some()
+            || self.principled.as_ref().is_some_and(|p| p.is_anisotropic())
     }
 
     pub fn is_emissive(&self) -> bool {

@@ -216,15 +216,21 @@ impl<'a> PathTracer<'a> {
                 let alpha = |t| self.tracer.texture_color(t, &si, ray.time).element_sum() / 3.0;
                 (alpha(u), alpha(v))
             });
-            let bsdf = Bsdf::with_reflectances(
-                material,
-                albedo,
-                course_specular,
-                roughness,
-                frame,
-                si.front_face,
-                self.energy,
-            );
+            let bsdf = match &material.principled {
+                Some(principled) => {
+                    let at = principled.at(albedo, |t| self.tracer.texture_color(t, &si, ray.time));
+                    Bsdf::principled(&at, frame, si.front_face, material.one_sided)
+                }
+                None => Bsdf::with_reflectances(
+                    material,
+                    albedo,
+                    course_specular,
+                    roughness,
+                    frame,
+                    si.front_face,
+                    self.energy,
+                ),
+            };
             let bsdf = match &material.opacity {
                 None => bsdf,
                 Some(opacity) => bsdf.with_opacity(self.opacity(opacity, &si, ray.time)),

@@ -50,6 +50,9 @@ pub struct MaterialDesc {
     pub bump_shadowing: bool,
     /// Terms only the course's Whitted shading model uses (ambient, Blinn-Phong highlight).
     pub phong: Option<PhongDesc>,
+    /// Mitsuba's principled BSDF, whose base colour is `albedo` (or `texture`); `specular`
+    /// is then `None`.
+    pub principled: Option<Box<super::principled::PrincipledDesc>>,
 }
 
 impl MaterialDesc {
@@ -65,6 +68,7 @@ impl MaterialDesc {
             .chain(self.bump_map.as_ref().map(|b| &b.texture))
             .chain(opacity)
             .chain(self.roughness_textures.iter().flat_map(|t| t.iter()))
+            .chain(self.principled.iter().flat_map(|p| p.textures()))
             .filter_map(TextureDesc::image)
     }
 }
@@ -89,6 +93,7 @@ impl Default for MaterialDesc {
             bump_map: None,
             bump_shadowing: false,
             phong: None,
+            principled: None,
         }
     }
 }

@@ -4,6 +4,7 @@
 mod camera;
 mod light;
 mod material;
+mod principled;
 mod scene;
 mod settings;
 mod shape;
@@ -12,6 +13,7 @@ mod texture;
 pub use camera::*;
 pub use light::*;
 pub use material::*;
+pub use principled::*;
 pub use scene::*;
 pub use settings::*;
 pub use shape::*;

@@ -1,12 +1,16 @@
 //! Scattering at a surface, by the kind of material: the mixture most materials are
 //! (`mixture`: Lambertian, mirror, metal, smooth glass, the course's lobes), a dielectric
-//! coating over a Lambertian base (`plastic`), rough glass (`rough_dielectric`). A mask's
+//! coating over a Lambertian base (`plastic`), rough glass (`rough_dielectric`), Mitsuba's
+//! principled models (`principled`, `principled_thin`). A mask's
 //! opacity wraps any of them: the rest of the light passes through unchanged. Directions
 //! are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
 mod coupling;
 mod mixture;
 mod plastic;
+mod principled;
+mod principled_terms;
+mod principled_thin;
 mod rough_dielectric;
 
 pub use coupling::Energy;
@@ -17,6 +21,8 @@ use crate::shading::material::{Material, SMOOTH_ROUGHNESS};
 use glam::{Mat3, Vec2, Vec3};
 use mixture::Mixture;
 use plastic::Plastic;
+use principled::Principled;
+use principled_thin::PrincipledThin;
 use rough_dielectric::RoughDielectric;
 
 /// A sampled scattering direction.
@@ -71,6 +77,8 @@ enum Scatter {
     Mixture(Mixture),
     Plastic(Plastic),
     RoughDielectric(RoughDielectric),
+    Principled(Principled),
+    PrincipledThin(PrincipledThin),
     /// A one-sided material seen from behind.
     Black,
 }
@@ -148,6 +156,24 @@ impl Bsdf {
         Bsdf { scatter, frame, opacity: 1.0, unmapped: None }
     }
 
+    /// Mitsuba's principled BSDF with the parameters `p` of this hit. Its inside is told
+    /// from its outside where it is one-sided (Mitsuba's own) or transmits (a two-sided
+    /// wrapper sees the front from both sides, which only an opaque one allows).
+    pub fn principled(
+        p: &crate::shading::principled::PrincipledParams,
+        frame: Mat3,
+        front_face: bool,
+        one_sided: bool,
+    ) -> Self {
+        let scatter = if p.thin {
+            Scatter::PrincipledThin(PrincipledThin::new(p))
+        } else {
+            let outside = front_face || !one_sided && !p.spec_trans_somewhere;
+            Scatter::Principled(Principled::new(p, outside))
+        };
+        Bsdf { scatter, frame, opacity: 1.0, unmapped: None }
+    }
+
     /// This BSDF under a mask: only `opacity` of the light meets it, the rest passes on.
     pub fn with_opacity(self, opacity: f32) -> Self {
         Bsdf { opacity: opacity.clamp(0.0, 1.0), ..self }
@@ -178,24 +204,37 @@ impl Bsdf {
         self.opacity > 0.0
             && match &self.scatter {
                 Scatter::Mixture(m) => m.has_smooth_lobe(),
-                Scatter::Plastic(_) | Scatter::RoughDielectric(_) => true,
+                Scatter::Plastic(_)
+                | Scatter::RoughDielectric(_)
+                | Scatter::Principled(_)
+                | Scatter::PrincipledThin(_) => true,
                 Scatter::Black => false,
             }
     }
 
     /// True if light arriving from behind the surface can be scattered towards the front
-    /// (rough glass): light sampling must then look on both sides.
+    /// (rough glass, a principled material's transmission): light sampling must then look
+    /// on both sides.
     pub fn transmits(&self) -> bool {
-        matches!(self.scatter, Scatter::RoughDielectric(_))
+        match &self.scatter {
+            Scatter::RoughDielectric(_) => true,
+            Scatter::Principled(p) => p.transmits(),
+            Scatter::PrincipledThin(p) => p.transmits(),
+            _ => false,
+        }
     }
 
     /// An upper bound of the fraction of energy arriving from `wo` (render space) that this
-    /// BSDF reflects or transmits, per channel: at most 1 by construction.
+    /// BSDF reflects or transmits, per channel: at most 1 by construction. Except for the
+    /// principled models, which are not energy-conserving (their retro-reflection and sheen
+    /// add to the diffuse lobe): their base colour, as Mitsuba's denoiser albedo is.
     pub fn albedo_bound(&self, wo: Vec3) -> Vec3 {
         let met = match &self.scatter {
             Scatter::Mixture(m) => m.albedo_bound(wo),
             Scatter::Plastic(p) => p.albedo_bound(),
             Scatter::RoughDielectric(_) => Vec3::ONE,
+            Scatter::Principled(p) => p.base_color().clamp(Vec3::ZERO, Vec3::ONE),
+            Scatter::PrincipledThin(p) => p.base_color().clamp(Vec3::ZERO, Vec3::ONE),
             Scatter::Black => Vec3::ZERO,
         };
         met * self.opacity + Vec3::splat(1.0 - self.opacity)
@@ -208,6 +247,8 @@ impl Bsdf {
             Scatter::Mixture(m) => m.eval(wo, wi),
             Scatter::Plastic(p) => p.eval(local(wo), local(wi)),
             Scatter::RoughDielectric(d) => d.eval(local(wo), local(wi)),
+            Scatter::Principled(p) => p.eval(local(wo), local(wi)),
+            Scatter::PrincipledThin(p) => p.eval(local(wo), local(wi)),
             Scatter::Black => (Vec3::ZERO, 0.0),
         };
         let value = match self.unmapped {
@@ -233,6 +274,8 @@ impl Bsdf {
             Scatter::Mixture(m) => return m.sample(wo, u_lobe, u).and_then(|s| self.masked(s)),
             Scatter::Plastic(p) => p.sample(local(), u_lobe, u)?,
             Scatter::RoughDielectric(d) => d.sample(local(), u_lobe, u)?,
+            Scatter::Principled(p) => p.sample(local(), u_lobe, u)?,
+            Scatter::PrincipledThin(p) => p.sample(local(), u_lobe, u)?,
             Scatter::Black => return None,
         };
         sample.wi = self.frame * sample.wi;

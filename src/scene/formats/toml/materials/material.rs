@@ -230,6 +230,7 @@ pub(crate) fn material(
         bump_map,
         bump_shadowing: m.bump_shadowing.unwrap_or(false),
         phong,
+        principled: None,
     })
 }
 
