@@ -6,6 +6,7 @@
 mod common;
 
 mod bsdfs;
+mod principled;
 mod reader;
 mod suite;
 

@@ -74,7 +74,7 @@ pub struct PrincipledDesc {
 }
 
 impl PrincipledDesc {
-    /// Mitsuba's defaults: roughness 0.5, specular 0.5 (η ≈ 1.4904) or thin η 1.5, the rest 0.
+    /// Mitsuba's defaults: roughness 0.5, specular 0.5 (η 1.5) or thin η 1.5, the rest 0.
     pub fn new(thin: bool) -> Self {
         let zero = || ParamDesc::Constant(0.0);
         let eta = if thin { 1.5 } else { eta_from_specular(0.5) };
