@@ -301,3 +301,5 @@ mod test_grid;
 mod tests;
 #[cfg(test)]
 mod tests_kinds;
+#[cfg(test)]
+mod tests_principled;

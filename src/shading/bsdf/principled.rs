@@ -95,6 +95,11 @@ impl Principled {
             return (Vec3::ZERO, 0.0);
         }
         let outside = cos_o > 0.0;
+        if !outside && self.transmission_weight() <= 0.0 {
+            // Nothing gets in, so nothing is seen from inside, and nothing is sampled there
+            // (Mitsuba's pdf reports its facets' density all the same).
+            return (Vec3::ZERO, 0.0);
+        }
         let eta_path = if outside { p.eta } else { 1.0 / p.eta };
         let h = (wo + wi * if reflects { 1.0 } else { eta_path }).normalize_or_zero();
         if h == Vec3::ZERO {
