@@ -2,7 +2,7 @@
 """Mitsuba 3's own values of its `principled` and `principledthin` BSDFs, for the unit test
 that checks embray's evaluation against them (src/shading/bsdf/tests_principled_values.rs).
 
-  /tmp/peers/venv/bin/python scripts/mitsuba_principled_values.py \
+  /tmp/peers/venv/bin/python scripts/mitsuba_principled_values.py [--variant VARIANT] \
       > tests/data/mitsuba/principled_values.txt
 
 For each parameter set (a `config` line: its plugin and parameters) it writes direction
@@ -10,11 +10,16 @@ pairs in Mitsuba's local frame (wi towards the viewer, wo towards the light, as 
 them) with Mitsuba's eval (f·|cos θo|, RGB) and pdf: random pairs over the sphere, and pairs
 near the mirror and refracted directions where the specular lobes are. Constant parameters
 only. (Mitsuba comes from ../shared/peers/setup_peers.sh.)
+
+The default variant is llvm_ad_rgb: where the diffuse lobe is off (spec_trans 1 or metallic
+1) but the sheen is on, scalar_rgb leaves the sheen out (its masked block is nested in the
+diffuse one's, which a scalar skips) and the vectorised variants add it, as the masks say;
+embray follows the masks, and `sheen_without_diffuse` is that case.
 """
+import argparse
+
 import mitsuba as mi
 import numpy as np
-
-mi.set_variant("scalar_rgb")
 
 CONFIGS = [
     ("default", "principled", {}),
@@ -34,6 +39,10 @@ CONFIGS = [
         "diff_trans": 1.4, "eta": 1.33, "sheen": 0.5, "sheen_tint": 0.3, "spec_tint": 0.2,
         "flatness": 0.5, "specular_reflectance_sampling_rate": 0.7,
         "diffuse_transmittance_sampling_rate": 1.3,
+    }),
+    ("sheen_without_diffuse", "principled", {
+        "base_color": [0.4, 0.7, 0.2], "roughness": 0.9, "spec_trans": 1.0, "sheen": 1.0,
+        "sheen_tint": 0.6,
     }),
     ("thin_diffuse", "principledthin", {
         "base_color": [0.3, 0.5, 0.9], "roughness": 0.8, "diff_trans": 0.6, "sheen": 0.2,
@@ -56,6 +65,9 @@ def bsdf_of(kind, params):
 
 
 def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--variant", default="llvm_ad_rgb")
+    mi.set_variant(ap.parse_args().variant)
     rng = np.random.default_rng(7)
     ctx = mi.BSDFContext()
     for name, kind, params in CONFIGS:
@@ -84,10 +96,10 @@ def main():
         for wi, wo in pairs:
             si = mi.SurfaceInteraction3f()
             si.sh_frame = mi.Frame3f(mi.Vector3f(0, 0, 1))
-            si.wi = mi.Vector3f(*wi)
-            value = bsdf.eval(ctx, si, mi.Vector3f(*wo))
-            pdf = bsdf.pdf(ctx, si, mi.Vector3f(*wo))
-            numbers = [*wi, *wo, value[0], value[1], value[2], pdf]
+            si.wi = mi.Vector3f(*map(float, wi))
+            value = np.array(bsdf.eval(ctx, si, mi.Vector3f(*map(float, wo)))).ravel()
+            pdf = np.array(bsdf.pdf(ctx, si, mi.Vector3f(*map(float, wo)))).ravel()
+            numbers = [*wi, *wo, *value, *pdf]
             print(" ".join(f"{float(x):.9g}" for x in numbers))
 
 

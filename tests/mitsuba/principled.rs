@@ -1,7 +1,7 @@
 //! `principled` and `principledthin` from the XML to the BSDF: the reader's defaults,
 //! conversions and refusals, and the BSDF's values against Mitsuba's own
 //! (`tests/data/mitsuba/principled_values.txt`, made by
-//! `scripts/mitsuba_principled_values.py` with Mitsuba 3.9.1's `scalar_rgb`).
+//! `scripts/mitsuba_principled_values.py` with Mitsuba 3.9.1's `llvm_ad_rgb`).
 
 use super::bsdfs::material_of;
 use super::common::{assert_contains, repo_path};

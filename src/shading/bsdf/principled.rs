@@ -142,6 +142,8 @@ impl Principled {
                 let shape = diffuse_shape(p, cos_o.abs(), cos_i.abs(), cos_d);
                 value += p.base_color * (diffuse * cos_i.abs() * FRAC_1_PI * shape);
             }
+            // Whether or not the diffuse lobe is on, as Mitsuba's masks say and its vectorised
+            // variants do (its scalar ones skip the sheen with the diffuse lobe's block).
             if p.sheen > 0.0 && p.metallic < 1.0 {
                 value += sheen(p, cos_d) * ((1.0 - p.metallic) * cos_i.abs());
             }
