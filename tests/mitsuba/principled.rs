@@ -151,3 +151,50 @@ fn eval_and_pdf_match_mitsubas_own_values() {
     }
     assert!(checked >= 200 && nonzero >= 100, "{checked} pairs, {nonzero} lit");
 }
+
+/// `embray convert` keeps both models, textured weights (above 1 too) and rates included.
+#[test]
+fn principled_materials_convert_to_toml_and_back() {
+    let checker = |name: &str, a: f32, b: f32| {
+        format!(
+            "<texture name=\"{name}\" type=\"checkerboard\"><float name=\"color0\" value=\"{a}\"/>\
+             <float name=\"color1\" value=\"{b}\"/></texture>"
+        )
+    };
+    let solid = format!(
+        "<bsdf type=\"principled\"><rgb name=\"base_color\" value=\"0.2, 0.8, 0.1\"/>\
+         <float name=\"roughness\" value=\"0.15\"/>{}{}<float name=\"specular\" value=\"0.7\"/>\
+         <float name=\"clearcoat_sampling_rate\" value=\"0.5\"/></bsdf>",
+        checker("metallic", 0.7, 0.1),
+        checker("clearcoat", 0.9, 0.1),
+    );
+    let thin = format!(
+        "<bsdf type=\"principledthin\">{}{}<float name=\"eta\" value=\"1.33\"/>\
+         <float name=\"diffuse_transmittance_sampling_rate\" value=\"2\"/></bsdf>",
+        checker("diff_trans", 0.4, 1.4),
+        checker("base_color", 0.2, 0.6).replace("float", "rgb"),
+    );
+    for (name, bsdf) in [("p-toml-solid", solid), ("p-toml-thin", thin)] {
+        let main = format!(
+            "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+             value=\"40\"/>{}\n<shape type=\"cube\">{bsdf}</shape>\n</scene>",
+            super::reader::SENSOR
+        );
+        let path = super::reader::files(name, &main, &[]);
+        let scene = super::load_mitsuba(&path, &[]).unwrap();
+        let dir = path.parent().unwrap();
+        let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
+        let toml = dir.join("scene.toml");
+        writer.write(&scene, &toml, "round trip").unwrap();
+        let back = embray::scene::load(&toml).unwrap_or_else(|e| panic!("{e}"));
+        let material =
+            |s: &embray::scene::SceneDesc| s.materials[s.objects[0].material as usize].clone();
+        assert!(material(&scene).principled.is_some());
+        assert_eq!(
+            material(&back),
+            material(&scene),
+            "{}",
+            std::fs::read_to_string(&toml).unwrap()
+        );
+    }
+}

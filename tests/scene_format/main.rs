@@ -33,4 +33,5 @@ fn ply_scene(file: &str, smooth: Option<bool>) -> String {
 mod lights_and_bundled;
 mod motion_and_meshes;
 mod ply;
+mod principled;
 mod settings_and_materials;

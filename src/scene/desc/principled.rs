@@ -154,6 +154,20 @@ impl PrincipledDesc {
     }
 }
 
+/// `principled`'s η from its `eta` or `specular` (the default specular 0.5 if neither;
+/// `None` if both are given), kept off 1 (specular off 0) where light is transmitted, as
+/// Mitsuba does: a transmitting interface must bend.
+pub fn solid_eta(eta: Option<f32>, specular: Option<f32>, transmits: bool) -> Option<f32> {
+    match (eta, specular) {
+        (Some(_), Some(_)) => None,
+        (Some(eta), None) => Some(if transmits && eta == 1.0 { 1.001 } else { eta }),
+        (None, specular) => {
+            let specular = specular.unwrap_or(0.5);
+            Some(eta_from_specular(if transmits && specular == 0.0 { 1e-3 } else { specular }))
+        }
+    }
+}
+
 /// Mitsuba's index for a `specular` reflectance s at normal incidence: s · 0.08 = R₀ =
 /// ((η − 1)/(η + 1))², solved for η (in f32, as Mitsuba computes it).
 pub fn eta_from_specular(specular: f32) -> f32 {

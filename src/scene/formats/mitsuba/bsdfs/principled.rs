@@ -6,7 +6,7 @@ use super::super::tree::{Element, FileResolver};
 use super::super::values::float;
 use super::texture::float_texture;
 use super::{check_properties, reflectance, reflectance_texture};
-use crate::scene::desc::{MaterialDesc, ParamDesc, PrincipledDesc, eta_from_specular};
+use crate::scene::desc::{MaterialDesc, ParamDesc, PrincipledDesc};
 use crate::scene::error::SceneError;
 use glam::Vec3;
 
@@ -90,8 +90,7 @@ pub(super) fn principled(
     Ok(MaterialDesc { principled: Some(Box::new(desc)), ..material })
 }
 
-/// `principled`'s η: given, or from `specular` (one of the two), kept off 1 (and specular
-/// off 0) where light is transmitted, as Mitsuba does: a transmitting interface must bend.
+/// `principled`'s η, from `eta` or `specular`.
 fn solid_eta(element: &Element, transmits: bool) -> Result<f32, SceneError> {
     if super::texture_child(element, "eta").is_some() {
         return Err(
@@ -100,15 +99,8 @@ fn solid_eta(element: &Element, transmits: bool) -> Result<f32, SceneError> {
     }
     let eta = number(element, "eta", POSITIVE)?;
     let specular = number(element, "specular", UNIT)?;
-    match (eta, specular) {
-        (Some(_), Some(_)) => Err(element.error("give either eta or specular, not both")),
-        (Some(eta), None) => Ok(if transmits && eta == 1.0 { 1.001 } else { eta }),
-        (None, specular) => {
-            let specular = specular.unwrap_or(0.5);
-            let specular = if transmits && specular == 0.0 { 1e-3 } else { specular };
-            Ok(eta_from_specular(specular))
-        }
-    }
+    crate::scene::desc::solid_eta(eta, specular, transmits)
+        .ok_or_else(|| element.error("give either eta or specular, not both"))
 }
 
 /// What a number must be: the bounds of its range, which is closed unless `open_start`.

@@ -12,6 +12,9 @@ pub(crate) enum MaterialKind {
     Conductor,
     Dielectric,
     Plastic,
+    Principled,
+    #[serde(rename = "principledthin")]
+    PrincipledThin,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -69,6 +72,8 @@ pub(crate) struct MaterialToml {
     pub preset: Option<MetalPreset>,
     pub ior: Option<f64>,
     pub absorption: Option<Vec3>,
+    /// The parameters of a `principled` or `principledthin` material.
+    pub principled: Option<super::principled::PrincipledToml>,
     pub texture: Option<TextureToml>,
     pub specular_texture: Option<TextureToml>,
     pub normal_map: Option<TextureToml>,

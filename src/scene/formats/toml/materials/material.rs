@@ -62,6 +62,9 @@ pub fn with_texture_space(material: &MaterialDesc, texture_from_object: DAffine3
     for texture in textures.into_iter().flatten() {
         texture.texture_from_object = texture_from_object;
     }
+    for texture in material.principled.iter_mut().flat_map(|p| p.textures_mut()) {
+        texture.texture_from_object = texture_from_object;
+    }
     material
 }
 
@@ -84,9 +87,19 @@ pub(crate) fn material(
             ("dielectric", &["ior", "absorption", "roughness", "distribution"])
         }
         MaterialKind::Plastic => ("plastic", &["ior", "nonlinear", "roughness", "distribution"]),
+        MaterialKind::Principled => ("principled", &["principled"]),
+        MaterialKind::PrincipledThin => ("principledthin", &["principled"]),
     };
     let item = format!("{path} ({kind_name})");
-    let allowed: Vec<&str> = COMMON.iter().chain(own).copied().collect();
+    let principled = matches!(kind, MaterialKind::Principled | MaterialKind::PrincipledThin);
+    // The course's terms would be ignored by a principled material's path tracing.
+    let course = ["specular_texture", "phong", "brdf"];
+    let allowed: Vec<&str> = COMMON
+        .iter()
+        .filter(|field| !principled || !course.contains(field))
+        .chain(own)
+        .copied()
+        .collect();
     let present = [
         ("reflectance", m.reflectance.is_some()),
         ("roughness", m.roughness.is_some()),
@@ -97,13 +110,17 @@ pub(crate) fn material(
         ("absorption", m.absorption.is_some()),
         ("distribution", m.distribution.is_some()),
         ("nonlinear", m.nonlinear.is_some()),
+        ("principled", m.principled.is_some()),
+        ("specular_texture", m.specular_texture.is_some()),
+        ("phong", m.phong.is_some()),
+        ("brdf", m.brdf.is_some()),
     ];
     ctx.check_fields(&path, &item, &present, &allowed)?;
 
     let default_albedo = match kind {
         MaterialKind::Diffuse => 0.8,
         // Mitsuba's default base.
-        MaterialKind::Plastic => 0.5,
+        MaterialKind::Plastic | MaterialKind::Principled | MaterialKind::PrincipledThin => 0.5,
         _ => 0.0,
     };
     let albedo = ctx.color(&path.key("albedo"), m.albedo.unwrap_or([default_albedo; 3]), true)?;
@@ -128,7 +145,9 @@ pub(crate) fn material(
     let reflectance =
         |ctx: &Ctx| ctx.color(&path.key("reflectance"), m.reflectance.unwrap_or([1.0; 3]), true);
     let specular = match kind {
-        MaterialKind::Diffuse => Specular::None,
+        MaterialKind::Diffuse | MaterialKind::Principled | MaterialKind::PrincipledThin => {
+            Specular::None
+        }
         MaterialKind::Mirror => Specular::Mirror { reflectance: reflectance(ctx)? },
         MaterialKind::Conductor => {
             let (eta, k) = conductor_index(&path, &item, m, ctx)?;
@@ -230,7 +249,13 @@ pub(crate) fn material(
         bump_map,
         bump_shadowing: m.bump_shadowing.unwrap_or(false),
         phong,
-        principled: None,
+        principled: if principled {
+            let thin = kind == MaterialKind::PrincipledThin;
+            let table = m.principled.as_ref();
+            Some(Box::new(super::principled::principled(&path, thin, table, ctx, base_dir)?))
+        } else {
+            None
+        },
     })
 }
 

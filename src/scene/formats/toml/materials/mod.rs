@@ -4,6 +4,7 @@
 
 mod course;
 mod material;
+mod principled;
 mod textures;
 
 pub use material::*;
