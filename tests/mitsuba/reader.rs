@@ -161,16 +161,16 @@ fn errors_name_the_plugin_the_file_and_the_line() {
         load_mitsuba(&path, &[]).unwrap_err()
     };
     let message = error(
-        "mitsuba-principled",
-        scene("<shape type=\"cube\"><bsdf type=\"principled\"/></shape>"),
+        "mitsuba-hair",
+        scene("<shape type=\"cube\"><bsdf type=\"hair\"/></shape>"),
         &[],
     );
     assert_contains(
         &message,
         &[
             "main.xml",
-            "<bsdf type=\"principled\">",
-            "'principled' is not supported yet",
+            "<bsdf type=\"hair\">",
+            "'hair' is not supported yet",
             "(line 15)",
         ],
     );
