@@ -18,7 +18,8 @@ pub(super) fn write(m: &MaterialDesc, out: &mut String) -> Result<(), TomlWriteE
     let mut fields = Vec::new();
     for ((name, value), (_, default)) in p.params().into_iter().zip(defaults.params()) {
         // A solid one's η always: its default depends on `specular`, which is not kept.
-        if value == default && !(name == "eta" && !p.thin) {
+        let always = name == "eta" && !p.thin;
+        if value == default && !always {
             continue;
         }
         let value = match value {
