@@ -168,8 +168,8 @@ impl Bsdf {
         let scatter = if p.thin {
             Scatter::PrincipledThin(PrincipledThin::new(p))
         } else {
-            let outside = front_face || !one_sided && !p.spec_trans_somewhere;
-            Scatter::Principled(Principled::new(p, outside))
+            let mitsuba_frame = front_face || !one_sided && !p.spec_trans_somewhere;
+            Scatter::Principled(Principled::new(p, mitsuba_frame))
         };
         Bsdf { scatter, frame, opacity: 1.0, unmapped: None }
     }

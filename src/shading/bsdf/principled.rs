@@ -20,17 +20,17 @@ use std::f32::consts::FRAC_1_PI;
 #[derive(Clone, Copy, Debug)]
 pub struct Principled {
     p: PrincipledParams,
-    /// The view is on the outside (or the material is opaque and two-sided): embray's
-    /// local frame, whose normal faces the view, is Mitsuba's. Else Mitsuba's is it
-    /// turned over.
-    outside: bool,
+    /// Embray's local frame, whose normal faces the view, is Mitsuba's (whose normal points
+    /// outwards): the view is outside, or the material is opaque and two-sided. Else
+    /// Mitsuba's is embray's turned over.
+    mitsuba_frame: bool,
     specular: Microfacet,
 }
 
 impl Principled {
-    pub fn new(p: &PrincipledParams, outside: bool) -> Self {
+    pub fn new(p: &PrincipledParams, mitsuba_frame: bool) -> Self {
         let specular = super::principled_terms::distribution(p.roughness, p.anisotropic);
-        Principled { p: *p, outside, specular }
+        Principled { p: *p, mitsuba_frame, specular }
     }
 
     pub fn base_color(&self) -> Vec3 {
@@ -54,7 +54,7 @@ impl Principled {
 
     /// A local direction in Mitsuba's frame, or back.
     fn oriented(&self, w: Vec3) -> Vec3 {
-        if self.outside { w } else { Vec3::new(w.x, w.y, -w.z) }
+        if self.mitsuba_frame { w } else { Vec3::new(w.x, w.y, -w.z) }
     }
 
     /// f · |cos θi| and its density, in the local frame.
