@@ -110,6 +110,7 @@ pub fn features(scene: &RenderScene) -> Vec<&'static str> {
         (used(&|m| m.specular != Specular::None && !m.specular_is_delta()), "glossy"),
         (used(&|m| m.specular != Specular::None && m.specular_is_delta()), "mirror/glass"),
         (used(&|m| m.is_dielectric()), "refraction"),
+        (used(&|m| m.principled.is_some()), "principled BSDF"),
         (used(&|m| m.texture.is_some()), "textures"),
         (
             scene.instances.iter().any(|i| !matches!(i.placement, Placement::Baked { .. })),

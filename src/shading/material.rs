@@ -8,6 +8,7 @@ use crate::scene::{Distribution, MaterialDesc, Opacity, PhongDesc, Specular};
 use crate::shading::coating::Coating;
 use crate::shading::course_lobe::LobeAlbedo;
 use crate::shading::microfacet::Microfacet;
+use crate::shading::principled::PrincipledMaterial;
 use glam::Vec3;
 
 /// Below this GGX α a lobe is treated as perfectly smooth (a delta distribution).
@@ -60,6 +61,8 @@ pub struct Material {
     pub course_lobe_albedo: Option<LobeAlbedo>,
     /// Scatters as a mixture of two materials (`MaterialDesc::blend`).
     pub blend: Option<Box<Blend>>,
+    /// Mitsuba's principled BSDF, its base colour `albedo` (or `texture`).
+    pub principled: Option<Box<PrincipledMaterial>>,
 }
 
 /// `weight` of the second material's scattering and the rest of the first's.
@@ -92,6 +95,7 @@ impl Default for Material {
             phong: None,
             course_lobe_albedo: None,
             blend: None,
+            principled: None,
         }
     }
 }
@@ -167,6 +171,10 @@ impl Material {
                     ],
                 })
             }),
+            principled: desc
+                .principled
+                .as_deref()
+                .map(|p| Box::new(PrincipledMaterial::from_desc(p))),
         }
         .with_phong(desc.phong.clone())
     }
@@ -205,7 +213,9 @@ impl Material {
     /// Whether the roughness differs along the tangent and the bitangent (the shading
     /// frame must then follow ∂p/∂u).
     pub fn is_anisotropic(&self) -> bool {
-        self.ggx_alpha != self.ggx_alpha_v || self.roughness_textures.is_some()
+        self.ggx_alpha != self.ggx_alpha_v
+            || self.roughness_textures.is_some()
+            || self.principled.as_ref().is_some_and(|p| p.is_anisotropic())
     }
 
     pub fn is_emissive(&self) -> bool {

@@ -11,6 +11,7 @@ mod ggx;
 pub mod material;
 pub mod microfacet;
 pub mod normal_map;
+pub mod principled;
 pub mod spawn;
 pub mod surface;
 pub mod texture;

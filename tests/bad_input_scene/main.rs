@@ -26,6 +26,7 @@ mod lights;
 mod loads;
 mod materials;
 mod meshes;
+mod principled;
 mod ranges;
 mod syntax;
 mod transforms;

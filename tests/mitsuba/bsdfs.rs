@@ -9,7 +9,7 @@ use embray::scene::{Distribution, MaterialDesc, Opacity, Specular};
 use glam::Vec3;
 
 /// The material of the one cube of a scene whose cube has the BSDF `bsdf`.
-fn material_of(name: &str, bsdf: &str) -> Result<MaterialDesc, String> {
+pub(super) fn material_of(name: &str, bsdf: &str) -> Result<MaterialDesc, String> {
     let main = format!(
         "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
          value=\"40\"/>{SENSOR}\n<shape type=\"cube\">{bsdf}</shape>\n</scene>"

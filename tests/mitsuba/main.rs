@@ -7,6 +7,7 @@ mod common;
 
 mod blend;
 mod bsdfs;
+mod principled;
 mod reader;
 mod suite;
 

@@ -160,19 +160,11 @@ fn errors_name_the_plugin_the_file_and_the_line() {
         let path = files(name, &main, extra);
         load_mitsuba(&path, &[]).unwrap_err()
     };
-    let message = error(
-        "mitsuba-principled",
-        scene("<shape type=\"cube\"><bsdf type=\"principled\"/></shape>"),
-        &[],
-    );
+    let message =
+        error("mitsuba-hair", scene("<shape type=\"cube\"><bsdf type=\"hair\"/></shape>"), &[]);
     assert_contains(
         &message,
-        &[
-            "main.xml",
-            "<bsdf type=\"principled\">",
-            "'principled' is not supported yet",
-            "(line 15)",
-        ],
+        &["main.xml", "<bsdf type=\"hair\">", "'hair' is not supported yet", "(line 15)"],
     );
     let message = error("mitsuba-medium", scene("<medium type=\"homogeneous\"/>"), &[]);
     assert_contains(&message, &["<medium> 'homogeneous' is not supported", "(line 15)"]);

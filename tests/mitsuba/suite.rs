@@ -10,7 +10,7 @@ use embray::mitsuba_rule::judge;
 use std::path::{Path, PathBuf};
 
 /// The suite's scenes that embray renders; every other one must be refused.
-const RENDERED: [&str; 17] = [
+const RENDERED: [&str; 19] = [
     "test_arealight_path",
     "test_bumpmap_path",
     "test_constant_path",
@@ -28,6 +28,8 @@ const RENDERED: [&str; 17] = [
     "test_spot_direct",
     "test_textured_diffuse_path",
     "test_textured_roughconductor_path",
+    "test_texturedprincipled1_path",
+    "test_texturedprincipledthin_path",
 ];
 
 fn mitsuba_data() -> PathBuf {

@@ -34,4 +34,5 @@ mod lights_and_bundled;
 mod motion_and_meshes;
 mod mtl;
 mod ply;
+mod principled;
 mod settings_and_materials;

@@ -47,14 +47,20 @@ impl PathTracer<'_> {
             let alpha = |t| self.tracer.texture_color(t, si, time).element_sum() / 3.0;
             (alpha(u), alpha(v))
         });
-        Bsdf::with_reflectances(
-            material,
-            albedo,
-            course_specular,
-            roughness,
-            frame,
-            si.front_face,
-            self.energy,
-        )
+        match &material.principled {
+            Some(principled) => {
+                let at = principled.at(albedo, |t| self.tracer.texture_color(t, si, time));
+                Bsdf::principled(&at, frame, si.front_face, material.one_sided)
+            }
+            None => Bsdf::with_reflectances(
+                material,
+                albedo,
+                course_specular,
+                roughness,
+                frame,
+                si.front_face,
+                self.energy,
+            ),
+        }
     }
 }

@@ -53,6 +53,9 @@ pub struct MaterialDesc {
     /// Scatters as a mixture of two materials instead of its own lobes (Mitsuba's
     /// `blendbsdf`); its emission, opacity and mapped normals are still its own.
     pub blend: Option<Box<BlendDesc>>,
+    /// Mitsuba's principled BSDF, whose base colour is `albedo` (or `texture`); `specular`
+    /// is then `None`.
+    pub principled: Option<Box<super::principled::PrincipledDesc>>,
 }
 
 /// `weight` of the second material's scattering and the rest of the first's.
@@ -73,6 +76,7 @@ impl MaterialDesc {
             .chain(self.bump_map.as_ref().map(|b| &b.texture))
             .chain(opacity)
             .chain(self.roughness_textures.iter().flat_map(|t| t.iter()))
+            .chain(self.principled.iter().flat_map(|p| p.textures()))
             .filter_map(TextureDesc::image)
             .chain(self.blend_images())
     }
@@ -131,6 +135,7 @@ impl Default for MaterialDesc {
             bump_shadowing: false,
             phong: None,
             blend: None,
+            principled: None,
         }
     }
 }

@@ -1,6 +1,7 @@
 //! Scattering at a surface, by the kind of material: the mixture most materials are
 //! (`mixture`: Lambertian, mirror, metal, smooth glass, the course's lobes), a dielectric
-//! coating over a Lambertian base (`plastic`), rough glass (`rough_dielectric`). A mask's
+//! coating over a Lambertian base (`plastic`), rough glass (`rough_dielectric`), Mitsuba's
+//! principled models (`principled`, `principled_thin`). A mask's
 //! opacity wraps any of them: the rest of the light passes through unchanged. Directions
 //! are in render space; `frame` maps the local shading frame (normal = +Z) to it.
 
@@ -8,6 +9,9 @@ mod blend;
 mod coupling;
 mod mixture;
 mod plastic;
+mod principled;
+mod principled_terms;
+mod principled_thin;
 mod rough_dielectric;
 
 pub use coupling::Energy;
@@ -19,6 +23,8 @@ use blend::Blend;
 use glam::{Mat3, Vec2, Vec3};
 use mixture::Mixture;
 use plastic::Plastic;
+use principled::Principled;
+use principled_thin::PrincipledThin;
 use rough_dielectric::RoughDielectric;
 
 /// A sampled scattering direction.
@@ -74,6 +80,8 @@ enum Scatter {
     Plastic(Plastic),
     RoughDielectric(RoughDielectric),
     Blend(Box<Blend>),
+    Principled(Principled),
+    PrincipledThin(PrincipledThin),
     /// A one-sided material seen from behind.
     Black,
 }
@@ -158,6 +166,24 @@ impl Bsdf {
         Bsdf { scatter: Scatter::Blend(Box::new(blend)), frame, opacity: 1.0, unmapped: None }
     }
 
+    /// Mitsuba's principled BSDF with the parameters `p` of this hit. Its inside is told
+    /// from its outside where it is one-sided (Mitsuba's own) or transmits (a two-sided
+    /// wrapper sees the front from both sides, which only an opaque one allows).
+    pub fn principled(
+        p: &crate::shading::principled::PrincipledParams,
+        frame: Mat3,
+        front_face: bool,
+        one_sided: bool,
+    ) -> Self {
+        let scatter = if p.thin {
+            Scatter::PrincipledThin(PrincipledThin::new(p))
+        } else {
+            let mitsuba_frame = front_face || !one_sided && !p.spec_trans_somewhere;
+            Scatter::Principled(Principled::new(p, mitsuba_frame))
+        };
+        Bsdf { scatter, frame, opacity: 1.0, unmapped: None }
+    }
+
     /// This BSDF under a mask: only `opacity` of the light meets it, the rest passes on.
     pub fn with_opacity(self, opacity: f32) -> Self {
         Bsdf { opacity: opacity.clamp(0.0, 1.0), ..self }
@@ -188,30 +214,40 @@ impl Bsdf {
         self.opacity > 0.0
             && match &self.scatter {
                 Scatter::Mixture(m) => m.has_smooth_lobe(),
-                Scatter::Plastic(_) | Scatter::RoughDielectric(_) => true,
+                Scatter::Plastic(_)
+                | Scatter::RoughDielectric(_)
+                | Scatter::Principled(_)
+                | Scatter::PrincipledThin(_) => true,
                 Scatter::Blend(b) => b.has_smooth_lobe(),
                 Scatter::Black => false,
             }
     }
 
     /// True if light arriving from behind the surface can be scattered towards the front
-    /// (rough glass): light sampling must then look on both sides.
+    /// (rough glass, a principled material's transmission): light sampling must then look
+    /// on both sides.
     pub fn transmits(&self) -> bool {
         match &self.scatter {
             Scatter::RoughDielectric(_) => true,
             Scatter::Blend(b) => b.transmits(),
+            Scatter::Principled(p) => p.transmits(),
+            Scatter::PrincipledThin(p) => p.transmits(),
             _ => false,
         }
     }
 
     /// An upper bound of the fraction of energy arriving from `wo` (render space) that this
-    /// BSDF reflects or transmits, per channel: at most 1 by construction.
+    /// BSDF reflects or transmits, per channel: at most 1 by construction. Except for the
+    /// principled models, which are not energy-conserving (their retro-reflection and sheen
+    /// add to the diffuse lobe): their base colour, as Mitsuba's denoiser albedo is.
     pub fn albedo_bound(&self, wo: Vec3) -> Vec3 {
         let met = match &self.scatter {
             Scatter::Mixture(m) => m.albedo_bound(wo),
             Scatter::Plastic(p) => p.albedo_bound(),
             Scatter::RoughDielectric(_) => Vec3::ONE,
             Scatter::Blend(b) => b.albedo_bound(wo),
+            Scatter::Principled(p) => p.base_color().clamp(Vec3::ZERO, Vec3::ONE),
+            Scatter::PrincipledThin(p) => p.base_color().clamp(Vec3::ZERO, Vec3::ONE),
             Scatter::Black => Vec3::ZERO,
         };
         met * self.opacity + Vec3::splat(1.0 - self.opacity)
@@ -225,6 +261,8 @@ impl Bsdf {
             Scatter::Plastic(p) => p.eval(local(wo), local(wi)),
             Scatter::RoughDielectric(d) => d.eval(local(wo), local(wi)),
             Scatter::Blend(b) => b.eval(wo, wi),
+            Scatter::Principled(p) => p.eval(local(wo), local(wi)),
+            Scatter::PrincipledThin(p) => p.eval(local(wo), local(wi)),
             Scatter::Black => (Vec3::ZERO, 0.0),
         };
         let value = match self.unmapped {
@@ -252,6 +290,8 @@ impl Bsdf {
             Scatter::Blend(b) => return b.sample(wo, u_lobe, u).and_then(|s| self.masked(s)),
             Scatter::Plastic(p) => p.sample(local(), u_lobe, u)?,
             Scatter::RoughDielectric(d) => d.sample(local(), u_lobe, u)?,
+            Scatter::Principled(p) => p.sample(local(), u_lobe, u)?,
+            Scatter::PrincipledThin(p) => p.sample(local(), u_lobe, u)?,
             Scatter::Black => return None,
         };
         sample.wi = self.frame * sample.wi;
@@ -279,3 +319,5 @@ mod tests;
 mod tests_blend;
 #[cfg(test)]
 mod tests_kinds;
+#[cfg(test)]
+mod tests_principled;

@@ -6,6 +6,7 @@
 mod conductor;
 mod dielectric;
 mod plastic;
+mod principled;
 mod texture;
 
 use super::tree::{Element, FileResolver};
@@ -20,7 +21,7 @@ use texture::{float_texture, reflectance_texture};
 /// The BSDFs this reader knows, for messages.
 pub(super) const SUPPORTED: &str = "diffuse, twosided, mask, normalmap, bumpmap, blendbsdf, \
                                     conductor, roughconductor, dielectric, roughdielectric, \
-                                    plastic, roughplastic";
+                                    plastic, roughplastic, principled, principledthin";
 
 pub(super) fn bsdf(
     element: &Element,
@@ -38,6 +39,13 @@ pub(super) fn bsdf(
                 files,
                 "twosided takes one nested <bsdf> (two are not supported)",
             )?;
+            if inner.principled.as_ref().is_some_and(|p| p.transmits()) {
+                // Mitsuba refuses it too: the back would be shaded as a second front.
+                return Err(element.error(
+                    "twosided cannot hold a transmitting BSDF (principledthin, or principled \
+                     with spec_trans)",
+                ));
+            }
             Ok(MaterialDesc { name: none.name, ..two_sided(inner) })
         }
         "blendbsdf" => {
@@ -118,6 +126,7 @@ pub(super) fn bsdf(
             Ok(MaterialDesc { roughness_textures, ..material })
         }
         "plastic" | "roughplastic" => plastic::plastic(element, kind, none, ids, files),
+        "principled" | "principledthin" => principled::principled(element, kind, none, ids, files),
         other => Err(element
             .error(format!("the BSDF '{other}' is not supported yet (supported: {SUPPORTED})"))),
     }

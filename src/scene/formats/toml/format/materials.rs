@@ -14,6 +14,9 @@ pub(crate) enum MaterialKind {
     Plastic,
     /// `weight` of the second of two named `materials`, the rest of the first.
     Blend,
+    Principled,
+    #[serde(rename = "principledthin")]
+    PrincipledThin,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -73,6 +76,8 @@ pub(crate) struct MaterialToml {
     pub preset: Option<MetalPreset>,
     pub ior: Option<f64>,
     pub absorption: Option<Vec3>,
+    /// The parameters of a `principled` or `principledthin` material.
+    pub principled: Option<super::principled::PrincipledToml>,
     pub texture: Option<TextureToml>,
     pub specular_texture: Option<TextureToml>,
     pub normal_map: Option<TextureToml>,

@@ -7,6 +7,7 @@ mod file;
 mod lights;
 mod materials;
 mod objects;
+mod principled;
 mod transforms;
 mod values;
 
@@ -14,5 +15,6 @@ pub(crate) use file::*;
 pub(crate) use lights::*;
 pub(crate) use materials::*;
 pub(crate) use objects::*;
+pub(crate) use principled::*;
 pub(crate) use transforms::*;
 pub(crate) use values::*;

@@ -70,6 +70,9 @@ pub fn with_texture_space(material: &MaterialDesc, texture_from_object: DAffine3
             *part = with_texture_space(part, texture_from_object);
         }
     }
+    for texture in material.principled.iter_mut().flat_map(|p| p.textures_mut()) {
+        texture.texture_from_object = texture_from_object;
+    }
     material
 }
 
@@ -93,14 +96,24 @@ pub(crate) fn material(
         }
         MaterialKind::Plastic => ("plastic", &["ior", "nonlinear", "roughness", "distribution"]),
         MaterialKind::Blend => ("blend", &["weight", "materials"]),
+        MaterialKind::Principled => ("principled", &["principled"]),
+        MaterialKind::PrincipledThin => ("principledthin", &["principled"]),
     };
     let item = format!("{path} ({kind_name})");
+    let principled = matches!(kind, MaterialKind::Principled | MaterialKind::PrincipledThin);
+    // The course's terms would be ignored by a principled material's path tracing.
+    let course = ["specular_texture", "phong", "brdf"];
     let common: &[&str] = match kind {
         // Its materials scatter: only what is the surface's own is its.
         MaterialKind::Blend => &super::blend::BLEND_COMMON,
         _ => &COMMON,
     };
-    let allowed: Vec<&str> = common.iter().chain(own).copied().collect();
+    let allowed: Vec<&str> = common
+        .iter()
+        .filter(|field| !principled || !course.contains(field))
+        .chain(own)
+        .copied()
+        .collect();
     let present = [
         ("reflectance", m.reflectance.is_some()),
         ("roughness", m.roughness.is_some()),
@@ -113,6 +126,10 @@ pub(crate) fn material(
         ("nonlinear", m.nonlinear.is_some()),
         ("weight", m.weight.is_some()),
         ("materials", m.materials.is_some()),
+        ("principled", m.principled.is_some()),
+        ("specular_texture", m.specular_texture.is_some()),
+        ("phong", m.phong.is_some()),
+        ("brdf", m.brdf.is_some()),
     ];
     ctx.check_fields(&path, &item, &present, &allowed)?;
 
@@ -120,7 +137,7 @@ pub(crate) fn material(
         MaterialKind::Diffuse => 0.8,
         MaterialKind::Blend => 0.0,
         // Mitsuba's default base.
-        MaterialKind::Plastic => 0.5,
+        MaterialKind::Plastic | MaterialKind::Principled | MaterialKind::PrincipledThin => 0.5,
         _ => 0.0,
     };
     let albedo = ctx.color(&path.key("albedo"), m.albedo.unwrap_or([default_albedo; 3]), true)?;
@@ -164,7 +181,10 @@ pub(crate) fn material(
     let reflectance =
         |ctx: &Ctx| ctx.color(&path.key("reflectance"), m.reflectance.unwrap_or([1.0; 3]), true);
     let specular = match kind {
-        MaterialKind::Diffuse | MaterialKind::Blend => Specular::None,
+        MaterialKind::Diffuse
+        | MaterialKind::Blend
+        | MaterialKind::Principled
+        | MaterialKind::PrincipledThin => Specular::None,
         MaterialKind::Mirror => Specular::Mirror { reflectance: reflectance(ctx)? },
         MaterialKind::Conductor => {
             let (eta, k) = conductor_index(&path, &item, m, ctx)?;
@@ -261,6 +281,13 @@ pub(crate) fn material(
         bump_shadowing: m.bump_shadowing.unwrap_or(false),
         phong,
         blend,
+        principled: if principled {
+            let thin = kind == MaterialKind::PrincipledThin;
+            let table = m.principled.as_ref();
+            Some(Box::new(super::principled::principled(&path, thin, table, ctx, base_dir)?))
+        } else {
+            None
+        },
     })
 }
 

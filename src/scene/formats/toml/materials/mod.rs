@@ -5,6 +5,7 @@
 mod blend;
 mod course;
 mod material;
+mod principled;
 mod textures;
 
 pub(super) use blend::resolve_blends;

@@ -24,6 +24,9 @@ pub(super) enum Use {
     Bump,
     /// `[render] background_texture`: no `mode`; uv patterns only.
     Background,
+    /// A principled material's weight or η: no `mode`; colours may be above 1 (its mean
+    /// channel is the number); images are data, `raw` unless told otherwise.
+    Param,
 }
 
 /// `[render] background_texture`: an image or a 2-D checkerboard over the image plane.
@@ -107,7 +110,7 @@ pub(super) fn texture_desc(
         ctx.f32(&field, scale)
     };
     let color = |ctx: &Ctx, name: &str, value: Option<Vec3>, default: f64| {
-        ctx.color(&path.key(name), value.unwrap_or([default; 3]), true)
+        ctx.color(&path.key(name), value.unwrap_or([default; 3]), usage != Use::Param)
     };
     let pattern = match t.kind {
         TextureKind::Checker2d | TextureKind::Checker3d => {
@@ -150,7 +153,7 @@ pub(super) fn texture_desc(
         },
         TextureKind::Image => {
             let file = ctx.required(path, &item, "file", t.file.as_deref())?;
-            let default = if matches!(usage, Use::Normal | Use::Bump) {
+            let default = if matches!(usage, Use::Normal | Use::Bump | Use::Param) {
                 ImageEncodingToml::Raw
             } else {
                 ImageEncodingToml::Srgb

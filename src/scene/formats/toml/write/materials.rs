@@ -53,7 +53,9 @@ pub(super) fn write_material(
         Specular::Dielectric { .. } => "dielectric",
         Specular::Plastic { .. } => "plastic",
     };
+    let kind = super::principled::kind(m).unwrap_or(kind);
     let _ = writeln!(out, "type = \"{kind}\"\nalbedo = {}", c3(m.albedo));
+    super::principled::write(m, out)?;
     if m.emission != Vec3::ZERO {
         let _ = writeln!(out, "emission = {}", c3(m.emission));
     }
@@ -222,6 +224,16 @@ fn write_blend(
 /// The inline table of a texture; `with_mode` for the diffuse one (a specular texture
 /// always replaces).
 pub(super) fn texture_toml(t: &TextureDesc, with_mode: bool) -> Result<String, TomlWriteError> {
+    texture_table(t, with_mode, true)
+}
+
+/// `texture_toml`, with colours above 1 refused only if `bounded` (a principled material's
+/// weights and η may exceed 1).
+pub(super) fn texture_table(
+    t: &TextureDesc,
+    with_mode: bool,
+    bounded: bool,
+) -> Result<String, TomlWriteError> {
     let unsupported = |problem: &str| TomlWriteError::Unsupported {
         item: "a texture".to_owned(),
         problem: problem.to_owned(),
@@ -230,7 +242,7 @@ pub(super) fn texture_toml(t: &TextureDesc, with_mode: bool) -> Result<String, T
         return Err(unsupported("it is mapped through a transform"));
     }
     let at_most_one = |c: Vec3| {
-        if c.max_element() > 1.0 { Err(unsupported("a colour above 1")) } else { Ok(()) }
+        if bounded && c.max_element() > 1.0 { Err(unsupported("a colour above 1")) } else { Ok(()) }
     };
     let fields = match &t.pattern {
         Pattern::Checker2d { scale, even, odd } | Pattern::Checker3d { scale, even, odd } => {

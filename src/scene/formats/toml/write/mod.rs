@@ -37,6 +37,7 @@ pub struct TomlWriter {
 }
 
 mod materials;
+mod principled;
 mod values;
 
 use materials::{material_names, texture_toml, write_material};
