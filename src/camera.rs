@@ -27,6 +27,8 @@ pub struct Camera {
     pub pixel_aspect: f32,
     /// An orthographic camera's half-height of view; `None` for a perspective one.
     pub ortho_half_height: Option<f32>,
+    /// The near and far clip distances along the view axis (`CameraDesc::clip`).
+    pub clip: (f32, f32),
 }
 
 impl Default for Camera {
@@ -44,6 +46,7 @@ impl Default for Camera {
             shift: Vec2::ZERO,
             pixel_aspect: 1.0,
             ortho_half_height: None,
+            clip: (0.0, f32::INFINITY),
         }
     }
 }
@@ -76,7 +79,7 @@ impl Camera {
             let origin_camera = Vec3::new(offset.x, offset.y, 0.0);
             let origin = self.position + self.render_from_camera_rotation * origin_camera;
             let dir = (self.render_from_camera_rotation * Vec3::NEG_Z).normalize();
-            return Ray::new(origin, dir, f32::INFINITY);
+            return self.clipped(Ray::new(origin, dir, f32::INFINITY), 1.0);
         }
         let dir_camera = self.camera_direction(raster);
         let (origin_camera, dir_camera) = match lens {
@@ -92,7 +95,21 @@ impl Camera {
         };
         let dir = (self.render_from_camera_rotation * dir_camera).normalize();
         let origin = self.position + self.render_from_camera_rotation * origin_camera;
-        Ray::new(origin, dir, f32::INFINITY)
+        let along_axis = -dir_camera.z / dir_camera.length();
+        self.clipped(Ray::new(origin, dir, f32::INFINITY), along_axis)
+    }
+
+    /// `ray` limited to the clip distances, measured along the view axis (the unit
+    /// direction's component along it is `along_axis`).
+    fn clipped(&self, mut ray: Ray, along_axis: f32) -> Ray {
+        let (near, far) = self.clip;
+        if near > 0.0 {
+            ray.tmin = near / along_axis;
+        }
+        if far.is_finite() {
+            ray.tmax = far / along_axis;
+        }
+        ray
     }
 }
 

@@ -21,5 +21,6 @@ pub(super) fn place_camera(desc: &CameraDesc, camera_transform: &CameraTransform
         shift: desc.shift.as_vec2(),
         pixel_aspect: desc.pixel_aspect as f32,
         ortho_half_height: desc.ortho_half_height.map(|h| h as f32),
+        clip: (desc.clip.0 as f32, desc.clip.1 as f32),
     }
 }

@@ -82,11 +82,14 @@ fn a_scene_reads_into_the_model_as_mitsuba_defines_it() {
     assert_eq!(scene.settings.spp, 16);
     // Mitsuba's max_depth counts the segment to a visible emitter; embray's, the bounces.
     assert_eq!(scene.settings.max_depth, 3);
-    // The sphere: center and radius in object space, then scale, rotate, translate in order.
+    // The sphere: center and radius in object space (Mitsuba's translate · scale of the
+    // unit sphere, turned to Mitsuba's uv axes), then scale, rotate, translate in order.
     let sphere = &scene.objects[0];
     let embray::scene::ShapeDesc::Sphere { center, radius } = sphere.shape else { panic!() };
-    assert_eq!((center, radius), (DVec3::X, 0.5));
-    close(sphere.world_from_object.transform_point3(DVec3::X), DVec3::new(0.0, 1.0, -2.0));
+    assert_eq!((center, radius), (DVec3::ZERO, 1.0));
+    let to_world = sphere.world_from_object;
+    close(to_world.transform_point3(DVec3::ZERO), DVec3::new(0.0, 1.0, -2.0));
+    assert!((to_world.transform_vector3(DVec3::Y).length() - 1.0).abs() < 1e-12);
     let glass = &scene.materials[sphere.material as usize];
     assert_eq!(glass.specular, Specular::Dielectric { ior: 2.419, absorption: Vec3::ZERO });
     // The rectangle: the referenced conductor, with the area emitter's radiance.
@@ -339,4 +342,30 @@ fn an_unknown_sensor_parameter_is_refused() {
     );
     let message = load_mitsuba(&files("m-sensor-typo", &main, &[]), &[]).unwrap_err();
     assert_contains(&message, &["the perspective sensor does not take `near_clp`"]);
+}
+
+/// `near_clip` hides what lies nearer along the view axis: a sphere in front of the camera
+/// disappears behind a near plane past it, on every backend.
+#[test]
+fn the_near_clip_plane_hides_what_is_nearer() {
+    let scene = |near: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><float name=\"fov\" \
+             value=\"30\"/><float name=\"near_clip\" value=\"{near}\"/><film type=\"hdrfilm\">\
+             <integer name=\"width\" value=\"9\"/><integer name=\"height\" value=\"9\"/>\
+             <rfilter type=\"box\"/></film></sensor>\n<shape type=\"sphere\"><point \
+             name=\"center\" x=\"0\" y=\"0\" z=\"3\"/><float name=\"radius\" value=\"0.5\"/>\
+             <bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.3\"/></bsdf></shape>\n\
+             <emitter type=\"constant\"><rgb name=\"radiance\" value=\"1\"/></emitter>\n</scene>"
+        )
+    };
+    for (near, seen) in [("0.01", 0.3), ("4", 1.0)] {
+        let desc = load_mitsuba(&files(&format!("m-near-{near}"), &scene(near), &[]), &[]).unwrap();
+        for backend in super::common::backends() {
+            let options = super::common::options(&desc, backend, 16);
+            let film = super::common::render_ok(&desc, &options).film;
+            let centre = film.color[4 * 9 + 4];
+            assert!((centre.x - seen).abs() < 0.05, "near {near} on {backend:?}: {centre}");
+        }
+    }
 }

@@ -28,6 +28,9 @@ pub struct CameraDesc {
     /// view direction from the image plane through `lookfrom`; `vfov_deg` is then unused.
     /// `None`: a perspective camera.
     pub ortho_half_height: Option<f64>,
+    /// Camera rays see only what lies between these distances along the view axis
+    /// (Mitsuba's `near_clip`, `far_clip`); everything by default.
+    pub clip: (f64, f64),
 }
 
 impl CameraDesc {
@@ -46,6 +49,7 @@ impl CameraDesc {
             shift: DVec2::ZERO,
             pixel_aspect: 1.0,
             ortho_half_height: None,
+            clip: (0.0, f64::INFINITY),
         }
     }
 }

@@ -181,6 +181,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         image_name,
         camera: CameraDesc {
             ortho_half_height: None,
+            clip: (0.0, f64::INFINITY),
             lookfrom: position,
             lookat: position + gaze,
             up,

@@ -106,12 +106,12 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     if left.dot(up.cross(dir)) <= 0.0 {
         return Err(element.error("a mirrored camera transform is not supported"));
     }
-    for (name, default) in [("near_clip", 1e-2), ("far_clip", 1e4)] {
-        if float(element, name)?.is_some_and(|v| v != default) {
-            return Err(
-                element.error(format!("`{name}` other than {default} is not supported yet"))
-            );
-        }
+    let near = float(element, "near_clip")?.unwrap_or(1e-2);
+    let far = float(element, "far_clip")?.unwrap_or(1e4);
+    if !(near >= 0.0 && far > near && far.is_finite()) {
+        return Err(element.error(format!(
+            "near_clip {near} and far_clip {far} must be 0 <= near_clip < far_clip"
+        )));
     }
     let aspect = f64::from(width) / f64::from(height);
     if kind == "orthographic" {
@@ -121,6 +121,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         let mut camera = CameraDesc::pinhole(origin, origin + dir, 90.0, width, height);
         camera.up = up;
         camera.ortho_half_height = Some(sy / aspect);
+        camera.clip = (near, far);
         camera.pixel_aspect = sx / sy;
         return Ok(Sensor { camera, spp, filter, crop });
     }
@@ -128,6 +129,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     let vfov = (2.0 * ((0.5 * x_fov).to_radians().tan() / aspect).atan()).to_degrees();
     let mut camera = CameraDesc::pinhole(origin, origin + dir, vfov, width, height);
     camera.up = up;
+    camera.clip = (near, far);
     // Mitsuba shifts the film sample by the offset, in film widths and heights: the window
     // moves right and down (embray's shift is along right and up at unit distance).
     let offset = |name| float(element, name).map(|v| v.unwrap_or(0.0));
@@ -152,9 +154,11 @@ fn check_sensor_properties(element: &Element, kind: &str) -> Result<(), SceneErr
     if kind != "orthographic" {
         known.extend(["fov", "fov_axis", "focal_length"]);
         known.extend(["principal_point_offset_x", "principal_point_offset_y"]);
+        // Every projective camera of Mitsuba's reads it; a pinhole has no use for it.
+        known.push("focus_distance");
     }
     if kind == "thinlens" {
-        known.extend(["aperture_radius", "focus_distance"]);
+        known.push("aperture_radius");
     }
     for child in &element.children {
         match child.attr("name") {

@@ -59,6 +59,7 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
         cam.focus_distance.map(|d| ctx.positive(&path.key("focus_distance"), d)).transpose()?;
     Ok(CameraDesc {
         ortho_half_height: None,
+        clip: (0.0, f64::INFINITY),
         lookfrom,
         lookat,
         up: DVec3::from_array(up),
