@@ -150,6 +150,17 @@ pub fn with_rows_flipped(image: &TextureImage) -> Arc<TextureImage> {
     })
 }
 
+/// `image` in grey, each texel its luminance (`color::luminance`): a colour image read as a
+/// number, as Mitsuba reads one (its `eval_1`).
+pub fn as_luminance(image: &TextureImage) -> Arc<TextureImage> {
+    let grey = |c: &glam::Vec3| glam::Vec3::splat(crate::color::luminance(*c));
+    Arc::new(TextureImage {
+        texels: image.texels.iter().map(grey).collect(),
+        file: image.file.clone(),
+        ..*image
+    })
+}
+
 /// The first four bytes of every OpenEXR file.
 const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 

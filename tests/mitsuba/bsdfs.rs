@@ -183,3 +183,21 @@ fn a_textured_roughness_converts_to_toml_and_back() {
     };
     assert_eq!(textures(&back), textures(&scene));
 }
+
+/// A colour texture read as a number (here a mask's opacity) is its luminance, as Mitsuba's
+/// `eval_1` reads it, on the squares `eval_1` puts each colour.
+#[test]
+fn a_colour_read_as_a_number_is_its_luminance() {
+    let material = material_of(
+        "m-luminance",
+        "<bsdf type=\"mask\"><texture name=\"opacity\" type=\"checkerboard\">\
+         <rgb name=\"color0\" value=\"1, 0, 0\"/><rgb name=\"color1\" value=\"0, 0, 1\"/>\
+         </texture><bsdf type=\"diffuse\"/></bsdf>",
+    )
+    .unwrap();
+    let Some(Opacity::Texture(texture)) = material.opacity else { panic!("{material:?}") };
+    let embray::scene::Pattern::Checker2d { even, odd, .. } = texture.pattern else {
+        panic!("{texture:?}")
+    };
+    assert_eq!((even, odd), (Vec3::splat(0.0722), Vec3::splat(0.2126)));
+}

@@ -32,7 +32,9 @@ pub(super) fn reflectance_texture(
 
 /// The texture `name`, looked up as a number (`as_number`) or a colour: Mitsuba's
 /// checkerboard gives `color0` where u's and v's halves agree when a colour is looked up
-/// (`eval`), and where they differ when a number is (`eval_1`).
+/// (`eval`), and where they differ when a number is (`eval_1`); a colour read as a number
+/// is its luminance (embray's number lookups take the mean channel, which of a grey is
+/// the grey).
 fn texture(
     element: &Element,
     name: &str,
@@ -80,6 +82,8 @@ fn texture(
                 line: Line(Some(file.line)),
             };
             let image = load(&at, !raw)?;
+            let image =
+                if as_number { crate::scene::texture_image::as_luminance(&image) } else { image };
             let normalizer = if image.srgb_decoded || image.hdr { 1.0 } else { 255.0 };
             let interpolation = match property(texture, "string", "filter_type") {
                 Some(f) if f.required("value")? == "nearest" => Interpolation::Nearest,
@@ -97,7 +101,12 @@ fn texture(
                 Ok(Vec3::splat(number.unwrap_or(default) as f32))
             };
             let (color0, color1) = (color_of("color0", 0.4)?, color_of("color1", 0.2)?);
-            let (even, odd) = if as_number { (color1, color0) } else { (color0, color1) };
+            let (even, odd) = if as_number {
+                let grey = |c: Vec3| Vec3::splat(crate::color::luminance(c));
+                (grey(color1), grey(color0))
+            } else {
+                (color0, color1)
+            };
             Pattern::Checker2d { scale: 2.0, even, odd }
         }
         "rawconstant" => {
