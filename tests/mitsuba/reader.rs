@@ -171,6 +171,9 @@ fn errors_name_the_plugin_the_file_and_the_line() {
     );
     let message = error("mitsuba-medium", scene("<medium type=\"homogeneous\"/>"), &[]);
     assert_contains(&message, &["<medium> 'homogeneous' is not supported", "(line 15)"]);
+    let inside = "<shape type=\"sphere\"><medium type=\"homogeneous\" name=\"interior\"/></shape>";
+    let message = error("mitsuba-medium-inside", scene(inside), &[]);
+    assert_contains(&message, &["participating media (<medium>) are not supported", "(line 15)"]);
     let message = error(
         "mitsuba-param",
         scene("<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>"),

@@ -161,6 +161,9 @@ fn check_sensor_properties(element: &Element, kind: &str) -> Result<(), SceneErr
         known.push("aperture_radius");
     }
     for child in &element.children {
+        if child.tag == "medium" {
+            return Err(child.error("participating media (<medium>) are not supported"));
+        }
         match child.attr("name") {
             Some(name) if !known.contains(&name) => {
                 return Err(child.error(format!(

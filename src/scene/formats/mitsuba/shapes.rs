@@ -42,6 +42,10 @@ impl Builder<'_> {
             _ => &["flip_normals", "to_world"],
         };
         for child in &element.children {
+            if child.tag == "medium" || matches!(child.attr("name"), Some("interior" | "exterior"))
+            {
+                return Err(child.error("participating media (<medium>) are not supported"));
+            }
             match child.attr("name") {
                 Some(name) if known.contains(&name) => {}
                 Some(_) if matches!(child.tag.as_str(), "ref" | "bsdf" | "emitter") => {}
