@@ -11,11 +11,14 @@ use super::console::note;
 
 #[derive(Args, Debug)]
 pub struct ConvertArgs {
-    /// The CENG795 scene (.xml).
+    /// The CENG795 or Mitsuba 3 scene (.xml).
     pub input: PathBuf,
     /// The TOML file to write.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// A Mitsuba scene's parameter (its `<default>`, `$name`), as Mitsuba's `-D`.
+    #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = super::render_args::parse_define)]
+    pub defines: Vec<(String, String)>,
 }
 
 pub fn run(args: &ConvertArgs) -> Result<()> {
@@ -29,7 +32,7 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
     plan.input("the input scene", &args.input);
     // Checked before the scene is read: a wrong -o costs nothing.
     plan.output("-o", &args.output, true)?;
-    let cameras = embray::scene::xml::load(&args.input, &[])?;
+    let cameras = embray::scene::xml::load(&args.input, &args.defines)?;
     let stem = args.output.file_stem().map(|s| s.to_string_lossy().into_owned());
     let Some(stem) = stem.filter(|s| !s.is_empty()) else {
         bail!("-o '{}' is not a file name", args.output.display());

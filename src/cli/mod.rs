@@ -48,11 +48,14 @@ pub enum Command {
     Bench(BenchCommand),
     /// Print what a scene contains (for a CENG795 .xml file: each camera's scene).
     Info {
-        /// Scene file (.toml, or .xml for the CENG795 format); the built-in Cornell box if
-        /// omitted.
+        /// Scene file (.toml, or .xml for the CENG795 or Mitsuba 3 format); the built-in
+        /// Cornell box if omitted.
         scene: Option<PathBuf>,
+        /// A Mitsuba scene's parameter (its `<default>`, `$name`), as Mitsuba's `-D`.
+        #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = render_args::parse_define)]
+        defines: Vec<(String, String)>,
     },
-    /// Convert a CENG795 .xml scene to the native TOML format. Meshes are written as OBJ
+    /// Convert a CENG795 or Mitsuba 3 .xml scene to the native TOML format. Meshes are written as OBJ
     /// files into OUT_meshes/ beside it. A file with several cameras gives one TOML per
     /// camera, OUT_<image name>.toml, sharing the meshes.
     Convert(ConvertArgs),
@@ -79,7 +82,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Bench(command) => bench::run(command),
-        Command::Info { scene } => info::run(scene.as_deref()),
+        Command::Info { scene, defines } => info::run(scene.as_deref(), &defines),
         Command::Convert(args) => convert::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Tonemap(args) => tonemap::run(&args),

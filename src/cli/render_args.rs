@@ -175,7 +175,7 @@ fn parse_offset(text: &str) -> Result<DVec3, String> {
 }
 
 /// `NAME=VALUE` for `-D`.
-fn parse_define(text: &str) -> Result<(String, String), String> {
+pub(super) fn parse_define(text: &str) -> Result<(String, String), String> {
     match text.split_once('=') {
         Some((name, value)) if !name.is_empty() => Ok((name.to_owned(), value.to_owned())),
         _ => Err(format!("expected NAME=VALUE, got '{text}'")),

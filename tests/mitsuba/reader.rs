@@ -372,3 +372,24 @@ fn the_near_clip_plane_hides_what_is_nearer() {
         }
     }
 }
+
+/// `embray info` and `embray convert` take `-D` as `render` does.
+#[test]
+fn info_and_convert_take_parameters() {
+    let main = format!(
+        "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+         value=\"40\"/>{SENSOR}\n<shape type=\"sphere\"/>\n</scene>"
+    );
+    let path = files("m-info-define", &main, &[]);
+    let dir = path.parent().unwrap();
+    let out = super::common::command::embray(&["info", "main.xml", "-D", "fov=30"], dir);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && stdout.contains("vfov 29.99999"), "{stdout}");
+    let out = super::common::command::embray(
+        &["convert", "main.xml", "-D", "fov=25", "-o", "scene.toml"],
+        dir,
+    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let toml = std::fs::read_to_string(dir.join("scene.toml")).unwrap();
+    assert!(toml.contains("vfov = 25"), "{toml}");
+}
