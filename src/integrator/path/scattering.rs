@@ -3,12 +3,13 @@
 
 use super::PathTracer;
 use crate::shading::bsdf::Bsdf;
-use crate::shading::material::Material;
+use crate::shading::material::{Blend, Material};
 use crate::shading::surface::SurfaceInteraction;
 use glam::Vec3;
 
 impl PathTracer<'_> {
     /// The BSDF of `material` at `si` (shading normal already mapped).
+    #[inline]
     pub(super) fn scattering(
         &self,
         material: &Material,
@@ -16,19 +17,36 @@ impl PathTracer<'_> {
         time: f32,
     ) -> Bsdf {
         let bsdf = match &material.blend {
-            Some(blend) => {
-                let [first, second] = &blend.materials;
-                let weight = self.opacity(&blend.weight, si, time);
-                let frame = self.shading_frame(si.shading_normal);
-                let parts = (self.scattering(first, si, time), self.scattering(second, si, time));
-                Bsdf::blend(parts.0, parts.1, weight, frame)
-            }
+            Some(blend) => self.blend_scattering(blend, si, time),
             None => self.own_scattering(material, si, time),
         };
+        self.masked(material, bsdf, si, time)
+    }
+
+    /// `bsdf` under `material`'s mask, if it has one.
+    fn masked(&self, material: &Material, bsdf: Bsdf, si: &SurfaceInteraction, time: f32) -> Bsdf {
         match &material.opacity {
             None => bsdf,
             Some(opacity) => bsdf.with_opacity(self.opacity(opacity, si, time)),
         }
+    }
+
+    /// A blend's BSDF (blends of blends by recursion here, so that `scattering`, which every
+    /// hit calls, has no cycle and stays inlined).
+    #[cold]
+    #[inline(never)]
+    fn blend_scattering(&self, blend: &Blend, si: &SurfaceInteraction, time: f32) -> Bsdf {
+        let part = |material: &Material| {
+            let bsdf = match &material.blend {
+                Some(inner) => self.blend_scattering(inner, si, time),
+                None => self.own_scattering(material, si, time),
+            };
+            self.masked(material, bsdf, si, time)
+        };
+        let [first, second] = &blend.materials;
+        let weight = self.opacity(&blend.weight, si, time);
+        let frame = self.shading_frame(si.shading_normal);
+        Bsdf::blend(part(first), part(second), weight, frame)
     }
 
     /// The BSDF of `material`'s own lobes.

@@ -1,51 +1,96 @@
-//! A mixture of two BSDFs (Mitsuba's `blendbsdf`): `weight` of the second's scattering and
-//! the rest of the first's. One part is sampled (chosen with its weight); a smooth sample
-//! is then weighted by the whole mixture's value and density, as the light-sampling side
-//! evaluates it, so that MIS sees one consistent BSDF.
+//! A mixture of BSDFs (Mitsuba's `blendbsdf`, blends of blends flattened into one): each
+//! part scatters its share of the light. One part is sampled (chosen with its share); a
+//! smooth sample is then weighted by the whole mixture's value and density, as the
+//! light-sampling side evaluates it, so that MIS sees one consistent BSDF.
 
-use super::{Bsdf, BsdfSample};
+use super::{Bsdf, BsdfSample, Scatter};
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]
 pub struct Blend {
-    pub(super) parts: [Bsdf; 2],
-    /// The second part's share, in [0, 1].
-    pub(super) weight: f32,
+    /// Each part's share (summing to 1) and the part, never itself a blend.
+    parts: Vec<(f32, Bsdf)>,
 }
 
 impl Blend {
-    fn shares(&self) -> [f32; 2] {
-        [1.0 - self.weight, self.weight]
+    /// `weight` of `second` and the rest of `first`; a part that is a blend gives its own
+    /// parts, their shares scaled (and its mask's opacity folded into theirs: a mask over a
+    /// mixture is the mixture of the masked parts).
+    pub fn new(first: Bsdf, second: Bsdf, weight: f32) -> Self {
+        let mut parts = Vec::with_capacity(2);
+        for (share, part) in [(1.0 - weight, first), (weight, second)] {
+            match part.scatter {
+                Scatter::Blend(inner) => {
+                    for (inner_share, mut leaf) in inner.parts {
+                        leaf.opacity *= part.opacity;
+                        parts.push((share * inner_share, leaf));
+                    }
+                }
+                _ => parts.push((share, part)),
+            }
+        }
+        Blend { parts }
     }
 
+    fn weighted(&self) -> impl Iterator<Item = &(f32, Bsdf)> {
+        self.parts.iter().filter(|(share, _)| *share > 0.0)
+    }
+
+    // Rare: kept out of the common kinds' inlined code.
+    #[cold]
+    #[inline(never)]
     pub fn has_smooth_lobe(&self) -> bool {
-        self.parts.iter().zip(self.shares()).any(|(p, share)| share > 0.0 && p.has_smooth_lobe())
+        self.weighted().any(|(_, p)| p.has_smooth_lobe_at::<true>())
     }
 
+    // Rare: kept out of the common kinds' inlined code.
+    #[cold]
+    #[inline(never)]
     pub fn transmits(&self) -> bool {
-        self.parts.iter().zip(self.shares()).any(|(p, share)| share > 0.0 && p.transmits())
+        self.weighted().any(|(_, p)| p.transmits_at::<true>())
     }
 
+    // Rare: kept out of the common kinds' inlined code.
+    #[cold]
+    #[inline(never)]
     pub fn albedo_bound(&self, wo: Vec3) -> Vec3 {
-        let [a, b] = self.shares();
-        a * self.parts[0].albedo_bound(wo) + b * self.parts[1].albedo_bound(wo)
+        self.weighted().map(|(share, p)| *share * p.albedo_bound_at::<true>(wo)).sum()
     }
 
     /// f · |cos θi| and density, both directions in render space.
+    // Rare: kept out of the common kinds' inlined code.
+    #[cold]
+    #[inline(never)]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
-        let [a, b] = self.shares();
-        let (f0, p0) = if a > 0.0 { self.parts[0].eval(wo, wi) } else { (Vec3::ZERO, 0.0) };
-        let (f1, p1) = if b > 0.0 { self.parts[1].eval(wo, wi) } else { (Vec3::ZERO, 0.0) };
-        (a * f0 + b * f1, a * p0 + b * p1)
+        self.weighted().fold((Vec3::ZERO, 0.0), |(value, pdf), (share, p)| {
+            let (f, p) = p.eval_at::<true>(wo, wi);
+            (value + *share * f, pdf + *share * p)
+        })
     }
 
-    /// Samples the second part where `u_lobe` < `weight` (Mitsuba's choice), else the
-    /// first, with `u_lobe` stretched back over [0, 1) for the part's own choices.
+    /// Samples the part whose share holds `u_lobe` (the second of two where `u_lobe` <
+    /// its weight, Mitsuba's choice), `u_lobe` stretched back over [0, 1) for the part's own
+    /// choices.
+    // Rare: kept out of the common kinds' inlined code.
+    #[cold]
+    #[inline(never)]
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        let w = self.weight;
-        let (chosen, u_lobe) =
-            if u_lobe < w { (1, u_lobe / w) } else { (0, (u_lobe - w) / (1.0 - w)) };
-        let mut sample = self.parts[chosen].sample(wo, u_lobe.min(1.0 - f32::EPSILON / 2.0), u)?;
+        // Mitsuba's order: the last part first.
+        let mut start = 0.0;
+        let mut chosen = None;
+        for (share, part) in self.parts.iter().rev() {
+            if *share > 0.0 && u_lobe < start + share {
+                chosen = Some(((u_lobe - start) / share, part));
+                break;
+            }
+            start += share;
+        }
+        let (u_part, part) = match chosen {
+            Some(found) => found,
+            // Rounding left u_lobe just past the last share: the first part with one.
+            None => (0.0, &self.weighted().next()?.1),
+        };
+        let mut sample = part.sample_at::<true>(wo, u_part.min(1.0 - f32::EPSILON / 2.0), u)?;
         if sample.delta {
             // The delta lobe's share of the mixture is the probability of choosing it: its
             // weight f/pdf is the part's own.

@@ -162,7 +162,7 @@ impl Bsdf {
     /// `weight` (in [0, 1]) of `second`'s scattering and the rest of `first`'s, in `frame`
     /// (the parts keep their own frames).
     pub fn blend(first: Bsdf, second: Bsdf, weight: f32, frame: Mat3) -> Self {
-        let blend = Blend { parts: [first, second], weight: weight.clamp(0.0, 1.0) };
+        let blend = Blend::new(first, second, weight.clamp(0.0, 1.0));
         Bsdf { scatter: Scatter::Blend(Box::new(blend)), frame, opacity: 1.0, unmapped: None }
     }
 
@@ -211,6 +211,14 @@ impl Bsdf {
 
     /// True if light sampling can contribute (some lobe is not a delta distribution).
     pub fn has_smooth_lobe(&self) -> bool {
+        self.has_smooth_lobe_at::<false>()
+    }
+
+    // A blend's parts are never blends (`Bsdf::blend` flattens them); each method has a
+    // `LEAF` form for them, which knows no blend. The call graph then has no cycle, and the
+    // integrator's calls are inlined as before blends existed (4.5 % of a diffuse Cornell
+    // box's time when they were not).
+    pub(super) fn has_smooth_lobe_at<const LEAF: bool>(&self) -> bool {
         self.opacity > 0.0
             && match &self.scatter {
                 Scatter::Mixture(m) => m.has_smooth_lobe(),
@@ -218,7 +226,7 @@ impl Bsdf {
                 | Scatter::RoughDielectric(_)
                 | Scatter::Principled(_)
                 | Scatter::PrincipledThin(_) => true,
-                Scatter::Blend(b) => b.has_smooth_lobe(),
+                Scatter::Blend(b) => !LEAF && b.has_smooth_lobe(),
                 Scatter::Black => false,
             }
     }
@@ -227,9 +235,13 @@ impl Bsdf {
     /// (rough glass, a principled material's transmission): light sampling must then look
     /// on both sides.
     pub fn transmits(&self) -> bool {
+        self.transmits_at::<false>()
+    }
+
+    pub(super) fn transmits_at<const LEAF: bool>(&self) -> bool {
         match &self.scatter {
             Scatter::RoughDielectric(_) => true,
-            Scatter::Blend(b) => b.transmits(),
+            Scatter::Blend(b) => !LEAF && b.transmits(),
             Scatter::Principled(p) => p.transmits(),
             Scatter::PrincipledThin(p) => p.transmits(),
             _ => false,
@@ -241,29 +253,37 @@ impl Bsdf {
     /// principled models, which are not energy-conserving (their retro-reflection and sheen
     /// add to the diffuse lobe): their base colour, as Mitsuba's denoiser albedo is.
     pub fn albedo_bound(&self, wo: Vec3) -> Vec3 {
+        self.albedo_bound_at::<false>(wo)
+    }
+
+    pub(super) fn albedo_bound_at<const LEAF: bool>(&self, wo: Vec3) -> Vec3 {
         let met = match &self.scatter {
             Scatter::Mixture(m) => m.albedo_bound(wo),
             Scatter::Plastic(p) => p.albedo_bound(),
             Scatter::RoughDielectric(_) => Vec3::ONE,
-            Scatter::Blend(b) => b.albedo_bound(wo),
+            Scatter::Blend(b) if !LEAF => b.albedo_bound(wo),
             Scatter::Principled(p) => p.base_color().clamp(Vec3::ZERO, Vec3::ONE),
             Scatter::PrincipledThin(p) => p.base_color().clamp(Vec3::ZERO, Vec3::ONE),
-            Scatter::Black => Vec3::ZERO,
+            Scatter::Black | Scatter::Blend(_) => Vec3::ZERO,
         };
         met * self.opacity + Vec3::splat(1.0 - self.opacity)
     }
 
     /// f · |cos θi| and the density of sampling `wi`, for the non-delta lobes.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        self.eval_at::<false>(wo, wi)
+    }
+
+    pub(super) fn eval_at<const LEAF: bool>(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
         let local = |w: Vec3| self.frame.transpose() * w;
         let (value, pdf) = match &self.scatter {
             Scatter::Mixture(m) => m.eval(wo, wi),
             Scatter::Plastic(p) => p.eval(local(wo), local(wi)),
             Scatter::RoughDielectric(d) => d.eval(local(wo), local(wi)),
-            Scatter::Blend(b) => b.eval(wo, wi),
+            Scatter::Blend(b) if !LEAF => b.eval(wo, wi),
             Scatter::Principled(p) => p.eval(local(wo), local(wi)),
             Scatter::PrincipledThin(p) => p.eval(local(wo), local(wi)),
-            Scatter::Black => (Vec3::ZERO, 0.0),
+            Scatter::Black | Scatter::Blend(_) => (Vec3::ZERO, 0.0),
         };
         let value = match self.unmapped {
             None => value,
@@ -277,6 +297,15 @@ impl Bsdf {
 
     /// Samples an incident direction for outgoing `wo` (both render space).
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        self.sample_at::<false>(wo, u_lobe, u)
+    }
+
+    pub(super) fn sample_at<const LEAF: bool>(
+        &self,
+        wo: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+    ) -> Option<BsdfSample> {
         if u_lobe >= self.opacity {
             return Some(BsdfSample::pass_through(wo));
         }
@@ -287,12 +316,14 @@ impl Bsdf {
         let local = || self.frame.transpose() * wo;
         let mut sample = match &self.scatter {
             Scatter::Mixture(m) => return m.sample(wo, u_lobe, u).and_then(|s| self.masked(s)),
-            Scatter::Blend(b) => return b.sample(wo, u_lobe, u).and_then(|s| self.masked(s)),
+            Scatter::Blend(b) if !LEAF => {
+                return b.sample(wo, u_lobe, u).and_then(|s| self.masked(s));
+            }
             Scatter::Plastic(p) => p.sample(local(), u_lobe, u)?,
             Scatter::RoughDielectric(d) => d.sample(local(), u_lobe, u)?,
             Scatter::Principled(p) => p.sample(local(), u_lobe, u)?,
             Scatter::PrincipledThin(p) => p.sample(local(), u_lobe, u)?,
-            Scatter::Black => return None,
+            Scatter::Black | Scatter::Blend(_) => return None,
         };
         sample.wi = self.frame * sample.wi;
         self.masked(sample)

@@ -72,3 +72,28 @@ fn a_blend_is_the_weighted_sum_of_its_parts() {
         );
     }
 }
+
+#[test]
+fn a_blend_of_blends_is_flattened_with_its_shares_and_masks() {
+    let (a, b, c) = (Material::diffuse(Vec3::splat(0.8)), rough_copper(0.3), rough_copper(0.05));
+    let inner = blend(&a, &b, 0.5).with_opacity(0.6);
+    let outer = Bsdf::blend(inner, bsdf(&c), 0.25, Mat3::IDENTITY);
+    let (wo, wi) = (Vec3::new(0.3, 0.2, 0.9).normalize(), Vec3::new(-0.3, 0.1, 0.95).normalize());
+    let (fa, pa) = bsdf(&a).eval(wo, wi);
+    let (fb, pb) = bsdf(&b).eval(wo, wi);
+    let (fc, pc) = bsdf(&c).eval(wo, wi);
+    let (f, p) = outer.eval(wo, wi);
+    // The inner blend's share 0.75, masked to 0.6 of the light: 0.225 each of a and b.
+    assert!((f - (0.225 * fa + 0.225 * fb + 0.25 * fc)).abs().max_element() < 1e-6);
+    assert!((p - (0.225 * pa + 0.225 * pb + 0.25 * pc)).abs() < 1e-6);
+    // The rest of the inner share passes straight on: 0.75 · 0.4 of the samples.
+    let mut rng = crate::splitmix::SplitMix64(5);
+    let n = 100_000;
+    let passed = (0..n)
+        .filter(|_| {
+            let s = outer.sample(wo, rng.unit(), Vec2::new(rng.unit(), rng.unit()));
+            s.is_some_and(|s| s.passes)
+        })
+        .count();
+    assert!((passed as f64 / n as f64 - 0.3).abs() < 0.01, "{passed}");
+}
