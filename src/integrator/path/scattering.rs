@@ -9,7 +9,6 @@ use glam::Vec3;
 
 impl PathTracer<'_> {
     /// The BSDF of `material` at `si` (shading normal already mapped).
-    #[inline]
     pub(super) fn scattering(
         &self,
         material: &Material,
@@ -32,7 +31,7 @@ impl PathTracer<'_> {
     }
 
     /// A blend's BSDF (blends of blends by recursion here, so that `scattering`, which every
-    /// hit calls, has no cycle and stays inlined).
+    /// hit calls, is not recursive and may be inlined).
     #[cold]
     #[inline(never)]
     fn blend_scattering(&self, blend: &Blend, si: &SurfaceInteraction, time: f32) -> Bsdf {

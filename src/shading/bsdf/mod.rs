@@ -215,9 +215,8 @@ impl Bsdf {
     }
 
     // A blend's parts are never blends (`Bsdf::blend` flattens them); each method has a
-    // `LEAF` form for them, which knows no blend. The call graph then has no cycle, and the
-    // integrator's calls are inlined as before blends existed (4.5 % of a diffuse Cornell
-    // box's time when they were not).
+    // `LEAF` form for them, which knows no blend, so that no method calls itself and the
+    // compiler may inline them into the integrator as it did before blends existed.
     pub(super) fn has_smooth_lobe_at<const LEAF: bool>(&self) -> bool {
         self.opacity > 0.0
             && match &self.scatter {
