@@ -19,6 +19,7 @@ pub mod compare_linear;
 pub mod compile;
 pub mod denoise;
 pub mod distributed;
+pub mod erf;
 pub mod excerpt;
 pub mod exr_rgb;
 pub mod film;

@@ -75,10 +75,22 @@ impl SceneTracer<'_> {
         }
     }
 
+    /// The value of the hit mesh's attribute `name` at `si` (black on spheres and on meshes
+    /// without it, as Mitsuba's lookup of a missing attribute gives 0).
+    fn mesh_attribute(&self, name: &str, si: &SurfaceInteraction) -> Vec3 {
+        let instance = &self.scene.instances[si.geom_id as usize];
+        match &self.scene.prototypes[instance.prototype as usize].geometry {
+            crate::render_scene::Geometry::Triangles(mesh) => {
+                mesh.attribute(name, si.prim_id, si.barycentric).unwrap_or(Vec3::ZERO)
+            }
+            crate::render_scene::Geometry::Sphere(_) => Vec3::ZERO,
+        }
+    }
+
     /// `texture`'s colour at `si` (solid patterns in the hit object's own space at `time`).
     pub fn texture_color(&self, texture: &Texture, si: &SurfaceInteraction, time: f32) -> Vec3 {
         if let Some((name, scale)) = texture.mesh_attribute() {
-            return crate::shading::texture::mesh_attribute(self.scene, name, si) * scale;
+            return self.mesh_attribute(name, si) * scale;
         }
         let p_object = if texture.needs_object_point() {
             let placement = &self.scene.instances[si.geom_id as usize].placement;

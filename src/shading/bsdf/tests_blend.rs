@@ -35,14 +35,7 @@ fn a_blend_samples_its_own_density() {
         ("rough copper α 0.05 | diffuse, 0.8", blend(&rough_copper(0.05), &diffuse, 0.8)),
         ("mirror | diffuse, 0.5", blend(&mirror, &diffuse, 0.5)),
     ];
-    let grid = Grid {
-        theta_max: std::f64::consts::PI,
-        theta_cells: 16,
-        phi_cells: 16,
-        sub: 64,
-        delta_allowed: true,
-        samples: 200_000,
-    };
+    let grid = Grid::whole_sphere(true);
     for (i, (name, bsdf)) in cases.iter().enumerate() {
         for (j, wo) in [Vec3::new(0.1, 0.0, 1.0), Vec3::new(0.6, -0.3, 0.5)].iter().enumerate() {
             grid.test(&format!("{name}, wo {wo}"), bsdf, wo.normalize(), (i * 3 + j) as u64);

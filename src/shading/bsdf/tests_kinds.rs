@@ -7,19 +7,8 @@ use super::*;
 use crate::scene::Distribution;
 use crate::splitmix::SplitMix64;
 
-/// The whole sphere in 16 × 16 cells, each integrated on a 64 × 64 grid: fine enough for
-/// the sharpest lobe tested (α 0.05) and for the edge of rough glass's transmission, where
-/// refraction through facets seen edge-on piles directions up.
 fn chi_square_test(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u64) {
-    let grid = Grid {
-        theta_max: std::f64::consts::PI,
-        theta_cells: 16,
-        phi_cells: 16,
-        sub: 64,
-        delta_allowed: true,
-        samples: 200_000,
-    };
-    grid.test(name, bsdf, wo, seed);
+    Grid::whole_sphere(true).test(name, bsdf, wo, seed);
 }
 
 fn furnace(bsdf: &Bsdf, wo: Vec3, samples: usize) -> Vec3 {

@@ -42,17 +42,8 @@ fn views() -> [Vec3; 3] {
     }]
 }
 
-/// The whole sphere in 16 × 16 cells, each integrated on a 64 × 64 grid.
 fn chi_square_test(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u64) {
-    let grid = Grid {
-        theta_max: std::f64::consts::PI,
-        theta_cells: 16,
-        phi_cells: 16,
-        sub: 64,
-        delta_allowed: false,
-        samples: 200_000,
-    };
-    grid.test(name, bsdf, wo, seed);
+    Grid::whole_sphere(false).test(name, bsdf, wo, seed);
 }
 
 #[test]

@@ -113,22 +113,6 @@ impl Texture {
     }
 }
 
-/// The value of the hit mesh's attribute `name` at `si` (black on spheres and on meshes
-/// without it, as Mitsuba's lookup of a missing attribute gives 0).
-pub fn mesh_attribute(
-    scene: &crate::render_scene::RenderScene,
-    name: &str,
-    si: &crate::shading::surface::SurfaceInteraction,
-) -> Vec3 {
-    let instance = &scene.instances[si.geom_id as usize];
-    match &scene.prototypes[instance.prototype as usize].geometry {
-        crate::render_scene::Geometry::Triangles(mesh) => {
-            mesh.attribute(name, si.prim_id, si.barycentric).unwrap_or(Vec3::ZERO)
-        }
-        crate::render_scene::Geometry::Sphere(_) => Vec3::ZERO,
-    }
-}
-
 /// The colour of `pattern` at pattern-space point `p` with texture coordinates `uv`.
 fn pattern_at(pattern: &Pattern, p: Vec3, uv: Vec2) -> Vec3 {
     let parity = |cells: &[f32]| cells.iter().map(|c| c.floor() as i64).sum::<i64>() & 1;

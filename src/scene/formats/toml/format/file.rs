@@ -1,7 +1,8 @@
 //! The scene file and its camera, render and tone-mapping tables.
 
-use super::materials::{MaterialToml, TextureToml};
+use super::materials::MaterialToml;
 use super::objects::ObjectToml;
+use super::textures::TextureToml;
 use super::values::Vec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;

@@ -8,6 +8,7 @@ mod lights;
 mod materials;
 mod objects;
 mod principled;
+mod textures;
 mod transforms;
 mod values;
 
@@ -16,5 +17,6 @@ pub(crate) use lights::*;
 pub(crate) use materials::*;
 pub(crate) use objects::*;
 pub(crate) use principled::*;
+pub(crate) use textures::*;
 pub(crate) use transforms::*;
 pub(crate) use values::*;

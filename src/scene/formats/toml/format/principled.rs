@@ -1,7 +1,7 @@
 //! The `principled` table of a `principled` or `principledthin` material: Mitsuba's
 //! parameter names, each weight a number or a texture table.
 
-use super::materials::TextureToml;
+use super::textures::TextureToml;
 use serde::Deserialize;
 
 /// `metallic = 0.5`, or `metallic = { type = "checker2d", … }` (its mean channel).

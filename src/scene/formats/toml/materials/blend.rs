@@ -2,7 +2,7 @@
 //! first. Read with the other materials, then given its two materials' descriptions once
 //! every material is read (`resolve_blends`), so that it may name any of them.
 
-use super::material::number_or_texture;
+use super::textures::number_or_texture;
 use crate::scene::desc::{BlendDesc, MaterialDesc, Opacity};
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::builder::Builder;

@@ -1,12 +1,12 @@
 //! `[materials.NAME]` → `MaterialDesc`: a Lambertian part (`albedo` or a `texture`), one specular lobe chosen by `type`, emission, and the course's Phong terms. Each type takes only its own fields.
 
 use super::course::{brdf, phong};
-use super::textures::{Use, texture_desc};
-use crate::scene::desc::{Distribution, MaterialDesc, Opacity, PhongDesc, Specular};
+use super::textures::{Use, number_or_texture, texture_desc};
+use crate::scene::desc::{Distribution, MaterialDesc, PhongDesc, Specular};
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::format::{
-    BumpHeightsToml, DistributionToml, MaterialKind, MaterialToml, MetalPreset, OpacityToml,
-    RoughnessToml, TextureToml,
+    BumpHeightsToml, DistributionToml, MaterialKind, MaterialToml, MetalPreset, RoughnessToml,
+    TextureToml,
 };
 use crate::scene::formats::toml::source_map::FieldPath;
 use crate::scene::formats::toml::validate::Ctx;
@@ -289,24 +289,6 @@ pub(crate) fn material(
             None
         },
     })
-}
-
-/// A number in [0, 1] or a texture's mean channel: an opacity, a blend's weight.
-pub(super) fn number_or_texture(
-    field: &FieldPath,
-    value: &OpacityToml,
-    ctx: &Ctx,
-    base_dir: &Path,
-) -> Result<Opacity, SceneError> {
-    match value {
-        OpacityToml::Constant(value) => {
-            ctx.require((0.0..=1.0).contains(value), field, value, "in [0, 1]")?;
-            Ok(Opacity::Constant(*value as f32))
-        }
-        OpacityToml::Texture(t) => {
-            Ok(Opacity::Texture(texture_desc(field, t, Use::Specular, ctx, base_dir)?))
-        }
-    }
 }
 
 /// `preset`, or `eta` (each > 0) and `k` (each >= 0).

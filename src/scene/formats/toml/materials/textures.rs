@@ -1,10 +1,12 @@
 //! Texture tables → `TextureDesc`: each texture type takes only its own fields, and each use (colour, normal map, bump map, background) only its own keys.
 
-use crate::scene::desc::{Interpolation, NoiseConversion, Pattern, TextureDesc, TextureMode};
+use crate::scene::desc::{
+    Interpolation, NoiseConversion, Opacity, Pattern, TextureDesc, TextureMode,
+};
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::format::{
-    ImageEncodingToml, InterpolationToml, NoiseConversionToml, TextureKind, TextureModeToml,
-    TextureToml, Vec3,
+    ImageEncodingToml, InterpolationToml, NoiseConversionToml, OpacityToml, TextureKind,
+    TextureModeToml, TextureToml, Vec3,
 };
 use crate::scene::formats::toml::source_map::FieldPath;
 use crate::scene::formats::toml::validate::Ctx;
@@ -195,4 +197,22 @@ pub(super) fn texture_desc(
     // A material from the table is attached to objects directly: its pattern lives in the
     // space of each object's own vertices.
     Ok(TextureDesc { pattern, mode, texture_from_object: DAffine3::IDENTITY })
+}
+
+/// A number in [0, 1] or a texture's mean channel: an opacity, a blend's weight.
+pub(super) fn number_or_texture(
+    field: &FieldPath,
+    value: &OpacityToml,
+    ctx: &Ctx,
+    base_dir: &Path,
+) -> Result<Opacity, SceneError> {
+    match value {
+        OpacityToml::Constant(value) => {
+            ctx.require((0.0..=1.0).contains(value), field, value, "in [0, 1]")?;
+            Ok(Opacity::Constant(*value as f32))
+        }
+        OpacityToml::Texture(t) => {
+            Ok(Opacity::Texture(texture_desc(field, t, Use::Specular, ctx, base_dir)?))
+        }
+    }
 }

@@ -38,9 +38,11 @@ pub struct TomlWriter {
 
 mod materials;
 mod principled;
+mod textures;
 mod values;
 
-use materials::{material_names, texture_toml, write_material};
+use materials::{material_names, write_material};
+use textures::texture_toml;
 use values::{c3, f, matrix, quoted, v3};
 
 impl TomlWriter {

@@ -3,7 +3,7 @@
 //! defaults only.
 
 use super::TomlWriteError;
-use super::materials::texture_table;
+use super::textures::texture_table;
 use crate::scene::desc::{MaterialDesc, ParamDesc, PrincipledDesc};
 use std::fmt::Write as _;
 
