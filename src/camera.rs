@@ -79,7 +79,7 @@ impl Camera {
             let origin_camera = Vec3::new(offset.x, offset.y, 0.0);
             let origin = self.position + self.render_from_camera_rotation * origin_camera;
             let dir = (self.render_from_camera_rotation * Vec3::NEG_Z).normalize();
-            return self.clipped(Ray::new(origin, dir, f32::INFINITY), 1.0);
+            return self.clipped(Ray::new(origin, dir, f32::INFINITY), || 1.0);
         }
         let dir_camera = self.camera_direction(raster);
         let (origin_camera, dir_camera) = match lens {
@@ -95,19 +95,19 @@ impl Camera {
         };
         let dir = (self.render_from_camera_rotation * dir_camera).normalize();
         let origin = self.position + self.render_from_camera_rotation * origin_camera;
-        let along_axis = -dir_camera.z / dir_camera.length();
-        self.clipped(Ray::new(origin, dir, f32::INFINITY), along_axis)
+        self.clipped(Ray::new(origin, dir, f32::INFINITY), || -dir_camera.z / dir_camera.length())
     }
 
     /// `ray` limited to the clip distances, measured along the view axis (the unit
-    /// direction's component along it is `along_axis`).
-    fn clipped(&self, mut ray: Ray, along_axis: f32) -> Ray {
+    /// direction's component along it is `along_axis`, computed only for a clipping camera).
+    #[inline]
+    fn clipped(&self, mut ray: Ray, along_axis: impl Fn() -> f32) -> Ray {
         let (near, far) = self.clip;
         if near > 0.0 {
-            ray.tmin = near / along_axis;
+            ray.tmin = near / along_axis();
         }
         if far.is_finite() {
-            ray.tmax = far / along_axis;
+            ray.tmax = far / along_axis();
         }
         ray
     }
