@@ -18,7 +18,7 @@
 //! cores; the machines this runs on are noisy, so compare within a run.
 
 use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
-use embray::accel::{Accel, AccelOptions, BackendKind, BatchMode, BuildQuality, build};
+use embray::accel::{Accel, AccelOptions, BackendKind, BatchMode, BuildQuality, Coherence, build};
 use embray::bench::{procedural, speed};
 use embray::choice::Choice;
 use embray::ray::{Hit, Ray};
@@ -59,7 +59,7 @@ fn hits_one_by_one(accel: &dyn Accel, rays: &[Ray]) -> usize {
 fn hits_batched(accel: &dyn Accel, rays: &[Ray], hits: &mut [Option<Hit>]) -> usize {
     let mut counters = TraversalCounters::default();
     for (rays, hits) in rays.chunks(BATCH).zip(hits.chunks_mut(BATCH)) {
-        accel.intersect_batch(rays, hits, &mut counters);
+        accel.intersect_batch(rays, hits, Coherence::Coherent, &mut counters);
     }
     hits.iter().filter(|h| h.is_some()).count()
 }

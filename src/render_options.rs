@@ -9,6 +9,25 @@ use crate::scene::{IntegratorKind, SceneDesc};
 use crate::shading::spawn::SpawnMode;
 use glam::DVec3;
 
+/// How the path tracer advances its paths. Both give the same image bit for bit (each
+/// path's arithmetic and random numbers are the same; the batched queries return the
+/// single-ray answers), so the scalar one is the reference the batched one is tested
+/// against.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PathBatching {
+    /// The paths of one sample index of a tile's pixels together, a bounce at a time: their
+    /// rays traced as packets (Embree `rtcIntersect8/16`, `rtcOccluded8/16`).
+    #[default]
+    Batched,
+    /// One path at a time, one ray at a time.
+    Scalar,
+}
+
+crate::choice::named_choices!(PathBatching, "path batching", {
+    Batched => "batched",
+    Scalar => "scalar",
+});
+
 /// Validated options of one render (command line, or tests).
 #[derive(Clone, Debug)]
 pub struct RenderOptions {
@@ -34,6 +53,8 @@ pub struct RenderOptions {
     pub light_samples: u32,
     pub effects_mode: EffectsMode,
     pub integrator: IntegratorKind,
+    /// How the path tracer advances its paths (the image is the same either way).
+    pub paths: PathBatching,
     pub spawn: SpawnMode,
     pub sampler: SamplerKind,
     /// How the path tracer combines a material's lobes (conserving, or the course's
@@ -71,6 +92,7 @@ impl RenderOptions {
             light_samples: scene.settings.light_samples,
             effects_mode: EffectsMode::Auto,
             integrator: scene.settings.integrator,
+            paths: PathBatching::default(),
             spawn: SpawnMode::Robust,
             sampler: SamplerKind::default(),
             energy: Default::default(),

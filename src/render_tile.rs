@@ -1,11 +1,11 @@
 //! One tile of a render: the camera samples of its pixels for a range of sample indices,
-//! traced one at a time or, where the backend prefers it, as packets of one sample index of
-//! every pixel of the tile.
+//! traced one at a time or, with the path tracer, as a batch of the paths of one sample
+//! index of every pixel of the tile.
 
 use crate::film::Tile;
-use crate::integrator::{PathSample, Tracer};
-use crate::ray::{Hit, Ray};
-use crate::render_options::RenderOptions;
+use crate::integrator::{PathSample, Tracer, Wavefront};
+use crate::ray::Ray;
+use crate::render_options::{PathBatching, RenderOptions};
 use crate::render_scene::RenderScene;
 use crate::sample_sums::PixelSums;
 use crate::sampling::{SLOT_LENS, SLOT_TIME, SampleStream};
@@ -33,10 +33,7 @@ pub const CAMERA_BATCH: usize = (TILE_SIZE * TILE_SIZE) as usize;
 /// Buffers one worker reuses from tile to tile, so tracing a tile allocates only its result.
 #[derive(Default)]
 pub(crate) struct TileScratch {
-    rays: Vec<Ray>,
-    streams: Vec<SampleStream>,
-    hits: Vec<Option<Hit>>,
-    backdrops: Vec<Option<Vec3>>,
+    wavefront: Wavefront,
     weights: Vec<f32>,
 }
 
@@ -64,14 +61,13 @@ fn camera_sample(
     (ray, stream, scene.backdrop_at(raster), weight)
 }
 
-/// Renders the samples `samples` of every pixel of one tile. With the path tracer on a
-/// backend that traces batches faster (`Accel::prefers_batches`: Embree packets), the camera
-/// rays of one sample index of every pixel of the tile are generated first (the same random
-/// numbers as one at a time), intersected as one batch (`Accel::intersect_batch`, whose hits
-/// equal single-ray ones but for ties between coincident surfaces, see `BatchMode`), and each
-/// path then continues from its first hit. A batch depends only on the tile and the sample
-/// index, never on the sample range, so a render split into sample ranges traces the same
-/// packets as the whole one and merges to the same image bit for bit.
+/// Renders the samples `samples` of every pixel of one tile. The path tracer (unless asked
+/// for scalar paths) advances the paths of one sample index of every pixel of the tile
+/// together, a bounce at a time (`Wavefront`: rays in packets, each path shaded as the
+/// scalar integrator shades it, with the same random numbers), so the image is the scalar
+/// one. A batch depends only on the tile and the sample index, never on the sample range,
+/// so a render split into sample ranges traces the same packets as the whole one and
+/// merges to the same image bit for bit.
 pub(crate) fn render_tile(
     tracer: &Tracer,
     tile: Tile,
@@ -87,7 +83,7 @@ pub(crate) fn render_tile(
     let spp = options.spp.max(1);
     let pixel = |i: usize| (tile.x0 + (i % width) as u32, tile.y0 + (i / width) as u32);
     let clamp = options.clamp;
-    let add = |sums: &mut PixelSums, sample: PathSample, weight: f32| {
+    let add = |sums: &mut PixelSums, sample: &PathSample, weight: f32| {
         let radiance = match clamp {
             Some(limit) if sample.radiance.max_element() > limit => {
                 sample.radiance * (limit / sample.radiance.max_element())
@@ -98,7 +94,7 @@ pub(crate) fn render_tile(
         sums.add_sample(radiance * weight, sample.depth, sample.normal, sample.albedo)
     };
     let batched = match tracer {
-        Tracer::Path(path) if path.accel().prefers_batches() => Some(path),
+        Tracer::Path(path) if options.paths == PathBatching::Batched => Some(path),
         _ => None,
     };
     // A stop ends the tile too (its pass is dropped), so that a long pass stops promptly.
@@ -111,34 +107,28 @@ pub(crate) fn render_tile(
             for s in samples.clone() {
                 let (ray, mut stream, backdrop, weight) =
                     camera_sample(scene, options, pixel(i), s, spp);
-                add(sums, tracer.trace(ray, backdrop, &mut stream, &mut result.stats), weight);
+                let sample = tracer.trace(ray, backdrop, &mut stream, &mut result.stats);
+                add(sums, &sample, weight);
             }
         }
         return Some(result);
     };
+    let wavefront = &mut scratch.wavefront;
     for s in samples {
         if stopped() {
             return None;
         }
-        scratch.rays.clear();
-        scratch.streams.clear();
-        scratch.backdrops.clear();
+        wavefront.clear();
         scratch.weights.clear();
         for i in 0..n {
             let (ray, stream, backdrop, weight) = camera_sample(scene, options, pixel(i), s, spp);
-            scratch.rays.push(ray);
-            scratch.streams.push(stream);
-            scratch.backdrops.push(backdrop);
+            wavefront.push(path.start(ray, backdrop), stream);
             scratch.weights.push(weight);
         }
-        scratch.hits.clear();
-        scratch.hits.resize(n, None);
-        path.accel().intersect_batch(&scratch.rays, &mut scratch.hits, &mut result.stats.traversal);
-        let traced = scratch.rays.iter().zip(&scratch.hits).zip(&mut scratch.streams);
-        for (((sums, ((ray, hit), stream)), backdrop), weight) in
-            result.sums.iter_mut().zip(traced).zip(&scratch.backdrops).zip(&scratch.weights)
+        wavefront.run(path, &mut result.stats);
+        for ((sums, sample), weight) in
+            result.sums.iter_mut().zip(wavefront.results()).zip(&scratch.weights)
         {
-            let sample = path.trace(*ray, Some(*hit), *backdrop, stream, &mut result.stats);
             add(sums, sample, *weight);
         }
     }

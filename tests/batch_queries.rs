@@ -1,4 +1,5 @@
-//! `Accel::intersect_batch` returns exactly what `Accel::intersect` returns ray by ray (bit for
+//! `Accel::intersect_batch` (coherent or not) returns exactly what `Accel::intersect` returns
+//! ray by ray, and `Accel::occluded_batch` what `Accel::occluded` does (bit for
 //! bit, counters included), for every backend and batch mode: on camera rays (coherent,
 //! Embree traces them as packets), bounce rays, random rays with shutter times (moving
 //! instances), rays exactly through the shared edge of two triangles (where Embree's packet
@@ -7,7 +8,7 @@
 mod common;
 
 use common::*;
-use embray::accel::{AccelOptions, BackendKind, BatchMode, build};
+use embray::accel::{AccelOptions, BackendKind, BatchMode, Coherence, build};
 use embray::bench::speed;
 use embray::choice::Choice;
 use embray::intersect::{intersect_sphere, intersect_triangle};
@@ -149,12 +150,33 @@ fn assert_batches_match(scene: &RenderScene, rays: &[Ray], what: &str) {
                             }
                         })
                         .collect();
-                for size in [1, 7, 8, 13, 16, 1024, rays.len()] {
+                let mut single_blocked_counters = TraversalCounters::default();
+                let single_blocked: Vec<bool> = rays
+                    .iter()
+                    .map(|r| !r.is_valid() || accel.occluded(r, &mut single_blocked_counters))
+                    .collect();
+                let sizes = [1, 7, 8, 13, 16, 1024, rays.len()];
+                let coherences = [Coherence::Coherent, Coherence::Incoherent];
+                for (size, coherence) in sizes.into_iter().flat_map(|s| coherences.map(|c| (s, c)))
+                {
+                    // Occlusion has no ties to break: exactly the single-ray answers.
+                    let mut counters = TraversalCounters::default();
+                    let mut blocked = vec![false; rays.len()];
+                    for (r, b) in rays.chunks(size).zip(blocked.chunks_mut(size)) {
+                        accel.occluded_batch(r, b, &mut counters);
+                    }
+                    assert_eq!(
+                        blocked,
+                        single_blocked,
+                        "{what}, {} {batch:?}, occlusion in batches of {size}",
+                        backend.name()
+                    );
+                    assert_eq!(counters, single_blocked_counters, "{what}: occlusion counters");
                     let mut counters = TraversalCounters::default();
                     let stale = Hit { t: -1.0, geom_id: 9, prim_id: 9, u: 0.0, v: 0.0 };
                     let mut hits = vec![Some(stale); rays.len()];
                     for (r, h) in rays.chunks(size).zip(hits.chunks_mut(size)) {
-                        accel.intersect_batch(r, h, &mut counters);
+                        accel.intersect_batch(r, h, coherence, &mut counters);
                     }
                     let mut ties = 0;
                     for (k, (batched, one)) in hits.iter().zip(&single).enumerate() {
@@ -162,8 +184,8 @@ fn assert_batches_match(scene: &RenderScene, rays: &[Ray], what: &str) {
                             continue;
                         }
                         let context = format!(
-                            "{what}, {} {batch:?} counting {count_traversal}, batches of \
-                             {size}: ray {k} {:?}: batch {batched:?}, single {one:?}",
+                            "{what}, {} {batch:?} counting {count_traversal}, {coherence:?} \
+                             batches of {size}: ray {k} {:?}: batch {batched:?}, single {one:?}",
                             backend.name(),
                             rays[k]
                         );

@@ -13,7 +13,7 @@ mod options;
 
 mod library;
 pub use library::{EmbreeLibrary, backends_description, embree_library};
-pub use options::{AccelOptions, BackendKind, BatchMode, BuildQuality};
+pub use options::{AccelOptions, BackendKind, BatchMode, BuildQuality, Coherence};
 
 /// Which traversal counters a backend can observe.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -38,13 +38,26 @@ pub trait Accel: Send + Sync {
     ///
     /// # Panics
     /// If `rays` and `hits` differ in length.
+    ///
+    /// `coherence` says whether the rays start near each other and point the same way (a
+    /// tile's camera rays) or not (bounces), for backends whose batched traversal differs.
     fn intersect_batch(
         &self,
         rays: &[Ray],
         hits: &mut [Option<Hit>],
+        coherence: Coherence,
         counters: &mut TraversalCounters,
     ) {
+        let _ = coherence;
         intersect_one_by_one(self, rays, hits, counters);
+    }
+    /// Occlusion of a batch of rays: `blocked[i]` becomes what `occluded(&rays[i], counters)`
+    /// returns (counters included). An invalid ray counts as blocked (it is never traced).
+    ///
+    /// # Panics
+    /// If `rays` and `blocked` differ in length.
+    fn occluded_batch(&self, rays: &[Ray], blocked: &mut [bool], counters: &mut TraversalCounters) {
+        occluded_one_by_one(self, rays, blocked, counters);
     }
     /// Which counters this backend fills in (with `AccelOptions::count_traversal`).
     fn observes(&self) -> Observes {
@@ -77,6 +90,23 @@ pub fn intersect_one_by_one<A: Accel + ?Sized>(
     assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
     for (ray, hit) in rays.iter().zip(hits) {
         *hit = if ray.is_valid() { accel.intersect(ray, counters) } else { None };
+    }
+}
+
+/// [`Accel::occluded_batch`] done one [`Accel::occluded`] at a time (invalid rays are
+/// blocked): what every batched path must equal.
+///
+/// # Panics
+/// If `rays` and `blocked` differ in length.
+pub fn occluded_one_by_one<A: Accel + ?Sized>(
+    accel: &A,
+    rays: &[Ray],
+    blocked: &mut [bool],
+    counters: &mut TraversalCounters,
+) {
+    assert_eq!(rays.len(), blocked.len(), "one answer per ray");
+    for (ray, blocked) in rays.iter().zip(blocked) {
+        *blocked = !ray.is_valid() || accel.occluded(ray, counters);
     }
 }
 

@@ -5,7 +5,7 @@
 //! the raw loop are per core.
 
 use super::median;
-use crate::accel::{Accel, AccelError, AccelOptions, BackendKind, BuildQuality, build};
+use crate::accel::{Accel, AccelError, AccelOptions, BackendKind, BuildQuality, Coherence, build};
 use crate::choice::Choice;
 use crate::ray::{Hit, Ray};
 use crate::render::{CAMERA_BATCH, RenderError, RenderOptions, prepare_scene, render_film};
@@ -108,7 +108,7 @@ pub fn batch_throughput(accel: &dyn Accel, rays: &[Ray], runs: usize) -> f64 {
         rays.chunks(CAMERA_BATCH)
             .map(|chunk| {
                 let hits = &mut hits[..chunk.len()];
-                accel.intersect_batch(chunk, hits, &mut counters);
+                accel.intersect_batch(chunk, hits, Coherence::Coherent, &mut counters);
                 hits.iter().filter(|h| h.is_some()).count()
             })
             .sum()

@@ -8,6 +8,7 @@ use embray::compile::EffectsMode;
 use embray::distributed::Split;
 use embray::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SPP, MAX_THREADS};
 use embray::render::RenderOptions;
+use embray::render_options::PathBatching;
 use embray::render_space::RenderSpace;
 use embray::sampling::SamplerKind;
 use embray::scene::SceneDesc;
@@ -68,9 +69,15 @@ pub struct RenderArgs {
     /// Embree: build a compact BVH (less memory, slower traversal).
     #[arg(long)]
     pub compact: bool,
-    /// Embree: how camera rays are traced — single rays, or packets of 8 or 16.
+    /// Embree: how batches of rays (the batched path tracer's) are traced — single rays, or
+    /// packets of 8 or 16.
     #[arg(long, value_parser = choice::<BatchMode>(), default_value_t = BatchMode::Packets8)]
     pub batch: BatchMode,
+    /// How the path tracer advances its paths: batched (the paths of a tile's pixels
+    /// together, a bounce at a time, rays traced in packets) or scalar (one path, one ray
+    /// at a time: the reference). The image is the same either way.
+    #[arg(long, value_parser = choice::<PathBatching>(), default_value_t = PathBatching::Batched)]
+    pub paths: PathBatching,
     /// PNG tone curve.
     /// auto: photographic for a CENG795 camera with a <Tonemap>, clamp255 for other Whitted
     /// (CENG795) scenes, aces otherwise; none: clamp to [0, 1]; reinhard: x / (1 + x); aces:
@@ -247,6 +254,7 @@ impl RenderArgs {
         options.accel.build_quality = self.build_quality;
         options.accel.compact = self.compact;
         options.accel.batch = self.batch;
+        options.paths = self.paths;
         if let Some(n) = self.light_samples {
             if !(1..=MAX_LIGHT_SAMPLES).contains(&n) {
                 bail!("--light-samples is {n}, but must be between 1 and {MAX_LIGHT_SAMPLES}");

@@ -14,6 +14,7 @@ use crate::scene::IntegratorKind;
 use crate::stats::RenderStats;
 use glam::Vec3;
 pub use path::PathTracer;
+pub(crate) use path::Wavefront;
 use trace::SceneTracer;
 pub use whitted::WhittedTracer;
 
@@ -74,7 +75,7 @@ impl<'a> Tracer<'a> {
         stats: &mut RenderStats,
     ) -> PathSample {
         match self {
-            Tracer::Path(t) => t.trace(ray, None, backdrop, stream, stats),
+            Tracer::Path(t) => t.trace(ray, backdrop, stream, stats),
             Tracer::Whitted(t) => t.trace(ray, backdrop, stream, stats),
         }
     }

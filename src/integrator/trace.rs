@@ -37,6 +37,18 @@ impl SceneTracer<'_> {
         blocked
     }
 
+    /// `blocked[i]` becomes `occluded(&rays[i], stats)`, the rays traced as one batch
+    /// (`Accel::occluded_batch`) and counted as `occluded` counts them.
+    pub fn occluded_batch(&self, rays: &[Ray], blocked: &mut [bool], stats: &mut RenderStats) {
+        self.accel.occluded_batch(rays, blocked, &mut stats.traversal);
+        for (ray, &blocked) in rays.iter().zip(blocked.iter()) {
+            if ray.is_valid() {
+                stats.shadow.rays += 1;
+                stats.shadow.hits += blocked as u64;
+            }
+        }
+    }
+
     /// The closest hit of a valid `ray`, counted as a camera or an indirect ray. `known` is
     /// the hit when a batch already found it (it is then not looked up again).
     pub fn closest_hit(

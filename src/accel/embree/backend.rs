@@ -7,7 +7,7 @@ use super::geometry_handle::GeometryHandle;
 use super::scene::{CommittedScene, Scene};
 use super::sphere::sphere_geometry;
 use super::user_triangles::user_triangle_geometry;
-use crate::accel::{Accel, AccelError, AccelOptions, BatchMode, BuildQuality, Observes};
+use crate::accel::{Accel, AccelError, AccelOptions, BatchMode, BuildQuality, Coherence, Observes};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{self, Placement, RenderScene};
 use crate::stats::TraversalCounters;
@@ -185,7 +185,7 @@ impl EmbreeAccel {
     /// Closest hits of `rays` through the Embree entry point `kind` (normal mode; counting
     /// mode always traces one ray at a time).
     pub fn intersect_batch_with(&self, kind: BatchKind, rays: &[Ray], hits: &mut [Option<Hit>]) {
-        self.scene.intersect_batch(kind, rays, hits);
+        self.scene.intersect_batch(kind, Coherence::Coherent, rays, hits);
     }
 
     fn counters<'a>(
@@ -280,6 +280,7 @@ impl Accel for EmbreeAccel {
         &self,
         rays: &[Ray],
         hits: &mut [Option<Hit>],
+        coherence: Coherence,
         counters: &mut TraversalCounters,
     ) {
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
@@ -289,7 +290,7 @@ impl Accel for EmbreeAccel {
             }
             return;
         }
-        self.scene.intersect_batch(self.batch, rays, hits);
+        self.scene.intersect_batch(self.batch, coherence, rays, hits);
         for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
             if let Some(h) = hit
                 && self.triangle_meshes.get(h.geom_id as usize).copied().unwrap_or(true)
@@ -298,6 +299,16 @@ impl Accel for EmbreeAccel {
                 *hit = self.scene.intersect(ray, None);
             }
         }
+    }
+
+    /// As `intersect_batch`: packets unless counting or with motion blur (occlusion has
+    /// no ties to break: a packet lane is blocked exactly when its single ray is).
+    fn occluded_batch(&self, rays: &[Ray], blocked: &mut [bool], counters: &mut TraversalCounters) {
+        if self.counting || self.batch == BatchKind::Single {
+            crate::accel::occluded_one_by_one(self, rays, blocked, counters);
+            return;
+        }
+        self.scene.occluded_batch(self.batch, rays, blocked);
     }
 
     /// With packets: not in counting mode, nor with motion blur (see `intersect_batch`).

@@ -1,7 +1,7 @@
 //! Batched closest-hit queries: Embree packets (`rtcIntersect4/8/16`) and streams
 //! (`rtcIntersect1M`), and the bare `rtcIntersect1` loop the wrapper is measured against.
 
-use super::compat;
+use super::compat::{self, Coherence};
 use super::ffi;
 use super::ray::{self, RayHitPacket};
 use super::scene::{CommittedScene, embree_accepts};
@@ -25,7 +25,13 @@ impl CommittedScene {
     /// Closest hits of `rays` into `hits` (same length), as [`CommittedScene::intersect`]
     /// would give them one by one, through Embree's batched entry points. Rays Embree would
     /// reject are never handed to it (masked out of packets, left out of streams): a miss.
-    pub fn intersect_batch(&self, kind: BatchKind, rays: &[Ray], hits: &mut [Option<Hit>]) {
+    pub fn intersect_batch(
+        &self,
+        kind: BatchKind,
+        coherence: Coherence,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+    ) {
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
         match kind {
             BatchKind::Single => {
@@ -34,20 +40,68 @@ impl CommittedScene {
                 }
             }
             BatchKind::Packet4 => {
-                self.intersect_packets::<compat::Padded<ffi::RTCRayHit4, 4>>(rays, hits)
+                self.intersect_packets::<compat::Padded<ffi::RTCRayHit4, 4>>(coherence, rays, hits)
             }
             BatchKind::Packet8 => {
-                self.intersect_packets::<compat::Padded<ffi::RTCRayHit8, 8>>(rays, hits)
+                self.intersect_packets::<compat::Padded<ffi::RTCRayHit8, 8>>(coherence, rays, hits)
             }
-            BatchKind::Packet16 => {
-                self.intersect_packets::<compat::Padded<ffi::RTCRayHit16, 16>>(rays, hits)
-            }
+            BatchKind::Packet16 => self
+                .intersect_packets::<compat::Padded<ffi::RTCRayHit16, 16>>(coherence, rays, hits),
             BatchKind::StreamCoherent => self.intersect_stream(rays, hits, true),
             BatchKind::StreamIncoherent => self.intersect_stream(rays, hits, false),
         }
     }
 
-    fn intersect_packets<P: RayHitPacket>(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+    /// Occlusion of `rays` into `blocked` (same length), as [`CommittedScene::occluded`]
+    /// would give it one by one but with rays Embree would reject blocked (never traced),
+    /// through Embree's packet entry points (streams trace packets of 8).
+    pub fn occluded_batch(&self, kind: BatchKind, rays: &[Ray], blocked: &mut [bool]) {
+        assert_eq!(rays.len(), blocked.len(), "one answer per ray");
+        match kind {
+            BatchKind::Single => {
+                for (ray, blocked) in rays.iter().zip(blocked) {
+                    *blocked = !embree_accepts(ray) || self.occluded(ray, None);
+                }
+            }
+            BatchKind::Packet4 => {
+                self.occluded_packets::<compat::Padded<ffi::RTCRayHit4, 4>>(rays, blocked)
+            }
+            BatchKind::Packet8 | BatchKind::StreamCoherent | BatchKind::StreamIncoherent => {
+                self.occluded_packets::<compat::Padded<ffi::RTCRayHit8, 8>>(rays, blocked)
+            }
+            BatchKind::Packet16 => {
+                self.occluded_packets::<compat::Padded<ffi::RTCRayHit16, 16>>(rays, blocked)
+            }
+        }
+    }
+
+    fn occluded_packets<P: RayHitPacket>(&self, rays: &[Ray], blocked: &mut [bool]) {
+        let mut packet = P::empty();
+        for (rays, blocked) in rays.chunks(P::WIDTH).zip(blocked.chunks_mut(P::WIDTH)) {
+            let mut valid = compat::ValidMask([0; 16]);
+            for (lane, ray) in rays.iter().enumerate() {
+                if embree_accepts(ray) {
+                    packet.set_lane(lane, ray);
+                    valid.0[lane] = -1;
+                }
+            }
+            if valid.0.iter().any(|&v| v != 0) {
+                // SAFETY: the scene is live and committed; exactly the lanes just set from
+                // rays that passed `embree_accepts` are marked valid.
+                unsafe { packet.occluded(self.handle(), &valid) };
+            }
+            for (lane, blocked) in blocked.iter_mut().enumerate() {
+                *blocked = valid.0[lane] == 0 || packet.blocked(lane);
+            }
+        }
+    }
+
+    fn intersect_packets<P: RayHitPacket>(
+        &self,
+        coherence: Coherence,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+    ) {
         let mut packet = P::empty();
         for (rays, hits) in rays.chunks(P::WIDTH).zip(hits.chunks_mut(P::WIDTH)) {
             let mut valid = compat::ValidMask([0; 16]);
@@ -60,7 +114,7 @@ impl CommittedScene {
             if valid.0.iter().any(|&v| v != 0) {
                 // SAFETY: the scene is live and committed; exactly the lanes just set from
                 // rays that passed `embree_accepts` are marked valid.
-                unsafe { packet.intersect(self.handle(), &valid) };
+                unsafe { packet.intersect(self.handle(), &valid, coherence) };
             }
             for (lane, hit) in hits.iter_mut().enumerate() {
                 *hit = if valid.0[lane] != 0 { packet.hit(lane) } else { None };
@@ -88,7 +142,11 @@ impl CommittedScene {
 
     #[cfg(embree4)]
     fn intersect_stream(&self, rays: &[Ray], hits: &mut [Option<Hit>], _coherent: bool) {
-        self.intersect_packets::<compat::Padded<ffi::RTCRayHit8, 8>>(rays, hits);
+        self.intersect_packets::<compat::Padded<ffi::RTCRayHit8, 8>>(
+            Coherence::Incoherent,
+            rays,
+            hits,
+        );
     }
 
     /// A bare `rtcIntersect1` loop over `rays` (one query context for all, no `Hit`

@@ -71,11 +71,23 @@ pub trait RayHitPacket {
     /// # Safety
     /// `scene` must be a live, committed scene, and every lane marked -1 must have been set
     /// from a ray Embree accepts (`scene::embree_accepts`).
-    unsafe fn intersect(&mut self, scene: ffi::RTCScene, valid: &compat::ValidMask);
+    unsafe fn intersect(
+        &mut self,
+        scene: ffi::RTCScene,
+        valid: &compat::ValidMask,
+        coherence: compat::Coherence,
+    );
+    /// Tests the lanes `valid` marks -1 for occlusion (the packet's rays only).
+    ///
+    /// # Safety
+    /// As for [`RayHitPacket::intersect`].
+    unsafe fn occluded(&mut self, scene: ffi::RTCScene, valid: &compat::ValidMask);
+    /// Whether `occluded` found lane `lane` blocked.
+    fn blocked(&self, lane: usize) -> bool;
 }
 
 macro_rules! ray_hit_packet {
-    ($($packet:ident: $width:literal, $intersect:ident;)*) => {$(
+    ($($packet:ident: $width:literal, $intersect:ident, $occluded:ident;)*) => {$(
         impl RayHitPacket for compat::Padded<ffi::$packet, $width> {
             const WIDTH: usize = $width;
 
@@ -121,16 +133,32 @@ macro_rules! ray_hit_packet {
             }
 
             #[inline]
-            unsafe fn intersect(&mut self, scene: ffi::RTCScene, valid: &compat::ValidMask) {
+            unsafe fn intersect(
+                &mut self,
+                scene: ffi::RTCScene,
+                valid: &compat::ValidMask,
+                coherence: compat::Coherence,
+            ) {
                 // SAFETY: per the caller.
-                unsafe { compat::$intersect(scene, valid, self) }
+                unsafe { compat::$intersect(scene, valid, self, coherence) }
+            }
+
+            #[inline]
+            unsafe fn occluded(&mut self, scene: ffi::RTCScene, valid: &compat::ValidMask) {
+                // SAFETY: per the caller; occlusion queries write only the rays' `tfar`.
+                unsafe { compat::$occluded(scene, valid, &mut self.inner.ray) }
+            }
+
+            #[inline]
+            fn blocked(&self, lane: usize) -> bool {
+                self.ray.tfar[lane] == f32::NEG_INFINITY
             }
         }
     )*};
 }
 
 ray_hit_packet! {
-    RTCRayHit4: 4, intersect4;
-    RTCRayHit8: 8, intersect8;
-    RTCRayHit16: 16, intersect16;
+    RTCRayHit4: 4, intersect4, occluded4;
+    RTCRayHit8: 8, intersect8, occluded8;
+    RTCRayHit16: 16, intersect16, occluded16;
 }

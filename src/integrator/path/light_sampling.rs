@@ -2,7 +2,7 @@
 //! point, spot, projector and directional lights, emitters and the environment, and the
 //! weights of the emission BSDF sampling finds.
 
-use super::PathTracer;
+use super::{PathTracer, ShadowSink};
 use crate::sampling::SampleStream;
 use crate::shading::bsdf::Bsdf;
 use crate::shading::spawn::SurfacePoint;
@@ -23,7 +23,9 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 }
 
 impl PathTracer<'_> {
-    /// Light arriving directly from the lights at `si` and scattered towards `wo`.
+    /// Light arriving directly from the lights at `si` and scattered towards `wo`: each
+    /// shadow ray and the light it brings unless blocked, handed to `shadows` in a fixed
+    /// order.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn direct_light(
         &self,
@@ -33,7 +35,8 @@ impl PathTracer<'_> {
         time: f32,
         stream: &mut SampleStream,
         stats: &mut RenderStats,
-    ) -> Vec3 {
+        shadows: &mut impl ShadowSink,
+    ) {
         let lights = &self.tracer.scene.lights;
         let p = si.surface.point;
         // Light from the side the surface faces; from both for rough glass, where the
@@ -44,7 +47,6 @@ impl PathTracer<'_> {
             above && (!transmits || si.shading_normal.dot(wi) > 0.0)
                 || transmits && !above && si.shading_normal.dot(wi) < 0.0
         };
-        let mut sum = Vec3::ZERO;
         for light in &lights.points {
             let to_light = light.position - p;
             let dist2 = to_light.length_squared();
@@ -55,9 +57,7 @@ impl PathTracer<'_> {
             }
             let shadow =
                 self.tracer.spawn.ray_to(&si.surface, &SurfacePoint::exact(light.position), time);
-            if !self.occluded(&shadow, stats) {
-                sum += f_cos * light.intensity_towards(-wi) / dist2;
-            }
+            shadows.shadow(shadow, f_cos * light.intensity_towards(-wi) / dist2, stats);
         }
         for light in &lights.directional {
             let wi = -light.direction;
@@ -65,9 +65,11 @@ impl PathTracer<'_> {
             if f_cos == Vec3::ZERO || !faces(wi) {
                 continue;
             }
-            if !self.occluded(&self.tracer.spawn.ray(&si.surface, wi, time), stats) {
-                sum += f_cos * light.irradiance;
-            }
+            shadows.shadow(
+                self.tracer.spawn.ray(&si.surface, wi, time),
+                f_cos * light.irradiance,
+                stats,
+            );
         }
         if lights.has_emitters() {
             let n = self.light_samples as f32;
@@ -97,15 +99,13 @@ impl PathTracer<'_> {
                     error: sample.error,
                     normal: sample.normal,
                 };
-                if self.occluded(&self.tracer.spawn.ray_to(&si.surface, &target, time), stats) {
-                    continue;
-                }
+                let shadow = self.tracer.spawn.ray_to(&si.surface, &target, time);
                 let pdf_light = sample.pdf;
                 // An invisible emitter (the course's area light) can never be found by the
                 // BSDF sample either.
                 let weight =
                     if sample.visible { power_heuristic(n * pdf_light, pdf_bsdf) } else { 1.0 };
-                sum += f_cos * sample.emission * (weight / (n * pdf_light));
+                shadows.shadow(shadow, f_cos * sample.emission * (weight / (n * pdf_light)), stats);
             }
         }
         if let Some(environment) = lights.environment.as_ref().filter(|e| e.is_lit()) {
@@ -116,16 +116,18 @@ impl PathTracer<'_> {
                     continue;
                 }
                 let (f_cos, pdf_bsdf) = bsdf.eval(wo, sample.wi);
-                if f_cos == Vec3::ZERO
-                    || self.occluded(&self.tracer.spawn.ray(&si.surface, sample.wi, time), stats)
-                {
+                if f_cos == Vec3::ZERO {
                     continue;
                 }
                 let weight = power_heuristic(n * sample.pdf, pdf_bsdf);
-                sum += f_cos * sample.radiance * (weight / (n * sample.pdf));
+                let shadow = self.tracer.spawn.ray(&si.surface, sample.wi, time);
+                shadows.shadow(
+                    shadow,
+                    f_cos * sample.radiance * (weight / (n * sample.pdf)),
+                    stats,
+                );
             }
         }
-        sum
     }
 
     /// MIS weight of the environment's radiance found by BSDF sampling (density `pdf_bsdf`)

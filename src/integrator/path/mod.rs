@@ -5,20 +5,24 @@
 //! ray then collects only the emission it finds, MIS-weighted: `light_sampling`).
 //! Only the random dimensions the scene's effects call for are drawn.
 
+mod bounce;
 mod light_sampling;
 mod scattering;
+mod wavefront;
 
-use super::PathSample;
+pub(crate) use bounce::{PathState, ShadowSink};
+pub(crate) use wavefront::Wavefront;
+
 use super::trace::SceneTracer;
 use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
-use crate::sampling::{SampleStream, frame_from_normal};
+use crate::sampling::frame_from_normal;
 use crate::shading::bsdf::Energy;
 use crate::shading::material::MaskOpacity;
 use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
-use glam::{Mat3, Quat, Vec2, Vec3};
+use glam::{Mat3, Quat, Vec3};
 
 pub struct PathTracer<'a> {
     tracer: SceneTracer<'a>,
@@ -120,138 +124,6 @@ impl<'a> PathTracer<'a> {
     /// The acceleration structure paths are traced with.
     pub fn accel(&self) -> &'a dyn Accel {
         self.tracer.accel
-    }
-
-    /// Traces one camera path. `first_hit`, when given, is the camera ray's closest hit as
-    /// `self.accel().intersect(&camera_ray, ..)` returns it (e.g. from
-    /// `Accel::intersect_batch`); it is not looked up again, and is counted as `intersect`
-    /// would count it. `backdrop` is what the camera ray sees if it leaves the scene (else
-    /// the environment or background, as for every ray).
-    pub fn trace(
-        &self,
-        camera_ray: Ray,
-        mut first_hit: Option<Option<Hit>>,
-        backdrop: Option<Vec3>,
-        stream: &mut SampleStream,
-        stats: &mut RenderStats,
-    ) -> PathSample {
-        let mut result = PathSample::default();
-        let mut ray = camera_ray;
-        let mut throughput = Vec3::ONE;
-        // The product of the (η_t/η_i)² of the refractions so far: `throughput * eta_scale`
-        // is the path's energy, without the radiance compression inside glass that it
-        // undoes on the way out (roulette judged by throughput alone kills paths inside
-        // glass too often and multiplies the survivors by up to 2.25 on leaving, which
-        // compounded into pixels of 1e11 on the course's glass box).
-        let mut eta_scale = 1.0f32;
-        // Camera rays and specular bounces see emission in full (nothing else sampled it).
-        let mut specular_bounce = true;
-        let mut pdf_bsdf = 0.0;
-        // The shading point the current ray left from (for the light-sampling density).
-        let mut from = Vec3::ZERO;
-        // Beer's-law absorption of the medium the ray travels through.
-        let mut absorption = Vec3::ZERO;
-        let bounces = self.max_depth.max(1);
-        // After the last bounce's scattering one more ray is traced, for the emission it
-        // finds only: light sampling and BSDF sampling share every bounce by MIS, the last
-        // included (Mitsuba's and pbrt's `max_depth` count so), which keeps glossy lobes
-        // lit by large lights as quiet as anywhere else, and lets delta lobes (mirrors,
-        // glass, a mask's holes) see the lights at all.
-        for depth in 0..=bounces {
-            if !ray.is_valid() {
-                break;
-            }
-            let mut found = self.tracer.closest_hit(&ray, depth == 0, first_hit.take(), stats);
-            if depth == 0 && self.tracer.scene.hide_emitters {
-                found = self.past_emitters(&mut ray, found, stats);
-            }
-            let Some(hit) = found else {
-                if let (0, Some(backdrop)) = (depth, backdrop) {
-                    result.radiance += backdrop;
-                    break;
-                }
-                if depth == 0 && self.tracer.scene.hide_emitters {
-                    break;
-                }
-                let weight =
-                    if specular_bounce { 1.0 } else { self.environment_weight(ray.dir, pdf_bsdf) };
-                result.radiance += throughput * self.tracer.escaped(ray.dir) * weight;
-                break;
-            };
-            if absorption != Vec3::ZERO {
-                let distance = hit.t * ray.dir.length();
-                throughput *= (-absorption * distance).exp();
-            }
-            let si = interaction(self.tracer.scene, &ray, &hit);
-            let material = &self.tracer.scene.materials[si.material as usize];
-            let unmapped = si.shading_normal;
-            let mut si = self.tracer.with_normal_map(si, material, ray.time);
-            let bump_shadowing = material.bump_shadowing && si.shading_normal != unmapped;
-            if bump_shadowing && ray.dir.dot(si.shading_normal) >= 0.0 {
-                // Mitsuba keeps the view above the mapped normal by mirroring it about the
-                // unmapped one.
-                let n = si.shading_normal;
-                si.shading_normal = (2.0 * n.dot(unmapped) * unmapped - n).normalize();
-            }
-            if depth == 0 {
-                result.depth = Some(hit.t);
-                result.normal =
-                    Some(self.tracer.scene.camera.world_from_render_rotation * si.shading_normal);
-            }
-            if material.is_emissive() && (si.front_face || material.two_sided_emission) {
-                let weight =
-                    if specular_bounce { 1.0 } else { self.emission_weight(from, &si, pdf_bsdf) };
-                result.radiance += throughput * material.emission * weight;
-            }
-            if self.max_depth == 0 || depth == bounces {
-                break;
-            }
-            let bsdf = self.scattering(material, &si, ray.time);
-            let bsdf = if bump_shadowing { bsdf.with_bump_shadowing(unmapped) } else { bsdf };
-            let wo = -ray.dir.normalize();
-            if depth == 0 && self.tracer.first_hit_albedo {
-                result.albedo = Some(bsdf.albedo_bound(wo).min(Vec3::ONE));
-            }
-            if bsdf.has_smooth_lobe() {
-                let direct = self.direct_light(&si, &bsdf, wo, ray.time, stream, stats);
-                result.radiance += throughput * direct;
-            }
-            // Direction first (the best stratified pair), then lobe and roulette.
-            let [u0, u1, u_lobe, u_survive] = stream.next_4d();
-            let u = Vec2::new(u0, u1);
-            let Some(sample) = bsdf.sample(wo, u_lobe, u) else { break };
-            // The geometric surface must agree with the shading normal about the side.
-            let below = sample.wi.dot(si.surface.normal) < 0.0;
-            if below != sample.transmitted || sample.weight == Vec3::ZERO {
-                break;
-            }
-            debug_assert!(
-                self.energy == Energy::Additive
-                    || bsdf.albedo_bound(wo).max_element() <= 1.0 + 1e-4,
-                "a BSDF that reflects more than it receives: {:?}",
-                bsdf.albedo_bound(wo)
-            );
-            throughput *= sample.weight;
-            eta_scale *= sample.eta_scale;
-            specular_bounce = sample.delta;
-            pdf_bsdf = sample.pdf;
-            if sample.transmitted && !sample.passes {
-                absorption = match material.specular {
-                    crate::scene::Specular::Dielectric { absorption: a, .. } if si.front_face => a,
-                    _ => Vec3::ZERO,
-                };
-            }
-            if depth + 1 >= self.rr_depth {
-                let survive = (throughput * eta_scale).max_element().min(0.95);
-                if u_survive >= survive {
-                    break;
-                }
-                throughput /= survive;
-            }
-            from = si.surface.point;
-            ray = self.tracer.spawn.ray(&si.surface, sample.wi, ray.time);
-        }
-        result
     }
 }
 

@@ -1,0 +1,260 @@
+//! One path as a state that advances a bounce at a time: the closest hit of its ray is
+//! found by the caller (one ray, or a packet of many paths' rays), `on_hit` shades it,
+//! hands its shadow rays to a [`ShadowSink`] and picks the next ray. The scalar integrator
+//! (`PathTracer::trace`) and the batched one (`Wavefront`) run this same code per path, so
+//! they give the same image bit for bit.
+
+use super::PathTracer;
+use crate::integrator::PathSample;
+use crate::ray::{Hit, Ray};
+use crate::sampling::SampleStream;
+use crate::shading::bsdf::Energy;
+use crate::shading::surface::interaction;
+use crate::stats::RenderStats;
+use glam::{Vec2, Vec3};
+
+/// Where a bounce's shadow rays go: traced at once (scalar) or queued for one batched
+/// occlusion query over many paths.
+pub(crate) trait ShadowSink {
+    /// A shadow ray along which `contribution` (light times BSDF, over its density) reaches
+    /// the shading point unless something blocks it.
+    fn shadow(&mut self, ray: Ray, contribution: Vec3, stats: &mut RenderStats);
+}
+
+/// A path between bounces.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PathState {
+    /// The ray to trace next.
+    ray: Ray,
+    throughput: Vec3,
+    /// The product of the (η_t/η_i)² of the refractions so far: `throughput * eta_scale`
+    /// is the path's energy, without the radiance compression inside glass that it
+    /// undoes on the way out (roulette judged by throughput alone kills paths inside
+    /// glass too often and multiplies the survivors by up to 2.25 on leaving, which
+    /// compounded into pixels of 1e11 on the course's glass box).
+    eta_scale: f32,
+    /// Camera rays and specular bounces see emission in full (nothing else sampled it).
+    specular_bounce: bool,
+    pdf_bsdf: f32,
+    /// The shading point the current ray left from (for the light-sampling density).
+    from: Vec3,
+    /// Beer's-law absorption of the medium the ray travels through.
+    absorption: Vec3,
+    /// The surface interaction the next hit is (0: the camera ray's).
+    depth: u32,
+    live: bool,
+    /// What the camera ray sees if it leaves the scene, if the scene has a backdrop.
+    backdrop: Option<Vec3>,
+    /// The throughput the light of this bounce's shadow rays is scaled by, while they are
+    /// pending.
+    direct_weight: Option<Vec3>,
+    pub result: PathSample,
+}
+
+impl PathState {
+    /// The ray whose closest hit the path waits for, if it goes on.
+    #[inline]
+    pub fn pending_ray(&mut self) -> Option<&Ray> {
+        self.live &= self.ray.is_valid();
+        self.live.then_some(&self.ray)
+    }
+
+    /// Whether the ray `pending_ray` gives is a camera ray.
+    pub fn at_camera(&self) -> bool {
+        self.depth == 0
+    }
+
+    /// Adds the light of this bounce's unblocked shadow rays, `direct` (their contributions
+    /// summed in the order they were handed to the sink).
+    #[inline]
+    pub fn finish_direct(&mut self, direct: Vec3) {
+        if let Some(weight) = self.direct_weight.take() {
+            self.result.radiance += weight * direct;
+        }
+    }
+}
+
+/// Traces shadow rays as they come and sums the light of those that are not blocked.
+struct ImmediateShadows<'p, 'a> {
+    path: &'p PathTracer<'a>,
+    direct: Vec3,
+}
+
+impl ShadowSink for ImmediateShadows<'_, '_> {
+    fn shadow(&mut self, ray: Ray, contribution: Vec3, stats: &mut RenderStats) {
+        if !self.path.occluded(&ray, stats) {
+            self.direct += contribution;
+        }
+    }
+}
+
+impl PathTracer<'_> {
+    /// A path that starts with `camera_ray`; `backdrop` is what it sees if it leaves the
+    /// scene (else the environment or background, as for every ray).
+    pub(crate) fn start(&self, camera_ray: Ray, backdrop: Option<Vec3>) -> PathState {
+        PathState {
+            ray: camera_ray,
+            throughput: Vec3::ONE,
+            eta_scale: 1.0,
+            specular_bounce: true,
+            pdf_bsdf: 0.0,
+            from: Vec3::ZERO,
+            absorption: Vec3::ZERO,
+            depth: 0,
+            live: true,
+            backdrop,
+            direct_weight: None,
+            result: PathSample::default(),
+        }
+    }
+
+    /// Traces one camera path, one ray at a time: the reference the batched integrator
+    /// (`Wavefront`) is compared with, and what single samples use.
+    pub fn trace(
+        &self,
+        camera_ray: Ray,
+        backdrop: Option<Vec3>,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+    ) -> PathSample {
+        let mut state = self.start(camera_ray, backdrop);
+        while let Some(&ray) = state.pending_ray() {
+            let found = self.tracer.closest_hit(&ray, state.at_camera(), None, stats);
+            let mut shadows = ImmediateShadows { path: self, direct: Vec3::ZERO };
+            self.on_hit(&mut state, found, stream, stats, &mut shadows);
+            state.finish_direct(shadows.direct);
+        }
+        state.result
+    }
+
+    /// Advances `state` past the closest hit of its pending ray, `found` (counted by the
+    /// caller): adds the emission it sees, hands the shadow rays of next-event estimation to
+    /// `shadows`, and samples the next ray or ends the path.
+    ///
+    /// After the last bounce's scattering one more ray is traced, for the emission it finds
+    /// only: light sampling and BSDF sampling share every bounce by MIS, the last included
+    /// (Mitsuba's and pbrt's `max_depth` count so), which keeps glossy lobes lit by large
+    /// lights as quiet as anywhere else, and lets delta lobes (mirrors, glass, a mask's
+    /// holes) see the lights at all.
+    pub(crate) fn on_hit(
+        &self,
+        state: &mut PathState,
+        found: Option<Hit>,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+        shadows: &mut impl ShadowSink,
+    ) {
+        state.live = false;
+        let Some(next) = self.scatter(state, found, stream, stats, shadows) else { return };
+        state.depth += 1;
+        state.live = state.depth <= self.max_depth.max(1);
+        state.ray = next;
+    }
+
+    /// The work of `on_hit`: the next ray, or `None` where the path ends.
+    fn scatter(
+        &self,
+        state: &mut PathState,
+        mut found: Option<Hit>,
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+        shadows: &mut impl ShadowSink,
+    ) -> Option<Ray> {
+        let depth = state.depth;
+        let scene = self.tracer.scene;
+        if depth == 0 && scene.hide_emitters {
+            found = self.past_emitters(&mut state.ray, found, stats);
+        }
+        let ray = state.ray;
+        let result = &mut state.result;
+        let Some(hit) = found else {
+            if let (0, Some(backdrop)) = (depth, state.backdrop) {
+                result.radiance += backdrop;
+                return None;
+            }
+            if depth == 0 && scene.hide_emitters {
+                return None;
+            }
+            let weight = if state.specular_bounce {
+                1.0
+            } else {
+                self.environment_weight(ray.dir, state.pdf_bsdf)
+            };
+            result.radiance += state.throughput * self.tracer.escaped(ray.dir) * weight;
+            return None;
+        };
+        if state.absorption != Vec3::ZERO {
+            let distance = hit.t * ray.dir.length();
+            state.throughput *= (-state.absorption * distance).exp();
+        }
+        let si = interaction(scene, &ray, &hit);
+        let material = &scene.materials[si.material as usize];
+        let unmapped = si.shading_normal;
+        let mut si = self.tracer.with_normal_map(si, material, ray.time);
+        let bump_shadowing = material.bump_shadowing && si.shading_normal != unmapped;
+        if bump_shadowing && ray.dir.dot(si.shading_normal) >= 0.0 {
+            // Mitsuba keeps the view above the mapped normal by mirroring it about the
+            // unmapped one.
+            let n = si.shading_normal;
+            si.shading_normal = (2.0 * n.dot(unmapped) * unmapped - n).normalize();
+        }
+        if depth == 0 {
+            result.depth = Some(hit.t);
+            result.normal = Some(scene.camera.world_from_render_rotation * si.shading_normal);
+        }
+        if material.is_emissive() && (si.front_face || material.two_sided_emission) {
+            let weight = if state.specular_bounce {
+                1.0
+            } else {
+                self.emission_weight(state.from, &si, state.pdf_bsdf)
+            };
+            result.radiance += state.throughput * material.emission * weight;
+        }
+        let bounces = self.max_depth.max(1);
+        if self.max_depth == 0 || depth == bounces {
+            return None;
+        }
+        let bsdf = self.scattering(material, &si, ray.time);
+        let bsdf = if bump_shadowing { bsdf.with_bump_shadowing(unmapped) } else { bsdf };
+        let wo = -ray.dir.normalize();
+        if depth == 0 && self.tracer.first_hit_albedo {
+            result.albedo = Some(bsdf.albedo_bound(wo).min(Vec3::ONE));
+        }
+        if bsdf.has_smooth_lobe() {
+            state.direct_weight = Some(state.throughput);
+            self.direct_light(&si, &bsdf, wo, ray.time, stream, stats, shadows);
+        }
+        // Direction first (the best stratified pair), then lobe and roulette.
+        let [u0, u1, u_lobe, u_survive] = stream.next_4d();
+        let sample = bsdf.sample(wo, u_lobe, Vec2::new(u0, u1))?;
+        // The geometric surface must agree with the shading normal about the side.
+        let below = sample.wi.dot(si.surface.normal) < 0.0;
+        if below != sample.transmitted || sample.weight == Vec3::ZERO {
+            return None;
+        }
+        debug_assert!(
+            self.energy == Energy::Additive || bsdf.albedo_bound(wo).max_element() <= 1.0 + 1e-4,
+            "a BSDF that reflects more than it receives: {:?}",
+            bsdf.albedo_bound(wo)
+        );
+        state.throughput *= sample.weight;
+        state.eta_scale *= sample.eta_scale;
+        state.specular_bounce = sample.delta;
+        state.pdf_bsdf = sample.pdf;
+        if sample.transmitted && !sample.passes {
+            state.absorption = match material.specular {
+                crate::scene::Specular::Dielectric { absorption: a, .. } if si.front_face => a,
+                _ => Vec3::ZERO,
+            };
+        }
+        if depth + 1 >= self.rr_depth {
+            let survive = (state.throughput * state.eta_scale).max_element().min(0.95);
+            if u_survive >= survive {
+                return None;
+            }
+            state.throughput /= survive;
+        }
+        state.from = si.surface.point;
+        Some(self.tracer.spawn.ray(&si.surface, sample.wi, ray.time))
+    }
+}

@@ -1,0 +1,122 @@
+//! Many paths advanced together, a bounce at a time: the closest hits of all their rays
+//! found by one batched query (Embree packets), each path shaded by the scalar integrator's
+//! own code (`PathTracer::on_hit`), then the shadow rays of all of them tested by one
+//! batched occlusion query. Each path's arithmetic and random numbers are exactly those of
+//! `PathTracer::trace`, so the image is the scalar one bit for bit (the backends' batched
+//! queries return the single-ray answers, see `Accel::intersect_batch`).
+
+use super::{PathState, PathTracer, ShadowSink};
+use crate::accel::Coherence;
+use crate::integrator::PathSample;
+use crate::ray::{Hit, Ray};
+use crate::sampling::SampleStream;
+use crate::stats::RenderStats;
+use glam::Vec3;
+
+/// The paths of one batch and the buffers their queries go through, reused from batch to
+/// batch by a worker.
+#[derive(Default)]
+pub(crate) struct Wavefront {
+    states: Vec<PathState>,
+    streams: Vec<SampleStream>,
+    /// The paths whose rays are in `rays` this bounce, in order.
+    lanes: Vec<u32>,
+    rays: Vec<Ray>,
+    hits: Vec<Option<Hit>>,
+    shadows: QueuedShadows,
+    direct: Vec<Vec3>,
+}
+
+/// The shadow rays of one bounce of every path, with the path each belongs to.
+#[derive(Default)]
+struct QueuedShadows {
+    /// The path whose bounce is being shaded.
+    lane: u32,
+    rays: Vec<Ray>,
+    contributions: Vec<Vec3>,
+    lanes: Vec<u32>,
+    blocked: Vec<bool>,
+}
+
+impl ShadowSink for QueuedShadows {
+    #[inline]
+    fn shadow(&mut self, ray: Ray, contribution: Vec3, _stats: &mut RenderStats) {
+        self.rays.push(ray);
+        self.contributions.push(contribution);
+        self.lanes.push(self.lane);
+    }
+}
+
+impl Wavefront {
+    /// Empties the batch.
+    pub fn clear(&mut self) {
+        self.states.clear();
+        self.streams.clear();
+    }
+
+    /// Adds a path (its first ray and the random stream it goes on with).
+    pub fn push(&mut self, state: PathState, stream: SampleStream) {
+        self.states.push(state);
+        self.streams.push(stream);
+    }
+
+    /// The samples of the paths, in the order they were pushed (after `run`).
+    pub fn results(&self) -> impl Iterator<Item = &PathSample> {
+        self.states.iter().map(|s| &s.result)
+    }
+
+    /// Traces every path of the batch to its end.
+    pub fn run(&mut self, path: &PathTracer, stats: &mut RenderStats) {
+        self.direct.resize(self.states.len(), Vec3::ZERO);
+        loop {
+            self.lanes.clear();
+            self.rays.clear();
+            let mut at_camera = false;
+            for (lane, state) in self.states.iter_mut().enumerate() {
+                if let Some(ray) = state.pending_ray() {
+                    self.lanes.push(lane as u32);
+                    self.rays.push(*ray);
+                    at_camera = state.at_camera();
+                }
+            }
+            if self.lanes.is_empty() {
+                return;
+            }
+            self.hits.clear();
+            self.hits.resize(self.rays.len(), None);
+            let coherence = if at_camera { Coherence::Coherent } else { Coherence::Incoherent };
+            path.accel().intersect_batch(
+                &self.rays,
+                &mut self.hits,
+                coherence,
+                &mut stats.traversal,
+            );
+            let shadows = &mut self.shadows;
+            shadows.rays.clear();
+            shadows.contributions.clear();
+            shadows.lanes.clear();
+            for ((&lane, ray), &hit) in self.lanes.iter().zip(&self.rays).zip(&self.hits) {
+                let hit = path.tracer.closest_hit(ray, at_camera, Some(hit), stats);
+                shadows.lane = lane;
+                let (state, stream) =
+                    (&mut self.states[lane as usize], &mut self.streams[lane as usize]);
+                path.on_hit(state, hit, stream, stats, shadows);
+            }
+            shadows.blocked.clear();
+            shadows.blocked.resize(shadows.rays.len(), true);
+            path.tracer.occluded_batch(&shadows.rays, &mut shadows.blocked, stats);
+            for &lane in &self.lanes {
+                self.direct[lane as usize] = Vec3::ZERO;
+            }
+            let tests = shadows.lanes.iter().zip(&shadows.contributions).zip(&shadows.blocked);
+            for ((&lane, &contribution), &blocked) in tests {
+                if !blocked {
+                    self.direct[lane as usize] += contribution;
+                }
+            }
+            for &lane in &self.lanes {
+                self.states[lane as usize].finish_direct(self.direct[lane as usize]);
+            }
+        }
+    }
+}

@@ -1,0 +1,102 @@
+//! The batched path tracer (paths advanced together a bounce at a time, rays traced in
+//! packets) renders exactly the scalar one's image, ray counts included: on every bundled
+//! scene, on Mitsuba's render suite scenes and on the course's path-tracing scenes, on both
+//! backends and with each of Embree's batch modes.
+
+mod common;
+
+use common::*;
+use embray::accel::{BackendKind, BatchMode};
+use embray::choice::Choice;
+use embray::render_options::PathBatching;
+use embray::scene::SceneDesc;
+use std::path::{Path, PathBuf};
+
+/// Renders `scene` at `width`×`height`, `spp` samples, scalar and batched on every backend
+/// (and Embree batch mode), and asserts the images and ray counts are the same.
+fn assert_batched_is_scalar(name: &str, scene: &SceneDesc, width: u32, height: u32, spp: u32) {
+    let mut scene = scene.clone();
+    scene.camera.width = width;
+    scene.camera.height = height;
+    scene.settings.crop = None;
+    for backend in backends() {
+        let mut scalar = options(&scene, backend, spp);
+        scalar.paths = PathBatching::Scalar;
+        let reference = render_ok(&scene, &scalar);
+        assert!(reference.stats.total_rays() > 0, "{name}: traced nothing");
+        let modes: &[BatchMode] = match backend {
+            BackendKind::Embree => &[BatchMode::Single, BatchMode::Packets8, BatchMode::Packets16],
+            BackendKind::Obvhs => &[BatchMode::Packets8],
+        };
+        for &batch in modes {
+            let mut batched = scalar.clone();
+            batched.paths = PathBatching::Batched;
+            batched.accel.batch = batch;
+            let image = render_ok(&scene, &batched);
+            let what = format!("{name} on {} with {batch:?}", backend.name());
+            assert!(image.film == reference.film, "{what}: the batched image differs");
+            assert_eq!(image.stats, reference.stats, "{what}: ray counts");
+        }
+    }
+}
+
+#[test]
+fn bundled_scenes_render_the_same_batched_and_scalar() {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(repo_path("scenes"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 8, "the bundled scenes: {files:?}");
+    for file in files {
+        let scene = embray::scene::load(&file).unwrap();
+        assert_batched_is_scalar(&file.display().to_string(), &scene, 40, 30, 2);
+    }
+}
+
+/// The scenes of every `.xml` file under `dir` (each camera's, for a course file).
+fn xml_scenes(dir: &Path) -> Vec<(String, SceneDesc)> {
+    let mut files = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.extension().is_some_and(|e| e == "xml") {
+                files.push(path);
+            }
+        }
+    }
+    files.sort();
+    let mut scenes = Vec::new();
+    for file in files {
+        // The suite also holds scenes embray refuses by design (tests/mitsuba/suite.rs).
+        let Ok((loaded, _)) = embray::scene::xml::load_with_warnings(&file, &[]) else { continue };
+        for (i, camera) in loaded.into_iter().enumerate() {
+            scenes.push((format!("{} camera {i}", file.display()), camera.scene));
+        }
+    }
+    scenes
+}
+
+#[test]
+#[cfg_attr(not(mitsuba_data), ignore = "needs Mitsuba's suite at ../shared/data/mitsuba")]
+fn mitsuba_suite_scenes_render_the_same_batched_and_scalar() {
+    let scenes = xml_scenes(&repo_path("../shared/data/mitsuba/tests/scenes"));
+    assert!(scenes.len() >= 19, "the suite's scenes that load: {}", scenes.len());
+    for (name, scene) in scenes {
+        assert_batched_is_scalar(&name, &scene, 24, 18, 2);
+    }
+}
+
+#[test]
+#[cfg_attr(not(course_data), ignore = "needs the CENG795 packs at ../shared/data/ceng795")]
+fn course_path_tracing_scenes_render_the_same_batched_and_scalar() {
+    let scenes = xml_scenes(&repo_path("../shared/data/ceng795/2022/hw6/pathTracing/inputs"));
+    assert!(scenes.len() >= 2, "the course's path-tracing boxes: {}", scenes.len());
+    for (name, scene) in scenes {
+        assert_batched_is_scalar(&name, &scene, 24, 18, 2);
+    }
+}
