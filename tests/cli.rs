@@ -76,7 +76,7 @@ fn build_options_are_reported_and_keep_the_image() {
     };
     let (default_png, default_stats) = render(&[], "default");
     assert_eq!(default_stats["build_quality"], "medium");
-    assert_eq!(default_stats["batch"], "packets8");
+    assert_eq!(default_stats["batch"], "native");
     assert_eq!(default_stats["compact"], false);
     let options = [
         ["--build-quality", "low", "--batch", "single", "--compact"].as_slice(),

@@ -41,26 +41,30 @@ pub enum BuildQuality {
     High,
 }
 
-/// How the Embree backend traces [`Accel::intersect_batch`] (the renderer's batches of
-/// camera rays); the obvhs backend traces them one at a time.
+/// How the Embree backend traces batches of rays ([`Accel::intersect_batch`],
+/// [`Accel::occluded_batch`]: the batched path tracer's camera, bounce and shadow rays); the
+/// obvhs backend traces them one at a time.
 ///
-/// Measured here: packets of 8 trace camera rays at 1.2× (1M-triangle sphere) to 2.5×
-/// (Cornell box) the rate of single rays and take 6-11 % off whole Embree renders (CPU time,
-/// bundled scenes and the 1M sphere). They return the single-ray hits bit for bit, with one
-/// exception: on an exact or 1-ulp tie between coincident surfaces (two faces in the same
-/// plane that share no edge, e.g. a box standing on the floor seen from below, or duplicated
-/// faces) Embree's packet kernel may report the other surface (see
+/// Measured here (`embray bench queries`, one thread, AVX-512 EPYC, Embree 3.13.5, ns per
+/// ray for camera / bounce / shadow rays): on the Cornell box single rays cost 74 / 101 /
+/// 75, packets of 8 22 / 78 / 50, packets of 16 16 / 79 / 42; on the city block 80 / 88 /
+/// 59, 34 / 72 / 38 and 31 / 72 / 35. Packets return the single-ray hits bit for bit, with
+/// one exception: on an exact or 1-ulp tie between coincident surfaces (two faces in the
+/// same plane that share no edge, e.g. a box standing on the floor seen from below, or
+/// duplicated faces) Embree's packet kernel may report the other surface (see
 /// `EmbreeAccel::intersect_batch`). Every bundled scene renders bit-identically either way.
 /// `Single` is exact in every case, at the single-ray speed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum BatchMode {
-    /// One `rtcIntersect1` per ray: exactly the hits of `Accel::intersect`.
-    Single,
-    /// Packets of 8 rays (`rtcIntersect8`), the faster width on large meshes here.
+    /// Packets as wide as Embree's kernels on this CPU: 16 with AVX-512, else 8.
     #[default]
+    Native,
+    /// One `rtcIntersect1` / `rtcOccluded1` per ray: exactly the hits of `Accel::intersect`.
+    Single,
+    /// Packets of 8 rays (`rtcIntersect8`, `rtcOccluded8`).
     Packets8,
-    /// Packets of 16 rays (`rtcIntersect16`).
+    /// Packets of 16 rays (`rtcIntersect16`, `rtcOccluded16`).
     Packets16,
 }
 
@@ -94,7 +98,7 @@ impl AccelOptions {
         count_traversal: false,
         build_quality: BuildQuality::Medium,
         compact: false,
-        batch: BatchMode::Packets8,
+        batch: BatchMode::Native,
     };
 }
 
@@ -116,6 +120,7 @@ named_choices!(BuildQuality, "build quality", {
 });
 
 named_choices!(BatchMode, "batch mode", {
+    Native => "native",
     Single => "single",
     Packets8 => "packets8",
     Packets16 => "packets16",

@@ -8,6 +8,7 @@ pub mod effects_cost;
 pub mod grid;
 pub mod plots;
 pub mod procedural;
+pub mod queries;
 pub mod spawn_report;
 pub mod speed;
 pub mod strip;

@@ -24,6 +24,10 @@ pub enum BenchCommand {
     /// Throughput of each backend on scenes from a dozen to a million triangles: build time,
     /// primary and diffuse Mrays/s, samples/s on 1 and 2 threads, memory.
     Speed(SpeedArgs),
+    /// What a ray query costs per ray kind (camera, bounce, shadow) on each backend, one at a
+    /// time and in each Embree batch mode, on one thread: how the path tracer's batches are
+    /// traced is chosen by it. Default scene: the built-in Cornell box.
+    Queries(QueriesArgs),
     /// What motion-blur and lens support cost a static scene: normal vs all effects forced.
     Effects(EffectsArgs),
     /// Error against a reference EXR at each spp, render time and MSE × seconds (the
@@ -56,6 +60,19 @@ pub struct ConvergenceArgs {
     /// Also write the table as CSV.
     #[arg(long)]
     pub csv: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct QueriesArgs {
+    /// Scene file; the built-in Cornell box if omitted.
+    pub scene: Option<PathBuf>,
+    /// Timed runs per measurement (the median is reported).
+    #[arg(long, default_value_t = 5)]
+    pub runs: usize,
+    /// Trace the scene's view at WIDTHxHEIGHT (one camera ray per pixel) instead of its own
+    /// size.
+    #[arg(long, value_name = "WxH")]
+    pub resolution: Option<String>,
 }
 
 #[derive(Args, Debug)]
@@ -176,9 +193,22 @@ pub fn run(command: BenchCommand) -> Result<()> {
         BenchCommand::Spaces(args) => bench_spaces(&args),
         BenchCommand::Accuracy(args) => bench_accuracy(&args),
         BenchCommand::Speed(args) => bench_speed(&args),
+        BenchCommand::Queries(args) => bench_queries(&args),
         BenchCommand::Effects(args) => bench_effects(&args),
         BenchCommand::Convergence(args) => bench_convergence(&args),
     }
+}
+
+fn bench_queries(args: &QueriesArgs) -> Result<()> {
+    use embray::bench::queries;
+    check_counts(args.runs, None)?;
+    let mut scene = load_scene(args.scene.as_deref(), &[])?;
+    if let Some(text) = &args.resolution {
+        super::preview::set_resolution(&mut scene, super::preview::parse_resolution(text)?);
+    }
+    let rows = queries::measure(&scene, &embray::accel::BackendKind::compiled(), args.runs)?;
+    out(queries::markdown(&rows))?;
+    Ok(())
 }
 
 fn bench_effects(args: &EffectsArgs) -> Result<()> {

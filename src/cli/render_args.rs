@@ -69,9 +69,9 @@ pub struct RenderArgs {
     /// Embree: build a compact BVH (less memory, slower traversal).
     #[arg(long)]
     pub compact: bool,
-    /// Embree: how batches of rays (the batched path tracer's) are traced — single rays, or
-    /// packets of 8 or 16.
-    #[arg(long, value_parser = choice::<BatchMode>(), default_value_t = BatchMode::Packets8)]
+    /// Embree: how batches of rays (the batched path tracer's) are traced — packets as wide
+    /// as Embree's kernels here (16 with AVX-512, else 8), single rays, or packets of 8 or 16.
+    #[arg(long, value_parser = choice::<BatchMode>(), default_value_t = BatchMode::Native)]
     pub batch: BatchMode,
     /// How the path tracer advances its paths: batched (the paths of a tile's pixels
     /// together, a bounce at a time, rays traced in packets) or scalar (one path, one ray

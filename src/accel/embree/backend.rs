@@ -161,6 +161,10 @@ impl EmbreeAccel {
             BatchMode::Single => BatchKind::Single,
             BatchMode::Packets8 => BatchKind::Packet8,
             BatchMode::Packets16 => BatchKind::Packet16,
+            BatchMode::Native => match super::library::library() {
+                Ok(library) if library.isa == "AVX-512" => BatchKind::Packet16,
+                _ => BatchKind::Packet8,
+            },
         };
         Ok(EmbreeAccel { scene: top, counting, motion_geometries, triangle_meshes, batch })
     }
