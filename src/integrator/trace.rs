@@ -114,18 +114,24 @@ impl SceneTracer<'_> {
     }
 
     /// `si` with its shading normal replaced by `material`'s normal map, if it has one.
-    /// Inlined for the common case (no map: `si` unchanged, not copied through a call).
     #[inline]
     pub fn with_normal_map(
         &self,
-        si: SurfaceInteraction,
+        mut si: SurfaceInteraction,
         material: &Material,
         time: f32,
     ) -> SurfaceInteraction {
-        if material.normal_map.is_none() && material.bump_map.is_none() {
-            return si;
+        self.map_normal(&mut si, material, time);
+        si
+    }
+
+    /// Replaces the shading normal of `si` by `material`'s normal map, if it has one, in
+    /// place. Inlined for the common case (no map: `si` untouched, not copied).
+    #[inline]
+    pub fn map_normal(&self, si: &mut SurfaceInteraction, material: &Material, time: f32) {
+        if material.normal_map.is_some() || material.bump_map.is_some() {
+            *si = self.apply_normal_map(*si, material, time);
         }
-        self.apply_normal_map(si, material, time)
     }
 
     #[inline(never)]

@@ -187,10 +187,10 @@ impl PathTracer<'_> {
             let distance = hit.t * ray.dir.length();
             state.throughput *= (-state.absorption * distance).exp();
         }
-        let si = interaction(scene, &ray, &hit);
+        let mut si = interaction(scene, &ray, &hit);
         let material = &scene.materials[si.material as usize];
         let unmapped = si.shading_normal;
-        let mut si = self.tracer.with_normal_map(si, material, ray.time);
+        self.tracer.map_normal(&mut si, material, ray.time);
         let bump_shadowing = material.bump_shadowing && si.shading_normal != unmapped;
         if bump_shadowing && ray.dir.dot(si.shading_normal) >= 0.0 {
             // Mitsuba keeps the view above the mapped normal by mirroring it about the
@@ -214,8 +214,10 @@ impl PathTracer<'_> {
         if self.max_depth == 0 || depth == bounces {
             return None;
         }
-        let bsdf = self.scattering(material, &si, ray.time);
-        let bsdf = if bump_shadowing { bsdf.with_bump_shadowing(unmapped) } else { bsdf };
+        let mut bsdf = self.scattering(material, &si, ray.time);
+        if bump_shadowing {
+            bsdf.set_bump_shadowing(unmapped);
+        }
         let wo = -ray.dir.normalize();
         if depth == 0 && self.tracer.first_hit_albedo {
             result.albedo = Some(bsdf.albedo_bound(wo).min(Vec3::ONE));

@@ -15,18 +15,18 @@ impl PathTracer<'_> {
         si: &SurfaceInteraction,
         time: f32,
     ) -> Bsdf {
-        let bsdf = match &material.blend {
+        let mut bsdf = match &material.blend {
             Some(blend) => self.blend_scattering(blend, si, time),
             None => self.own_scattering(material, si, time),
         };
-        self.masked(material, bsdf, si, time)
+        self.mask(material, &mut bsdf, si, time);
+        bsdf
     }
 
-    /// `bsdf` under `material`'s mask, if it has one.
-    fn masked(&self, material: &Material, bsdf: Bsdf, si: &SurfaceInteraction, time: f32) -> Bsdf {
-        match &material.opacity {
-            None => bsdf,
-            Some(opacity) => bsdf.with_opacity(self.opacity(opacity, si, time)),
+    /// Puts `bsdf` under `material`'s mask, if it has one.
+    fn mask(&self, material: &Material, bsdf: &mut Bsdf, si: &SurfaceInteraction, time: f32) {
+        if let Some(opacity) = &material.opacity {
+            bsdf.set_opacity(self.opacity(opacity, si, time));
         }
     }
 
@@ -36,11 +36,12 @@ impl PathTracer<'_> {
     #[inline(never)]
     fn blend_scattering(&self, blend: &Blend, si: &SurfaceInteraction, time: f32) -> Bsdf {
         let part = |material: &Material| {
-            let bsdf = match &material.blend {
+            let mut bsdf = match &material.blend {
                 Some(inner) => self.blend_scattering(inner, si, time),
                 None => self.own_scattering(material, si, time),
             };
-            self.masked(material, bsdf, si, time)
+            self.mask(material, &mut bsdf, si, time);
+            bsdf
         };
         let [first, second] = &blend.materials;
         let weight = self.opacity(&blend.weight, si, time);

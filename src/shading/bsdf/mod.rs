@@ -185,15 +185,28 @@ impl Bsdf {
     }
 
     /// This BSDF under a mask: only `opacity` of the light meets it, the rest passes on.
-    pub fn with_opacity(self, opacity: f32) -> Self {
-        Bsdf { opacity: opacity.clamp(0.0, 1.0), ..self }
+    pub fn with_opacity(mut self, opacity: f32) -> Self {
+        self.set_opacity(opacity);
+        self
+    }
+
+    /// As `with_opacity`, in place (a `Bsdf` is a few hundred bytes: the integrator
+    /// changes its own rather than copying it).
+    pub fn set_opacity(&mut self, opacity: f32) {
+        self.opacity = opacity.clamp(0.0, 1.0);
     }
 
     /// This BSDF on a surface whose shading normal `unmapped` a map replaced by the frame's:
     /// light must arrive on the same side of both, and is shadowed by Estevez et al.'s
     /// microfacet term for the bump terminator (Ray Tracing Gems, 2019), as in Mitsuba.
-    pub fn with_bump_shadowing(self, unmapped: Vec3) -> Self {
-        Bsdf { unmapped: Some(unmapped), ..self }
+    pub fn with_bump_shadowing(mut self, unmapped: Vec3) -> Self {
+        self.set_bump_shadowing(unmapped);
+        self
+    }
+
+    /// As `with_bump_shadowing`, in place.
+    pub fn set_bump_shadowing(&mut self, unmapped: Vec3) {
+        self.unmapped = Some(unmapped);
     }
 
     /// The bump terminator's shadowing of light from `wi` on a mapped normal whose
