@@ -33,3 +33,30 @@ fn speed_rows_of_a_tiny_scene_are_finite_and_positive() {
         assert!(row.accel_mib.is_finite() && row.accel_mib > 0.0, "{row:?}");
     }
 }
+
+#[test]
+fn query_rows_cover_every_backend_and_batch_mode_with_sane_costs() {
+    use embray::bench::queries;
+    let scene = procedural::displaced_sphere_scene(2000, 16, 16);
+    let rows = queries::measure(&scene, &BackendKind::compiled(), 1).expect("measures");
+    let expected: Vec<(&str, &str)> = BackendKind::compiled()
+        .into_iter()
+        .flat_map(|b| match b {
+            BackendKind::Embree => {
+                vec![("embree", "single"), ("embree", "packets8"), ("embree", "packets16")]
+            }
+            BackendKind::Obvhs => vec![("obvhs", "single")],
+        })
+        .collect();
+    let got: Vec<(&str, &str)> = rows.iter().map(|r| (r.backend, r.mode.as_str())).collect();
+    assert_eq!(got, expected);
+    for r in &rows {
+        for (what, ns) in
+            [("camera", r.camera_ns), ("bounce", r.bounce_ns), ("shadow", r.shadow_ns)]
+        {
+            // A ray query costs more than a nanosecond and less than a millisecond.
+            assert!(ns.is_finite() && ns > 1.0 && ns < 1e6, "{r:?}: {what} {ns} ns");
+        }
+    }
+    assert!(queries::markdown(&rows).lines().count() == rows.len() + 2);
+}
