@@ -10,22 +10,25 @@ pub const fn gamma(n: i32) -> f32 {
     (n as f32 * eps) / (1.0 - n as f32 * eps)
 }
 
+/// The next float above `v` (+inf stays; -0 and +0 step to the smallest positive).
+/// Written as selects, without early returns, so that callers compile without branches.
+#[inline]
 pub fn next_float_up(v: f32) -> f32 {
-    if v.is_infinite() && v > 0.0 {
-        return v;
-    }
-    let v = if v == -0.0 { 0.0 } else { v };
-    let bits = v.to_bits();
-    f32::from_bits(if v >= 0.0 { bits + 1 } else { bits - 1 })
+    let v0 = if v == 0.0 { 0.0 } else { v };
+    let bits = v0.to_bits();
+    let stepped =
+        f32::from_bits(if v0 >= 0.0 { bits.wrapping_add(1) } else { bits.wrapping_sub(1) });
+    if v == f32::INFINITY { v } else { stepped }
 }
 
+/// The next float below `v` (-inf stays; +0 and -0 step to the smallest negative).
+#[inline]
 pub fn next_float_down(v: f32) -> f32 {
-    if v.is_infinite() && v < 0.0 {
-        return v;
-    }
-    let v = if v == 0.0 { -0.0 } else { v };
-    let bits = v.to_bits();
-    f32::from_bits(if v > 0.0 { bits - 1 } else { bits + 1 })
+    let v0 = if v == 0.0 { -0.0 } else { v };
+    let bits = v0.to_bits();
+    let stepped =
+        f32::from_bits(if v0 > 0.0 { bits.wrapping_sub(1) } else { bits.wrapping_add(1) });
+    if v == f32::NEG_INFINITY { v } else { stepped }
 }
 
 /// A triangle's edges from vertex 0, its unit normal (zero if degenerate) and how far
