@@ -78,14 +78,8 @@ impl CommittedScene {
     fn occluded_packets<P: RayHitPacket>(&self, rays: &[Ray], blocked: &mut [bool]) {
         let mut packet = P::empty();
         for (rays, blocked) in rays.chunks(P::WIDTH).zip(blocked.chunks_mut(P::WIDTH)) {
-            let mut valid = compat::ValidMask([0; 16]);
-            for (lane, ray) in rays.iter().enumerate() {
-                if embree_accepts(ray) {
-                    packet.set_lane(lane, ray);
-                    valid.0[lane] = -1;
-                }
-            }
-            if valid.0.iter().any(|&v| v != 0) {
+            let valid = load_packet(&mut packet, rays);
+            if valid.any() {
                 // SAFETY: the scene is live and committed; exactly the lanes just set from
                 // rays that passed `embree_accepts` are marked valid.
                 unsafe { packet.occluded(self.handle(), &valid) };
@@ -104,14 +98,8 @@ impl CommittedScene {
     ) {
         let mut packet = P::empty();
         for (rays, hits) in rays.chunks(P::WIDTH).zip(hits.chunks_mut(P::WIDTH)) {
-            let mut valid = compat::ValidMask([0; 16]);
-            for (lane, ray) in rays.iter().enumerate() {
-                if embree_accepts(ray) {
-                    packet.set_lane(lane, ray);
-                    valid.0[lane] = -1;
-                }
-            }
-            if valid.0.iter().any(|&v| v != 0) {
+            let valid = load_packet(&mut packet, rays);
+            if valid.any() {
                 // SAFETY: the scene is live and committed; exactly the lanes just set from
                 // rays that passed `embree_accepts` are marked valid.
                 unsafe { packet.intersect(self.handle(), &valid, coherence) };
@@ -168,4 +156,17 @@ impl CommittedScene {
         }
         hits
     }
+}
+
+/// Sets the lanes of `packet` from `rays` (no more than its width) that Embree accepts, and
+/// returns the mask marking exactly those (-1); the other lanes are never traced.
+fn load_packet<P: RayHitPacket>(packet: &mut P, rays: &[Ray]) -> compat::ValidMask {
+    let mut valid = compat::ValidMask([0; 16]);
+    for (lane, ray) in rays.iter().enumerate() {
+        if embree_accepts(ray) {
+            packet.set_lane(lane, ray);
+            valid.0[lane] = -1;
+        }
+    }
+    valid
 }
