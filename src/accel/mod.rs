@@ -63,12 +63,6 @@ pub trait Accel: Send + Sync {
     fn observes(&self) -> Observes {
         Observes::default()
     }
-    /// Whether [`Accel::intersect_batch`] traces coherent rays faster than one
-    /// [`Accel::intersect`] each (the renderer batches camera rays only then: collecting
-    /// them costs about 2 % of a render for nothing otherwise).
-    fn prefers_batches(&self) -> bool {
-        false
-    }
     /// Bytes the structure holds: obvhs counts its nodes, leaves and ids; Embree reports
     /// what its memory monitor counted for the backend's device.
     fn memory_bytes(&self) -> Option<usize> {

@@ -315,11 +315,6 @@ impl Accel for EmbreeAccel {
         self.scene.occluded_batch(self.batch, rays, blocked);
     }
 
-    /// With packets: not in counting mode, nor with motion blur (see `intersect_batch`).
-    fn prefers_batches(&self) -> bool {
-        self.batch != BatchKind::Single
-    }
-
     /// Primitive tests in counting mode; node visits never (see [`EmbreeAccel`]).
     fn observes(&self) -> Observes {
         Observes { node_visits: false, prim_tests: self.counting }
