@@ -37,16 +37,14 @@ impl SceneTracer<'_> {
         blocked
     }
 
-    /// `blocked[i]` becomes `occluded(&rays[i], stats)`, the rays traced as one batch
-    /// (`Accel::occluded_batch`) and counted as `occluded` counts them.
+    /// `blocked[i]` becomes `occluded(&rays[i], stats)` for valid rays (the caller leaves
+    /// invalid ones out), traced as one batch (`Accel::occluded_batch`) and counted as
+    /// `occluded` counts them.
     pub fn occluded_batch(&self, rays: &[Ray], blocked: &mut [bool], stats: &mut RenderStats) {
+        debug_assert!(rays.iter().all(Ray::is_valid), "invalid shadow rays are never traced");
         self.accel.occluded_batch(rays, blocked, &mut stats.traversal);
-        for (ray, &blocked) in rays.iter().zip(blocked.iter()) {
-            if ray.is_valid() {
-                stats.shadow.rays += 1;
-                stats.shadow.hits += blocked as u64;
-            }
-        }
+        stats.shadow.rays += rays.len() as u64;
+        stats.shadow.hits += blocked.iter().filter(|&&b| b).count() as u64;
     }
 
     /// The closest hit of a valid `ray`, counted as a camera or an indirect ray. `known` is

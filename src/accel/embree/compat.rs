@@ -260,6 +260,19 @@ impl SingleRayLoop {
     }
 }
 
+/// `rtcInitOccludedArguments` with `context`, incoherent (what every occlusion query of
+/// ours is: single shadow rays, or many paths' shadow rays in a packet).
+#[cfg(embree4)]
+fn occluded_arguments(context: &mut CountingContext) -> ffi::RTCOccludedArguments {
+    // SAFETY: flags, pointers and `Option<fn>`s, for which all-zero bytes are valid (null,
+    // `None`).
+    let mut args: ffi::RTCOccludedArguments = unsafe { std::mem::zeroed() };
+    args.flags = ffi::RTCRayQueryFlags::INCOHERENT;
+    args.feature_mask = ffi::RTCFeatureFlags::RTC_FEATURE_FLAG_ALL;
+    args.context = context.as_query_context();
+    args
+}
+
 /// `rtcInitIntersectArguments` with `context` and `flags`.
 #[cfg(embree4)]
 fn intersect_arguments(
@@ -312,13 +325,7 @@ pub unsafe fn intersect1(
     counters: Option<&mut TraversalCounters>,
 ) {
     let mut context = CountingContext::new(counters);
-    // `rtcInitIntersectArguments`, plus our context. SAFETY: flags, pointers and
-    // `Option<fn>`s, for which all-zero bytes are valid (null, `None`); zero also covers the
-    // optional `minWidthDistanceFactor`.
-    let mut args: ffi::RTCIntersectArguments = unsafe { std::mem::zeroed() };
-    args.flags = ffi::RTCRayQueryFlags::INCOHERENT;
-    args.feature_mask = ffi::RTCFeatureFlags::RTC_FEATURE_FLAG_ALL;
-    args.context = context.as_query_context();
+    let mut args = intersect_arguments(&mut context, ffi::RTCRayQueryFlags::INCOHERENT);
     // SAFETY: the caller guarantees `scene`; `rayhit`, `args` and the context it points to
     // are valid for the call.
     unsafe { ffi::rtcIntersect1(scene, rayhit.as_mut_ptr(), &mut args) }
@@ -336,12 +343,8 @@ pub unsafe fn occluded1(
     counters: Option<&mut TraversalCounters>,
 ) {
     let mut context = CountingContext::new(counters);
-    // `rtcInitOccludedArguments`, plus our context. SAFETY: as in `intersect1`.
-    let mut args: ffi::RTCOccludedArguments = unsafe { std::mem::zeroed() };
-    args.flags = ffi::RTCRayQueryFlags::INCOHERENT;
-    args.feature_mask = ffi::RTCFeatureFlags::RTC_FEATURE_FLAG_ALL;
-    args.context = context.as_query_context();
-    // SAFETY: as in `intersect1`.
+    let mut args = occluded_arguments(&mut context);
+    // SAFETY: as in `intersect1`; `args` points to `context`, both live.
     unsafe { ffi::rtcOccluded1(scene, ray, &mut args) }
 }
 

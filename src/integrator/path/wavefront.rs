@@ -41,6 +41,11 @@ struct QueuedShadows {
 impl ShadowSink for QueuedShadows {
     #[inline]
     fn shadow(&mut self, ray: Ray, contribution: Vec3, _stats: &mut RenderStats) {
+        // An invalid ray is blocked and not counted (as `SceneTracer::occluded` has it):
+        // its light never arrives, so it need not be queued.
+        if !ray.is_valid() {
+            return;
+        }
         self.rays.push(ray);
         self.contributions.push(contribution);
         self.lanes.push(self.lane);

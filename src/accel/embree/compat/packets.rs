@@ -1,9 +1,9 @@
 //! Packet queries (`rtcIntersect4/8/16`, `rtcOccluded4/8/16`): the same names and layouts
 //! in Embree 3 and 4, called with each version's query context or arguments.
 
-#[cfg(embree4)]
-use super::intersect_arguments;
 use super::{Coherence, CountingContext, Padded, ValidMask, ffi};
+#[cfg(embree4)]
+use super::{intersect_arguments, occluded_arguments};
 
 /// Packet queries (`rtcIntersect4/8/16`) of the same width in both versions; they never
 /// count (counting mode traces one ray at a time). Generates, per width, a function
@@ -94,12 +94,7 @@ macro_rules! packet_occluded {
         #[cfg(embree4)]
         pub unsafe fn $name(scene: ffi::RTCScene, valid: &ValidMask, ray: &mut ffi::$packet) {
             let mut context = CountingContext::new(None);
-            // `rtcInitOccludedArguments`, plus our context. SAFETY: flags, pointers and
-            // `Option<fn>`s, for which all-zero bytes are valid.
-            let mut args: ffi::RTCOccludedArguments = unsafe { std::mem::zeroed() };
-            args.flags = ffi::RTCRayQueryFlags::INCOHERENT;
-            args.feature_mask = ffi::RTCFeatureFlags::RTC_FEATURE_FLAG_ALL;
-            args.context = context.as_query_context();
+            let mut args = occluded_arguments(&mut context);
             // SAFETY: as in the Embree 3 version; `args` points to `context`, both live.
             unsafe { ffi::$ffi(valid.0.as_ptr(), scene, ray, &mut args) }
         }
