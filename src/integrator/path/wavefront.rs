@@ -19,8 +19,8 @@ use glam::Vec3;
 pub(crate) struct Wavefront {
     states: Vec<PathState>,
     streams: Vec<SampleStream>,
-    /// The paths whose rays are in `rays` this bounce, in order.
-    lanes: Vec<u32>,
+    /// The paths still going, in order: during a bounce, those whose rays are in `rays`.
+    live: Vec<u32>,
     rays: Vec<Ray>,
     hits: Vec<Option<Hit>>,
     shadows: QueuedShadows,
@@ -57,10 +57,12 @@ impl Wavefront {
     pub fn clear(&mut self) {
         self.states.clear();
         self.streams.clear();
+        self.live.clear();
     }
 
     /// Adds a path (its first ray and the random stream it goes on with).
     pub fn push(&mut self, state: PathState, stream: SampleStream) {
+        self.live.push(self.states.len() as u32);
         self.states.push(state);
         self.streams.push(stream);
     }
@@ -74,17 +76,19 @@ impl Wavefront {
     pub fn run(&mut self, path: &PathTracer, stats: &mut RenderStats) {
         self.direct.resize(self.states.len(), Vec3::ZERO);
         loop {
-            self.lanes.clear();
             self.rays.clear();
             let mut at_camera = false;
-            for (lane, state) in self.states.iter_mut().enumerate() {
-                if let Some(ray) = state.pending_ray() {
-                    self.lanes.push(lane as u32);
-                    self.rays.push(*ray);
-                    at_camera = state.at_camera();
-                }
-            }
-            if self.lanes.is_empty() {
+            // A path that ended stays ended: only the paths live last bounce are asked.
+            let (states, rays) = (&mut self.states, &mut self.rays);
+            self.live.retain(|&lane| {
+                let state = &mut states[lane as usize];
+                let Some(ray) = state.pending_ray() else { return false };
+                rays.push(*ray);
+                at_camera = state.at_camera();
+                true
+            });
+            let lanes = &self.live;
+            if lanes.is_empty() {
                 return;
             }
             self.hits.clear();
@@ -100,7 +104,7 @@ impl Wavefront {
             shadows.rays.clear();
             shadows.contributions.clear();
             shadows.lanes.clear();
-            for ((&lane, ray), &hit) in self.lanes.iter().zip(&self.rays).zip(&self.hits) {
+            for ((&lane, ray), &hit) in lanes.iter().zip(&self.rays).zip(&self.hits) {
                 let hit = path.tracer.closest_hit(ray, at_camera, Some(hit), stats);
                 shadows.lane = lane;
                 let (state, stream) =
@@ -110,7 +114,7 @@ impl Wavefront {
             shadows.blocked.clear();
             shadows.blocked.resize(shadows.rays.len(), true);
             path.tracer.occluded_batch(&shadows.rays, &mut shadows.blocked, stats);
-            for &lane in &self.lanes {
+            for &lane in lanes {
                 self.direct[lane as usize] = Vec3::ZERO;
             }
             let tests = shadows.lanes.iter().zip(&shadows.contributions).zip(&shadows.blocked);
@@ -119,7 +123,7 @@ impl Wavefront {
                     self.direct[lane as usize] += contribution;
                 }
             }
-            for &lane in &self.lanes {
+            for &lane in lanes {
                 self.states[lane as usize].finish_direct(self.direct[lane as usize]);
             }
         }

@@ -174,7 +174,11 @@ impl Mixture {
 
     /// f · |cos θi| and the density of sampling `wi`, for the non-delta lobes.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
-        let (wo, wi) = (self.local_from_render(wo), self.local_from_render(wi));
+        self.eval_local(self.local_from_render(wo), self.local_from_render(wi))
+    }
+
+    /// `eval` of directions in the local frame.
+    fn eval_local(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return (Vec3::ZERO, 0.0);
         }
@@ -205,7 +209,7 @@ impl Mixture {
         }
         if let (Some((brdf, terms)), true) = (&self.course, u_lobe < self.p_course) {
             let wi = course_lobe::sample(brdf, terms.exponent, wo, u)?;
-            return self.mixture_sample(wo_render, self.frame * wi);
+            return self.mixture_sample(wo, wi);
         }
         // The rest of [0, 1) chooses among the other lobes; a delta lobe's weight counts the
         // probability of not having chosen the course lobe.
@@ -235,19 +239,22 @@ impl Mixture {
             if wi.z <= 0.0 {
                 return None;
             }
-            return self.mixture_sample(wo_render, self.frame * wi);
+            return self.mixture_sample(wo, wi);
         }
         let wi = crate::sampling::cosine_hemisphere(u);
         if wi.z <= 0.0 {
             return None;
         }
-        self.mixture_sample(wo_render, self.frame * wi)
+        self.mixture_sample(wo, wi)
     }
 
     /// A non-delta sample weighted by the whole mixture (needed for MIS to be consistent).
+    /// The sample of local direction `wi` (from local `wo`) by the mixture's density: the
+    /// sampled direction is evaluated where it was drawn, not after a round trip through
+    /// render space.
     fn mixture_sample(&self, wo: Vec3, wi: Vec3) -> Option<BsdfSample> {
-        let (value, pdf) = self.eval(wo, wi);
-        BsdfSample::smooth(wi, value, pdf)
+        let (value, pdf) = self.eval_local(wo, wi);
+        BsdfSample::smooth(self.frame * wi, value, pdf)
     }
 
     fn sample_dielectric(&self, wo: Vec3, ior: f32, u: f32) -> BsdfSample {
