@@ -245,13 +245,19 @@ impl Mixture {
         if wi.z <= 0.0 {
             return None;
         }
+        if self.p_specular == 0.0 && self.course.is_none() && self.coupling.is_none() {
+            // A Lambertian lobe alone, sampled by its own cosine density: f·cos/pdf is its
+            // reflectance exactly (`eval` would divide (ρ/π)·cos by cos/π, and round).
+            let pdf = wi.z * FRAC_1_PI;
+            return (pdf > 0.0)
+                .then(|| BsdfSample::smooth_weighted(self.frame * wi, self.diffuse, pdf));
+        }
         self.mixture_sample(wo, wi)
     }
 
-    /// A non-delta sample weighted by the whole mixture (needed for MIS to be consistent).
-    /// The sample of local direction `wi` (from local `wo`) by the mixture's density: the
-    /// sampled direction is evaluated where it was drawn, not after a round trip through
-    /// render space.
+    /// A non-delta sample weighted by the whole mixture (needed for MIS to be consistent),
+    /// of local direction `wi` from local `wo`: evaluated where it was drawn, not after a
+    /// round trip through render space.
     fn mixture_sample(&self, wo: Vec3, wi: Vec3) -> Option<BsdfSample> {
         let (value, pdf) = self.eval_local(wo, wi);
         BsdfSample::smooth(self.frame * wi, value, pdf)

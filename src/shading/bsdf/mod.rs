@@ -49,15 +49,20 @@ impl BsdfSample {
     /// A sample of a smooth (non-delta) lobe, `value` = f·cos and `pdf` the whole BSDF's
     /// (for MIS to be consistent); none where the density is 0.
     fn smooth(wi: Vec3, value: Vec3, pdf: f32) -> Option<Self> {
-        (pdf > 0.0).then(|| BsdfSample {
+        (pdf > 0.0).then(|| Self::smooth_weighted(wi, value / pdf, pdf))
+    }
+
+    /// A reflected sample of a non-delta lobe whose weight f·cos/pdf is known (`pdf` > 0).
+    fn smooth_weighted(wi: Vec3, weight: Vec3, pdf: f32) -> Self {
+        BsdfSample {
             wi,
-            weight: value / pdf,
+            weight,
             eta_scale: 1.0,
             pdf,
             delta: false,
             transmitted: false,
             passes: false,
-        })
+        }
     }
 
     /// Straight on through the surface, unchanged.

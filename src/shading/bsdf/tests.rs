@@ -261,3 +261,30 @@ fn course_glass_adds_its_specular_term_to_fresnel() {
         assert!((smooth + reflected + transmitted - 1.0).abs() < 4.0 * sigma + 0.01, "energy");
     }
 }
+
+#[test]
+fn a_lone_lambertian_lobe_samples_what_eval_gives() {
+    // Its sample takes the weight ρ and the density cos/π in closed form: they must be
+    // what `eval` gives for the sampled direction (MIS pairs the two), up to rounding.
+    let albedo = Vec3::new(0.2, 0.5, 0.9);
+    let frame = Mat3::from_quat(glam::Quat::from_rotation_arc(
+        Vec3::Z,
+        Vec3::new(0.3, -0.5, 0.8).normalize(),
+    ));
+    let bsdf = Bsdf::new(&Material::diffuse(albedo), albedo, frame, true);
+    let mut rng = SplitMix64(11);
+    let mut samples = 0;
+    for wo in directions().map(|w| frame * w) {
+        for _ in 0..2000 {
+            let u = Vec2::new(rng.unit(), rng.unit());
+            let Some(sample) = bsdf.sample(wo, rng.unit(), u) else { continue };
+            let (value, pdf) = bsdf.eval(wo, sample.wi);
+            assert!((sample.pdf - pdf).abs() <= 1e-5 * pdf, "pdf {} vs {pdf}", sample.pdf);
+            let weight = value / pdf;
+            assert!((sample.weight - weight).abs().max_element() <= 1e-5, "{weight}");
+            assert_eq!(sample.weight, albedo);
+            samples += 1;
+        }
+    }
+    assert!(samples > 5900, "only {samples} of 6000 draws gave a sample");
+}
