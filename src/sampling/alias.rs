@@ -67,6 +67,10 @@ impl AliasTable {
     /// An index drawn with `pick`, two uniform numbers in [0, 1) combined into one of 48
     /// bits (so even a million buckets are each hit in proportion to their width).
     pub fn sample(&self, pick: [f32; 2]) -> usize {
+        // One entry (a scene's single light): its bucket and its alias are itself.
+        if self.keep.len() == 1 {
+            return 0;
+        }
         let u = (pick[0] as f64 + pick[1] as f64 * LOW_BITS).clamp(0.0, 1.0);
         let x = u * self.keep.len() as f64;
         let bucket = (x as usize).min(self.keep.len() - 1);
