@@ -4,8 +4,10 @@ use glam::{Mat3, Vec2, Vec3};
 
 /// Cosine-weighted direction about +Z (Malley's method); pdf = cos θ / π.
 pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
-    let d = concentric_disk(u);
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    let (d, r) = concentric_disk_with_radius(u);
+    // From the radius the map gives, not the point's length: no cancellation near the rim
+    // (1 − r is exact there), and no wait for the sine and cosine.
+    let z = ((1.0 - r) * (1.0 + r)).max(0.0).sqrt();
     Vec3::new(d.x, d.y, z)
 }
 
@@ -28,19 +30,24 @@ pub fn cosine_power_pdf(cos_theta: f32, exponent: f32) -> f32 {
 
 /// Uniform point on the unit disk (Shirley–Chiu concentric map).
 pub fn concentric_disk(u: Vec2) -> Vec2 {
+    concentric_disk_with_radius(u).0
+}
+
+/// `concentric_disk`'s point and its distance from the centre as the map defines it.
+fn concentric_disk_with_radius(u: Vec2) -> (Vec2, f32) {
     let o = 2.0 * u - Vec2::ONE;
     if o == Vec2::ZERO {
-        return Vec2::ZERO;
+        return (Vec2::ZERO, 0.0);
     }
     // The angle is π/4 times a ratio in [-1, 1] from the x axis, or π/2 minus one from
     // the y axis, whose cosine and sine are the other's sine and cosine: only angles in
     // [-π/4, π/4] are ever needed, where short polynomials are exact to an ulp or two.
     if o.x.abs() > o.y.abs() {
         let (sin, cos) = sin_cos_quarter(std::f32::consts::FRAC_PI_4 * (o.y / o.x));
-        o.x * Vec2::new(cos, sin)
+        (o.x * Vec2::new(cos, sin), o.x.abs())
     } else {
         let (sin, cos) = sin_cos_quarter(std::f32::consts::FRAC_PI_4 * (o.x / o.y));
-        o.y * Vec2::new(sin, cos)
+        (o.y * Vec2::new(sin, cos), o.y.abs())
     }
 }
 
@@ -114,5 +121,14 @@ mod tests {
         assert_eq!(concentric_disk(Vec2::new(1.0, 0.5)), Vec2::new(1.0, 0.0));
         assert_eq!(concentric_disk(Vec2::new(0.5, 1.0)), Vec2::new(0.0, 1.0));
         assert!((concentric_disk(Vec2::new(1.0, 1.0)).length() - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn cosine_directions_are_unit() {
+        let mut rng = crate::splitmix::SplitMix64(9);
+        for _ in 0..100_000 {
+            let w = cosine_hemisphere(Vec2::new(rng.unit(), rng.unit()));
+            assert!((w.length() - 1.0).abs() < 1e-6 && w.z >= 0.0, "{w}");
+        }
     }
 }
