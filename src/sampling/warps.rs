@@ -106,7 +106,6 @@ mod tests {
             };
             worst = worst.max(ulps(sin, exact_sin)).max(ulps(cos, exact_cos));
         }
-        println!("worst error {worst:.3} ulps");
         assert!(worst <= 1.5, "worst error {worst} ulps");
     }
 

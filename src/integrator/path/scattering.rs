@@ -41,11 +41,6 @@ impl PathTracer<'_> {
     #[inline(never)]
     fn blend_scattering(&self, blend: &Blend, si: &SurfaceInteraction, time: f32) -> Bsdf {
         let part = |material: &Material| {
-            if material.blend.is_none() && material.opacity.is_none() {
-                // Returned as it is built: a `Bsdf` is a few hundred bytes, and a value bound
-                // and returned again was copied once more on every hit.
-                return self.own_scattering(material, si, time);
-            }
             let mut bsdf = match &material.blend {
                 Some(inner) => self.blend_scattering(inner, si, time),
                 None => self.own_scattering(material, si, time),
