@@ -54,7 +54,7 @@ fn concentric_disk_with_radius(u: Vec2) -> (Vec2, f32) {
 /// Sine and cosine of `x` in [-π/4, π/4] (Cephes' `sinf`/`cosf` kernels: minimax
 /// polynomials within about an ulp there): no range reduction, no call into libm, and the
 /// same bits on every machine (no fused multiply-adds).
-pub fn sin_cos_quarter(x: f32) -> (f32, f32) {
+fn sin_cos_quarter(x: f32) -> (f32, f32) {
     let z = x * x;
     let sin = x + x * z * (-1.666_665_5e-1 + z * (8.332_161e-3 + z * -1.951_529_6e-4));
     let cos = 1.0 - 0.5 * z + z * z * (4.166_664_6e-2 + z * (-1.388_731_6e-3 + z * 2.443_315_7e-5));

@@ -18,7 +18,6 @@ macro_rules! packet_intersect {
         ///
         /// # Safety
         /// See `packet_intersect!`.
-        #[cfg(not(embree4))]
         pub unsafe fn $name(
             scene: ffi::RTCScene,
             valid: &ValidMask,
@@ -26,37 +25,29 @@ macro_rules! packet_intersect {
             coherence: Coherence,
         ) {
             let mut context = CountingContext::new(None);
-            if coherence == Coherence::Coherent {
-                context.base.inner.flags =
-                    ffi::RTCIntersectContextFlags::RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            #[cfg(not(embree4))]
+            {
+                if coherence == Coherence::Coherent {
+                    context.base.inner.flags =
+                        ffi::RTCIntersectContextFlags::RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+                }
+                // SAFETY: per the caller; `valid` is 64-byte aligned and at least as wide
+                // as the packet, `rayhit` is aligned by its type, and both and the context
+                // are valid for the call.
+                unsafe {
+                    ffi::$ffi(valid.0.as_ptr(), scene, context.as_query_context(), rayhit.as_mut_ptr())
+                }
             }
-            // SAFETY: per the caller; `valid` is 64-byte aligned and at least as wide as
-            // the packet, `rayhit` is aligned by its type, and both and the context are
-            // valid for the call.
-            unsafe {
-                ffi::$ffi(valid.0.as_ptr(), scene, context.as_query_context(), rayhit.as_mut_ptr())
+            #[cfg(embree4)]
+            {
+                let flags = match coherence {
+                    Coherence::Coherent => ffi::RTCRayQueryFlags::COHERENT,
+                    Coherence::Incoherent => ffi::RTCRayQueryFlags::INCOHERENT,
+                };
+                let mut args = intersect_arguments(&mut context, flags);
+                // SAFETY: as for Embree 3; `args` points to `context`, both live.
+                unsafe { ffi::$ffi(valid.0.as_ptr(), scene, rayhit.as_mut_ptr(), &mut args) }
             }
-        }
-
-        /// Closest hits for the lanes of `rayhit` that `valid` marks -1, in place.
-        ///
-        /// # Safety
-        /// See `packet_intersect!`.
-        #[cfg(embree4)]
-        pub unsafe fn $name(
-            scene: ffi::RTCScene,
-            valid: &ValidMask,
-            rayhit: &mut Padded<ffi::$packet, $width>,
-            coherence: Coherence,
-        ) {
-            let mut context = CountingContext::new(None);
-            let flags = match coherence {
-                Coherence::Coherent => ffi::RTCRayQueryFlags::COHERENT,
-                Coherence::Incoherent => ffi::RTCRayQueryFlags::INCOHERENT,
-            };
-            let mut args = intersect_arguments(&mut context, flags);
-            // SAFETY: as in the Embree 3 version; `args` points to `context`, both live.
-            unsafe { ffi::$ffi(valid.0.as_ptr(), scene, rayhit.as_mut_ptr(), &mut args) }
         }
     )*};
 }
@@ -79,24 +70,20 @@ macro_rules! packet_occluded {
         ///
         /// # Safety
         /// See `packet_occluded!`.
-        #[cfg(not(embree4))]
         pub unsafe fn $name(scene: ffi::RTCScene, valid: &ValidMask, ray: &mut ffi::$packet) {
             let mut context = CountingContext::new(None);
             // SAFETY: per the caller; `valid` is 64-byte aligned and at least as wide as
             // the packet, and it, `ray` and the context are valid for the call.
-            unsafe { ffi::$ffi(valid.0.as_ptr(), scene, context.as_query_context(), ray) }
-        }
-
-        /// Occlusion of the lanes of `ray` that `valid` marks -1, in place.
-        ///
-        /// # Safety
-        /// See `packet_occluded!`.
-        #[cfg(embree4)]
-        pub unsafe fn $name(scene: ffi::RTCScene, valid: &ValidMask, ray: &mut ffi::$packet) {
-            let mut context = CountingContext::new(None);
-            let mut args = occluded_arguments(&mut context);
-            // SAFETY: as in the Embree 3 version; `args` points to `context`, both live.
-            unsafe { ffi::$ffi(valid.0.as_ptr(), scene, ray, &mut args) }
+            #[cfg(not(embree4))]
+            unsafe {
+                ffi::$ffi(valid.0.as_ptr(), scene, context.as_query_context(), ray)
+            }
+            #[cfg(embree4)]
+            {
+                let mut args = occluded_arguments(&mut context);
+                // SAFETY: as for Embree 3; `args` points to `context`, both live.
+                unsafe { ffi::$ffi(valid.0.as_ptr(), scene, ray, &mut args) }
+            }
         }
     )*};
 }
