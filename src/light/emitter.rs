@@ -16,11 +16,11 @@ use glam::{Vec2, Vec3};
 /// Solid-angle sampling costs several trigonometric functions per sample and gains little
 /// beyond a few bounding radii from the light, where the density over it is nearly uniform
 /// anyway. Chosen by time to equal error (MSE over three seeds × median render time, 64 spp,
-/// against the peers' Mitsuba reference and a 4096-spp render): on the two Cornell boxes 3 radii beat 4 by 3.6 % and 5.7 %
-/// (4 radii lowered the MSE by 2.3–2.4 % more, for 6–9 % more time) and on the glass scene by
-/// 8.8 % (the same MSE within 0.2 %, 9 % less time); 2 radii lost by 1.5 % and 1.7 % on the
-/// boxes (no point of them is that near), and nothing changed on the glossy plates, whose
-/// lights are far from everything.
+/// against the peers' Mitsuba reference and 4096-spp renders): on the two Cornell boxes 3
+/// radii beat 4 by 3.6 % and 5.7 % (4 radii lowered the MSE by 2.3–2.4 % more, for 6–9 % more
+/// time) and on the glass scene by 8.8 % (the same MSE within 0.2 %, 9 % less time); 2 radii
+/// lost by 1.5 % and 1.7 % on the boxes (no point of them is that near), and nothing changed
+/// on the glossy plates, whose lights are far from everything.
 const NEAR_RADII: f32 = 3.0;
 
 /// One emitting primitive, in render space.
