@@ -38,7 +38,8 @@ echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
 echo "embray: $("$embray" --version | head -1)"
 
 PEERS_DIR=$peers_dir "$python" "$harness/equal_error.py" "$embray" --scene cornell --spps 64,256 \
-    --only embray,mitsuba --out "$work/equal_error" > "$work/harness.log"
+    --only embray,mitsuba --out "$work/equal_error" > "$work/harness.log" 2>&1 ||
+    { cat "$work/harness.log" >&2; echo "the peers harness failed (its log above)" >&2; exit 1; }
 
 "$python" - "$work/equal_error/equal_error.jsonl" <<'PY'
 import json, statistics, sys
