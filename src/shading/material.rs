@@ -218,6 +218,17 @@ impl Material {
             || self.principled.as_ref().is_some_and(|p| p.is_anisotropic())
     }
 
+    /// Whether its BSDF is a Lambertian lobe alone, in the shading normal's frame, wherever
+    /// it is seen from its front (no other lobe, no mask, no blend).
+    pub fn is_plain_lambertian(&self) -> bool {
+        self.specular == Specular::None
+            && self.phong.is_none()
+            && self.principled.is_none()
+            && self.blend.is_none()
+            && self.opacity.is_none()
+            && !self.is_anisotropic()
+    }
+
     pub fn is_emissive(&self) -> bool {
         self.emission.max_element() > 0.0
     }

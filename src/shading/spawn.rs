@@ -11,6 +11,9 @@ use glam::Vec3;
 /// transforms round a hit distance by a few γ; γ(16) covers them with room to spare.
 const SHADOW_GAP: f32 = gamma(16);
 
+/// Where shadow rays to surface points stop (`spawn_ray_to`).
+pub const SHADOW_TMAX: f32 = 1.0 - SHADOW_GAP;
+
 /// A point on a surface with a conservative bound on its rounding error per axis.
 #[derive(Clone, Copy, Debug)]
 pub struct SurfacePoint {
@@ -27,6 +30,7 @@ impl SurfacePoint {
     /// ulp outwards even when the error bound is zero (a hit exactly on an axis-aligned plane
     /// at integer coordinates): otherwise the origin stays on the plane and the surface is hit
     /// again at t = -0, which compares equal to a zero `tmin`.
+    #[inline(always)]
     pub fn offset_origin(&self, w: Vec3) -> Vec3 {
         let d = self.normal.abs().dot(self.error);
         let outward = if w.dot(self.normal) < 0.0 { -self.normal } else { self.normal };
@@ -51,9 +55,15 @@ impl SurfacePoint {
     /// an occluder could be missed; pbrt's `1 − 1e-4` leaves 1 m. `target` may itself be a
     /// surface point (its own offset is applied) or a point light (no error, no offset).
     pub fn spawn_ray_to(&self, target: &SurfacePoint, time: f32) -> Ray {
+        let (origin, end) = self.spawn_ends_to(target);
+        Ray { origin, dir: end - origin, tmin: 0.0, tmax: SHADOW_TMAX, time }
+    }
+
+    /// The two ends of `spawn_ray_to`'s ray: its origin and the point at t = 1.
+    #[inline(always)]
+    pub fn spawn_ends_to(&self, target: &SurfacePoint) -> (Vec3, Vec3) {
         let origin = self.offset_origin(target.point - self.point);
-        let end = target.offset_origin(origin - target.point);
-        Ray { origin, dir: end - origin, tmin: 0.0, tmax: 1.0 - SHADOW_GAP, time }
+        (origin, target.offset_origin(origin - target.point))
     }
 
     /// A point with no error and no surface (a point light).

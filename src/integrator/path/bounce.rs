@@ -5,10 +5,14 @@
 //! they give the same image bit for bit.
 
 use super::PathTracer;
+use super::lambert::{LambertLane, LambertOutcome, lambert_bounce};
 use crate::integrator::PathSample;
 use crate::ray::{Hit, Ray};
 use crate::sampling::SampleStream;
 use crate::shading::bsdf::Energy;
+use crate::shading::material::Material;
+use crate::shading::spawn::SHADOW_TMAX;
+use crate::shading::surface::SurfaceInteraction;
 use crate::shading::surface::interaction;
 use crate::stats::RenderStats;
 use glam::{Vec2, Vec3};
@@ -121,7 +125,10 @@ impl PathTracer<'_> {
         while let Some(&ray) = state.pending_ray() {
             let found = self.tracer.closest_hit(&ray, state.at_camera(), None, stats);
             let mut shadows = ImmediateShadows { path: self, direct: Vec3::ZERO };
-            self.on_hit(&mut state, found, stream, stats, &mut shadows);
+            if let Some(lane) = self.on_hit(&mut state, found, stream, stats, &mut shadows) {
+                let outcome = lambert_bounce(&lane, &self.spaces);
+                self.finish_lambert(&mut state, &outcome, &mut shadows, stats);
+            }
             state.finish_direct(shadows.direct);
         }
         state.result
@@ -136,6 +143,10 @@ impl PathTracer<'_> {
     /// (Mitsuba's and pbrt's `max_depth` count so), which keeps glossy lobes lit by large
     /// lights as quiet as anywhere else, and lets delta lobes (mirrors, glass, a mask's
     /// holes) see the lights at all.
+    ///
+    /// A plain Lambertian bounce is left to the caller, its random numbers drawn and its
+    /// light point sampled: `lambert_bounce` computes it (alone, or with many paths' in
+    /// `LambertLanes`), `finish_lambert` applies it.
     pub(crate) fn on_hit(
         &self,
         state: &mut PathState,
@@ -143,15 +154,51 @@ impl PathTracer<'_> {
         stream: &mut SampleStream,
         stats: &mut RenderStats,
         shadows: &mut impl ShadowSink,
-    ) {
+    ) -> Option<LambertLane> {
         state.live = false;
-        let Some(next) = self.scatter(state, found, stream, stats, shadows) else { return };
+        match self.scatter(state, found, stream, stats, shadows) {
+            Scattered::End => None,
+            Scattered::Ray(next) => {
+                self.advance(state, next);
+                None
+            }
+            Scattered::Lambert(lane) => Some(lane),
+        }
+    }
+
+    /// The path goes on along `next`.
+    #[inline]
+    fn advance(&self, state: &mut PathState, next: Ray) {
         state.depth += 1;
         state.live = state.depth <= self.max_depth.max(1);
         state.ray = next;
     }
 
-    /// The work of `on_hit`: the next ray, or `None` where the path ends.
+    /// Applies the outcome of the plain Lambertian bounce `on_hit` left to the caller: its
+    /// shadow ray to `shadows`, and the next ray if the path goes on.
+    pub(crate) fn finish_lambert(
+        &self,
+        state: &mut PathState,
+        outcome: &LambertOutcome,
+        shadows: &mut impl ShadowSink,
+        stats: &mut RenderStats,
+    ) {
+        let time = state.ray.time;
+        if outcome.shadow != 0.0 {
+            let (origin, dir) = (outcome.shadow_origin, outcome.shadow_dir);
+            let ray = Ray { origin, dir, tmin: 0.0, tmax: SHADOW_TMAX, time };
+            shadows.shadow(ray, outcome.contribution, stats);
+        }
+        if outcome.next != 0.0 {
+            state.throughput = outcome.throughput;
+            state.specular_bounce = false;
+            state.pdf_bsdf = outcome.pdf;
+            let (origin, dir) = (outcome.next_origin, outcome.next_dir);
+            self.advance(state, Ray { origin, dir, tmin: 0.0, tmax: f32::INFINITY, time });
+        }
+    }
+
+    /// The work of `on_hit`.
     fn scatter(
         &self,
         state: &mut PathState,
@@ -159,7 +206,7 @@ impl PathTracer<'_> {
         stream: &mut SampleStream,
         stats: &mut RenderStats,
         shadows: &mut impl ShadowSink,
-    ) -> Option<Ray> {
+    ) -> Scattered {
         let depth = state.depth;
         let scene = self.tracer.scene;
         if depth == 0 && scene.hide_emitters {
@@ -170,10 +217,10 @@ impl PathTracer<'_> {
         let Some(hit) = found else {
             if let (0, Some(backdrop)) = (depth, state.backdrop) {
                 result.radiance += backdrop;
-                return None;
+                return Scattered::End;
             }
             if depth == 0 && scene.hide_emitters {
-                return None;
+                return Scattered::End;
             }
             let weight = if state.specular_bounce {
                 1.0
@@ -181,7 +228,7 @@ impl PathTracer<'_> {
                 self.environment_weight(ray.dir, state.pdf_bsdf)
             };
             result.radiance += state.throughput * self.tracer.escaped(ray.dir) * weight;
-            return None;
+            return Scattered::End;
         };
         if state.absorption != Vec3::ZERO {
             let distance = hit.t * ray.dir.length();
@@ -212,7 +259,14 @@ impl PathTracer<'_> {
         }
         let bounces = self.max_depth.max(1);
         if self.max_depth == 0 || depth == bounces {
-            return None;
+            return Scattered::End;
+        }
+        if self.lambert_lanes
+            && material.is_plain_lambertian()
+            && !bump_shadowing
+            && (si.front_face || !material.one_sided)
+        {
+            return Scattered::Lambert(self.lambert_lane(state, material, &si, stream));
         }
         let mut bsdf = self.scattering(material, &si, ray.time);
         if bump_shadowing {
@@ -228,11 +282,13 @@ impl PathTracer<'_> {
         }
         // Direction first (the best stratified pair), then lobe and roulette.
         let [u0, u1, u_lobe, u_survive] = stream.next_4d();
-        let sample = bsdf.sample(wo, u_lobe, Vec2::new(u0, u1))?;
+        let Some(sample) = bsdf.sample(wo, u_lobe, Vec2::new(u0, u1)) else {
+            return Scattered::End;
+        };
         // The geometric surface must agree with the shading normal about the side.
         let below = sample.wi.dot(si.surface.normal) < 0.0;
         if below != sample.transmitted || sample.weight == Vec3::ZERO {
-            return None;
+            return Scattered::End;
         }
         debug_assert!(
             self.energy == Energy::Additive || bsdf.albedo_bound(wo).max_element() <= 1.0 + 1e-4,
@@ -252,11 +308,71 @@ impl PathTracer<'_> {
         if depth + 1 >= self.rr_depth {
             let survive = (state.throughput * state.eta_scale).max_element().min(0.95);
             if u_survive >= survive {
-                return None;
+                return Scattered::End;
             }
             state.throughput /= survive;
         }
         state.from = si.surface.point;
-        Some(self.tracer.spawn.ray(&si.surface, sample.wi, ray.time))
+        Scattered::Ray(self.tracer.spawn.ray(&si.surface, sample.wi, ray.time))
+    }
+}
+
+/// What `scatter` leaves: the path's end, its next ray, or a plain Lambertian bounce for
+/// the caller to compute.
+enum Scattered {
+    End,
+    Ray(Ray),
+    Lambert(LambertLane),
+}
+
+impl PathTracer<'_> {
+    /// The plain Lambertian bounce at `si`, with the random numbers the mixture BSDF's
+    /// would draw, in the same order: the light point's, then the direction's. Sets what
+    /// the bounce leaves as it is, whether the path goes on or not.
+    fn lambert_lane(
+        &self,
+        state: &mut PathState,
+        material: &Material,
+        si: &SurfaceInteraction,
+        stream: &mut SampleStream,
+    ) -> LambertLane {
+        let ray = &state.ray;
+        let diffuse = self.energy.lambertian(self.tracer.surface_albedo(material, si, ray.time));
+        if state.depth == 0 && self.tracer.first_hit_albedo {
+            // As `albedo_bound` has it (a -0 channel reads +0).
+            state.result.albedo = Some((diffuse + Vec3::ZERO).min(Vec3::ONE));
+        }
+        let mut lane = LambertLane {
+            dir: ray.dir,
+            point: si.surface.point,
+            error: si.surface.error,
+            normal: si.surface.normal,
+            shading_normal: si.shading_normal,
+            diffuse,
+            throughput: state.throughput,
+            eta_scale: state.eta_scale,
+            roulette: if state.depth + 1 >= self.rr_depth { 1.0 } else { 0.0 },
+            ..LambertLane::default()
+        };
+        let lights = &self.tracer.scene.lights;
+        if lights.has_emitters() {
+            // As `direct_light` draws them: the point takes the best stratified pair.
+            let [u0, u1, u2, u3] = stream.next_4d();
+            let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
+            if let Some(light) = lights.sample_emitter(lane.point, u_choice, u_point) {
+                lane.has_light = 1.0;
+                lane.light_point = light.point;
+                lane.light_error = light.error;
+                lane.light_normal = light.normal;
+                lane.emission = light.emission;
+                lane.light_pdf = light.pdf;
+                lane.light_visible = if light.visible { 1.0 } else { 0.0 };
+                lane.light_two_sided = if light.two_sided { 1.0 } else { 0.0 };
+            }
+        }
+        [lane.u0, lane.u1, _, lane.u_survive] = stream.next_4d();
+        state.direct_weight = Some(state.throughput);
+        state.from = si.surface.point;
+        lane
     }
 }

@@ -6,6 +6,8 @@
 //! Only the random dimensions the scene's effects call for are drawn.
 
 mod bounce;
+mod lambert;
+mod lanes;
 mod light_sampling;
 mod scattering;
 mod wavefront;
@@ -20,9 +22,11 @@ use crate::render_scene::RenderScene;
 use crate::sampling::frame_from_normal;
 use crate::shading::bsdf::Energy;
 use crate::shading::material::MaskOpacity;
+use crate::shading::spawn::SpawnMode;
 use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
 use glam::{Mat3, Quat, Vec3};
+use lambert::FrameSpaces;
 
 pub struct PathTracer<'a> {
     tracer: SceneTracer<'a>,
@@ -32,11 +36,13 @@ pub struct PathTracer<'a> {
     rr_depth: u32,
     /// Shadow rays to emitters per shading point.
     light_samples: u32,
-    /// Rotation into the space where directions are sampled (see `sampling_from_world`).
-    sampling_from_render: Mat3,
-    /// Its inverse (transpose), kept: every hit's frame goes back through it.
-    render_from_sampling: Mat3,
+    /// Rotation into the space where directions are sampled (see `sampling_from_world`)
+    /// and back: every hit's frame goes through both.
+    spaces: FrameSpaces,
     energy: Energy,
+    /// Whether plain Lambertian bounces may take the lane path (`lambert`): the scene is
+    /// lit by emitters alone, one sample each, and rays leave surfaces robustly.
+    lambert_lanes: bool,
 }
 
 /// How far from 1 a squared normal length may be for the normal to count as unit: 16 ulps,
@@ -61,6 +67,14 @@ fn sampling_from_world() -> Mat3 {
     Mat3::from_quat(Quat::from_rotation_arc(generic, Vec3::Z))
 }
 
+/// Local shading frame (normal = +Z) → render space, built in the world-fixed sampling
+/// space.
+#[inline(always)]
+fn shading_frame_in(spaces: &FrameSpaces, normal: Vec3) -> Mat3 {
+    let n = near_unit(spaces.sampling_from_render * normal);
+    spaces.render_from_sampling * frame_from_normal(n)
+}
+
 impl<'a> PathTracer<'a> {
     pub(crate) fn new(
         tracer: SceneTracer<'a>,
@@ -72,15 +86,17 @@ impl<'a> PathTracer<'a> {
         let sampling_from_render =
             sampling_from_world() * tracer.scene.camera.world_from_render_rotation;
         let light_samples = light_samples.max(1);
-        PathTracer {
-            tracer,
-            max_depth,
-            rr_depth,
-            light_samples,
+        let lights = &tracer.scene.lights;
+        let lambert_lanes = light_samples == 1
+            && lights.points.is_empty()
+            && lights.directional.is_empty()
+            && lights.environment.as_ref().is_none_or(|e| !e.is_lit())
+            && tracer.spawn == SpawnMode::Robust;
+        let spaces = FrameSpaces {
             sampling_from_render,
             render_from_sampling: sampling_from_render.transpose(),
-            energy,
-        }
+        };
+        PathTracer { tracer, max_depth, rr_depth, light_samples, spaces, energy, lambert_lanes }
     }
 
     pub fn scene(&self) -> &RenderScene {
@@ -94,8 +110,7 @@ impl<'a> PathTracer<'a> {
     /// Local shading frame (normal = +Z) → render space, built in the world-fixed sampling
     /// space.
     fn shading_frame(&self, normal: Vec3) -> Mat3 {
-        let n = near_unit(self.sampling_from_render * normal);
-        self.render_from_sampling * frame_from_normal(n)
+        shading_frame_in(&self.spaces, normal)
     }
 
     /// The shading frame whose tangent follows ∂p/∂u, as Mitsuba's does: anisotropic

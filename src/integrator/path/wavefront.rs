@@ -1,10 +1,12 @@
 //! Many paths advanced together, a bounce at a time: the closest hits of all their rays
 //! found by one batched query (Embree packets), each path shaded by the scalar integrator's
-//! own code (`PathTracer::on_hit`), then the shadow rays of all of them tested by one
-//! batched occlusion query. Each path's arithmetic and random numbers are exactly those of
+//! own code (`PathTracer::on_hit`) — its plain Lambertian bounces all in one vectorised
+//! loop (`LambertLanes`) — then the shadow rays of all of them tested by one batched
+//! occlusion query. Each path's arithmetic and random numbers are exactly those of
 //! `PathTracer::trace`, so the image is the scalar one bit for bit (the backends' batched
 //! queries return the single-ray answers, see `Accel::intersect_batch`).
 
+use super::lanes::LambertLanes;
 use super::{PathState, PathTracer, ShadowSink};
 use crate::accel::Coherence;
 use crate::integrator::PathSample;
@@ -25,6 +27,8 @@ pub(crate) struct Wavefront {
     hits: Vec<Option<Hit>>,
     shadows: QueuedShadows,
     direct: Vec<Vec3>,
+    /// The bounce's plain Lambertian hits, computed together (`lanes`).
+    lambert: LambertLanes,
 }
 
 /// The shadow rays of one bounce of every path, with the path each belongs to.
@@ -104,12 +108,20 @@ impl Wavefront {
             shadows.rays.clear();
             shadows.contributions.clear();
             shadows.lanes.clear();
+            self.lambert.clear();
             for ((&lane, ray), &hit) in lanes.iter().zip(&self.rays).zip(&self.hits) {
                 let hit = path.tracer.closest_hit(ray, at_camera, Some(hit), stats);
                 shadows.lane = lane;
                 let (state, stream) =
                     (&mut self.states[lane as usize], &mut self.streams[lane as usize]);
-                path.on_hit(state, hit, stream, stats, shadows);
+                if let Some(bounce) = path.on_hit(state, hit, stream, stats, shadows) {
+                    self.lambert.push(lane, &bounce);
+                }
+            }
+            self.lambert.run(&path.spaces);
+            for (lane, outcome) in self.lambert.outcomes() {
+                shadows.lane = lane;
+                path.finish_lambert(&mut self.states[lane as usize], &outcome, shadows, stats);
             }
             shadows.blocked.clear();
             shadows.blocked.resize(shadows.rays.len(), true);

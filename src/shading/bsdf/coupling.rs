@@ -27,6 +27,17 @@ pub enum Energy {
     Additive,
 }
 
+impl Energy {
+    /// The reflectance a Lambertian lobe of albedo `albedo` gets under this model.
+    #[inline]
+    pub fn lambertian(self, albedo: Vec3) -> Vec3 {
+        match self {
+            Energy::Conserving => albedo.clamp(Vec3::ZERO, Vec3::ONE),
+            Energy::Additive => albedo.max(Vec3::ZERO),
+        }
+    }
+}
+
 crate::choice::named_choices!(Energy, "energy", {
     Conserving => "conserving",
     Additive => "additive",

@@ -67,8 +67,7 @@ impl Mixture {
         energy: Energy,
     ) -> Self {
         let conserving = energy == Energy::Conserving;
-        let albedo =
-            if conserving { albedo.clamp(Vec3::ZERO, Vec3::ONE) } else { albedo.max(Vec3::ZERO) };
+        let albedo = energy.lambertian(albedo);
         let diffuse = match material.specular {
             Specular::None | Specular::Plastic { .. } => albedo,
             Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {

@@ -1,0 +1,152 @@
+//! One bounce at a plain Lambertian surface (no other lobe, mask, blend or bump shadowing)
+//! lit by emitters alone, once its random numbers are drawn and its light point sampled:
+//! the shadow ray and the light it brings, the next direction, the throughput and Russian
+//! roulette. Written as straight-line arithmetic over one lane with selects for its
+//! conditions, so that a loop over many lanes (`lanes`) vectorises; the scalar integrator
+//! calls the same function, and both give the mixture BSDF's results bit for bit (the same
+//! operations in the same order: `tests` compares them).
+
+use crate::shading::spawn::SurfacePoint;
+use glam::{Mat3, Vec2, Vec3};
+use std::f32::consts::FRAC_1_PI;
+
+/// What a plain Lambertian bounce is computed from.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct LambertLane {
+    /// Direction of the ray that hit.
+    pub dir: Vec3,
+    /// The hit point, its error bound and its geometric normal (facing the ray).
+    pub point: Vec3,
+    pub error: Vec3,
+    pub normal: Vec3,
+    pub shading_normal: Vec3,
+    /// The Lambertian reflectance (after the energy model's clamp).
+    pub diffuse: Vec3,
+    pub throughput: Vec3,
+    pub eta_scale: f32,
+    /// 1 where a light point was sampled, else 0.
+    pub has_light: f32,
+    /// The light point sampled.
+    pub light_point: Vec3,
+    pub light_error: Vec3,
+    pub light_normal: Vec3,
+    pub emission: Vec3,
+    pub light_pdf: f32,
+    /// 1 where BSDF sampling can find the emitter too (MIS), else 0.
+    pub light_visible: f32,
+    /// 1 where the emitter sends light from both sides, else 0.
+    pub light_two_sided: f32,
+    /// The direction's stratified pair, and the roulette's number.
+    pub u0: f32,
+    pub u1: f32,
+    pub u_survive: f32,
+    /// 1 where Russian roulette may end the path at this bounce, else 0.
+    pub roulette: f32,
+}
+
+/// What a plain Lambertian bounce gives.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct LambertOutcome {
+    /// 1 where a shadow ray is to be traced, else 0.
+    pub shadow: f32,
+    pub shadow_origin: Vec3,
+    /// From the origin to the light point's far side of its error bound (`tmax` just
+    /// short of 1: `spawn_ray_to`).
+    pub shadow_dir: Vec3,
+    /// The light the shadow ray brings unless blocked (before the path's throughput).
+    pub contribution: Vec3,
+    /// 1 where the path goes on, else 0.
+    pub next: f32,
+    pub next_origin: Vec3,
+    pub next_dir: Vec3,
+    pub throughput: Vec3,
+    pub pdf: f32,
+}
+
+/// The rotations the shading frame is built through (`PathTracer::shading_frame`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FrameSpaces {
+    pub sampling_from_render: Mat3,
+    pub render_from_sampling: Mat3,
+}
+
+/// `a` where `condition`, else `b`: written so that a loop over lanes compiles to a blend.
+#[inline(always)]
+fn select(condition: bool, a: f32, b: f32) -> f32 {
+    if condition { a } else { b }
+}
+
+#[inline(always)]
+fn select3(condition: bool, a: Vec3, b: Vec3) -> Vec3 {
+    Vec3::new(select(condition, a.x, b.x), select(condition, a.y, b.y), select(condition, a.z, b.z))
+}
+
+/// `power_heuristic` (light_sampling) as selects.
+#[inline(always)]
+fn power_heuristic(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    let ratio = a2 / (a2 + b2);
+    let otherwise = select(a2.is_infinite(), 1.0, 0.0);
+    select(a2 + b2 > 0.0 && a2.is_finite(), ratio, otherwise)
+}
+
+/// The bounce of `lane` (see the module's comment).
+#[inline(always)]
+pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> LambertOutcome {
+    let frame = super::shading_frame_in(spaces, lane.shading_normal);
+    let to_local = frame.transpose();
+    let wo = -lane.dir.normalize();
+    let wo_local = to_local * wo;
+    let surface = SurfacePoint { point: lane.point, error: lane.error, normal: lane.normal };
+
+    // Next-event estimation (`direct_light`, one emitter sample).
+    let to_light = lane.light_point - lane.point;
+    let dist2 = to_light.length_squared();
+    let wi = to_light / dist2.sqrt();
+    let cos_emitted = lane.light_normal.dot(-wi);
+    let cos_light = select(lane.light_two_sided != 0.0, cos_emitted.abs(), cos_emitted);
+    let faces = lane.normal.dot(wi) > 0.0;
+    let wi_local = to_local * wi;
+    // Conditions are written as the scalar code has them, so that NaNs fall the same way.
+    let lit = !(wo_local.z <= 0.0 || wi_local.z <= 0.0);
+    let f_cos = select3(lit, lane.diffuse * Vec3::ONE * FRAC_1_PI * wi_local.z, Vec3::ZERO);
+    let pdf_bsdf = select(lit, 1.0 * wi_local.z * FRAC_1_PI, 0.0);
+    let target = SurfacePoint {
+        point: lane.light_point,
+        error: lane.light_error,
+        normal: lane.light_normal,
+    };
+    let (shadow_origin, shadow_end) = surface.spawn_ends_to(&target);
+    let weight = select(lane.light_visible != 0.0, power_heuristic(lane.light_pdf, pdf_bsdf), 1.0);
+    let contribution = f_cos * lane.emission * (weight / lane.light_pdf);
+    let shadow =
+        lane.has_light != 0.0 && faces && cos_light > 0.0 && dist2 > 0.0 && f_cos != Vec3::ZERO;
+
+    // BSDF sampling (`Mixture::sample`'s lone Lambertian lobe) and roulette (`scatter`).
+    let wi_sampled = crate::sampling::cosine_hemisphere(Vec2::new(lane.u0, lane.u1));
+    let pdf = wi_sampled.z * FRAC_1_PI;
+    let next_dir = frame * wi_sampled;
+    let below = next_dir.dot(lane.normal) < 0.0;
+    let throughput = lane.throughput * lane.diffuse;
+    let survive = (throughput * lane.eta_scale).max_element().min(0.95);
+    let rouletted = lane.roulette != 0.0;
+    let survives = !rouletted || !(lane.u_survive >= survive);
+    let throughput = select3(rouletted, throughput / survive, throughput);
+    let next = !(wo_local.z <= 0.0)
+        && !(wi_sampled.z <= 0.0)
+        && pdf > 0.0
+        && !below
+        && lane.diffuse != Vec3::ZERO
+        && survives;
+    LambertOutcome {
+        shadow: select(shadow, 1.0, 0.0),
+        shadow_origin,
+        shadow_dir: shadow_end - shadow_origin,
+        contribution,
+        next: select(next, 1.0, 0.0),
+        next_origin: surface.offset_origin(next_dir),
+        next_dir,
+        throughput,
+        pdf,
+    }
+}
