@@ -21,11 +21,15 @@ pub enum PathBatching {
     Batched,
     /// One path at a time, one ray at a time.
     Scalar,
+    /// As `Scalar`, with every BSDF through the general code, plain Lambertian ones
+    /// included: the reference the vectorised Lambertian lanes are checked against.
+    Reference,
 }
 
 crate::choice::named_choices!(PathBatching, "path batching", {
     Batched => "batched",
     Scalar => "scalar",
+    Reference => "reference",
 });
 
 /// Validated options of one render (command line, or tests).

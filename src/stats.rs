@@ -35,6 +35,17 @@ pub struct RayKindCounts {
 
 add_fields!(RayKindCounts { rays, hits });
 
+/// The path tracer's scattering bounces, by the code that computed them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct BounceCounts {
+    /// Plain Lambertian bounces, in vector lanes (one lane at a time on scalar paths).
+    pub lanes: u64,
+    /// Bounces through the general BSDF code.
+    pub scalar: u64,
+}
+
+add_fields!(BounceCounts { lanes, scalar });
+
 /// All counters of a render (or of one worker's share of it).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct RenderStats {
@@ -43,6 +54,9 @@ pub struct RenderStats {
     pub shadow: RayKindCounts,
     pub indirect: RayKindCounts,
     pub traversal: TraversalCounters,
+    /// Absent from part files written before it was counted.
+    #[serde(default)]
+    pub bounces: BounceCounts,
 }
 
 impl RenderStats {
@@ -51,4 +65,4 @@ impl RenderStats {
     }
 }
 
-add_fields!(RenderStats { camera, shadow, indirect, traversal });
+add_fields!(RenderStats { camera, shadow, indirect, traversal, bounces });

@@ -74,8 +74,9 @@ pub struct RenderArgs {
     #[arg(long, value_parser = choice::<BatchMode>(), default_value_t = BatchMode::Native)]
     pub batch: BatchMode,
     /// How the path tracer advances its paths: batched (the paths of a tile's pixels
-    /// together, a bounce at a time, rays traced in packets) or scalar (one path, one ray
-    /// at a time: the reference). The image is the same either way.
+    /// together, a bounce at a time, rays traced in packets, plain Lambertian bounces
+    /// computed in vector lanes), scalar (one path, one ray at a time) or reference (scalar,
+    /// every BSDF through the general code). The image is the same every way.
     #[arg(long, value_parser = choice::<PathBatching>(), default_value_t = PathBatching::Batched)]
     pub paths: PathBatching,
     /// PNG tone curve.

@@ -7,7 +7,7 @@ pub mod whitted;
 
 use crate::accel::Accel;
 use crate::ray::Ray;
-use crate::render_options::RenderOptions;
+use crate::render_options::{PathBatching, RenderOptions};
 use crate::render_scene::RenderScene;
 use crate::sampling::SampleStream;
 use crate::scene::IntegratorKind;
@@ -53,6 +53,7 @@ impl<'a> Tracer<'a> {
                 options.rr_depth,
                 options.light_samples,
                 options.energy,
+                options.paths != PathBatching::Reference,
             )),
             IntegratorKind::Whitted => Tracer::Whitted(WhittedTracer::new(tracer, max_depth)),
         }

@@ -73,5 +73,15 @@ pub fn stats_table(stats: &RenderStats, observes: Observes) -> String {
         shown(stats.traversal.node_visits, observes.node_visits),
         shown(stats.traversal.prim_tests, observes.prim_tests)
     );
+    let bounces = stats.bounces;
+    let total = bounces.lanes + bounces.scalar;
+    if total > 0 {
+        out += &format!(
+            "bounces          {total}: {} in vector lanes, {} scalar ({:.1} %)\n",
+            bounces.lanes,
+            bounces.scalar,
+            100.0 * bounces.scalar as f64 / total as f64
+        );
+    }
     out
 }

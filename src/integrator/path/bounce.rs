@@ -266,8 +266,10 @@ impl PathTracer<'_> {
             && !bump_shadowing
             && (si.front_face || !material.one_sided)
         {
+            stats.bounces.lanes += 1;
             return Scattered::Lambert(self.lambert_lane(state, material, &si, stream));
         }
+        stats.bounces.scalar += 1;
         let mut bsdf = self.scattering(material, &si, ray.time);
         if bump_shadowing {
             bsdf.set_bump_shadowing(unmapped);

@@ -161,19 +161,5 @@ impl pulp::WithSimd for Kernel<'_> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_lane_survives_its_columns() {
-        let lane = LambertLane {
-            dir: Vec3::new(1.0, 2.0, 3.0),
-            light_normal: Vec3::new(-4.0, 5.0, 6.5),
-            u1: 0.25,
-            roulette: 1.0,
-            ..Default::default()
-        };
-        assert_eq!(LambertLane::from_columns(lane.to_columns()), lane);
-        assert_eq!(LambertLane::COLUMNS, 11 * 3 + 9);
-    }
-}
+#[path = "lanes_tests.rs"]
+mod tests;

@@ -70,7 +70,7 @@ fn sampling_from_world() -> Mat3 {
 /// Local shading frame (normal = +Z) → render space, built in the world-fixed sampling
 /// space.
 #[inline(always)]
-fn shading_frame_in(spaces: &FrameSpaces, normal: Vec3) -> Mat3 {
+pub(super) fn shading_frame_in(spaces: &FrameSpaces, normal: Vec3) -> Mat3 {
     let n = near_unit(spaces.sampling_from_render * normal);
     spaces.render_from_sampling * frame_from_normal(n)
 }
@@ -82,12 +82,14 @@ impl<'a> PathTracer<'a> {
         rr_depth: u32,
         light_samples: u32,
         energy: Energy,
+        lambertian_lanes: bool,
     ) -> Self {
         let sampling_from_render =
             sampling_from_world() * tracer.scene.camera.world_from_render_rotation;
         let light_samples = light_samples.max(1);
         let lights = &tracer.scene.lights;
-        let lambert_lanes = light_samples == 1
+        let lambert_lanes = lambertian_lanes
+            && light_samples == 1
             && lights.points.is_empty()
             && lights.directional.is_empty()
             && lights.environment.as_ref().is_none_or(|e| !e.is_lit())

@@ -1,0 +1,122 @@
+//! The vectorised loop against the lane function it runs, and its directions against their
+//! density, lane position by lane position.
+
+use super::*;
+use crate::sampling::chi_square;
+use crate::splitmix::SplitMix64;
+use glam::{Mat3, Quat};
+
+fn spaces() -> FrameSpaces {
+    let sampling_from_render =
+        Mat3::from_quat(Quat::from_rotation_arc(Vec3::new(0.3, -0.5, 0.8).normalize(), Vec3::Z));
+    FrameSpaces { sampling_from_render, render_from_sampling: sampling_from_render.transpose() }
+}
+
+/// A lane whose view is above its surface, lit or not, rouletted or not.
+fn random_lane(rng: &mut SplitMix64) -> LambertLane {
+    let normal = rng.vec3(-1.0, 1.0).normalize();
+    let point = rng.vec3(-10.0, 10.0);
+    let dir = -(normal + 0.9 * rng.vec3(-1.0, 1.0)).normalize();
+    LambertLane {
+        dir,
+        point,
+        error: rng.vec3(0.0, 1e-6),
+        normal,
+        // Off unit length now and then, as a rotated normal can be.
+        shading_normal: (normal + 0.05 * rng.vec3(-1.0, 1.0)).normalize()
+            * rng.range(0.9999, 1.0001),
+        diffuse: rng.vec3(0.0, 1.0),
+        throughput: rng.vec3(0.0, 2.0),
+        eta_scale: 1.0,
+        has_light: if rng.unit() < 0.8 { 1.0 } else { 0.0 },
+        light_point: point + rng.vec3(-3.0, 3.0),
+        light_error: rng.vec3(0.0, 1e-6),
+        light_normal: rng.vec3(-1.0, 1.0).normalize(),
+        emission: rng.vec3(0.0, 20.0),
+        light_pdf: rng.range(0.01, 5.0),
+        light_visible: if rng.unit() < 0.5 { 1.0 } else { 0.0 },
+        light_two_sided: if rng.unit() < 0.5 { 1.0 } else { 0.0 },
+        u0: rng.unit(),
+        u1: rng.unit(),
+        u_survive: rng.unit(),
+        roulette: if rng.unit() < 0.5 { 1.0 } else { 0.0 },
+    }
+}
+
+#[test]
+fn a_lane_survives_its_columns() {
+    let lane = random_lane(&mut SplitMix64(7));
+    assert_eq!(LambertLane::from_columns(lane.to_columns()), lane);
+    assert_eq!(LambertLane::COLUMNS, 11 * 3 + 9);
+}
+
+#[test]
+fn the_vector_loop_gives_each_lane_s_own_result_bit_for_bit() {
+    let spaces = spaces();
+    let mut rng = SplitMix64(11);
+    let mut queue = LambertLanes::default();
+    // Two batches, the second shorter, each with a partial last chunk.
+    for n in [3 * CHUNK + 5, CHUNK - 3] {
+        queue.clear();
+        let lanes: Vec<LambertLane> = (0..n).map(|_| random_lane(&mut rng)).collect();
+        for (i, lane) in lanes.iter().enumerate() {
+            queue.push(i as u32 * 2, lane);
+        }
+        queue.run(&spaces);
+        let outcomes: Vec<_> = queue.outcomes().collect();
+        assert_eq!(outcomes.len(), n);
+        let (mut shadows, mut nexts) = (0, 0);
+        for (i, (lane, (path, outcome))) in lanes.iter().zip(outcomes).enumerate() {
+            assert_eq!(path, i as u32 * 2);
+            let single = lambert_bounce(lane, &spaces);
+            let bits = |o: LambertOutcome| o.to_columns().map(f32::to_bits);
+            assert_eq!(bits(outcome), bits(single), "lane {i} of {n}");
+            shadows += (outcome.shadow != 0.0) as u32;
+            nexts += (outcome.next != 0.0) as u32;
+        }
+        // Both kinds of outcome occur, so the comparison covers them.
+        assert!(shadows > 0 && nexts > 0 && nexts < n as u32, "{shadows} {nexts} of {n}");
+    }
+}
+
+#[test]
+fn lane_directions_follow_the_cosine_density_at_every_lane_position() {
+    const PER_POSITION: usize = 6400;
+    const BINS: usize = 8;
+    let spaces = spaces();
+    let mut rng = SplitMix64(3);
+    let mut queue = LambertLanes::default();
+    let mut frames = Vec::new();
+    for i in 0..PER_POSITION * CHUNK {
+        let mut lane = random_lane(&mut rng);
+        (lane.roulette, lane.diffuse) = (0.0, Vec3::splat(0.5));
+        lane.normal = lane.shading_normal.normalize();
+        // Seen from well above: every lane samples a direction.
+        lane.dir = -(lane.normal + 0.3 * rng.vec3(-1.0, 1.0)).normalize();
+        frames.push(crate::integrator::path::shading_frame_in(&spaces, lane.shading_normal));
+        queue.push(i as u32, &lane);
+    }
+    queue.run(&spaces);
+    // cos²θ and φ are uniform under the cosine density: equal cells.
+    let mut counts = vec![[0u64; BINS * BINS]; CHUNK];
+    let mut taken = [0u64; CHUNK];
+    for (path, outcome) in queue.outcomes() {
+        let local = frames[path as usize].transpose() * outcome.next_dir;
+        assert!((outcome.pdf - local.z * std::f32::consts::FRAC_1_PI).abs() < 1e-5);
+        if outcome.next == 0.0 {
+            continue;
+        }
+        let position = path as usize % CHUNK;
+        let cos2 = (local.z * local.z).clamp(0.0, 0.999_999);
+        let phi = (local.y.atan2(local.x) / std::f32::consts::TAU + 1.0).fract().min(0.999_999);
+        let cell = (cos2 * BINS as f32) as usize * BINS + (phi * BINS as f32) as usize;
+        counts[position][cell] += 1;
+        taken[position] += 1;
+    }
+    let expected = vec![1.0 / (BINS * BINS) as f64; BINS * BINS];
+    for position in 0..CHUNK {
+        assert!(taken[position] as usize > PER_POSITION * 99 / 100, "{}", taken[position]);
+        let name = format!("cosine lanes, position {position}");
+        chi_square::assert_fits(&name, &counts[position], &expected, taken[position]);
+    }
+}
