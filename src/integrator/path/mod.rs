@@ -109,8 +109,7 @@ impl<'a> PathTracer<'a> {
         self.tracer.occluded(ray, stats)
     }
 
-    /// Local shading frame (normal = +Z) → render space, built in the world-fixed sampling
-    /// space.
+    /// The shading frame at `normal` (`shading_frame_in`).
     fn shading_frame(&self, normal: Vec3) -> Mat3 {
         shading_frame_in(&self.spaces, normal)
     }
