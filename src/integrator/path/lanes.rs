@@ -67,21 +67,16 @@ const OUT: usize = LambertOutcome::COLUMNS;
 /// Lanes computed together: AVX-512's width (two AVX2 registers, four SSE ones).
 const CHUNK: usize = 16;
 
-/// The queue: columns of inputs and outputs, and the path each lane belongs to.
-pub(crate) struct LambertLanes {
-    inputs: [Vec<f32>; IN],
-    outputs: [Vec<f32>; OUT],
-    paths: Vec<u32>,
-}
+/// `CHUNK` lanes' worth of each column of `N`.
+type Block<const N: usize> = [[f32; CHUNK]; N];
 
-impl Default for LambertLanes {
-    fn default() -> Self {
-        LambertLanes {
-            inputs: std::array::from_fn(|_| Vec::new()),
-            outputs: std::array::from_fn(|_| Vec::new()),
-            paths: Vec::new(),
-        }
-    }
+/// The queue, in blocks of `CHUNK` lanes (each column of a block contiguous), and the path
+/// each lane belongs to.
+#[derive(Default)]
+pub(crate) struct LambertLanes {
+    inputs: Vec<Block<IN>>,
+    outputs: Vec<Block<OUT>>,
+    paths: Vec<u32>,
 }
 
 impl LambertLanes {
@@ -92,42 +87,43 @@ impl LambertLanes {
 
     /// Queues the bounce `lane` of path `path`.
     pub fn push(&mut self, path: u32, lane: &LambertLane) {
-        let i = self.paths.len();
+        let (block, j) = (self.paths.len() / CHUNK, self.paths.len() % CHUNK);
         self.paths.push(path);
-        for (column, value) in self.inputs.iter_mut().zip(lane.to_columns()) {
-            if column.len() <= i {
-                column.resize(i + 1, 0.0);
-            }
-            column[i] = value;
+        if block == self.inputs.len() {
+            // A new block's other lanes are computed too, and ignored: zeros are as good
+            // as anything.
+            self.inputs.push([[0.0; CHUNK]; IN]);
+        }
+        let block = &mut self.inputs[block];
+        for (column, value) in block.iter_mut().zip(lane.to_columns()) {
+            column[j] = value;
         }
     }
 
     /// Computes every queued bounce.
     pub fn run(&mut self, spaces: &FrameSpaces) {
-        let n = self.paths.len();
-        for column in &mut self.outputs {
-            if column.len() < n {
-                column.resize(n, 0.0);
-            }
+        let blocks = self.paths.len().div_ceil(CHUNK);
+        if self.outputs.len() < blocks {
+            self.outputs.resize(blocks, [[0.0; CHUNK]; OUT]);
         }
-        let kernel = Kernel { spaces, inputs: &self.inputs, outputs: &mut self.outputs, n };
-        pulp::Arch::new().dispatch(kernel);
+        let (inputs, outputs) = (&self.inputs[..blocks], &mut self.outputs[..blocks]);
+        pulp::Arch::new().dispatch(Kernel { spaces, inputs, outputs });
     }
 
     /// The queued bounces' paths and outcomes, in the order they were queued (after `run`).
     pub fn outcomes(&self) -> impl Iterator<Item = (u32, LambertOutcome)> + '_ {
         self.paths.iter().enumerate().map(|(i, &path)| {
-            (path, LambertOutcome::from_columns(std::array::from_fn(|k| self.outputs[k][i])))
+            let (block, j) = (&self.outputs[i / CHUNK], i % CHUNK);
+            (path, LambertOutcome::from_columns(std::array::from_fn(|k| block[k][j])))
         })
     }
 }
 
-/// The loop over the lanes, compiled once per instruction set `pulp` dispatches to.
+/// The loop over the blocks, compiled once per instruction set `pulp` dispatches to.
 struct Kernel<'a> {
     spaces: &'a FrameSpaces,
-    inputs: &'a [Vec<f32>; IN],
-    outputs: &'a mut [Vec<f32>; OUT],
-    n: usize,
+    inputs: &'a [Block<IN>],
+    outputs: &'a mut [Block<OUT>],
 }
 
 impl pulp::WithSimd for Kernel<'_> {
@@ -135,27 +131,21 @@ impl pulp::WithSimd for Kernel<'_> {
 
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
-        // Chunks of lanes copied to and from local arrays: the compiler then knows that no
-        // column aliases another (the columns themselves could, for all it can prove, and
-        // checking 63 of them against each other at run time is more than it will do).
-        let n = self.n;
-        for start in (0..n).step_by(CHUNK) {
-            let len = (n - start).min(CHUNK);
-            let mut inputs = [[0.0f32; CHUNK]; IN];
-            for (chunk, column) in inputs.iter_mut().zip(self.inputs) {
-                chunk[..len].copy_from_slice(&column[start..start + len]);
-            }
-            let mut outputs = [[0.0f32; CHUNK]; OUT];
-            for j in 0..CHUNK {
-                let lane = LambertLane::from_columns(std::array::from_fn(|k| inputs[k][j]));
-                let outcome = lambert_bounce(&lane, self.spaces).to_columns();
-                for (chunk, value) in outputs.iter_mut().zip(outcome) {
-                    chunk[j] = value;
-                }
-            }
-            for (column, chunk) in self.outputs.iter_mut().zip(&outputs) {
-                column[start..start + len].copy_from_slice(&chunk[..len]);
-            }
+        for (inputs, outputs) in self.inputs.iter().zip(self.outputs.iter_mut()) {
+            run_block(self.spaces, inputs, outputs);
+        }
+    }
+}
+
+/// One block's lanes. Its own function so that its arguments tell the compiler that the
+/// outputs alias no input (it vectorises the loop only then).
+#[inline(always)]
+fn run_block(spaces: &FrameSpaces, inputs: &Block<IN>, outputs: &mut Block<OUT>) {
+    for j in 0..CHUNK {
+        let lane = LambertLane::from_columns(std::array::from_fn(|k| inputs[k][j]));
+        let outcome = lambert_bounce(&lane, spaces).to_columns();
+        for (column, value) in outputs.iter_mut().zip(outcome) {
+            column[j] = value;
         }
     }
 }
