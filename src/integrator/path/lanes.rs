@@ -1,6 +1,6 @@
 //! Plain Lambertian bounces of many paths in structure-of-arrays form: queued lane by lane
-//! (one column per scalar of a `LambertLane`), computed by one loop over all of them that
-//! the compiler vectorises — built for the widest vector unit the CPU has, chosen at run
+//! into blocks of 16 lanes (one 16-wide column per scalar of a `LambertLane`), computed by
+//! one loop over all of them that the compiler vectorises — built for the widest vector unit the CPU has, chosen at run
 //! time (`pulp`: AVX-512, else AVX2, else the build's baseline), so one portable binary
 //! uses all of it — and read back lane by lane.
 
