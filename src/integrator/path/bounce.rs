@@ -5,13 +5,12 @@
 //! they give the same image bit for bit.
 
 use super::PathTracer;
-use super::lambert::{LambertLane, LambertOutcome, lambert_bounce};
+use super::lambert::{DISTANT, LambertLane, LambertOutcome, POINT, lambert_bounce};
 use crate::integrator::PathSample;
 use crate::ray::{Hit, Ray};
 use crate::sampling::SampleStream;
 use crate::shading::bsdf::Energy;
 use crate::shading::material::Material;
-use crate::shading::spawn::SHADOW_TMAX;
 use crate::shading::surface::SurfaceInteraction;
 use crate::shading::surface::interaction;
 use crate::stats::RenderStats;
@@ -185,8 +184,9 @@ impl PathTracer<'_> {
     ) {
         let time = state.ray.time;
         if outcome.shadow != 0.0 {
-            let (origin, dir) = (outcome.shadow_origin, outcome.shadow_dir);
-            let ray = Ray { origin, dir, tmin: 0.0, tmax: SHADOW_TMAX, time };
+            let (origin, dir, tmax) =
+                (outcome.shadow_origin, outcome.shadow_dir, outcome.shadow_tmax);
+            let ray = Ray { origin, dir, tmin: 0.0, tmax, time };
             shadows.shadow(ray, outcome.contribution, stats);
         }
         if outcome.next != 0.0 {
@@ -356,9 +356,24 @@ impl PathTracer<'_> {
             roulette: if state.depth + 1 >= self.rr_depth { 1.0 } else { 0.0 },
             ..LambertLane::default()
         };
+        // The scene's one light (`PathTracer::lambert_lanes`), sampled as `direct_light`
+        // samples it.
         let lights = &self.tracer.scene.lights;
-        if lights.has_emitters() {
-            // As `direct_light` draws them: the point takes the best stratified pair.
+        if let Some(light) = lights.points.first() {
+            let to_light = light.position - lane.point;
+            let wi = to_light / to_light.length_squared().sqrt();
+            lane.has_light = 1.0;
+            lane.light_kind = POINT;
+            lane.light_point = light.position;
+            lane.emission = light.intensity_towards(-wi);
+        } else if let Some(light) = lights.directional.first() {
+            lane.has_light = 1.0;
+            lane.light_kind = DISTANT;
+            lane.light_point = -light.direction;
+            lane.emission = light.irradiance;
+            lane.light_pdf = 1.0;
+        } else if lights.has_emitters() {
+            // The point takes the draw's best stratified pair.
             let [u0, u1, u2, u3] = stream.next_4d();
             let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
             if let Some(light) = lights.sample_emitter(lane.point, u_choice, u_point) {
@@ -370,6 +385,15 @@ impl PathTracer<'_> {
                 lane.light_pdf = light.pdf;
                 lane.light_visible = if light.visible { 1.0 } else { 0.0 };
                 lane.light_two_sided = if light.two_sided { 1.0 } else { 0.0 };
+            }
+        } else if let Some(environment) = lights.environment.as_ref().filter(|e| e.is_lit()) {
+            if let Some(sample) = environment.sample(stream.next_2d()) {
+                lane.has_light = 1.0;
+                lane.light_kind = DISTANT;
+                lane.light_point = sample.wi;
+                lane.emission = sample.radiance;
+                lane.light_pdf = sample.pdf;
+                lane.light_visible = 1.0;
             }
         }
         [lane.u0, lane.u1, _, lane.u_survive] = stream.next_4d();

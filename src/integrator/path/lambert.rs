@@ -1,12 +1,13 @@
 //! One bounce at a plain Lambertian surface (no other lobe, mask, blend or bump shadowing)
-//! lit by emitters alone, once its random numbers are drawn and its light point sampled:
+//! in a scene with one light to sample (emitters, a point or directional light, or the
+//! environment), once its random numbers are drawn and its light point sampled:
 //! the shadow ray and the light it brings, the next direction, the throughput and Russian
 //! roulette. Written as straight-line arithmetic over one lane with selects for its
 //! conditions, so that a loop over many lanes (`lanes`) vectorises; the scalar integrator
 //! calls the same function, and both give the mixture BSDF's results bit for bit (the same
 //! operations in the same order: `tests` compares them).
 
-use crate::shading::spawn::SurfacePoint;
+use crate::shading::spawn::{SHADOW_TMAX, SurfacePoint};
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
@@ -24,9 +25,12 @@ pub(crate) struct LambertLane {
     pub diffuse: Vec3,
     pub throughput: Vec3,
     pub eta_scale: f32,
-    /// 1 where a light point was sampled, else 0.
+    /// 1 where a light was sampled, else 0.
     pub has_light: f32,
-    /// The light point sampled.
+    /// What was sampled: `AREA` (a point on an emitter), `POINT` (a point light) or
+    /// `DISTANT` (a direction: the environment, or a directional light).
+    pub light_kind: f32,
+    /// The light point sampled, or the direction towards a distant light.
     pub light_point: Vec3,
     pub light_error: Vec3,
     pub light_normal: Vec3,
@@ -44,6 +48,11 @@ pub(crate) struct LambertLane {
     pub roulette: f32,
 }
 
+/// `LambertLane::light_kind`s.
+pub(crate) const AREA: f32 = 0.0;
+pub(crate) const POINT: f32 = 1.0;
+pub(crate) const DISTANT: f32 = 2.0;
+
 /// What a plain Lambertian bounce gives.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct LambertOutcome {
@@ -51,8 +60,9 @@ pub(crate) struct LambertOutcome {
     pub shadow: f32,
     pub shadow_origin: Vec3,
     /// From the origin to the light point's far side of its error bound (`tmax` just
-    /// short of 1: `spawn_ray_to`).
+    /// short of 1: `spawn_ray_to`), or towards a distant light (`tmax` infinite).
     pub shadow_dir: Vec3,
+    pub shadow_tmax: f32,
     /// The light the shadow ray brings unless blocked (before the path's throughput).
     pub contribution: Vec3,
     /// 1 where the path goes on, else 0.
@@ -100,9 +110,10 @@ pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> Lamber
     let surface = SurfacePoint { point: lane.point, error: lane.error, normal: lane.normal };
 
     // Next-event estimation (`direct_light`, one emitter sample).
+    let distant = lane.light_kind == DISTANT;
     let to_light = lane.light_point - lane.point;
     let dist2 = to_light.length_squared();
-    let wi = to_light / dist2.sqrt();
+    let wi = select3(distant, lane.light_point, to_light / dist2.sqrt());
     let cos_emitted = lane.light_normal.dot(-wi);
     let cos_light = select(lane.light_two_sided != 0.0, cos_emitted.abs(), cos_emitted);
     let faces = lane.normal.dot(wi) > 0.0;
@@ -116,11 +127,19 @@ pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> Lamber
         error: lane.light_error,
         normal: lane.light_normal,
     };
-    let (shadow_origin, shadow_end) = surface.spawn_ends_to(&target);
+    let (to_point, point_end) = surface.spawn_ends_to(&target);
+    let shadow_origin = select3(distant, surface.offset_origin(wi), to_point);
     let weight = select(lane.light_visible != 0.0, power_heuristic(lane.light_pdf, pdf_bsdf), 1.0);
-    let contribution = f_cos * lane.emission * (weight / lane.light_pdf);
-    let shadow =
-        lane.has_light != 0.0 && faces && cos_light > 0.0 && dist2 > 0.0 && f_cos != Vec3::ZERO;
+    let contribution = select3(
+        lane.light_kind == POINT,
+        f_cos * lane.emission / dist2,
+        f_cos * lane.emission * (weight / lane.light_pdf),
+    );
+    let shadow = lane.has_light != 0.0
+        && faces
+        && (lane.light_kind != AREA || cos_light > 0.0)
+        && (distant || dist2 > 0.0)
+        && f_cos != Vec3::ZERO;
 
     // BSDF sampling (`Mixture::sample`'s lone Lambertian lobe) and roulette (`scatter`).
     let wi_sampled = crate::sampling::cosine_hemisphere(Vec2::new(lane.u0, lane.u1));
@@ -141,7 +160,8 @@ pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> Lamber
     LambertOutcome {
         shadow: select(shadow, 1.0, 0.0),
         shadow_origin,
-        shadow_dir: shadow_end - shadow_origin,
+        shadow_dir: select3(distant, wi, point_end - shadow_origin),
+        shadow_tmax: select(distant, f32::INFINITY, SHADOW_TMAX),
         contribution,
         next: select(next, 1.0, 0.0),
         next_origin: surface.offset_origin(next_dir),

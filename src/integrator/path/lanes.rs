@@ -53,12 +53,12 @@ macro_rules! lane_columns {
 lane_columns!(LambertLane {
     dir, point, error, normal, shading_normal, diffuse, throughput, light_point, light_error,
     light_normal, emission;
-    eta_scale, has_light, light_pdf, light_visible, light_two_sided, u0, u1, u_survive, roulette
+    eta_scale, has_light, light_kind, light_pdf, light_visible, light_two_sided, u0, u1, u_survive, roulette
 });
 
 lane_columns!(LambertOutcome {
     shadow_origin, shadow_dir, contribution, next_origin, next_dir, throughput;
-    shadow, next, pdf
+    shadow, next, pdf, shadow_tmax
 });
 
 const IN: usize = LambertLane::COLUMNS;

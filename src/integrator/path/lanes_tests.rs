@@ -2,6 +2,7 @@
 //! density, lane position by lane position.
 
 use super::*;
+use crate::integrator::path::lambert::{AREA, DISTANT, POINT};
 use crate::sampling::chi_square;
 use crate::splitmix::SplitMix64;
 use glam::{Mat3, Quat};
@@ -17,6 +18,12 @@ fn random_lane(rng: &mut SplitMix64) -> LambertLane {
     let normal = rng.vec3(-1.0, 1.0).normalize();
     let point = rng.vec3(-10.0, 10.0);
     let dir = -(normal + 0.9 * rng.vec3(-1.0, 1.0)).normalize();
+    let light_kind = [AREA, POINT, DISTANT][(rng.next_u64() % 3) as usize];
+    let light_point = if light_kind == DISTANT {
+        rng.vec3(-1.0, 1.0).normalize()
+    } else {
+        point + rng.vec3(-3.0, 3.0)
+    };
     LambertLane {
         dir,
         point,
@@ -29,7 +36,8 @@ fn random_lane(rng: &mut SplitMix64) -> LambertLane {
         throughput: rng.vec3(0.0, 2.0),
         eta_scale: 1.0,
         has_light: if rng.unit() < 0.8 { 1.0 } else { 0.0 },
-        light_point: point + rng.vec3(-3.0, 3.0),
+        light_kind,
+        light_point,
         light_error: rng.vec3(0.0, 1e-6),
         light_normal: rng.vec3(-1.0, 1.0).normalize(),
         emission: rng.vec3(0.0, 20.0),
@@ -47,7 +55,7 @@ fn random_lane(rng: &mut SplitMix64) -> LambertLane {
 fn a_lane_survives_its_columns() {
     let lane = random_lane(&mut SplitMix64(7));
     assert_eq!(LambertLane::from_columns(lane.to_columns()), lane);
-    assert_eq!(LambertLane::COLUMNS, 11 * 3 + 9);
+    assert_eq!(LambertLane::COLUMNS, 11 * 3 + 10);
 }
 
 #[test]

@@ -40,8 +40,9 @@ pub struct PathTracer<'a> {
     /// and back: every hit's frame goes through both.
     spaces: FrameSpaces,
     energy: Energy,
-    /// Whether plain Lambertian bounces may take the lane path (`lambert`): the scene is
-    /// lit by emitters alone, one sample each, and rays leave surfaces robustly.
+    /// Whether plain Lambertian bounces may take the lane path (`lambert`): a bounce
+    /// samples one light at most (emitters or the environment with one sample, or a single
+    /// point or directional light), and rays leave surfaces robustly.
     lambert_lanes: bool,
 }
 
@@ -88,11 +89,14 @@ impl<'a> PathTracer<'a> {
             sampling_from_world() * tracer.scene.camera.world_from_render_rotation;
         let light_samples = light_samples.max(1);
         let lights = &tracer.scene.lights;
+        let lit_environment = lights.environment.as_ref().is_some_and(|e| e.is_lit());
+        let shadow_rays = lights.points.len()
+            + lights.directional.len()
+            + lights.has_emitters() as usize
+            + lit_environment as usize;
         let lambert_lanes = lambertian_lanes
             && light_samples == 1
-            && lights.points.is_empty()
-            && lights.directional.is_empty()
-            && lights.environment.as_ref().is_none_or(|e| !e.is_lit())
+            && shadow_rays <= 1
             && tracer.spawn == SpawnMode::Robust;
         let spaces = FrameSpaces {
             sampling_from_render,
