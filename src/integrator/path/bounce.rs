@@ -5,13 +5,11 @@
 //! they give the same image bit for bit.
 
 use super::PathTracer;
-use super::lambert::{DISTANT, LambertLane, LambertOutcome, POINT, lambert_bounce};
+use super::lambert::{LambertLane, LambertOutcome, lambert_bounce};
 use crate::integrator::PathSample;
 use crate::ray::{Hit, Ray};
 use crate::sampling::SampleStream;
 use crate::shading::bsdf::Energy;
-use crate::shading::material::Material;
-use crate::shading::surface::SurfaceInteraction;
 use crate::shading::surface::interaction;
 use crate::stats::RenderStats;
 use glam::{Vec2, Vec3};
@@ -28,29 +26,29 @@ pub(crate) trait ShadowSink {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PathState {
     /// The ray to trace next.
-    ray: Ray,
-    throughput: Vec3,
+    pub(super) ray: Ray,
+    pub(super) throughput: Vec3,
     /// The product of the (η_t/η_i)² of the refractions so far: `throughput * eta_scale`
     /// is the path's energy, without the radiance compression inside glass that it
     /// undoes on the way out (roulette judged by throughput alone kills paths inside
     /// glass too often and multiplies the survivors by up to 2.25 on leaving, which
     /// compounded into pixels of 1e11 on the course's glass box).
-    eta_scale: f32,
+    pub(super) eta_scale: f32,
     /// Camera rays and specular bounces see emission in full (nothing else sampled it).
     specular_bounce: bool,
     pdf_bsdf: f32,
     /// The shading point the current ray left from (for the light-sampling density).
-    from: Vec3,
+    pub(super) from: Vec3,
     /// Beer's-law absorption of the medium the ray travels through.
     absorption: Vec3,
     /// The surface interaction the next hit is (0: the camera ray's).
-    depth: u32,
+    pub(super) depth: u32,
     live: bool,
     /// What the camera ray sees if it leaves the scene, if the scene has a backdrop.
     backdrop: Option<Vec3>,
     /// The throughput the light of this bounce's shadow rays is scaled by, while they are
     /// pending.
-    direct_weight: Option<Vec3>,
+    pub(super) direct_weight: Option<Vec3>,
     pub result: PathSample,
 }
 
@@ -325,80 +323,4 @@ enum Scattered {
     End,
     Ray(Ray),
     Lambert(LambertLane),
-}
-
-impl PathTracer<'_> {
-    /// The plain Lambertian bounce at `si`, with the random numbers the mixture BSDF's
-    /// would draw, in the same order: the light point's, then the direction's. Sets what
-    /// the bounce leaves as it is, whether the path goes on or not.
-    fn lambert_lane(
-        &self,
-        state: &mut PathState,
-        material: &Material,
-        si: &SurfaceInteraction,
-        stream: &mut SampleStream,
-    ) -> LambertLane {
-        let ray = &state.ray;
-        let diffuse = self.energy.lambertian(self.tracer.surface_albedo(material, si, ray.time));
-        if state.depth == 0 && self.tracer.first_hit_albedo {
-            // As `albedo_bound` has it (a -0 channel reads +0).
-            state.result.albedo = Some((diffuse + Vec3::ZERO).min(Vec3::ONE));
-        }
-        let mut lane = LambertLane {
-            dir: ray.dir,
-            point: si.surface.point,
-            error: si.surface.error,
-            normal: si.surface.normal,
-            shading_normal: si.shading_normal,
-            diffuse,
-            throughput: state.throughput,
-            eta_scale: state.eta_scale,
-            roulette: if state.depth + 1 >= self.rr_depth { 1.0 } else { 0.0 },
-            ..LambertLane::default()
-        };
-        // The scene's one light (`PathTracer::lambert_lanes`), sampled as `direct_light`
-        // samples it.
-        let lights = &self.tracer.scene.lights;
-        if let Some(light) = lights.points.first() {
-            let to_light = light.position - lane.point;
-            let wi = to_light / to_light.length_squared().sqrt();
-            lane.has_light = 1.0;
-            lane.light_kind = POINT;
-            lane.light_point = light.position;
-            lane.emission = light.intensity_towards(-wi);
-        } else if let Some(light) = lights.directional.first() {
-            lane.has_light = 1.0;
-            lane.light_kind = DISTANT;
-            lane.light_point = -light.direction;
-            lane.emission = light.irradiance;
-            lane.light_pdf = 1.0;
-        } else if lights.has_emitters() {
-            // The point takes the draw's best stratified pair.
-            let [u0, u1, u2, u3] = stream.next_4d();
-            let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
-            if let Some(light) = lights.sample_emitter(lane.point, u_choice, u_point) {
-                lane.has_light = 1.0;
-                lane.light_point = light.point;
-                lane.light_error = light.error;
-                lane.light_normal = light.normal;
-                lane.emission = light.emission;
-                lane.light_pdf = light.pdf;
-                lane.light_visible = if light.visible { 1.0 } else { 0.0 };
-                lane.light_two_sided = if light.two_sided { 1.0 } else { 0.0 };
-            }
-        } else if let Some(environment) = lights.environment.as_ref().filter(|e| e.is_lit()) {
-            if let Some(sample) = environment.sample(stream.next_2d()) {
-                lane.has_light = 1.0;
-                lane.light_kind = DISTANT;
-                lane.light_point = sample.wi;
-                lane.emission = sample.radiance;
-                lane.light_pdf = sample.pdf;
-                lane.light_visible = 1.0;
-            }
-        }
-        [lane.u0, lane.u1, _, lane.u_survive] = stream.next_4d();
-        state.direct_weight = Some(state.throughput);
-        state.from = si.surface.point;
-        lane
-    }
 }

@@ -7,6 +7,7 @@
 
 mod bounce;
 mod lambert;
+mod lambert_draws;
 mod lanes;
 mod light_sampling;
 mod scattering;
