@@ -109,7 +109,7 @@ pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> Lamber
     let wo_local = to_local * wo;
     let surface = SurfacePoint { point: lane.point, error: lane.error, normal: lane.normal };
 
-    // Next-event estimation (`direct_light`, one emitter sample).
+    // Next-event estimation (`direct_light`, its one light sample).
     let distant = lane.light_kind == DISTANT;
     let to_light = lane.light_point - lane.point;
     let dist2 = to_light.length_squared();
