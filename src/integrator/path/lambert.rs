@@ -7,6 +7,7 @@
 //! calls the same function, and both give the mixture BSDF's results bit for bit (the same
 //! operations in the same order: `tests` compares them).
 
+use super::light_sampling::power_heuristic;
 use crate::shading::spawn::{SHADOW_TMAX, SurfacePoint};
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
@@ -89,15 +90,6 @@ fn select(condition: bool, a: f32, b: f32) -> f32 {
 #[inline(always)]
 fn select3(condition: bool, a: Vec3, b: Vec3) -> Vec3 {
     Vec3::new(select(condition, a.x, b.x), select(condition, a.y, b.y), select(condition, a.z, b.z))
-}
-
-/// `power_heuristic` (light_sampling) as selects.
-#[inline(always)]
-fn power_heuristic(a: f32, b: f32) -> f32 {
-    let (a2, b2) = (a * a, b * b);
-    let ratio = a2 / (a2 + b2);
-    let otherwise = select(a2.is_infinite(), 1.0, 0.0);
-    select(a2 + b2 > 0.0 && a2.is_finite(), ratio, otherwise)
 }
 
 /// The bounce of `lane` (see the module's comment).

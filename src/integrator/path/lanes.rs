@@ -1,8 +1,8 @@
 //! Plain Lambertian bounces of many paths in structure-of-arrays form: queued lane by lane
 //! into blocks of 16 lanes (one 16-wide column per scalar of a `LambertLane`), computed by
-//! one loop over all of them that the compiler vectorises — built for the widest vector unit the CPU has, chosen at run
-//! time (`pulp`: AVX-512, else AVX2, else the build's baseline), so one portable binary
-//! uses all of it — and read back lane by lane.
+//! one loop over all of them that the compiler vectorises — built for the widest vector
+//! unit the CPU has, chosen at run time (`pulp`: AVX-512, else AVX2, else the build's
+//! baseline), so one portable binary uses all of it — and read back lane by lane.
 
 use super::lambert::{FrameSpaces, LambertLane, LambertOutcome, lambert_bounce};
 use glam::Vec3;
@@ -53,7 +53,8 @@ macro_rules! lane_columns {
 lane_columns!(LambertLane {
     dir, point, error, normal, shading_normal, diffuse, throughput, light_point, light_error,
     light_normal, emission;
-    eta_scale, has_light, light_kind, light_pdf, light_visible, light_two_sided, u0, u1, u_survive, roulette
+    eta_scale, has_light, light_kind, light_pdf, light_visible, light_two_sided, u0, u1,
+    u_survive, roulette
 });
 
 lane_columns!(LambertOutcome {
