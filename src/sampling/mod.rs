@@ -2,6 +2,7 @@
 //! so an image does not depend on the thread count or the order of work, and both backends
 //! see exactly the same rays.
 
+mod ahead;
 pub mod alias;
 #[cfg(test)]
 pub(crate) mod chi_square;
@@ -17,6 +18,7 @@ mod warps;
 
 use crate::splitmix::mix64;
 use glam::Vec2;
+pub use ahead::draw_ahead;
 pub use pixel::pixel_sample;
 pub use warps::{
     concentric_disk, cosine_hemisphere, cosine_power_hemisphere, cosine_power_pdf,
@@ -34,6 +36,7 @@ fn hash_prefix(seed: u64, pixel: u64, sample: u64) -> u64 {
     mix64(h ^ sample.wrapping_mul(0x632b_e59b_d9b4_e019))
 }
 
+#[inline(always)]
 fn hash_dimension(prefix: u64, dimension: u64) -> u64 {
     mix64(prefix ^ dimension.wrapping_mul(0xd6e8_feb8_6659_fd93))
 }
@@ -86,7 +89,14 @@ pub struct SampleStream {
     /// "sample" counter is u64::MAX): each draw then costs one mix.
     sample_prefix: u64,
     scramble_prefix: u64,
+    /// The Sobol draws at dimensions `ahead_at` and `ahead_at + 4`, made ahead by
+    /// `draw_ahead` for many streams at once (`NOT_AHEAD`: none).
+    ahead_at: u64,
+    ahead: [[f32; 4]; 2],
 }
+
+/// `ahead_at` when no draw was made ahead: no stream reaches this dimension.
+const NOT_AHEAD: u64 = 1 << 63;
 
 impl SampleStream {
     pub fn new(kind: SamplerKind, seed: u64, pixel: u64, sample: u64) -> Self {
@@ -98,6 +108,8 @@ impl SampleStream {
             dimension: 0,
             sample_prefix: hash_prefix(seed, pixel, sample),
             scramble_prefix: hash_prefix(seed, pixel, u64::MAX),
+            ahead_at: NOT_AHEAD,
+            ahead: [[0.0; 4]; 2],
         }
     }
 
@@ -105,14 +117,28 @@ impl SampleStream {
     /// draw is one padded 4-D set: its first two values form a (0, 2)-sequence, so a draw's
     /// most important pair goes first.
     fn draw<const N: usize>(&self, d: u64) -> [f32; N] {
-        if self.kind == SamplerKind::Sobol && self.sample < SOBOL_SAMPLES {
-            // One scrambled sequence per (seed, pixel, draw).
-            let scramble = hash_dimension(self.scramble_prefix, d) as u32;
-            let values = sobol::sample_4d(self.sample as u32, scramble);
+        if self.draws_sobol() {
+            let values = match d.wrapping_sub(self.ahead_at) {
+                0 => self.ahead[0],
+                4 => self.ahead[1],
+                // One scrambled sequence per (seed, pixel, draw).
+                _ => sobol::sample_4d(self.sample as u32, self.sobol_seed(d)),
+            };
             std::array::from_fn(|k| values[k])
         } else {
             std::array::from_fn(|k| to_unit_f32(hash_dimension(self.sample_prefix, d + k as u64)))
         }
+    }
+
+    /// The scramble of the Sobol draw at dimension `d`.
+    #[inline(always)]
+    fn sobol_seed(&self, d: u64) -> u32 {
+        hash_dimension(self.scramble_prefix, d) as u32
+    }
+
+    /// Whether this stream's draws are Sobol sets (else hashed numbers).
+    fn draws_sobol(&self) -> bool {
+        self.kind == SamplerKind::Sobol && self.sample < SOBOL_SAMPLES
     }
 
     fn next<const N: usize>(&mut self) -> [f32; N] {

@@ -109,6 +109,7 @@ impl Wavefront {
             shadows.contributions.clear();
             shadows.lanes.clear();
             self.lambert.clear();
+            crate::sampling::draw_ahead(&mut self.streams, lanes);
             for ((&lane, ray), &hit) in lanes.iter().zip(&self.rays).zip(&self.hits) {
                 let hit = path.tracer.closest_hit(ray, at_camera, Some(hit), stats);
                 shadows.lane = lane;
