@@ -96,20 +96,13 @@ mod tests {
             .collect();
         assert_eq!(drawn_ahead, sobol);
         assert!(sobol.len() > STREAMS, "a full and a partial batch");
+        // Three 4-D draws (two made ahead, one not) and a 1-D one, as bits.
+        let draws = |stream: &mut SampleStream| -> Vec<u32> {
+            let sets = [stream.next_4d(), stream.next_4d(), stream.next_4d()];
+            sets.concat().into_iter().chain([stream.next_1d()]).map(f32::to_bits).collect()
+        };
         for (i, stream) in ahead.iter_mut().enumerate() {
-            let mut usual = fresh(i as u64);
-            let made: Vec<u32> = [stream.next_4d(), stream.next_4d(), stream.next_4d()]
-                .concat()
-                .into_iter()
-                .chain([stream.next_1d()])
-                .map(f32::to_bits)
-                .collect();
-            let expected: Vec<u32> = [usual.next_4d(), usual.next_4d(), usual.next_4d()]
-                .concat()
-                .into_iter()
-                .chain([usual.next_1d()])
-                .map(f32::to_bits)
-                .collect();
+            let (made, expected) = (draws(stream), draws(&mut fresh(i as u64)));
             assert_eq!(made, expected, "stream {i}");
         }
     }

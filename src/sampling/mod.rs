@@ -17,8 +17,8 @@ pub mod spherical_triangle;
 mod warps;
 
 use crate::splitmix::mix64;
-use glam::Vec2;
 pub use ahead::draw_ahead;
+use glam::Vec2;
 pub use pixel::pixel_sample;
 pub use warps::{
     concentric_disk, cosine_hemisphere, cosine_power_hemisphere, cosine_power_pdf,
