@@ -55,7 +55,7 @@ fn draw_for(streams: &mut [SampleStream], chosen: &[u32]) {
     let dimensions: [u64; LANES] =
         std::array::from_fn(|j| stream(j).dimension + 4 * (j % 2) as u64);
     let seeds: [u32; LANES] =
-        std::array::from_fn(|j| super::hash_dimension(prefixes[j], dimensions[j]) as u32);
+        std::array::from_fn(|j| super::sobol_seed(prefixes[j], dimensions[j]));
     let values = sobol::sample_4d_lanes(&indices, &seeds);
     for (k, &i) in chosen.iter().enumerate() {
         let stream = &mut streams[i as usize];

@@ -41,6 +41,13 @@ fn hash_dimension(prefix: u64, dimension: u64) -> u64 {
     mix64(prefix ^ dimension.wrapping_mul(0xd6e8_feb8_6659_fd93))
 }
 
+/// The scramble of a stream's Sobol draw at dimension `d`, from the stream's
+/// `scramble_prefix`: one scrambled sequence per (seed, pixel, draw).
+#[inline(always)]
+fn sobol_seed(scramble_prefix: u64, d: u64) -> u32 {
+    hash_dimension(scramble_prefix, d) as u32
+}
+
 /// Uniform float in [0, 1) from the top 24 bits of a hash.
 pub fn to_unit_f32(h: u64) -> f32 {
     (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
@@ -121,19 +128,12 @@ impl SampleStream {
             let values = match d.wrapping_sub(self.ahead_at) {
                 0 => self.ahead[0],
                 4 => self.ahead[1],
-                // One scrambled sequence per (seed, pixel, draw).
-                _ => sobol::sample_4d(self.sample as u32, self.sobol_seed(d)),
+                _ => sobol::sample_4d(self.sample as u32, sobol_seed(self.scramble_prefix, d)),
             };
             std::array::from_fn(|k| values[k])
         } else {
             std::array::from_fn(|k| to_unit_f32(hash_dimension(self.sample_prefix, d + k as u64)))
         }
-    }
-
-    /// The scramble of the Sobol draw at dimension `d`.
-    #[inline(always)]
-    fn sobol_seed(&self, d: u64) -> u32 {
-        hash_dimension(self.scramble_prefix, d) as u32
     }
 
     /// Whether this stream's draws are Sobol sets (else hashed numbers).
