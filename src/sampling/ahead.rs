@@ -76,7 +76,7 @@ mod tests {
         let kinds = [SamplerKind::Sobol, SamplerKind::Independent, SamplerKind::Stratified];
         let fresh = |i: u64| {
             let kind = kinds[(i % 7 % 3) as usize];
-            let sample = if i % 11 == 0 { (1 << 16) + i } else { i * 37 % 4096 };
+            let sample = if i.is_multiple_of(11) { (1 << 16) + i } else { i * 37 % 4096 };
             let mut stream = SampleStream::new(kind, 5, i * 131, sample);
             for _ in 0..i % 5 {
                 stream.next_4d();
