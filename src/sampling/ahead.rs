@@ -6,30 +6,30 @@
 use super::SampleStream;
 use super::sobol::{self, LANES};
 
-/// Makes, for each stream of `streams` listed in `which`, its next two 4-D draws (at its
+/// Makes, for each stream of `streams` listed by `which`, its next two 4-D draws (at its
 /// next dimension and four after) and keeps them in the stream. `next_4d` and the rest
 /// then return them instead of computing them: the same values, bit for bit, whichever
 /// draws a path ends up making. Streams that do not draw Sobol sets are left alone.
-pub fn draw_ahead(streams: &mut [SampleStream], which: &[u32]) {
+pub fn draw_ahead(streams: &mut [SampleStream], which: impl Iterator<Item = u32>) {
     pulp::Arch::new().dispatch(DrawAhead { streams, which });
 }
 
 /// Streams per call of the lane kernel: two draws each.
 const STREAMS: usize = LANES / 2;
 
-struct DrawAhead<'a> {
+struct DrawAhead<'a, Which> {
     streams: &'a mut [SampleStream],
-    which: &'a [u32],
+    which: Which,
 }
 
-impl pulp::WithSimd for DrawAhead<'_> {
+impl<Which: Iterator<Item = u32>> pulp::WithSimd for DrawAhead<'_, Which> {
     type Output = ();
 
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
         let mut chosen = [0u32; STREAMS];
         let mut count = 0;
-        for &i in self.which {
+        for i in self.which {
             if self.streams[i as usize].draws_sobol() {
                 chosen[count] = i;
                 count += 1;
@@ -86,7 +86,7 @@ mod tests {
         };
         let mut ahead: Vec<SampleStream> = (0..40).map(fresh).collect();
         let which: Vec<u32> = (0..40).filter(|i| i % 4 != 3).collect();
-        draw_ahead(&mut ahead, &which);
+        draw_ahead(&mut ahead, which.iter().copied());
         let drawn_ahead: Vec<usize> =
             (0..40).filter(|&i| ahead[i].ahead_at != super::super::NOT_AHEAD).collect();
         let sobol: Vec<usize> = which
@@ -112,7 +112,7 @@ mod tests {
     #[test]
     fn other_draw_patterns_are_unaffected() {
         let mut ahead = vec![SampleStream::new(SamplerKind::Sobol, 9, 4, 17)];
-        draw_ahead(&mut ahead, &[0]);
+        draw_ahead(&mut ahead, [0].into_iter());
         let mut usual = SampleStream::new(SamplerKind::Sobol, 9, 4, 17);
         for _ in 0..4 {
             assert_eq!(ahead[0].next_2d(), usual.next_2d());

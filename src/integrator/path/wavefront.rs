@@ -110,7 +110,9 @@ impl Wavefront {
             shadows.contributions.clear();
             shadows.lanes.clear();
             self.lambert.clear();
-            crate::sampling::draw_ahead(&mut self.streams, lanes);
+            // A ray that found nothing ends its path without drawing.
+            let hit_lanes = lanes.iter().zip(&self.hits).filter(|(_, hit)| hit.is_some());
+            crate::sampling::draw_ahead(&mut self.streams, hit_lanes.map(|(&lane, _)| lane));
             for ((&lane, ray), &hit) in lanes.iter().zip(&self.rays).zip(&self.hits) {
                 let hit = path.tracer.closest_hit(ray, at_camera, Some(hit), stats);
                 shadows.lane = lane;
