@@ -12,22 +12,23 @@ use glam::{Vec2, Vec3};
 
 impl PathTracer<'_> {
     /// The plain Lambertian bounce at `si`, with the random numbers the mixture BSDF's
-    /// would draw, in the same order: the light point's, then the direction's. Sets what
-    /// the bounce leaves as it is, whether the path goes on or not.
+    /// would draw, in the same order: the light point's, then the direction's, written into
+    /// `lane`. Sets what the bounce leaves as it is, whether the path goes on or not.
     pub(super) fn lambert_lane(
         &self,
         state: &mut PathState,
         material: &Material,
         si: &SurfaceInteraction,
         stream: &mut SampleStream,
-    ) -> LambertLane {
+        lane: &mut LambertLane,
+    ) {
         let ray = &state.ray;
         let diffuse = self.energy.lambertian(self.tracer.surface_albedo(material, si, ray.time));
         if state.depth == 0 && self.tracer.first_hit_albedo {
             // As `albedo_bound` has it (a -0 channel reads +0).
             state.result.albedo = Some((diffuse + Vec3::ZERO).min(Vec3::ONE));
         }
-        let mut lane = LambertLane {
+        *lane = LambertLane {
             dir: ray.dir,
             point: si.surface.point,
             error: si.surface.error,
@@ -82,6 +83,5 @@ impl PathTracer<'_> {
         [lane.u0, lane.u1, _, lane.u_survive] = stream.next_4d();
         state.direct_weight = Some(state.throughput);
         state.from = si.surface.point;
-        lane
     }
 }

@@ -71,13 +71,15 @@ const CHUNK: usize = 16;
 /// `CHUNK` lanes' worth of each column of `N`.
 type Block<const N: usize> = [[f32; CHUNK]; N];
 
-/// The queue, in blocks of `CHUNK` lanes (each column of a block contiguous), and the path
-/// each lane belongs to.
+/// The queue: the lanes as their paths wrote them, and the path each belongs to; then, to
+/// be computed, in blocks of `CHUNK` lanes (each column of a block contiguous).
 #[derive(Default)]
 pub(crate) struct LambertLanes {
+    /// Lanes written in place (`next_lane`); those past `paths.len()` are spare.
+    lanes: Vec<LambertLane>,
+    paths: Vec<u32>,
     inputs: Vec<Block<IN>>,
     outputs: Vec<Block<OUT>>,
-    paths: Vec<u32>,
 }
 
 impl LambertLanes {
@@ -86,26 +88,45 @@ impl LambertLanes {
         self.paths.clear();
     }
 
-    /// Queues the bounce `lane` of path `path`.
-    pub fn push(&mut self, path: u32, lane: &LambertLane) {
-        let (block, j) = (self.paths.len() / CHUNK, self.paths.len() % CHUNK);
+    /// The lane to write the next bounce into; it is queued only by `commit`.
+    #[inline]
+    pub fn next_lane(&mut self) -> &mut LambertLane {
+        let next = self.paths.len();
+        if next == self.lanes.len() {
+            self.lanes.push(LambertLane::default());
+        }
+        &mut self.lanes[next]
+    }
+
+    /// Queues the bounce written into `next_lane`, of path `path`.
+    #[inline]
+    pub fn commit(&mut self, path: u32) {
         self.paths.push(path);
-        if block == self.inputs.len() {
-            // A new block's other lanes are computed too, and ignored: zeros are as good
-            // as anything.
-            self.inputs.push([[0.0; CHUNK]; IN]);
-        }
-        let block = &mut self.inputs[block];
-        for (column, value) in block.iter_mut().zip(lane.to_columns()) {
-            column[j] = value;
-        }
+    }
+
+    /// Queues the bounce `lane` of path `path`.
+    #[cfg(test)]
+    pub fn push(&mut self, path: u32, lane: &LambertLane) {
+        *self.next_lane() = *lane;
+        self.commit(path);
     }
 
     /// Computes every queued bounce.
     pub fn run(&mut self, spaces: &FrameSpaces) {
         let blocks = self.paths.len().div_ceil(CHUNK);
-        if self.outputs.len() < blocks {
+        // A block's spare lanes are computed too, and ignored: zeros are as good as
+        // anything.
+        if self.inputs.len() < blocks {
+            self.inputs.resize(blocks, [[0.0; CHUNK]; IN]);
             self.outputs.resize(blocks, [[0.0; CHUNK]; OUT]);
+        }
+        let queued = &self.lanes[..self.paths.len()];
+        for (lanes, block) in queued.chunks(CHUNK).zip(&mut self.inputs) {
+            for (j, lane) in lanes.iter().enumerate() {
+                for (column, value) in block.iter_mut().zip(lane.to_columns()) {
+                    column[j] = value;
+                }
+            }
         }
         let (inputs, outputs) = (&self.inputs[..blocks], &mut self.outputs[..blocks]);
         pulp::Arch::new().dispatch(Kernel { spaces, inputs, outputs });

@@ -118,8 +118,8 @@ impl Wavefront {
                 shadows.lane = lane;
                 let (state, stream) =
                     (&mut self.states[lane as usize], &mut self.streams[lane as usize]);
-                if let Some(bounce) = path.on_hit(state, hit, stream, stats, shadows) {
-                    self.lambert.push(lane, &bounce);
+                if path.on_hit(state, hit, stream, stats, shadows, self.lambert.next_lane()) {
+                    self.lambert.commit(lane);
                 }
             }
             self.lambert.run(&path.spaces);
