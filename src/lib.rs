@@ -31,6 +31,7 @@ pub mod info;
 pub mod input_file;
 pub mod integrator;
 pub mod intersect;
+pub mod lane_select;
 pub mod light;
 pub mod limits;
 pub mod mitsuba_rule;

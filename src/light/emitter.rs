@@ -162,7 +162,7 @@ impl EmitterShape {
     }
 
     /// Whether `reference` is close enough for solid-angle sampling to pay for itself.
-    fn is_near(&self, reference: Vec3) -> bool {
+    pub(super) fn is_near(&self, reference: Vec3) -> bool {
         match self {
             EmitterShape::Triangle { near, .. } | EmitterShape::Quad { near, .. } => {
                 (near.center - reference).length_squared() < near.radius2

@@ -8,6 +8,7 @@ mod emitter;
 mod env_mapping;
 mod environment;
 pub mod kinds;
+mod lone_emitter;
 mod shape_sample;
 mod sphere_shape;
 #[cfg(test)]
@@ -18,6 +19,7 @@ pub use emitter::EmitterShape;
 pub use env_mapping::EnvironmentMapping;
 pub use environment::{EnvironmentLight, EnvironmentSample, TexelLookup};
 pub use kinds::{LightDesc, LightKind, LightParts, SpotCone};
+pub use lone_emitter::{AreaSample, AreaSampler, LoneEmitter};
 pub use shape_sample::ShapeSample;
 pub use sphere_shape::SphereShape;
 

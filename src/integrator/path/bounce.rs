@@ -5,7 +5,7 @@
 //! they give the same image bit for bit.
 
 use super::PathTracer;
-use super::lambert::{LambertLane, LambertOutcome, lambert_bounce};
+use super::lambert::{LambertLane, LambertOutcome, lambert_bounce, with_light_point};
 use crate::integrator::PathSample;
 use crate::ray::{Hit, Ray};
 use crate::sampling::SampleStream;
@@ -124,6 +124,9 @@ impl PathTracer<'_> {
             let found = self.tracer.closest_hit(&ray, state.at_camera(), None, stats);
             let mut shadows = ImmediateShadows { path: self, direct: Vec3::ZERO };
             if self.on_hit(&mut state, found, stream, stats, &mut shadows, &mut lane) {
+                if let Some(emitter) = &self.lone_emitter {
+                    lane = with_light_point(&lane, &emitter.sampler);
+                }
                 let outcome = lambert_bounce(&lane, &self.spaces);
                 self.finish_lambert(&mut state, &outcome, &mut shadows, stats);
             }

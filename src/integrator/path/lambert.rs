@@ -8,6 +8,8 @@
 //! operations in the same order: `tests` compares them).
 
 use super::light_sampling::power_heuristic;
+use crate::lane_select::{select, select3};
+use crate::light::AreaSampler;
 use crate::shading::spawn::{SHADOW_TMAX, SurfacePoint};
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
@@ -53,6 +55,9 @@ pub(crate) struct LambertLane {
 pub(crate) const AREA: f32 = 0.0;
 pub(crate) const POINT: f32 = 1.0;
 pub(crate) const DISTANT: f32 = 2.0;
+/// An `AREA` light point still to be sampled on the scene's lone emitter, from the two
+/// numbers `light_point` holds (`with_light_point`).
+pub(crate) const BY_AREA: f32 = 3.0;
 
 /// What a plain Lambertian bounce gives.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -81,15 +86,26 @@ pub(crate) struct FrameSpaces {
     pub render_from_sampling: Mat3,
 }
 
-/// `a` where `condition`, else `b`: written so that a loop over lanes compiles to a blend.
+/// `lane` with its light point sampled where it was left (`BY_AREA`) to be sampled with
+/// many lanes' at once: the light `lambert_lane` would have found with `sample_emitter`.
 #[inline(always)]
-fn select(condition: bool, a: f32, b: f32) -> f32 {
-    if condition { a } else { b }
-}
-
-#[inline(always)]
-fn select3(condition: bool, a: Vec3, b: Vec3) -> Vec3 {
-    Vec3::new(select(condition, a.x, b.x), select(condition, a.y, b.y), select(condition, a.z, b.z))
+pub(crate) fn with_light_point(lane: &LambertLane, emitter: &AreaSampler) -> LambertLane {
+    let left = lane.light_kind == BY_AREA;
+    let u = Vec2::new(lane.light_point.x, lane.light_point.y);
+    let sample = emitter.sample_by_area(lane.point, u);
+    let flag = |set: bool| if set { 1.0 } else { 0.0 };
+    LambertLane {
+        has_light: select(left && sample.pdf > 0.0, 1.0, lane.has_light),
+        light_kind: select(left, AREA, lane.light_kind),
+        light_point: select3(left, sample.point, lane.light_point),
+        light_error: select3(left, sample.error, lane.light_error),
+        light_normal: select3(left, sample.normal, lane.light_normal),
+        emission: select3(left, emitter.emission, lane.emission),
+        light_pdf: select(left, sample.pdf, lane.light_pdf),
+        light_visible: select(left, flag(emitter.visible), lane.light_visible),
+        light_two_sided: select(left, flag(emitter.two_sided), lane.light_two_sided),
+        ..*lane
+    }
 }
 
 /// The bounce of `lane` (see the module's comment).

@@ -4,7 +4,7 @@
 
 use super::PathTracer;
 use super::bounce::PathState;
-use super::lambert::{DISTANT, LambertLane, POINT};
+use super::lambert::{BY_AREA, DISTANT, LambertLane, POINT};
 use crate::sampling::SampleStream;
 use crate::shading::material::Material;
 use crate::shading::surface::SurfaceInteraction;
@@ -60,7 +60,11 @@ impl PathTracer<'_> {
             // The point takes the draw's best stratified pair.
             let [u0, u1, u2, u3] = stream.next_4d();
             let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
-            if let Some(light) = lights.sample_emitter(lane.point, u_choice, u_point) {
+            if self.lone_emitter.as_ref().is_some_and(|e| e.by_area(lane.point)) {
+                // Left for the lanes to sample (`with_light_point`).
+                lane.light_kind = BY_AREA;
+                lane.light_point = Vec3::new(u0, u1, 0.0);
+            } else if let Some(light) = lights.sample_emitter(lane.point, u_choice, u_point) {
                 lane.has_light = 1.0;
                 lane.light_point = light.point;
                 lane.light_error = light.error;

@@ -4,7 +4,8 @@
 //! unit the CPU has, chosen at run time (`pulp`: AVX-512, else AVX2, else the build's
 //! baseline), so one portable binary uses all of it — and read back lane by lane.
 
-use super::lambert::{FrameSpaces, LambertLane, LambertOutcome, lambert_bounce};
+use super::lambert::{FrameSpaces, LambertLane, LambertOutcome, lambert_bounce, with_light_point};
+use crate::light::{AreaSampler, LoneEmitter};
 use glam::Vec3;
 
 /// Flattens a lane record into `f32` columns and back: `Vec3` fields first, then scalars.
@@ -111,8 +112,9 @@ impl LambertLanes {
         self.commit(path);
     }
 
-    /// Computes every queued bounce.
-    pub fn run(&mut self, spaces: &FrameSpaces) {
+    /// Computes every queued bounce, its light point sampled on `emitter` first where it
+    /// was left to be (`with_light_point`).
+    pub fn run(&mut self, spaces: &FrameSpaces, emitter: Option<&LoneEmitter>) {
         let blocks = self.paths.len().div_ceil(CHUNK);
         // A block's spare lanes are computed too, and ignored: zeros are as good as
         // anything.
@@ -129,7 +131,7 @@ impl LambertLanes {
             }
         }
         let (inputs, outputs) = (&self.inputs[..blocks], &mut self.outputs[..blocks]);
-        pulp::Arch::new().dispatch(Kernel { spaces, inputs, outputs });
+        pulp::Arch::new().dispatch(Kernel { spaces, emitter, inputs, outputs });
     }
 
     /// The queued bounces' paths and outcomes, in the order they were queued (after `run`).
@@ -144,6 +146,7 @@ impl LambertLanes {
 /// The loop over the blocks, compiled once per instruction set `pulp` dispatches to.
 struct Kernel<'a> {
     spaces: &'a FrameSpaces,
+    emitter: Option<&'a LoneEmitter>,
     inputs: &'a [Block<IN>],
     outputs: &'a mut [Block<OUT>],
 }
@@ -153,18 +156,59 @@ impl pulp::WithSimd for Kernel<'_> {
 
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
-        for (inputs, outputs) in self.inputs.iter().zip(self.outputs.iter_mut()) {
-            run_block(self.spaces, inputs, outputs);
+        let blocks = self.inputs.iter().zip(self.outputs.iter_mut());
+        match self.emitter {
+            Some(emitter) => {
+                for (inputs, outputs) in blocks {
+                    run_block(self.spaces, emitter.sampler, inputs, outputs);
+                }
+            }
+            None => {
+                for (inputs, outputs) in blocks {
+                    run_block(self.spaces, Unchanged, inputs, outputs);
+                }
+            }
         }
     }
 }
 
-/// One block's lanes. Its own function so that its arguments tell the compiler that the
-/// outputs alias no input (it vectorises the loop only then).
+/// What a lane needs before its bounce is computed.
+trait Prepare: Copy {
+    fn prepare(&self, lane: LambertLane) -> LambertLane;
+}
+
+/// Nothing: every light point is sampled already.
+#[derive(Clone, Copy)]
+struct Unchanged;
+
+impl Prepare for Unchanged {
+    #[inline(always)]
+    fn prepare(&self, lane: LambertLane) -> LambertLane {
+        lane
+    }
+}
+
+/// The light points left to sample on the lone emitter.
+impl Prepare for AreaSampler {
+    #[inline(always)]
+    fn prepare(&self, lane: LambertLane) -> LambertLane {
+        with_light_point(&lane, self)
+    }
+}
+
+/// One block's lanes, each made ready by `prepare` first. Its own function so that its
+/// arguments tell the compiler that the outputs alias no input (it vectorises the loop
+/// only then).
 #[inline(always)]
-fn run_block(spaces: &FrameSpaces, inputs: &Block<IN>, outputs: &mut Block<OUT>) {
+fn run_block(
+    spaces: &FrameSpaces,
+    prepare: impl Prepare,
+    inputs: &Block<IN>,
+    outputs: &mut Block<OUT>,
+) {
     for j in 0..CHUNK {
-        let lane = LambertLane::from_columns(std::array::from_fn(|k| inputs[k][j]));
+        let lane =
+            prepare.prepare(LambertLane::from_columns(std::array::from_fn(|k| inputs[k][j])));
         let outcome = lambert_bounce(&lane, spaces).to_columns();
         for (column, value) in outputs.iter_mut().zip(outcome) {
             column[j] = value;

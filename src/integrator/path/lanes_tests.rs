@@ -70,7 +70,7 @@ fn the_vector_loop_gives_each_lane_s_own_result_bit_for_bit() {
         for (i, lane) in lanes.iter().enumerate() {
             queue.push(i as u32 * 2, lane);
         }
-        queue.run(&spaces);
+        queue.run(&spaces, None);
         let outcomes: Vec<_> = queue.outcomes().collect();
         assert_eq!(outcomes.len(), n);
         let (mut shadows, mut nexts) = (0, 0);
@@ -104,7 +104,7 @@ fn lane_directions_follow_the_cosine_density_at_every_lane_position() {
         frames.push(crate::integrator::path::shading_frame_in(&spaces, lane.shading_normal));
         queue.push(i as u32, &lane);
     }
-    queue.run(&spaces);
+    queue.run(&spaces, None);
     // cos²θ and φ are uniform under the cosine density: equal cells.
     let mut counts = vec![[0u64; BINS * BINS]; CHUNK];
     let mut taken = [0u64; CHUNK];

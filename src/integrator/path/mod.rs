@@ -18,6 +18,7 @@ pub(crate) use wavefront::Wavefront;
 
 use super::trace::SceneTracer;
 use crate::accel::Accel;
+use crate::light::LoneEmitter;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::RenderScene;
 use crate::sampling::frame_from_normal;
@@ -45,6 +46,8 @@ pub struct PathTracer<'a> {
     /// samples one light at most (emitters or the environment with one sample, or a single
     /// point or directional light), and rays leave surfaces robustly.
     lambert_lanes: bool,
+    /// The scene's one flat emitter, whose area samples the lanes make (`LoneEmitter`).
+    lone_emitter: Option<LoneEmitter>,
 }
 
 /// How far from 1 a squared normal length may be for the normal to count as unit: 16 ulps,
@@ -103,7 +106,17 @@ impl<'a> PathTracer<'a> {
             sampling_from_render,
             render_from_sampling: sampling_from_render.transpose(),
         };
-        PathTracer { tracer, max_depth, rr_depth, light_samples, spaces, energy, lambert_lanes }
+        let lone_emitter = lights.lone_emitter().filter(|_| lambert_lanes);
+        PathTracer {
+            tracer,
+            max_depth,
+            rr_depth,
+            light_samples,
+            spaces,
+            energy,
+            lambert_lanes,
+            lone_emitter,
+        }
     }
 
     pub fn scene(&self) -> &RenderScene {
