@@ -47,7 +47,8 @@ pub struct PathTracer<'a> {
     /// point or directional light), and rays leave surfaces robustly.
     lambert_lanes: bool,
     /// The scene's one flat emitter, whose area samples the lanes make (`LoneEmitter`).
-    lone_emitter: Option<LoneEmitter>,
+    /// Boxed: it is larger than the rest of the tracer.
+    lone_emitter: Option<Box<LoneEmitter>>,
 }
 
 /// How far from 1 a squared normal length may be for the normal to count as unit: 16 ulps,
@@ -106,7 +107,7 @@ impl<'a> PathTracer<'a> {
             sampling_from_render,
             render_from_sampling: sampling_from_render.transpose(),
         };
-        let lone_emitter = lights.lone_emitter().filter(|_| lambert_lanes);
+        let lone_emitter = lights.lone_emitter().filter(|_| lambert_lanes).map(Box::new);
         PathTracer {
             tracer,
             max_depth,

@@ -122,7 +122,7 @@ impl Wavefront {
                     self.lambert.commit(lane);
                 }
             }
-            self.lambert.run(&path.spaces, path.lone_emitter.as_ref());
+            self.lambert.run(&path.spaces, path.lone_emitter.as_deref());
             for (lane, outcome) in self.lambert.outcomes() {
                 shadows.lane = lane;
                 path.finish_lambert(&mut self.states[lane as usize], &outcome, shadows, stats);
