@@ -72,12 +72,13 @@ const CHUNK: usize = 16;
 /// `CHUNK` lanes' worth of each column of `N`.
 type Block<const N: usize> = [[f32; CHUNK]; N];
 
-/// The queue: the lanes as their paths wrote them, and the path each belongs to; then, to
-/// be computed, in blocks of `CHUNK` lanes (each column of a block contiguous).
+/// The queue: each bounce written by its path into one scratch lane, then copied into the
+/// next column position of the blocks of `CHUNK` lanes (each column of a block contiguous)
+/// while the scratch lane is still in the L1 cache; and the path each belongs to.
 #[derive(Default)]
 pub(crate) struct LambertLanes {
-    /// Lanes written in place (`next_lane`); those past `paths.len()` are spare.
-    lanes: Vec<LambertLane>,
+    /// The lane a path writes its bounce into (`next_lane`).
+    scratch: LambertLane,
     paths: Vec<u32>,
     inputs: Vec<Block<IN>>,
     outputs: Vec<Block<OUT>>,
@@ -92,16 +93,22 @@ impl LambertLanes {
     /// The lane to write the next bounce into; it is queued only by `commit`.
     #[inline]
     pub fn next_lane(&mut self) -> &mut LambertLane {
-        let next = self.paths.len();
-        if next == self.lanes.len() {
-            self.lanes.push(LambertLane::default());
-        }
-        &mut self.lanes[next]
+        &mut self.scratch
     }
 
     /// Queues the bounce written into `next_lane`, of path `path`.
     #[inline]
     pub fn commit(&mut self, path: u32) {
+        let (block, j) = (self.paths.len() / CHUNK, self.paths.len() % CHUNK);
+        if block == self.inputs.len() {
+            // A block's spare lanes are computed too, and ignored: zeros are as good as
+            // anything.
+            self.inputs.push([[0.0; CHUNK]; IN]);
+            self.outputs.push([[0.0; CHUNK]; OUT]);
+        }
+        for (column, value) in self.inputs[block].iter_mut().zip(self.scratch.to_columns()) {
+            column[j] = value;
+        }
         self.paths.push(path);
     }
 
@@ -116,20 +123,6 @@ impl LambertLanes {
     /// was left to be (`with_light_point`).
     pub fn run(&mut self, spaces: &FrameSpaces, emitter: Option<&LoneEmitter>) {
         let blocks = self.paths.len().div_ceil(CHUNK);
-        // A block's spare lanes are computed too, and ignored: zeros are as good as
-        // anything.
-        if self.inputs.len() < blocks {
-            self.inputs.resize(blocks, [[0.0; CHUNK]; IN]);
-            self.outputs.resize(blocks, [[0.0; CHUNK]; OUT]);
-        }
-        let queued = &self.lanes[..self.paths.len()];
-        for (lanes, block) in queued.chunks(CHUNK).zip(&mut self.inputs) {
-            for (j, lane) in lanes.iter().enumerate() {
-                for (column, value) in block.iter_mut().zip(lane.to_columns()) {
-                    column[j] = value;
-                }
-            }
-        }
         let (inputs, outputs) = (&self.inputs[..blocks], &mut self.outputs[..blocks]);
         pulp::Arch::new().dispatch(Kernel { spaces, emitter, inputs, outputs });
     }
