@@ -112,6 +112,26 @@ pub fn triangle_point_from_ray(
     Some((point, error))
 }
 
+/// A triangle hit's point and error bound: of `triangle_point` (from the barycentrics `b1`,
+/// `b2`) and `triangle_point_from_ray` (from `origin + t·dir`), the one with the smaller
+/// bound across the surface.
+#[inline]
+pub fn triangle_hit_point(
+    tri: &[Vec3; 3],
+    plane: &TrianglePlane,
+    (b1, b2): (f32, f32),
+    (origin, dir, t): (Vec3, Vec3, f32),
+) -> (Vec3, Vec3) {
+    let (mut point, mut error) = triangle_point(tri, plane, b1, b2);
+    if let Some((p, e)) = triangle_point_from_ray(tri, plane, origin, dir, t) {
+        let across = |e: Vec3| plane.normal.abs().dot(e);
+        if across(e) < across(error) && p.is_finite() {
+            (point, error) = (p, e);
+        }
+    }
+    (point, error)
+}
+
 /// Floor of every error bound: far below any geometric feature, but large enough that
 /// t = -offset / |dir| cannot underflow to -0.0 (which compares equal to a zero `tmin`).
 const MIN_OFFSET: f32 = 1e-20;

@@ -2,9 +2,7 @@
 //! incoming ray, material and texture coordinates. Computed from the backend's `Hit` the same
 //! way for every backend.
 
-use crate::float_error::{
-    sphere_point, transform_point_with_error, triangle_point, triangle_point_from_ray,
-};
+use crate::float_error::{sphere_point, transform_point_with_error, triangle_hit_point};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{Geometry, Placement, RenderScene};
 use crate::shading::spawn::SurfacePoint;
@@ -60,13 +58,8 @@ fn local_hit(
             let tri = mesh.triangle(hit.prim_id);
             let plane = mesh.plane(hit.prim_id, &tri);
             let geometric = plane.normal;
-            let (mut point, mut error) = triangle_point(&tri, &plane, hit.u, hit.v);
-            if let Some((p, e)) = triangle_point_from_ray(&tri, &plane, origin, dir, hit.t) {
-                let across = |e: Vec3| geometric.abs().dot(e);
-                if across(e) < across(error) && p.is_finite() {
-                    (point, error) = (p, e);
-                }
-            }
+            let (point, error) =
+                triangle_hit_point(&tri, &plane, (hit.u, hit.v), (origin, dir, hit.t));
             let [i0, i1, i2] = mesh.indices[hit.prim_id as usize].map(|i| i as usize);
             let b0 = 1.0 - hit.u - hit.v;
             let shading = match &mesh.normals {

@@ -240,6 +240,12 @@ impl PathTracer<'_> {
             let distance = hit.t * ray.dir.length();
             state.throughput *= (-state.absorption * distance).exp();
         }
+        if let Some(plain) = self.plain_surfaces.get(hit.geom_id)
+            && let Some(scattered) = self.plain_hit(state, (&hit, plain), stream, stats, lane)
+        {
+            return scattered;
+        }
+        let result = &mut state.result;
         let mut si = interaction(scene, &ray, &hit);
         let material = &scene.materials[si.material as usize];
         let unmapped = si.shading_normal;
@@ -273,7 +279,9 @@ impl PathTracer<'_> {
             && (si.front_face || !material.one_sided)
         {
             stats.bounces.lanes += 1;
-            self.lambert_lane(state, material, &si, stream, lane);
+            let albedo = self.tracer.surface_albedo(material, &si, ray.time);
+            let diffuse = self.energy.lambertian(albedo);
+            self.lambert_lane(state, diffuse, (&si.surface, si.shading_normal), stream, lane);
             return Scattered::Lambert;
         }
         stats.bounces.scalar += 1;
@@ -328,7 +336,7 @@ impl PathTracer<'_> {
 
 /// What `scatter` leaves: the path's end, its next ray, or a plain Lambertian bounce (in
 /// the lane it was given) for the caller to compute.
-enum Scattered {
+pub(super) enum Scattered {
     End,
     Ray(Ray),
     Lambert,

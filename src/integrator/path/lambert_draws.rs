@@ -6,34 +6,33 @@ use super::PathTracer;
 use super::bounce::PathState;
 use super::lambert::{BY_AREA, DISTANT, LambertLane, POINT};
 use crate::sampling::SampleStream;
-use crate::shading::material::Material;
-use crate::shading::surface::SurfaceInteraction;
+use crate::shading::spawn::SurfacePoint;
 use glam::{Vec2, Vec3};
 
 impl PathTracer<'_> {
-    /// The plain Lambertian bounce at `si`, with the random numbers the mixture BSDF's
-    /// would draw, in the same order: the light point's, then the direction's, written into
-    /// `lane`. Sets what the bounce leaves as it is, whether the path goes on or not.
+    /// The plain Lambertian bounce of reflectance `diffuse` (after the energy model) at
+    /// `surface`, with the random numbers the mixture BSDF's would draw, in the same order:
+    /// the light point's, then the direction's, written into `lane`. Sets what the bounce
+    /// leaves as it is, whether the path goes on or not.
     pub(super) fn lambert_lane(
         &self,
         state: &mut PathState,
-        material: &Material,
-        si: &SurfaceInteraction,
+        diffuse: Vec3,
+        (surface, shading_normal): (&SurfacePoint, Vec3),
         stream: &mut SampleStream,
         lane: &mut LambertLane,
     ) {
         let ray = &state.ray;
-        let diffuse = self.energy.lambertian(self.tracer.surface_albedo(material, si, ray.time));
         if state.depth == 0 && self.tracer.first_hit_albedo {
             // As `albedo_bound` has it (a -0 channel reads +0).
             state.result.albedo = Some((diffuse + Vec3::ZERO).min(Vec3::ONE));
         }
         *lane = LambertLane {
             dir: ray.dir,
-            point: si.surface.point,
-            error: si.surface.error,
-            normal: si.surface.normal,
-            shading_normal: si.shading_normal,
+            point: surface.point,
+            error: surface.error,
+            normal: surface.normal,
+            shading_normal,
             diffuse,
             throughput: state.throughput,
             eta_scale: state.eta_scale,
@@ -86,6 +85,6 @@ impl PathTracer<'_> {
         }
         [lane.u0, lane.u1, _, lane.u_survive] = stream.next_4d();
         state.direct_weight = Some(state.throughput);
-        state.from = si.surface.point;
+        state.from = surface.point;
     }
 }

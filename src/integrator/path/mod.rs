@@ -10,6 +10,7 @@ mod lambert;
 mod lambert_draws;
 mod lanes;
 mod light_sampling;
+mod plain_hit;
 mod scattering;
 mod wavefront;
 
@@ -29,6 +30,7 @@ use crate::shading::surface::{SurfaceInteraction, interaction};
 use crate::stats::RenderStats;
 use glam::{Mat3, Quat, Vec3};
 use lambert::FrameSpaces;
+use plain_hit::PlainSurfaces;
 
 pub struct PathTracer<'a> {
     tracer: SceneTracer<'a>,
@@ -49,6 +51,9 @@ pub struct PathTracer<'a> {
     /// The scene's one flat emitter, whose area samples the lanes make (`LoneEmitter`).
     /// Boxed: it is larger than the rest of the tracer.
     lone_emitter: Option<Box<LoneEmitter>>,
+    /// The instances whose hits go straight to their Lambertian lane (`plain_hit`); none
+    /// without the lanes.
+    plain_surfaces: PlainSurfaces,
 }
 
 /// How far from 1 a squared normal length may be for the normal to count as unit: 16 ulps,
@@ -108,6 +113,10 @@ impl<'a> PathTracer<'a> {
             render_from_sampling: sampling_from_render.transpose(),
         };
         let lone_emitter = lights.lone_emitter().filter(|_| lambert_lanes).map(Box::new);
+        let plain_surfaces = match lambert_lanes {
+            true => PlainSurfaces::new(tracer.scene, energy),
+            false => PlainSurfaces::default(),
+        };
         PathTracer {
             tracer,
             max_depth,
@@ -117,6 +126,7 @@ impl<'a> PathTracer<'a> {
             energy,
             lambert_lanes,
             lone_emitter,
+            plain_surfaces,
         }
     }
 

@@ -1,0 +1,183 @@
+//! The short way from a hit to its Lambertian lane, for the commonest surface: a triangle
+//! mesh already in render space, without vertex normals, whose material is plain
+//! Lambertian with a constant reflectance and no emission or normal perturbation. Such a
+//! hit needs only its point, its error bound and its plane's normal: not the texture
+//! coordinates, the material's lookups or the general `SurfaceInteraction` that `scatter`
+//! builds for every other hit. The lane it gives is the one `scatter` would give, bit for
+//! bit (the same functions on the same numbers), which `tests/path_batching.rs` checks
+//! against the reference paths, which never take this way.
+
+use super::PathTracer;
+use super::bounce::{PathState, Scattered};
+use super::lambert::LambertLane;
+use crate::float_error::triangle_hit_point;
+use crate::ray::Hit;
+use crate::render_scene::{Geometry, Placement, RenderScene};
+use crate::sampling::SampleStream;
+use crate::shading::bsdf::Energy;
+use crate::shading::spawn::SurfacePoint;
+use crate::stats::RenderStats;
+use glam::Vec3;
+
+/// What a plain instance's hits need besides their geometry.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct PlainSurface {
+    /// The reflectance after the energy model.
+    diffuse: Vec3,
+    /// Whether its back faces are black (then they take the general way).
+    one_sided: bool,
+}
+
+/// The plain instances of a scene, by instance index (`Hit::geom_id`).
+#[derive(Clone, Debug, Default)]
+pub(super) struct PlainSurfaces {
+    by_instance: Vec<Option<PlainSurface>>,
+}
+
+impl PlainSurfaces {
+    /// The plain instances of `scene` (see the module's comment).
+    pub fn new(scene: &RenderScene, energy: Energy) -> Self {
+        let plain = |instance: &crate::render_scene::Instance| {
+            let material = scene.materials.get(instance.material as usize)?;
+            let prototype = scene.prototypes.get(instance.prototype as usize)?;
+            let flat_mesh =
+                matches!(&prototype.geometry, Geometry::Triangles(m) if m.normals.is_none());
+            let in_render_space = matches!(instance.placement, Placement::Baked { .. });
+            let plain_material = material.is_plain_lambertian()
+                && !material.is_emissive()
+                && material.texture.is_none()
+                && material.normal_map.is_none()
+                && material.bump_map.is_none();
+            (flat_mesh && in_render_space && plain_material).then(|| PlainSurface {
+                diffuse: energy.lambertian(material.albedo),
+                one_sided: material.one_sided,
+            })
+        };
+        PlainSurfaces { by_instance: scene.instances.iter().map(plain).collect() }
+    }
+
+    /// The plain surface instance `instance` has, if it is one.
+    #[inline]
+    pub fn get(&self, instance: u32) -> Option<&PlainSurface> {
+        self.by_instance.get(instance as usize)?.as_ref()
+    }
+}
+
+impl PathTracer<'_> {
+    /// `scatter` for `hit` on the plain surface `plain`; `None` (nothing done) where it
+    /// must take the general way: a one-sided material's back face (or, were the table
+    /// wrong, anything but a triangle mesh).
+    #[inline]
+    pub(super) fn plain_hit(
+        &self,
+        state: &mut PathState,
+        (hit, plain): (&Hit, &PlainSurface),
+        stream: &mut SampleStream,
+        stats: &mut RenderStats,
+        lane: &mut LambertLane,
+    ) -> Option<Scattered> {
+        let scene = self.tracer.scene;
+        let Geometry::Triangles(mesh) =
+            &scene.prototypes[scene.instances[hit.geom_id as usize].prototype as usize].geometry
+        else {
+            return None;
+        };
+        let ray = &state.ray;
+        let tri = mesh.triangle(hit.prim_id);
+        let plane = mesh.plane(hit.prim_id, &tri);
+        let front_face = plane.normal.dot(ray.dir) < 0.0;
+        if plain.one_sided && !front_face {
+            return None;
+        }
+        let (point, error) =
+            triangle_hit_point(&tri, &plane, (hit.u, hit.v), (ray.origin, ray.dir, hit.t));
+        let normal = if front_face { plane.normal } else { -plane.normal };
+        if state.depth == 0 {
+            state.result.depth = Some(hit.t);
+            state.result.normal = Some(scene.camera.world_from_render_rotation * normal);
+        }
+        if self.max_depth == 0 || state.depth == self.max_depth.max(1) {
+            return Some(Scattered::End);
+        }
+        stats.bounces.lanes += 1;
+        let surface = SurfacePoint { point, error, normal };
+        self.lambert_lane(state, plain.diffuse, (&surface, normal), stream, lane);
+        Some(Scattered::Lambert)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::{RenderOptions, prepare_scene};
+
+    /// Only the flat, constant, unlit Lambertian meshes in render space are plain; their
+    /// reflectance is the energy model's.
+    #[test]
+    fn plain_surfaces_are_the_flat_constant_lambertian_meshes() {
+        let text = r#"
+            [camera]
+            lookfrom = [0.0, 1.0, -5.0]
+            lookat = [0.0, 0.0, 0.0]
+            vfov = 40.0
+            resolution = [8, 8]
+            [materials.plain]
+            albedo = [0.9, 0.5, 0.25]
+            [materials.checker]
+            texture = { type = "checker2d", scale = 4.0, even = [0.8, 0.8, 0.8], odd = [0.1, 0.1, 0.1] }
+            [materials.lamp]
+            albedo = [0.5, 0.5, 0.5]
+            emission = [4.0, 4.0, 4.0]
+            [materials.glass]
+            type = "dielectric"
+            ior = 1.5
+            [[objects]]
+            type = "quad"
+            material = "plain"
+            corner = [-1.0, 0.0, -1.0]
+            u = [0.0, 0.0, 2.0]
+            v = [2.0, 0.0, 0.0]
+            [[objects]]
+            type = "box"
+            material = "plain"
+            min = [-0.5, 0.0, -0.5]
+            max = [0.5, 1.0, 0.5]
+            transform = [{ rotate = { axis = [0.0, 1.0, 0.0], degrees = 30.0 } }]
+            [[objects]]
+            type = "quad"
+            material = "checker"
+            corner = [-1.0, 2.0, -1.0]
+            u = [0.0, 0.0, 2.0]
+            v = [2.0, 0.0, 0.0]
+            [[objects]]
+            type = "quad"
+            material = "lamp"
+            corner = [-1.0, 3.0, -1.0]
+            u = [0.0, 0.0, 2.0]
+            v = [2.0, 0.0, 0.0]
+            [[objects]]
+            type = "quad"
+            material = "glass"
+            corner = [-1.0, 4.0, -1.0]
+            u = [0.0, 0.0, 2.0]
+            v = [2.0, 0.0, 0.0]
+            [[objects]]
+            type = "sphere"
+            material = "plain"
+            center = [0.0, 5.0, 0.0]
+            radius = 0.5
+        "#;
+        let source = std::path::Path::new("plain.toml");
+        let (desc, _) = crate::scene::load_str_with_warnings(text, source).expect("scene parses");
+        let scene = prepare_scene(&desc, &RenderOptions::for_scene(&desc)).expect("converts");
+        assert_eq!(scene.instances.len(), 6, "one instance per object");
+        for energy in [Energy::Conserving, Energy::Additive] {
+            let plain = PlainSurfaces::new(&scene, energy);
+            let found: Vec<bool> = (0..6).map(|i| plain.get(i).is_some()).collect();
+            assert_eq!(found, [true, true, false, false, false, false], "{energy:?}");
+            let diffuse = plain.get(0).map(|p| p.diffuse);
+            assert_eq!(diffuse, Some(energy.lambertian(Vec3::new(0.9, 0.5, 0.25))));
+            assert!(plain.get(6).is_none(), "past the last instance");
+        }
+    }
+}
