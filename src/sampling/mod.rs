@@ -123,17 +123,31 @@ impl SampleStream {
     /// The first `N` (at most 4) values of the draw that starts at dimension `d`. A Sobol
     /// draw is one padded 4-D set: its first two values form a (0, 2)-sequence, so a draw's
     /// most important pair goes first.
+    ///
+    /// Inlined up to the draws made ahead, which the batched path tracer's bounces take:
+    /// the rest is computed out of line.
+    #[inline]
     fn draw<const N: usize>(&self, d: u64) -> [f32; N] {
         if self.draws_sobol() {
             let values = match d.wrapping_sub(self.ahead_at) {
                 0 => self.ahead[0],
                 4 => self.ahead[1],
-                _ => sobol::sample_4d(self.sample as u32, sobol_seed(self.scramble_prefix, d)),
+                _ => self.sobol_draw(d),
             };
             std::array::from_fn(|k| values[k])
         } else {
-            std::array::from_fn(|k| to_unit_f32(hash_dimension(self.sample_prefix, d + k as u64)))
+            self.hashed_draw(d)
         }
+    }
+
+    #[inline(never)]
+    fn sobol_draw(&self, d: u64) -> [f32; 4] {
+        sobol::sample_4d(self.sample as u32, sobol_seed(self.scramble_prefix, d))
+    }
+
+    #[inline(never)]
+    fn hashed_draw<const N: usize>(&self, d: u64) -> [f32; N] {
+        std::array::from_fn(|k| to_unit_f32(hash_dimension(self.sample_prefix, d + k as u64)))
     }
 
     /// Whether this stream's draws are Sobol sets (else hashed numbers).
@@ -141,6 +155,7 @@ impl SampleStream {
         self.kind == SamplerKind::Sobol && self.sample < SOBOL_SAMPLES
     }
 
+    #[inline]
     fn next<const N: usize>(&mut self) -> [f32; N] {
         let values = self.draw::<N>(self.dimension);
         self.dimension += N as u64;
@@ -157,6 +172,7 @@ impl SampleStream {
 
     /// Four values drawn together (with Sobol, one 4-D set: the first two are the best
     /// stratified pair).
+    #[inline]
     pub fn next_4d(&mut self) -> [f32; 4] {
         self.next::<4>()
     }
