@@ -16,32 +16,37 @@ macro_rules! lane_columns {
             pub const COLUMNS: usize = 3 * [$(stringify!($vector)),*].len()
                 + [$(stringify!($scalar)),*].len();
 
+            /// Writes it into position `j` of the columns of a block, straight from its
+            /// fields (no array in between: this is every queued lane's copy).
             #[inline(always)]
-            fn to_columns(self) -> [f32; Self::COLUMNS] {
-                let mut out = [0.0; Self::COLUMNS];
+            fn write_at(&self, block: &mut Block<{ Self::COLUMNS }>, j: usize) {
+                let j = j % CHUNK;
                 let mut k = 0;
                 $(
-                    out[k..k + 3].copy_from_slice(&self.$vector.to_array());
+                    block[k][j] = self.$vector.x;
+                    block[k + 1][j] = self.$vector.y;
+                    block[k + 2][j] = self.$vector.z;
                     k += 3;
                 )*
                 $(
-                    out[k] = self.$scalar;
+                    block[k][j] = self.$scalar;
                     k += 1;
                 )*
                 debug_assert_eq!(k, Self::COLUMNS);
-                out
             }
 
+            /// The record at position `j` of the columns of a block.
             #[inline(always)]
-            fn from_columns(columns: [f32; Self::COLUMNS]) -> Self {
+            fn read_at(block: &Block<{ Self::COLUMNS }>, j: usize) -> Self {
+                let j = j % CHUNK;
                 let mut record = Self::default();
                 let mut k = 0;
                 $(
-                    record.$vector = Vec3::new(columns[k], columns[k + 1], columns[k + 2]);
+                    record.$vector = Vec3::new(block[k][j], block[k + 1][j], block[k + 2][j]);
                     k += 3;
                 )*
                 $(
-                    record.$scalar = columns[k];
+                    record.$scalar = block[k][j];
                     k += 1;
                 )*
                 debug_assert_eq!(k, Self::COLUMNS);
@@ -106,9 +111,7 @@ impl LambertLanes {
             self.inputs.push([[0.0; CHUNK]; IN]);
             self.outputs.push([[0.0; CHUNK]; OUT]);
         }
-        for (column, value) in self.inputs[block].iter_mut().zip(self.scratch.to_columns()) {
-            column[j] = value;
-        }
+        self.scratch.write_at(&mut self.inputs[block], j);
         self.paths.push(path);
     }
 
@@ -131,7 +134,7 @@ impl LambertLanes {
     pub fn outcomes(&self) -> impl Iterator<Item = (u32, LambertOutcome)> + '_ {
         self.paths.iter().enumerate().map(|(i, &path)| {
             let (block, j) = (&self.outputs[i / CHUNK], i % CHUNK);
-            (path, LambertOutcome::from_columns(std::array::from_fn(|k| block[k][j])))
+            (path, LambertOutcome::read_at(block, j))
         })
     }
 }
@@ -200,12 +203,8 @@ fn run_block(
     outputs: &mut Block<OUT>,
 ) {
     for j in 0..CHUNK {
-        let lane =
-            prepare.prepare(LambertLane::from_columns(std::array::from_fn(|k| inputs[k][j])));
-        let outcome = lambert_bounce(&lane, spaces).to_columns();
-        for (column, value) in outputs.iter_mut().zip(outcome) {
-            column[j] = value;
-        }
+        let lane = prepare.prepare(LambertLane::read_at(inputs, j));
+        lambert_bounce(&lane, spaces).write_at(outputs, j);
     }
 }
 
