@@ -77,9 +77,10 @@ const CHUNK: usize = 16;
 /// `CHUNK` lanes' worth of each column of `N`.
 type Block<const N: usize> = [[f32; CHUNK]; N];
 
-/// The queue: each bounce written by its path into one scratch lane, then copied into the
-/// next column position of the blocks of `CHUNK` lanes (each column of a block contiguous)
-/// while the scratch lane is still in the L1 cache; and the path each belongs to.
+/// The queue: each bounce written by its path into one scratch lane, then copied field by
+/// field into the next column position of the blocks of `CHUNK` lanes (each column of a
+/// block contiguous) while the scratch lane is still in the L1 cache; and the path each
+/// belongs to.
 #[derive(Default)]
 pub(crate) struct LambertLanes {
     /// The lane a path writes its bounce into (`next_lane`).
@@ -106,8 +107,8 @@ impl LambertLanes {
     pub fn commit(&mut self, path: u32) {
         let (block, j) = (self.paths.len() / CHUNK, self.paths.len() % CHUNK);
         if block == self.inputs.len() {
-            // A block's spare lanes are computed too, and ignored: zeros are as good as
-            // anything.
+            // A block's spare lanes are computed too, and ignored: what they hold (zeros,
+            // or an earlier bounce's lanes) is as good as anything.
             self.inputs.push([[0.0; CHUNK]; IN]);
             self.outputs.push([[0.0; CHUNK]; OUT]);
         }
