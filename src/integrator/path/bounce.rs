@@ -170,6 +170,22 @@ impl PathTracer<'_> {
         }
     }
 
+    /// Records the camera ray's hit in the sample's AOVs: its distance and its shading
+    /// normal in world space.
+    #[inline]
+    pub(super) fn record_first_hit(&self, result: &mut PathSample, t: f32, shading_normal: Vec3) {
+        result.depth = Some(t);
+        let world_from_render = self.tracer.scene.camera.world_from_render_rotation;
+        result.normal = Some(world_from_render * shading_normal);
+    }
+
+    /// Whether a path ends at surface interaction `depth` without scattering: its emission
+    /// counts, nothing after it.
+    #[inline]
+    pub(super) fn ends_at(&self, depth: u32) -> bool {
+        self.max_depth == 0 || depth == self.max_depth.max(1)
+    }
+
     /// The path goes on along `next`.
     #[inline]
     fn advance(&self, state: &mut PathState, next: Ray) {
@@ -258,8 +274,7 @@ impl PathTracer<'_> {
             si.shading_normal = (2.0 * n.dot(unmapped) * unmapped - n).normalize();
         }
         if depth == 0 {
-            result.depth = Some(hit.t);
-            result.normal = Some(scene.camera.world_from_render_rotation * si.shading_normal);
+            self.record_first_hit(result, hit.t, si.shading_normal);
         }
         if material.is_emissive() && (si.front_face || material.two_sided_emission) {
             let weight = if state.specular_bounce {
@@ -269,8 +284,7 @@ impl PathTracer<'_> {
             };
             result.radiance += state.throughput * material.emission * weight;
         }
-        let bounces = self.max_depth.max(1);
-        if self.max_depth == 0 || depth == bounces {
+        if self.ends_at(depth) {
             return Scattered::End;
         }
         if self.lambert_lanes

@@ -53,7 +53,7 @@ pub struct PathTracer<'a> {
     lone_emitter: Option<Box<LoneEmitter>>,
     /// The instances whose hits go straight to their Lambertian lane (`plain_hit`); none
     /// without the lanes.
-    plain_surfaces: PlainSurfaces,
+    plain_surfaces: PlainSurfaces<'a>,
 }
 
 /// How far from 1 a squared normal length may be for the normal to count as unit: 16 ulps,

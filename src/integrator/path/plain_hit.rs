@@ -12,16 +12,17 @@ use super::bounce::{PathState, Scattered};
 use super::lambert::LambertLane;
 use crate::float_error::triangle_hit_point;
 use crate::ray::Hit;
-use crate::render_scene::{Geometry, Placement, RenderScene};
+use crate::render_scene::{Geometry, Placement, RenderScene, TriangleMesh};
 use crate::sampling::SampleStream;
 use crate::shading::bsdf::Energy;
 use crate::shading::spawn::SurfacePoint;
 use crate::stats::RenderStats;
 use glam::Vec3;
 
-/// What a plain instance's hits need besides their geometry.
+/// What a plain instance's hits need.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct PlainSurface {
+pub(super) struct PlainSurface<'a> {
+    mesh: &'a TriangleMesh,
     /// The reflectance after the energy model.
     diffuse: Vec3,
     /// Whether its back faces are black (then they take the general way).
@@ -30,25 +31,28 @@ pub(super) struct PlainSurface {
 
 /// The plain instances of a scene, by instance index (`Hit::geom_id`).
 #[derive(Clone, Debug, Default)]
-pub(super) struct PlainSurfaces {
-    by_instance: Vec<Option<PlainSurface>>,
+pub(super) struct PlainSurfaces<'a> {
+    by_instance: Vec<Option<PlainSurface<'a>>>,
 }
 
-impl PlainSurfaces {
+impl<'a> PlainSurfaces<'a> {
     /// The plain instances of `scene` (see the module's comment).
-    pub fn new(scene: &RenderScene, energy: Energy) -> Self {
+    pub fn new(scene: &'a RenderScene, energy: Energy) -> Self {
         let plain = |instance: &crate::render_scene::Instance| {
             let material = scene.materials.get(instance.material as usize)?;
             let prototype = scene.prototypes.get(instance.prototype as usize)?;
-            let flat_mesh =
-                matches!(&prototype.geometry, Geometry::Triangles(m) if m.normals.is_none());
+            let mesh = match &prototype.geometry {
+                Geometry::Triangles(mesh) if mesh.normals.is_none() => mesh,
+                _ => return None,
+            };
             let in_render_space = matches!(instance.placement, Placement::Baked { .. });
             let plain_material = material.is_plain_lambertian()
                 && !material.is_emissive()
                 && material.texture.is_none()
                 && material.normal_map.is_none()
                 && material.bump_map.is_none();
-            (flat_mesh && in_render_space && plain_material).then(|| PlainSurface {
+            (in_render_space && plain_material).then_some(PlainSurface {
+                mesh,
                 diffuse: energy.lambertian(material.albedo),
                 one_sided: material.one_sided,
             })
@@ -58,15 +62,14 @@ impl PlainSurfaces {
 
     /// The plain surface instance `instance` has, if it is one.
     #[inline]
-    pub fn get(&self, instance: u32) -> Option<&PlainSurface> {
+    pub fn get(&self, instance: u32) -> Option<&PlainSurface<'a>> {
         self.by_instance.get(instance as usize)?.as_ref()
     }
 }
 
 impl PathTracer<'_> {
     /// `scatter` for `hit` on the plain surface `plain`; `None` (nothing done) where it
-    /// must take the general way: a one-sided material's back face (or, were the table
-    /// wrong, anything but a triangle mesh).
+    /// must take the general way: a one-sided material's back face.
     #[inline]
     pub(super) fn plain_hit(
         &self,
@@ -76,13 +79,7 @@ impl PathTracer<'_> {
         stats: &mut RenderStats,
         lane: &mut LambertLane,
     ) -> Option<Scattered> {
-        let scene = self.tracer.scene;
-        let Geometry::Triangles(mesh) =
-            &scene.prototypes[scene.instances[hit.geom_id as usize].prototype as usize].geometry
-        else {
-            return None;
-        };
-        let ray = &state.ray;
+        let (ray, mesh) = (&state.ray, plain.mesh);
         let tri = mesh.triangle(hit.prim_id);
         let plane = mesh.plane(hit.prim_id, &tri);
         let front_face = plane.normal.dot(ray.dir) < 0.0;
@@ -93,10 +90,9 @@ impl PathTracer<'_> {
             triangle_hit_point(&tri, &plane, (hit.u, hit.v), (ray.origin, ray.dir, hit.t));
         let normal = if front_face { plane.normal } else { -plane.normal };
         if state.depth == 0 {
-            state.result.depth = Some(hit.t);
-            state.result.normal = Some(scene.camera.world_from_render_rotation * normal);
+            self.record_first_hit(&mut state.result, hit.t, normal);
         }
-        if self.max_depth == 0 || state.depth == self.max_depth.max(1) {
+        if self.ends_at(state.depth) {
             return Some(Scattered::End);
         }
         stats.bounces.lanes += 1;
