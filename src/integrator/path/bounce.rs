@@ -5,7 +5,9 @@
 //! they give the same image bit for bit.
 
 use super::PathTracer;
-use super::lambert::{LambertLane, LambertOutcome, lambert_bounce, with_light_point};
+use super::lambert::{
+    LambertLane, LambertOutcome, LaneSink, lambert_bounce, with_light_point,
+};
 use crate::integrator::PathSample;
 use crate::ray::{Hit, Ray};
 use crate::sampling::SampleStream;
@@ -157,7 +159,7 @@ impl PathTracer<'_> {
         stream: &mut SampleStream,
         stats: &mut RenderStats,
         shadows: &mut impl ShadowSink,
-        lane: &mut LambertLane,
+        lane: &mut impl LaneSink,
     ) -> bool {
         state.live = false;
         match self.scatter(state, found, stream, stats, shadows, lane) {
@@ -227,7 +229,7 @@ impl PathTracer<'_> {
         stream: &mut SampleStream,
         stats: &mut RenderStats,
         shadows: &mut impl ShadowSink,
-        lane: &mut LambertLane,
+        lane: &mut impl LaneSink,
     ) -> Scattered {
         let depth = state.depth;
         let scene = self.tracer.scene;

@@ -51,6 +51,20 @@ pub(crate) struct LambertLane {
     pub roulette: f32,
 }
 
+/// Where a path writes its plain Lambertian bounce: a lane of its own (one path at a time),
+/// or straight into its column position among the lanes computed together
+/// (`LambertLanes::next_lane`), with no lane in between to copy from.
+pub(crate) trait LaneSink {
+    fn put(&mut self, lane: LambertLane);
+}
+
+impl LaneSink for LambertLane {
+    #[inline(always)]
+    fn put(&mut self, lane: LambertLane) {
+        *self = lane;
+    }
+}
+
 /// `LambertLane::light_kind`s.
 pub(crate) const AREA: f32 = 0.0;
 pub(crate) const POINT: f32 = 1.0;

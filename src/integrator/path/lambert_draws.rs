@@ -4,7 +4,7 @@
 
 use super::PathTracer;
 use super::bounce::PathState;
-use super::lambert::{BY_AREA, DISTANT, LambertLane, POINT};
+use super::lambert::{AREA, BY_AREA, DISTANT, LambertLane, LaneSink, POINT};
 use crate::sampling::SampleStream;
 use crate::shading::spawn::SurfacePoint;
 use glam::{Vec2, Vec3};
@@ -20,15 +20,17 @@ impl PathTracer<'_> {
         diffuse: Vec3,
         (surface, shading_normal): (&SurfacePoint, Vec3),
         stream: &mut SampleStream,
-        lane: &mut LambertLane,
+        lane: &mut impl LaneSink,
     ) {
-        let ray = &state.ray;
         if state.depth == 0 && self.tracer.first_hit_albedo {
             // As `albedo_bound` has it (a -0 channel reads +0).
             state.result.albedo = Some((diffuse + Vec3::ZERO).min(Vec3::ONE));
         }
-        *lane = LambertLane {
-            dir: ray.dir,
+        let light = self.light_sample(surface.point, stream);
+        let [u0, u1, _, u_survive] = stream.next_4d();
+        // Every field named, none set twice: the lane is written once, where it goes.
+        lane.put(LambertLane {
+            dir: state.ray.dir,
             point: surface.point,
             error: surface.error,
             normal: surface.normal,
@@ -36,55 +38,119 @@ impl PathTracer<'_> {
             diffuse,
             throughput: state.throughput,
             eta_scale: state.eta_scale,
+            has_light: light.has_light,
+            light_kind: light.kind,
+            light_point: light.point,
+            light_error: light.error,
+            light_normal: light.normal,
+            emission: light.emission,
+            light_pdf: light.pdf,
+            light_visible: light.visible,
+            light_two_sided: light.two_sided,
+            u0,
+            u1,
+            u_survive,
             roulette: if state.depth + 1 >= self.rr_depth { 1.0 } else { 0.0 },
-            ..LambertLane::default()
-        };
-        // The scene's one light (`PathTracer::lambert_lanes`), sampled as `direct_light`
-        // samples it.
-        let lights = &self.tracer.scene.lights;
-        if let Some(light) = lights.points.first() {
-            let to_light = light.position - lane.point;
-            let wi = to_light / to_light.length_squared().sqrt();
-            lane.has_light = 1.0;
-            lane.light_kind = POINT;
-            lane.light_point = light.position;
-            lane.emission = light.intensity_towards(-wi);
-        } else if let Some(light) = lights.directional.first() {
-            lane.has_light = 1.0;
-            lane.light_kind = DISTANT;
-            lane.light_point = -light.direction;
-            lane.emission = light.irradiance;
-            lane.light_pdf = 1.0;
-        } else if lights.has_emitters() {
-            // The point takes the draw's best stratified pair.
-            let [u0, u1, u2, u3] = stream.next_4d();
-            let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
-            if self.lone_emitter.as_ref().is_some_and(|e| e.by_area(lane.point)) {
-                // Left for the lanes to sample (`with_light_point`).
-                lane.light_kind = BY_AREA;
-                lane.light_point = Vec3::new(u0, u1, 0.0);
-            } else if let Some(light) = lights.sample_emitter(lane.point, u_choice, u_point) {
-                lane.has_light = 1.0;
-                lane.light_point = light.point;
-                lane.light_error = light.error;
-                lane.light_normal = light.normal;
-                lane.emission = light.emission;
-                lane.light_pdf = light.pdf;
-                lane.light_visible = if light.visible { 1.0 } else { 0.0 };
-                lane.light_two_sided = if light.two_sided { 1.0 } else { 0.0 };
-            }
-        } else if let Some(environment) = lights.environment.as_ref().filter(|e| e.is_lit()) {
-            if let Some(sample) = environment.sample(stream.next_2d()) {
-                lane.has_light = 1.0;
-                lane.light_kind = DISTANT;
-                lane.light_point = sample.wi;
-                lane.emission = sample.radiance;
-                lane.light_pdf = sample.pdf;
-                lane.light_visible = 1.0;
-            }
-        }
-        [lane.u0, lane.u1, _, lane.u_survive] = stream.next_4d();
+        });
         state.direct_weight = Some(state.throughput);
         state.from = surface.point;
     }
+
+    /// The light sample of a plain Lambertian bounce at `point`, from the scene's one light
+    /// (`PathTracer::lambert_lanes`), as `direct_light` samples it.
+    #[inline(always)]
+    fn light_sample(&self, point: Vec3, stream: &mut SampleStream) -> LaneLight {
+        let lights = &self.tracer.scene.lights;
+        if let Some(light) = lights.points.first() {
+            let to_light = light.position - point;
+            let wi = to_light / to_light.length_squared().sqrt();
+            return LaneLight {
+                has_light: 1.0,
+                kind: POINT,
+                point: light.position,
+                emission: light.intensity_towards(-wi),
+                ..LaneLight::NONE
+            };
+        }
+        if let Some(light) = lights.directional.first() {
+            return LaneLight {
+                has_light: 1.0,
+                kind: DISTANT,
+                point: -light.direction,
+                emission: light.irradiance,
+                pdf: 1.0,
+                ..LaneLight::NONE
+            };
+        }
+        if lights.has_emitters() {
+            // The point takes the draw's best stratified pair.
+            let [u0, u1, u2, u3] = stream.next_4d();
+            let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
+            if self.lone_emitter.as_ref().is_some_and(|e| e.by_area(point)) {
+                // Left for the lanes to sample (`with_light_point`).
+                return LaneLight {
+                    kind: BY_AREA,
+                    point: Vec3::new(u0, u1, 0.0),
+                    ..LaneLight::NONE
+                };
+            }
+            let Some(light) = lights.sample_emitter(point, u_choice, u_point) else {
+                return LaneLight::NONE;
+            };
+            return LaneLight {
+                has_light: 1.0,
+                kind: AREA,
+                point: light.point,
+                error: light.error,
+                normal: light.normal,
+                emission: light.emission,
+                pdf: light.pdf,
+                visible: if light.visible { 1.0 } else { 0.0 },
+                two_sided: if light.two_sided { 1.0 } else { 0.0 },
+            };
+        }
+        match lights.environment.as_ref().filter(|e| e.is_lit()) {
+            Some(environment) => match environment.sample(stream.next_2d()) {
+                Some(sample) => LaneLight {
+                    has_light: 1.0,
+                    kind: DISTANT,
+                    point: sample.wi,
+                    emission: sample.radiance,
+                    pdf: sample.pdf,
+                    visible: 1.0,
+                    ..LaneLight::NONE
+                },
+                None => LaneLight::NONE,
+            },
+            None => LaneLight::NONE,
+        }
+    }
+}
+
+/// The light fields of a `LambertLane` (see there).
+struct LaneLight {
+    has_light: f32,
+    kind: f32,
+    point: Vec3,
+    error: Vec3,
+    normal: Vec3,
+    emission: Vec3,
+    pdf: f32,
+    visible: f32,
+    two_sided: f32,
+}
+
+impl LaneLight {
+    /// No light sampled.
+    const NONE: LaneLight = LaneLight {
+        has_light: 0.0,
+        kind: AREA,
+        point: Vec3::ZERO,
+        error: Vec3::ZERO,
+        normal: Vec3::ZERO,
+        emission: Vec3::ZERO,
+        pdf: 0.0,
+        visible: 0.0,
+        two_sided: 0.0,
+    };
 }

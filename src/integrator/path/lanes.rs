@@ -4,7 +4,9 @@
 //! unit the CPU has, chosen at run time (`pulp`: AVX-512, else AVX2, else the build's
 //! baseline), so one portable binary uses all of it — and read back lane by lane.
 
-use super::lambert::{FrameSpaces, LambertLane, LambertOutcome, lambert_bounce, with_light_point};
+use super::lambert::{
+    FrameSpaces, LambertLane, LambertOutcome, LaneSink, lambert_bounce, with_light_point,
+};
 use crate::light::{AreaSampler, LoneEmitter};
 use glam::Vec3;
 
@@ -17,7 +19,7 @@ macro_rules! lane_columns {
                 + [$(stringify!($scalar)),*].len();
 
             /// Writes it into position `j` of the columns of a block, straight from its
-            /// fields (no array in between: this is every queued lane's copy).
+            /// fields (no array in between).
             #[inline(always)]
             fn write_at(&self, block: &mut Block<{ Self::COLUMNS }>, j: usize) {
                 let j = j % CHUNK;
@@ -77,17 +79,27 @@ const CHUNK: usize = 16;
 /// `CHUNK` lanes' worth of each column of `N`.
 type Block<const N: usize> = [[f32; CHUNK]; N];
 
-/// The queue: each bounce written by its path into one scratch lane, then copied field by
-/// field into the next column position of the blocks of `CHUNK` lanes (each column of a
-/// block contiguous) while the scratch lane is still in the L1 cache; and the path each
+/// The queue: each bounce written by its path straight into the next column position of
+/// the blocks of `CHUNK` lanes (each column of a block contiguous), and the path each
 /// belongs to.
 #[derive(Default)]
 pub(crate) struct LambertLanes {
-    /// The lane a path writes its bounce into (`next_lane`).
-    scratch: LambertLane,
     paths: Vec<u32>,
     inputs: Vec<Block<IN>>,
     outputs: Vec<Block<OUT>>,
+}
+
+/// The column position the next queued bounce is written to.
+pub(crate) struct LaneSlot<'a> {
+    block: &'a mut Block<IN>,
+    j: usize,
+}
+
+impl LaneSink for LaneSlot<'_> {
+    #[inline(always)]
+    fn put(&mut self, lane: LambertLane) {
+        lane.write_at(self.block, self.j);
+    }
 }
 
 impl LambertLanes {
@@ -96,15 +108,9 @@ impl LambertLanes {
         self.paths.clear();
     }
 
-    /// The lane to write the next bounce into; it is queued only by `commit`.
+    /// Where to write the next bounce; it is queued only by `commit`.
     #[inline]
-    pub fn next_lane(&mut self) -> &mut LambertLane {
-        &mut self.scratch
-    }
-
-    /// Queues the bounce written into `next_lane`, of path `path`.
-    #[inline]
-    pub fn commit(&mut self, path: u32) {
+    pub fn next_lane(&mut self) -> LaneSlot<'_> {
         let (block, j) = (self.paths.len() / CHUNK, self.paths.len() % CHUNK);
         if block == self.inputs.len() {
             // A block's spare lanes are computed too, and ignored: what they hold (zeros,
@@ -112,14 +118,19 @@ impl LambertLanes {
             self.inputs.push([[0.0; CHUNK]; IN]);
             self.outputs.push([[0.0; CHUNK]; OUT]);
         }
-        self.scratch.write_at(&mut self.inputs[block], j);
+        LaneSlot { block: &mut self.inputs[block], j }
+    }
+
+    /// Queues the bounce written into `next_lane`, of path `path`.
+    #[inline]
+    pub fn commit(&mut self, path: u32) {
         self.paths.push(path);
     }
 
     /// Queues the bounce `lane` of path `path`.
     #[cfg(test)]
     pub fn push(&mut self, path: u32, lane: &LambertLane) {
-        *self.next_lane() = *lane;
+        self.next_lane().put(*lane);
         self.commit(path);
     }
 

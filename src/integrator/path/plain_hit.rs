@@ -9,7 +9,7 @@
 
 use super::PathTracer;
 use super::bounce::{PathState, Scattered};
-use super::lambert::LambertLane;
+use super::lambert::LaneSink;
 use crate::float_error::triangle_hit_point;
 use crate::ray::Hit;
 use crate::render_scene::{Geometry, Placement, RenderScene, TriangleMesh};
@@ -77,7 +77,7 @@ impl PathTracer<'_> {
         (hit, plain): (&Hit, &PlainSurface),
         stream: &mut SampleStream,
         stats: &mut RenderStats,
-        lane: &mut LambertLane,
+        lane: &mut impl LaneSink,
     ) -> Option<Scattered> {
         let (ray, mesh) = (&state.ray, plain.mesh);
         let tri = mesh.triangle(hit.prim_id);

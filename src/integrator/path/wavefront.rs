@@ -118,7 +118,7 @@ impl Wavefront {
                 shadows.lane = lane;
                 let (state, stream) =
                     (&mut self.states[lane as usize], &mut self.streams[lane as usize]);
-                if path.on_hit(state, hit, stream, stats, shadows, self.lambert.next_lane()) {
+                if path.on_hit(state, hit, stream, stats, shadows, &mut self.lambert.next_lane()) {
                     self.lambert.commit(lane);
                 }
             }
