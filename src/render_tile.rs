@@ -8,7 +8,7 @@ use crate::ray::Ray;
 use crate::render_options::{PathBatching, RenderOptions};
 use crate::render_scene::RenderScene;
 use crate::sample_sums::PixelSums;
-use crate::sampling::{SLOT_LENS, SLOT_TIME, SampleStream};
+use crate::sampling::{self, SLOT_LENS, SLOT_TIME, SampleStream};
 use crate::stats::RenderStats;
 use glam::{Vec2, Vec3};
 
@@ -35,30 +35,40 @@ pub const CAMERA_BATCH: usize = (TILE_SIZE * TILE_SIZE) as usize;
 pub(crate) struct TileScratch {
     wavefront: Wavefront,
     weights: Vec<f32>,
+    /// The batch's random streams and pixel-position draws, made before its camera rays.
+    streams: Vec<SampleStream>,
+    positions: Vec<Vec2>,
 }
 
-/// The camera ray of sample `s` of pixel (`x`, `y`), the random stream its path goes on
-/// with, the scene's backdrop behind it (if it has one), and the sample's filter weight.
-fn camera_sample(
+/// The random stream of sample `s` of pixel (`x`, `y`).
+fn sample_stream(
     scene: &RenderScene,
     options: &RenderOptions,
     (x, y): (u32, u32),
     s: u32,
-    spp: u32,
-) -> (Ray, SampleStream, Option<Vec3>, f32) {
-    let camera = &scene.camera;
-    let pixel = y as u64 * camera.width as u64 + x as u64;
-    let mut stream = SampleStream::new(options.sampler, options.seed, pixel, s as u64);
-    let uniform = stream.pixel_position(s, spp, options.jitters());
+) -> SampleStream {
+    let pixel = y as u64 * scene.camera.width as u64 + x as u64;
+    SampleStream::new(options.sampler, options.seed, pixel, s as u64)
+}
+
+/// The camera ray through pixel (`x`, `y`) at `uniform` (the sample's position draw,
+/// `SampleStream::pixel_position`) with the rest of its draws from `stream`, the scene's
+/// backdrop behind it (if it has one), and the sample's filter weight.
+fn camera_ray(
+    scene: &RenderScene,
+    (x, y): (u32, u32),
+    uniform: Vec2,
+    stream: &SampleStream,
+) -> (Ray, Option<Vec3>, f32) {
     let (in_pixel, weight) = scene.pixel_filter.sample((x, y), uniform);
     let raster = Vec2::new(x as f32, y as f32) + in_pixel;
     let effects = &scene.effects;
     let lens = effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS));
-    let mut ray = camera.generate_ray(raster, lens);
+    let mut ray = scene.camera.generate_ray(raster, lens);
     if effects.motion_blur {
         ray.time = stream.reserved_1d(SLOT_TIME);
     }
-    (ray, stream, scene.backdrop_at(raster), weight)
+    (ray, scene.backdrop_at(raster), weight)
 }
 
 /// Renders the samples `samples` of every pixel of one tile. The path tracer (unless asked
@@ -105,8 +115,9 @@ pub(crate) fn render_tile(
                 return None;
             }
             for s in samples.clone() {
-                let (ray, mut stream, backdrop, weight) =
-                    camera_sample(scene, options, pixel(i), s, spp);
+                let mut stream = sample_stream(scene, options, pixel(i), s);
+                let uniform = stream.pixel_position(s, spp, options.jitters());
+                let (ray, backdrop, weight) = camera_ray(scene, pixel(i), uniform, &stream);
                 let sample = tracer.trace(ray, backdrop, &mut stream, &mut result.stats);
                 add(sums, &sample, weight);
             }
@@ -120,8 +131,13 @@ pub(crate) fn render_tile(
         }
         wavefront.clear();
         scratch.weights.clear();
-        for i in 0..n {
-            let (ray, stream, backdrop, weight) = camera_sample(scene, options, pixel(i), s, spp);
+        scratch.streams.clear();
+        scratch.streams.extend((0..n).map(|i| sample_stream(scene, options, pixel(i), s)));
+        let draw = (s, spp, options.jitters());
+        sampling::pixel_positions(&mut scratch.streams, draw, &mut scratch.positions);
+        let starts = scratch.streams.drain(..).zip(&scratch.positions).enumerate();
+        for (i, (stream, &uniform)) in starts {
+            let (ray, backdrop, weight) = camera_ray(scene, pixel(i), uniform, &stream);
             wavefront.push(path.start(ray, backdrop), stream);
             scratch.weights.push(weight);
         }

@@ -17,7 +17,7 @@ pub mod spherical_triangle;
 mod warps;
 
 use crate::splitmix::mix64;
-pub use ahead::draw_ahead;
+pub use ahead::{draw_ahead, pixel_positions};
 use glam::Vec2;
 pub use pixel::pixel_sample;
 pub use warps::{

@@ -5,9 +5,7 @@
 //! they give the same image bit for bit.
 
 use super::PathTracer;
-use super::lambert::{
-    LambertLane, LambertOutcome, LaneSink, lambert_bounce, with_light_point,
-};
+use super::lambert::{LambertLane, LambertOutcome, LaneSink, lambert_bounce, with_light_point};
 use crate::integrator::PathSample;
 use crate::ray::{Hit, Ray};
 use crate::sampling::SampleStream;
