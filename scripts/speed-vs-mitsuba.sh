@@ -2,12 +2,14 @@
 # The three speed figures issue 35 is judged by, measured side by side on this machine:
 #
 #   time per sample     embray's render time / Mitsuba 3's (llvm_ad_rgb), Cornell box 256²,
-#                       at 64 and 256 spp (the peers harness: one run each, strictly one
-#                       renderer after the other, render time without loading)
-#   time to equal error (MSE × seconds) / Mitsuba's, the median over those spp
+#                       at 64 and 256 spp (the peers harness: strictly one renderer after the
+#                       other, render time without loading), in ROUNDS rounds (default 3):
+#                       the median of the rounds' ratios
+#   time to equal error (MSE × seconds) / Mitsuba's: the harness's median over those spp,
+#                       then the median over the rounds
 #   Embree's share      of a 64-spp render's `perf record` profile, by library
 #
-#   bash scripts/speed-vs-mitsuba.sh [EMBRAY_BINARY]     (default: a release build of this tree)
+#   [ROUNDS=3] bash scripts/speed-vs-mitsuba.sh [EMBRAY_BINARY]   (default: a release build)
 #
 # Needs the peers' Python environment (`SKIP_BPY=1 bash ../shared/peers/setup_peers.sh`,
 # found through $PEERS_DIR, default /tmp/peers) and `perf`. Prints the CPU's widest vector
@@ -37,23 +39,41 @@ if grep -qw avx512f /proc/cpuinfo; then isa=AVX-512; elif grep -qw avx2 /proc/cp
 echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) cores, $isa"
 echo "embray: $("$embray" --version | head -1)"
 
-PEERS_DIR=$peers_dir "$python" "$harness/equal_error.py" "$embray" --scene cornell --spps 64,256 \
-    --only embray,mitsuba --out "$work/equal_error" > "$work/harness.log" 2>&1 ||
-    { cat "$work/harness.log" >&2; echo "the peers harness failed (its log above)" >&2; exit 1; }
+rounds=${ROUNDS:-3}
+for round in $(seq "$rounds"); do
+    PEERS_DIR=$peers_dir "$python" "$harness/equal_error.py" "$embray" --scene cornell \
+        --spps 64,256 --only embray,mitsuba --out "$work/round$round" > "$work/harness$round.log" 2>&1 ||
+        { cat "$work/harness$round.log" >&2; echo "the peers harness failed (its log above)" >&2; exit 1; }
+done
 
-"$python" - "$work/equal_error/equal_error.jsonl" <<'PY'
-import json, sys
-rows = [json.loads(line) for line in open(sys.argv[1])]
-by = {(r["renderer"], r["spp"]): r for r in rows}
+# One run of each renderer moves by 10-20 % on a shared machine (Mitsuba's own 64-spp time
+# has ranged over 2.4-3.2 s here): each round pairs the two, and the table gives medians.
+"$python" - "$work" "$rounds" <<'PY'
+import json, re, statistics, sys
+work, rounds = sys.argv[1], int(sys.argv[2])
+runs = []
+for r in range(1, rounds + 1):
+    rows = [json.loads(line) for line in open(f"{work}/round{r}/equal_error.jsonl")]
+    runs.append({(row["renderer"], row["spp"]): row for row in rows})
+med = statistics.median
+print(f"rounds: {rounds}; each cell is the median over the rounds (range in brackets)")
 print("| spp | embray s | Mitsuba s | per sample, embray / Mitsuba | MSE × s, embray / Mitsuba |")
 print("|---:|---:|---:|---:|---:|")
-for spp in sorted({r["spp"] for r in rows}):
-    e, m = by[("embray", spp)], by[("mitsuba", spp)]
-    print(f"| {spp} | {e['render_s']:.2f} | {m['render_s']:.2f} | "
-          f"{e['render_s'] / m['render_s']:.2f}× | {e['work'] / m['work']:.2f}× |")
+for spp in sorted({spp for run in runs for (_, spp) in run}):
+    e = [run[("embray", spp)] for run in runs]
+    m = [run[("mitsuba", spp)] for run in runs]
+    ratio = [a["render_s"] / b["render_s"] for a, b in zip(e, m)]
+    work_ratio = [a["work"] / b["work"] for a, b in zip(e, m)]
+    print(f"| {spp} | {med(a['render_s'] for a in e):.2f} | {med(b['render_s'] for b in m):.2f} | "
+          f"{med(ratio):.2f}× ({min(ratio):.2f}-{max(ratio):.2f}) | {med(work_ratio):.2f}× |")
+# The harness's own summary (its median rule over spp, not a copy of it), per round.
+equal = []
+for r in range(1, rounds + 1):
+    line = next(l for l in open(f"{work}/harness{r}.log") if "time to equal error" in l)
+    equal.append(float(re.search(r"([0-9.]+)x", line).group(1)))
+print(f"time to equal error, embray / mitsuba: {med(equal):.2f}x (median over the rounds of the "
+      f"harness's median over spp; rounds: {', '.join(f'{x:.2f}' for x in equal)})")
 PY
-# The harness's own summary line (its median rule, not a copy of it).
-grep "time to equal error" "$work/harness.log"
 
 perf record -q -e cpu-clock -F 2000 -o "$work/perf.data" \
     "$embray" render "$harness/embray/cornell.toml" --spp 64 -o "$work/perf.exr" -q 2>/dev/null
