@@ -91,6 +91,14 @@ impl pulp::WithSimd for PixelDraws<'_> {
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
         let d = super::RESERVED_BASE + super::SLOT_PIXEL;
         for chunk in self.streams.chunks_mut(LANES) {
+            // Other samplers, unjittered positions and samples past the Sobol range draw
+            // one at a time, as `pixel_position` does: no lanes computed for nothing.
+            if !(self.jitter && chunk.iter().any(SampleStream::draws_sobol)) {
+                let (index, count, jitter) = (self.index, self.count, self.jitter);
+                let draw = |s: &mut SampleStream| s.pixel_position(index, count, jitter);
+                self.positions.extend(chunk.iter_mut().map(draw));
+                continue;
+            }
             // A short chunk's spare lanes repeat its last stream; their values are not kept.
             let stream = |j: usize| &chunk[j.min(chunk.len() - 1)];
             let indices: [u32; LANES] = std::array::from_fn(|j| stream(j).sample as u32);
