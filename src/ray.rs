@@ -1,7 +1,7 @@
 //! Rays and hits in render space: shared by the camera, the backends and ray spawning, so it
 //! sits below all of them.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// A ray in render space. `dir` need not be normalised; `t` is measured in units of `dir`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,16 +29,17 @@ impl Ray {
     /// (by both backends, so they agree).
     #[inline]
     pub fn is_valid(&self) -> bool {
-        // Every ray is checked twice (path and backend): comparisons that are false for NaN
-        // do the finiteness tests too.
-        const LIMIT: Vec3 = Vec3::splat(Ray::COORDINATE_LIMIT);
-        self.origin.abs().cmplt(LIMIT).all()
-            && self.dir.abs().cmplt(LIMIT).all()
-            && self.dir != Vec3::ZERO
-            && self.tmin >= 0.0
-            && self.tmin < f32::INFINITY
-            && self.tmax >= self.tmin
-            && self.time.is_finite()
+        // Every ray is checked twice (path and backend): the coordinates are tested as two
+        // SIMD vectors, with comparisons that are false for NaN, so that they also test
+        // finiteness, and without a branch per coordinate.
+        const LIMIT: Vec3A = Vec3A::splat(Ray::COORDINATE_LIMIT);
+        let (origin, dir) = (Vec3A::from(self.origin), Vec3A::from(self.dir));
+        (origin.abs().cmplt(LIMIT) & dir.abs().cmplt(LIMIT)).all()
+            & dir.cmpne(Vec3A::ZERO).any()
+            & (self.tmin >= 0.0)
+            & (self.tmin < f32::INFINITY)
+            & (self.tmax >= self.tmin)
+            & self.time.is_finite()
     }
 }
 
