@@ -78,7 +78,7 @@ impl CommittedScene {
     fn occluded_packets<P: RayHitPacket>(&self, rays: &[Ray], blocked: &mut [bool]) {
         let mut packet = P::empty();
         for (rays, blocked) in rays.chunks(P::WIDTH).zip(blocked.chunks_mut(P::WIDTH)) {
-            let valid = load_packet(&mut packet, rays);
+            let valid = load_packet(&mut packet, rays, false);
             if valid.any() {
                 // SAFETY: the scene is live and committed; exactly the lanes just set from
                 // rays that passed `embree_accepts` are marked valid.
@@ -98,7 +98,7 @@ impl CommittedScene {
     ) {
         let mut packet = P::empty();
         for (rays, hits) in rays.chunks(P::WIDTH).zip(hits.chunks_mut(P::WIDTH)) {
-            let valid = load_packet(&mut packet, rays);
+            let valid = load_packet(&mut packet, rays, true);
             if valid.any() {
                 // SAFETY: the scene is live and committed; exactly the lanes just set from
                 // rays that passed `embree_accepts` are marked valid.
@@ -158,13 +158,21 @@ impl CommittedScene {
     }
 }
 
-/// Sets the lanes of `packet` from `rays` (no more than its width) that Embree accepts, and
-/// returns the mask marking exactly those (-1); the other lanes are never traced.
-fn load_packet<P: RayHitPacket>(packet: &mut P, rays: &[Ray]) -> compat::ValidMask {
+/// Sets the lanes of `packet` from `rays` (no more than its width) that Embree accepts, with
+/// no hit if `clear_hits` (for a closest-hit query), and returns the mask marking exactly
+/// those (-1); the other lanes are never traced.
+fn load_packet<P: RayHitPacket>(
+    packet: &mut P,
+    rays: &[Ray],
+    clear_hits: bool,
+) -> compat::ValidMask {
     let mut valid = compat::ValidMask([0; 16]);
     for (lane, ray) in rays.iter().enumerate() {
         if embree_accepts(ray) {
             packet.set_lane(lane, ray);
+            if clear_hits {
+                packet.clear_hit(lane);
+            }
             valid.0[lane] = -1;
         }
     }

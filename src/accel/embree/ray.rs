@@ -62,8 +62,12 @@ pub trait RayHitPacket {
     /// A packet whose lanes hold a harmless ray (never traced: its lane is masked out) and
     /// no hit.
     fn empty() -> Self;
-    /// Lane `lane` becomes `ray` (see [`to_rtc_ray`]) with no hit.
+    /// Lane `lane` becomes `ray` (see [`to_rtc_ray`]). Its mask, id and flags stay those
+    /// `empty` set (Embree never writes them), and its hit fields stay as they were:
+    /// `clear_hit` clears them for a closest-hit query (an occlusion query never reads them).
     fn set_lane(&mut self, lane: usize, ray: &Ray);
+    /// Lane `lane` has no hit.
+    fn clear_hit(&mut self, lane: usize);
     /// The hit Embree recorded in lane `lane`, if any (see [`from_rtc_ray_hit`]).
     fn hit(&self, lane: usize) -> Option<Hit>;
     /// Traces the lanes `valid` marks -1.
@@ -109,8 +113,11 @@ macro_rules! ray_hit_packet {
                 let p = &mut self.ray;
                 (p.org_x[i], p.org_y[i], p.org_z[i]) = (r.org_x, r.org_y, r.org_z);
                 (p.dir_x[i], p.dir_y[i], p.dir_z[i]) = (r.dir_x, r.dir_y, r.dir_z);
-                (p.tnear[i], p.tfar[i], p.time[i], p.mask[i]) = (r.tnear, r.tfar, r.time, r.mask);
-                (p.id[i], p.flags[i]) = (r.id, r.flags);
+                (p.tnear[i], p.tfar[i], p.time[i]) = (r.tnear, r.tfar, r.time);
+            }
+
+            #[inline]
+            fn clear_hit(&mut self, i: usize) {
                 self.hit.geomID[i] = ffi::RTC_INVALID_GEOMETRY_ID;
                 for level in &mut self.hit.instID {
                     level[i] = ffi::RTC_INVALID_GEOMETRY_ID;

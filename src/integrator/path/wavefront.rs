@@ -130,17 +130,16 @@ impl Wavefront {
             shadows.blocked.clear();
             shadows.blocked.resize(shadows.rays.len(), true);
             path.tracer.occluded_batch(&shadows.rays, &mut shadows.blocked, stats);
-            for &lane in lanes {
-                self.direct[lane as usize] = Vec3::ZERO;
-            }
             let tests = shadows.lanes.iter().zip(&shadows.contributions).zip(&shadows.blocked);
             for ((&lane, &contribution), &blocked) in tests {
                 if !blocked {
                     self.direct[lane as usize] += contribution;
                 }
             }
+            // Taken, so that every path's sum is zero again for its next bounce.
             for &lane in lanes {
-                self.states[lane as usize].finish_direct(self.direct[lane as usize]);
+                let direct = std::mem::take(&mut self.direct[lane as usize]);
+                self.states[lane as usize].finish_direct(direct);
             }
         }
     }
