@@ -27,6 +27,8 @@ pub(crate) struct Wavefront {
     rays: Vec<Ray>,
     hits: Vec<Option<Hit>>,
     shadows: QueuedShadows,
+    /// Per path, the light of its unblocked shadow rays this bounce: zero between bounces
+    /// (each sum is taken when it is applied).
     direct: Vec<Vec3>,
     /// The bounce's plain Lambertian hits, computed together (`lanes`).
     lambert: LambertLanes,
@@ -136,7 +138,6 @@ impl Wavefront {
                     self.direct[lane as usize] += contribution;
                 }
             }
-            // Taken, so that every path's sum is zero again for its next bounce.
             for &lane in lanes {
                 let direct = std::mem::take(&mut self.direct[lane as usize]);
                 self.states[lane as usize].finish_direct(direct);
