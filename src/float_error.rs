@@ -115,7 +115,7 @@ pub fn triangle_point_from_ray(
 /// A triangle hit's point and error bound: of `triangle_point` (from the barycentrics `b1`,
 /// `b2`) and `triangle_point_from_ray` (from `origin + t·dir`), the one with the smaller
 /// bound across the surface.
-#[inline]
+#[inline(always)]
 pub fn triangle_hit_point(
     tri: &[Vec3; 3],
     plane: &TrianglePlane,
