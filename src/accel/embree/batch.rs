@@ -158,23 +158,17 @@ impl CommittedScene {
     }
 }
 
-/// Sets the lanes of `packet` from `rays` (no more than its width) that Embree accepts, with
-/// no hit if `clear_hits` (for a closest-hit query), and returns the mask marking exactly
-/// those (-1); the other lanes are never traced.
+/// Sets the lanes of `packet` from `rays` (no more than its width), with no hit if
+/// `clear_hits` (for a closest-hit query), and returns the mask marking (-1) exactly those
+/// whose rays Embree accepts (`embree_accepts`, tested in vector registers); the other lanes
+/// are never traced.
 fn load_packet<P: RayHitPacket>(
     packet: &mut P,
     rays: &[Ray],
     clear_hits: bool,
 ) -> compat::ValidMask {
-    let mut valid = compat::ValidMask([0; 16]);
     for (lane, ray) in rays.iter().enumerate() {
-        if embree_accepts(ray) {
-            packet.set_lane(lane, ray);
-            if clear_hits {
-                packet.clear_hit(lane);
-            }
-            valid.0[lane] = -1;
-        }
+        packet.set_lane(lane, ray);
     }
-    valid
+    packet.keep_valid_lanes(rays.len(), clear_hits)
 }

@@ -20,6 +20,13 @@ pub(crate) trait ShadowSink {
     /// A shadow ray along which `contribution` (light times BSDF, over its density) reaches
     /// the shading point unless something blocks it.
     fn shadow(&mut self, ray: Ray, contribution: Vec3, stats: &mut RenderStats);
+
+    /// `shadow` for a ray known to be valid (`Ray::is_valid`), which need not be tested
+    /// again.
+    #[inline]
+    fn valid_shadow(&mut self, ray: Ray, contribution: Vec3, stats: &mut RenderStats) {
+        self.shadow(ray, contribution, stats);
+    }
 }
 
 /// A path between bounces.
@@ -43,6 +50,8 @@ pub(crate) struct PathState {
     absorption: Vec3,
     /// The surface interaction the next hit is (0: the camera ray's).
     pub(super) depth: u32,
+    /// Whether the path goes on: `ray` is valid (`Ray::is_valid`, tested as the ray is
+    /// set) and within the depth.
     live: bool,
     /// What the camera ray sees if it leaves the scene, if the scene has a backdrop.
     backdrop: Option<Vec3>,
@@ -55,8 +64,7 @@ pub(crate) struct PathState {
 impl PathState {
     /// The ray whose closest hit the path waits for, if it goes on.
     #[inline]
-    pub fn pending_ray(&mut self) -> Option<&Ray> {
-        self.live &= self.ray.is_valid();
+    pub fn pending_ray(&self) -> Option<&Ray> {
         self.live.then_some(&self.ray)
     }
 
@@ -102,7 +110,7 @@ impl PathTracer<'_> {
             from: Vec3::ZERO,
             absorption: Vec3::ZERO,
             depth: 0,
-            live: true,
+            live: camera_ray.is_valid(),
             backdrop,
             direct_weight: None,
             result: PathSample::default(),
@@ -186,11 +194,19 @@ impl PathTracer<'_> {
         self.max_depth == 0 || depth == self.max_depth.max(1)
     }
 
-    /// The path goes on along `next`.
+    /// The path goes on along `next`, if it is valid (an invalid ray ends it, uncounted).
     #[inline]
     fn advance(&self, state: &mut PathState, next: Ray) {
+        self.advance_valid(state, next, next.is_valid());
+    }
+
+    /// `advance` along `next`, whose validity (`Ray::is_valid`) is `valid`: the lanes test
+    /// theirs together.
+    #[inline]
+    fn advance_valid(&self, state: &mut PathState, next: Ray, valid: bool) {
+        debug_assert_eq!(valid, next.is_valid(), "{next:?}");
         state.depth += 1;
-        state.live = state.depth <= self.max_depth.max(1);
+        state.live = valid & (state.depth <= self.max_depth.max(1));
         state.ray = next;
     }
 
@@ -208,14 +224,15 @@ impl PathTracer<'_> {
             let (origin, dir, tmax) =
                 (outcome.shadow_origin, outcome.shadow_dir, outcome.shadow_tmax);
             let ray = Ray { origin, dir, tmin: 0.0, tmax, time };
-            shadows.shadow(ray, outcome.contribution, stats);
+            shadows.valid_shadow(ray, outcome.contribution, stats);
         }
         if outcome.next != 0.0 {
             state.throughput = outcome.throughput;
             state.specular_bounce = false;
             state.pdf_bsdf = outcome.pdf;
             let (origin, dir) = (outcome.next_origin, outcome.next_dir);
-            self.advance(state, Ray { origin, dir, tmin: 0.0, tmax: f32::INFINITY, time });
+            let next = Ray { origin, dir, tmin: 0.0, tmax: f32::INFINITY, time };
+            self.advance_valid(state, next, true);
         }
     }
 

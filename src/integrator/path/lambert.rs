@@ -10,6 +10,7 @@
 use super::light_sampling::power_heuristic;
 use crate::lane_select::{select, select3};
 use crate::light::AreaSampler;
+use crate::ray::Ray;
 use crate::shading::spawn::{SHADOW_TMAX, SurfacePoint};
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
@@ -76,7 +77,7 @@ pub(crate) const BY_AREA: f32 = 3.0;
 /// What a plain Lambertian bounce gives.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct LambertOutcome {
-    /// 1 where a shadow ray is to be traced, else 0.
+    /// 1 where a shadow ray is to be traced (a valid ray: `Ray::is_valid`), else 0.
     pub shadow: f32,
     pub shadow_origin: Vec3,
     /// From the origin to the light point's far side of its error bound (`tmax` just
@@ -85,7 +86,7 @@ pub(crate) struct LambertOutcome {
     pub shadow_tmax: f32,
     /// The light the shadow ray brings unless blocked (before the path's throughput).
     pub contribution: Vec3,
-    /// 1 where the path goes on, else 0.
+    /// 1 where the path goes on (along a valid ray: `Ray::is_valid`), else 0.
     pub next: f32,
     pub next_origin: Vec3,
     pub next_dir: Vec3,
@@ -157,11 +158,15 @@ pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> Lamber
         f_cos * lane.emission / dist2,
         f_cos * lane.emission * (weight / lane.light_pdf),
     );
+    let shadow_dir = select3(distant, wi, point_end - shadow_origin);
+    // A ray that is not valid is blocked and not counted (as `SceneTracer::occluded` has it):
+    // tested here, in lanes, so that the queue need not test each ray again.
     let shadow = lane.has_light != 0.0
         && faces
         && (lane.light_kind != AREA || cos_light > 0.0)
         && (distant || dist2 > 0.0)
-        && f_cos != Vec3::ZERO;
+        && f_cos != Vec3::ZERO
+        && Ray::coordinates_valid(shadow_origin, shadow_dir);
 
     // BSDF sampling (`Mixture::sample`'s lone Lambertian lobe) and roulette (`scatter`).
     let wi_sampled = crate::sampling::cosine_hemisphere(Vec2::new(lane.u0, lane.u1));
@@ -173,20 +178,24 @@ pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> Lamber
     let rouletted = lane.roulette != 0.0;
     let survives = !rouletted || !(lane.u_survive >= survive);
     let throughput = select3(rouletted, throughput / survive, throughput);
+    let next_origin = surface.offset_origin(next_dir);
+    // As for the shadow ray: an invalid next ray ends the path (as `PathState::advance`
+    // has it), tested here so that the path need not test it again.
     let next = !(wo_local.z <= 0.0)
         && !(wi_sampled.z <= 0.0)
         && pdf > 0.0
         && !below
         && lane.diffuse != Vec3::ZERO
-        && survives;
+        && survives
+        && Ray::coordinates_valid(next_origin, next_dir);
     LambertOutcome {
         shadow: select(shadow, 1.0, 0.0),
         shadow_origin,
-        shadow_dir: select3(distant, wi, point_end - shadow_origin),
+        shadow_dir,
         shadow_tmax: select(distant, f32::INFINITY, SHADOW_TMAX),
         contribution,
         next: select(next, 1.0, 0.0),
-        next_origin: surface.offset_origin(next_dir),
+        next_origin,
         next_dir,
         throughput,
         pdf,

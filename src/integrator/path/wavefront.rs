@@ -47,12 +47,17 @@ struct QueuedShadows {
 
 impl ShadowSink for QueuedShadows {
     #[inline]
-    fn shadow(&mut self, ray: Ray, contribution: Vec3, _stats: &mut RenderStats) {
+    fn shadow(&mut self, ray: Ray, contribution: Vec3, stats: &mut RenderStats) {
         // An invalid ray is blocked and not counted (as `SceneTracer::occluded` has it):
         // its light never arrives, so it need not be queued.
-        if !ray.is_valid() {
-            return;
+        if ray.is_valid() {
+            self.valid_shadow(ray, contribution, stats);
         }
+    }
+
+    #[inline]
+    fn valid_shadow(&mut self, ray: Ray, contribution: Vec3, _stats: &mut RenderStats) {
+        debug_assert!(ray.is_valid(), "{ray:?}");
         self.rays.push(ray);
         self.contributions.push(contribution);
         self.lanes.push(self.lane);
