@@ -36,29 +36,16 @@ impl Ray {
         let (origin, dir) = (Vec3A::from(self.origin), Vec3A::from(self.dir));
         (origin.abs().cmplt(LIMIT) & dir.abs().cmplt(LIMIT)).all()
             & dir.cmpne(Vec3A::ZERO).any()
-            & self.interval_valid()
-    }
-
-    /// [`Ray::is_valid`] written coordinate by coordinate, for loops over many rays to
-    /// vectorise (a packet's lanes are tested so before Embree sees them).
-    #[inline(always)]
-    pub fn is_valid_by_lane(&self) -> bool {
-        Ray::coordinates_valid(self.origin, self.dir) & self.interval_valid()
-    }
-
-    /// The tests of [`Ray::is_valid`] on the interval and the time.
-    #[inline(always)]
-    fn interval_valid(&self) -> bool {
-        (self.tmin >= 0.0)
+            & (self.tmin >= 0.0)
             & (self.tmin < f32::INFINITY)
             & (self.tmax >= self.tmin)
-            & (self.time.abs() < f32::INFINITY)
+            & self.time.is_finite()
     }
 
     /// Whether a ray from `origin` along `dir` passes the coordinate tests of
-    /// [`Ray::is_valid`], coordinate by coordinate (as `is_valid_by_lane`): the lanes of
-    /// Lambertian bounces test their shadow and next rays so, and the path and the queue
-    /// of shadow rays need not test them again.
+    /// [`Ray::is_valid`], written coordinate by coordinate for loops over many lanes to
+    /// vectorise: the lanes of Lambertian bounces test their shadow and next rays so, and
+    /// the path and the queue of shadow rays need not test them again.
     #[inline(always)]
     pub fn coordinates_valid(origin: Vec3, dir: Vec3) -> bool {
         let below = |x: f32| x.abs() < Ray::COORDINATE_LIMIT;
@@ -118,21 +105,29 @@ mod tests {
         ];
         for r in invalid {
             assert!(!r.is_valid(), "{r:?}");
-            assert!(!r.is_valid_by_lane(), "{r:?}");
         }
         assert!(Ray { tmin: 0.0, tmax: 0.0, ..good }.is_valid(), "an empty interval is valid");
         assert!(Ray { dir: Vec3::new(0.0, -0.0, 1e-40), ..good }.is_valid(), "subnormal direction");
     }
 
-    /// `coordinates_valid` is `is_valid`'s rule for the origin and direction, and
-    /// `is_valid_by_lane` is `is_valid`: they agree on every mix of ordinary, edge and
-    /// non-finite coordinates (and on the invalid intervals and times above).
+    /// `coordinates_valid` is `is_valid`'s rule for the origin and direction: the two agree
+    /// on every mix of ordinary, edge and non-finite coordinates.
     #[test]
     fn coordinates_valid_is_the_rule_of_is_valid() {
         let big = Ray::COORDINATE_LIMIT;
         let values = [
-            0.0, -0.0, 1e-40, -1.0, 2.5, big * (1.0 - f32::EPSILON), big, -big, f32::MAX,
-            f32::INFINITY, f32::NEG_INFINITY, f32::NAN,
+            0.0,
+            -0.0,
+            1e-40,
+            -1.0,
+            2.5,
+            big * (1.0 - f32::EPSILON),
+            big,
+            -big,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
         ];
         let mut checked = 0;
         for &a in &values {
@@ -145,7 +140,6 @@ mod tests {
                     for (origin, dir) in [(origin, dir), (dir, origin)] {
                         let ray = Ray::new(origin, dir, f32::INFINITY);
                         assert_eq!(Ray::coordinates_valid(origin, dir), ray.is_valid(), "{ray:?}");
-                        assert_eq!(ray.is_valid_by_lane(), ray.is_valid(), "{ray:?}");
                         checked += usize::from(ray.is_valid());
                     }
                 }

@@ -6,6 +6,7 @@ use super::ffi;
 use super::ray::{self, RayHitPacket};
 use super::scene::{CommittedScene, embree_accepts};
 use crate::ray::{Hit, Ray};
+use glam::Vec3;
 
 /// How a batch of rays is handed to Embree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -160,15 +161,22 @@ impl CommittedScene {
 
 /// Sets the lanes of `packet` from `rays` (no more than its width), with no hit if
 /// `clear_hits` (for a closest-hit query), and returns the mask marking (-1) exactly those
-/// whose rays Embree accepts (`embree_accepts`, tested in vector registers); the other lanes
-/// are never traced.
+/// whose rays Embree accepts; every other lane gets `empty`'s harmless ray, or keeps the
+/// ray it had, and is never traced. Without a branch per ray on its validity.
 fn load_packet<P: RayHitPacket>(
     packet: &mut P,
     rays: &[Ray],
     clear_hits: bool,
 ) -> compat::ValidMask {
+    const HARMLESS: Ray = Ray { origin: Vec3::ZERO, dir: Vec3::Z, tmin: 0.0, tmax: 0.0, time: 0.0 };
+    let mut valid = compat::ValidMask([0; 16]);
     for (lane, ray) in rays.iter().enumerate() {
-        packet.set_lane(lane, ray);
+        let accepted = embree_accepts(ray);
+        packet.set_lane(lane, if accepted { ray } else { &HARMLESS });
+        valid.0[lane] = -i32::from(accepted);
     }
-    packet.keep_valid_lanes(rays.len(), clear_hits)
+    if clear_hits {
+        packet.clear_hits();
+    }
+    valid
 }

@@ -1,9 +1,7 @@
 //! Conversions between our `Ray`/`Hit` and Embree's single-ray structs.
 
 use super::{compat, ffi};
-use crate::lane_select::select;
 use crate::ray::{Hit, Ray};
-use glam::Vec3;
 
 /// Embree's ray for `ray`, its time clamped to the shutter interval [0, 1]. Only call with a
 /// ray that satisfies `Ray::is_valid`: Debian's Embree aborts the process on NaN/Inf rays.
@@ -64,15 +62,12 @@ pub trait RayHitPacket {
     /// A packet whose lanes hold a harmless ray (never traced: its lane is masked out) and
     /// no hit.
     fn empty() -> Self;
-    /// Lane `lane` gets the fields of `ray` as they are: `keep_valid_lanes` tests them and
-    /// clamps the time (as [`to_rtc_ray`] does). Its mask, id and flags stay those `empty`
-    /// set (Embree never writes them).
+    /// Lane `lane` becomes `ray` (see [`to_rtc_ray`]). Its mask, id and flags stay those
+    /// `empty` set (Embree never writes them), and its hit fields stay as they were:
+    /// `clear_hits` clears them for a closest-hit query (an occlusion query never reads them).
     fn set_lane(&mut self, lane: usize, ray: &Ray);
-    /// Marks valid (-1) the lanes below `len` whose rays are valid (`Ray::is_valid`), tested
-    /// in vector registers, with their times clamped to the shutter interval; every other
-    /// lane gets `empty`'s harmless ray back. Clears every lane's hit if `clear_hits` (for a
-    /// closest-hit query: an occlusion query never reads them).
-    fn keep_valid_lanes(&mut self, len: usize, clear_hits: bool) -> compat::ValidMask;
+    /// No lane has a hit.
+    fn clear_hits(&mut self);
     /// The hit Embree recorded in lane `lane`, if any (see [`from_rtc_ray_hit`]).
     fn hit(&self, lane: usize) -> Option<Hit>;
     /// Traces the lanes `valid` marks -1.
@@ -114,44 +109,19 @@ macro_rules! ray_hit_packet {
 
             #[inline]
             fn set_lane(&mut self, i: usize, ray: &Ray) {
+                let r = to_rtc_ray(ray);
                 let p = &mut self.ray;
-                [p.org_x[i], p.org_y[i], p.org_z[i]] = ray.origin.to_array();
-                [p.dir_x[i], p.dir_y[i], p.dir_z[i]] = ray.dir.to_array();
-                (p.tnear[i], p.tfar[i], p.time[i]) = (ray.tmin, ray.tmax, ray.time);
+                (p.org_x[i], p.org_y[i], p.org_z[i]) = (r.org_x, r.org_y, r.org_z);
+                (p.dir_x[i], p.dir_y[i], p.dir_z[i]) = (r.dir_x, r.dir_y, r.dir_z);
+                (p.tnear[i], p.tfar[i], p.time[i]) = (r.tnear, r.tfar, r.time);
             }
 
             #[inline]
-            fn keep_valid_lanes(&mut self, len: usize, clear_hits: bool) -> compat::ValidMask {
-                let mut valid = compat::ValidMask([0; 16]);
-                let p = &mut self.inner.ray;
-                for i in 0..$width {
-                    let ray = Ray {
-                        origin: Vec3::new(p.org_x[i], p.org_y[i], p.org_z[i]),
-                        dir: Vec3::new(p.dir_x[i], p.dir_y[i], p.dir_z[i]),
-                        tmin: p.tnear[i],
-                        tmax: p.tfar[i],
-                        time: p.time[i],
-                    };
-                    let ok = (i < len) & ray.is_valid_by_lane();
-                    valid.0[i] = if ok { -1 } else { 0 };
-                    // `empty`'s ray where not valid; the time as `to_rtc_ray` clamps it.
-                    p.org_x[i] = select(ok, p.org_x[i], 0.0);
-                    p.org_y[i] = select(ok, p.org_y[i], 0.0);
-                    p.org_z[i] = select(ok, p.org_z[i], 0.0);
-                    p.dir_x[i] = select(ok, p.dir_x[i], 0.0);
-                    p.dir_y[i] = select(ok, p.dir_y[i], 0.0);
-                    p.dir_z[i] = select(ok, p.dir_z[i], 1.0);
-                    p.tnear[i] = select(ok, p.tnear[i], 0.0);
-                    p.tfar[i] = select(ok, p.tfar[i], f32::INFINITY);
-                    p.time[i] = select(ok, p.time[i].clamp(0.0, 1.0), 0.0);
+            fn clear_hits(&mut self) {
+                self.hit.geomID = [ffi::RTC_INVALID_GEOMETRY_ID; $width];
+                for level in &mut self.hit.instID {
+                    *level = [ffi::RTC_INVALID_GEOMETRY_ID; $width];
                 }
-                if clear_hits {
-                    self.inner.hit.geomID = [ffi::RTC_INVALID_GEOMETRY_ID; $width];
-                    for level in &mut self.inner.hit.instID {
-                        *level = [ffi::RTC_INVALID_GEOMETRY_ID; $width];
-                    }
-                }
-                valid
             }
 
             #[inline]
