@@ -71,6 +71,7 @@ impl Camera {
 
     /// The primary ray through `raster`. `lens` is a uniform sample in [0,1)² and is only
     /// read when the camera has an aperture.
+    #[inline(always)]
     pub fn generate_ray(&self, raster: Vec2, lens: Option<Vec2>) -> Ray {
         if let Some(half_height) = self.ortho_half_height {
             // Parallel rays from the image plane: the perspective direction's x and y at unit

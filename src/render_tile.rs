@@ -54,6 +54,7 @@ fn sample_stream(
 /// The camera ray through pixel (`x`, `y`) at `uniform` (the sample's position draw,
 /// `SampleStream::pixel_position`) with the rest of its draws from `stream`, the scene's
 /// backdrop behind it (if it has one), and the sample's filter weight.
+#[inline(always)]
 fn camera_ray(
     scene: &RenderScene,
     (x, y): (u32, u32),
