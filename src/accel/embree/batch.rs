@@ -161,8 +161,9 @@ impl CommittedScene {
 
 /// Sets the lanes of `packet` from `rays` (no more than its width), with no hit if
 /// `clear_hits` (for a closest-hit query), and returns the mask marking (-1) exactly those
-/// whose rays Embree accepts; every other lane gets `empty`'s harmless ray, or keeps the
-/// ray it had, and is never traced. Without a branch per ray on its validity.
+/// whose rays Embree accepts, without a branch per ray on its validity. The other lanes are
+/// never traced: a refused ray's lane gets a harmless ray, and the lanes past the end of
+/// `rays` keep the one they had (from `empty` or an earlier chunk, accepted or harmless).
 fn load_packet<P: RayHitPacket>(
     packet: &mut P,
     rays: &[Ray],
