@@ -13,7 +13,7 @@ mod options;
 
 mod library;
 pub use library::{EmbreeLibrary, backends_description, embree_library};
-pub use options::{AccelOptions, BackendKind, BatchMode, BuildQuality, Coherence};
+pub use options::{AccelOptions, BackendKind, BatchMode, BuildQuality, Coherence, Intersection};
 
 /// Which traversal counters a backend can observe.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]

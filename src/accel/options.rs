@@ -68,6 +68,23 @@ pub enum BatchMode {
     Packets16,
 }
 
+/// How Embree tests rays against triangles (the obvhs backend has one test, and ignores this).
+///
+/// `Robust` (`RTC_SCENE_FLAG_ROBUST`) is watertight: a ray through an edge or a vertex that
+/// triangles share hits one of them, never slips between them, at any coordinate size.
+/// `Fast` (`RTC_SCENE_FLAG_NONE`, Mitsuba 3's setting) is Embree's default test, which may
+/// let such a ray through, and lets `BuildQuality::High` build spatial splits. Measured on
+/// the Cornell box (AMD EPYC, AVX2, 11 alternated pairs, 16 spp): `Fast` renders 8 % faster
+/// (0.92×); at 64 spp 12 % of the pixels differ, by at most 0.005 (hit points rounded
+/// otherwise), and the image's mean by 2e-7 of itself.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Intersection {
+    #[default]
+    Robust,
+    Fast,
+}
+
 /// Whether the rays of a batch start near each other and point the same way (a tile's
 /// camera rays), or not (bounces). Embree's coherent packet traversal traces camera rays
 /// about 3x faster and bounce rays about 15 % slower than its incoherent one (measured on
@@ -90,6 +107,8 @@ pub struct AccelOptions {
     pub compact: bool,
     /// Embree: how batches of rays (`Accel::intersect_batch`) are traced.
     pub batch: BatchMode,
+    /// Embree: watertight or fast triangle tests.
+    pub intersection: Intersection,
 }
 
 impl AccelOptions {
@@ -99,6 +118,7 @@ impl AccelOptions {
         build_quality: BuildQuality::Medium,
         compact: false,
         batch: BatchMode::Native,
+        intersection: Intersection::Robust,
     };
 }
 
@@ -124,4 +144,9 @@ named_choices!(BatchMode, "batch mode", {
     Single => "single",
     Packets8 => "packets8",
     Packets16 => "packets16",
+});
+
+named_choices!(Intersection, "intersection", {
+    Robust => "robust",
+    Fast => "fast",
 });

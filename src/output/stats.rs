@@ -2,7 +2,7 @@
 //! `--stats-json` (its schema is the `StatsReport` type).
 
 use super::{OutputError, WriteSeek, write_one};
-use crate::accel::{BatchMode, BuildQuality, Observes};
+use crate::accel::{BatchMode, BuildQuality, Intersection, Observes};
 use crate::render::{RenderOptions, RenderOutput};
 use crate::stats::RenderStats;
 use std::path::Path;
@@ -19,6 +19,7 @@ pub struct StatsReport {
     /// versions and ISAs may return different hits for the same ray.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub embree: Option<crate::accel::EmbreeLibrary>,
+    pub intersection: Intersection,
     pub observes: Observes,
     pub render_seconds: f64,
     pub render_space: &'static str,
@@ -36,6 +37,7 @@ impl StatsReport {
             build_seconds: output.build_time.as_secs_f64(),
             compact: options.accel.compact,
             embree: (output.backend == "embree").then(crate::accel::embree_library).flatten(),
+            intersection: options.accel.intersection,
             observes: output.observes,
             render_seconds: output.render_time.as_secs_f64(),
             render_space: crate::choice::Choice::name(options.render_space),

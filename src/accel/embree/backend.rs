@@ -7,7 +7,9 @@ use super::geometry_handle::GeometryHandle;
 use super::scene::{CommittedScene, Scene};
 use super::sphere::sphere_geometry;
 use super::user_triangles::user_triangle_geometry;
-use crate::accel::{Accel, AccelError, AccelOptions, BatchMode, BuildQuality, Coherence, Observes};
+use crate::accel::{
+    Accel, AccelError, AccelOptions, BatchMode, BuildQuality, Coherence, Intersection, Observes,
+};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{self, Placement, RenderScene};
 use crate::stats::TraversalCounters;
@@ -175,6 +177,12 @@ impl EmbreeAccel {
         self.motion_geometries
     }
 
+    /// The flags of its top-level scene (child scenes get the same).
+    #[cfg(test)]
+    pub(crate) fn scene_flags(&self) -> ffi::RTCSceneFlags {
+        self.scene.flags()
+    }
+
     /// A bare `rtcIntersect1` loop over `rays` (one query context for all, no wrapper, no
     /// `Hit` conversion), returning how many rays hit: the baseline [`Accel::intersect`] is
     /// measured against (`benches/throughput.rs`).
@@ -200,20 +208,24 @@ impl EmbreeAccel {
     }
 }
 
-/// A scene as all of ours are built, with the build quality and COMPACT flag of `options`.
-/// ROBUST always: watertight-enough traversal for rays grazing triangle edges and box faces,
-/// in child scenes too (that is where an instanced mesh's BVH is). Embree 3.13.5 ignores it
-/// for instance and user-geometry BVHs (it has no robust variant of those traversals): a ray
-/// within rounding of such a box's face may miss it. With ROBUST it also builds triangles
-/// with the MEDIUM builder when asked for HIGH (it has spatial splits only for the fast
-/// triangle layout), so `BuildQuality::High` changes nothing here.
+/// A scene as all of ours are built, with the build quality, triangle test and COMPACT flag
+/// of `options`. ROBUST by default (`Intersection::Robust`): watertight-enough traversal
+/// for rays grazing triangle edges and box faces, in child scenes too (that is where an
+/// instanced mesh's BVH is). Embree 3.13.5 ignores it for instance and user-geometry BVHs
+/// (it has no robust variant of those traversals): a ray within rounding of such a box's
+/// face may miss it. With ROBUST it also builds triangles with the MEDIUM builder when asked
+/// for HIGH (it has spatial splits only for the fast triangle layout), so
+/// `BuildQuality::High` changes nothing then.
 fn new_scene(device: &Arc<Device>, options: &AccelOptions) -> Result<Scene, AccelError> {
     let quality = match options.build_quality {
         BuildQuality::Low => ffi::RTCBuildQuality::LOW,
         BuildQuality::Medium => ffi::RTCBuildQuality::MEDIUM,
         BuildQuality::High => ffi::RTCBuildQuality::HIGH,
     };
-    let mut flags = ffi::RTCSceneFlags::ROBUST;
+    let mut flags = match options.intersection {
+        Intersection::Robust => ffi::RTCSceneFlags::ROBUST,
+        Intersection::Fast => ffi::RTCSceneFlags::NONE,
+    };
     if options.compact {
         flags |= ffi::RTCSceneFlags::COMPACT;
     }

@@ -108,6 +108,13 @@ impl CommittedScene {
         &self.scene.device
     }
 
+    /// The flags it was built with (`rtcGetSceneFlags`).
+    #[cfg(test)]
+    pub fn flags(&self) -> ffi::RTCSceneFlags {
+        // SAFETY: the scene is live.
+        unsafe { ffi::rtcGetSceneFlags(self.scene.handle) }
+    }
+
     /// Geometries attached to this scene with more than one time step (child scenes of
     /// instances not included).
     pub fn motion_geometries(&self) -> usize {

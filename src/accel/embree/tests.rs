@@ -139,6 +139,25 @@ fn empty_scene_has_no_hits() {
     }
 }
 
+/// `AccelOptions::intersection` and `compact` reach the scene's flags.
+#[test]
+fn intersection_and_compact_set_the_scene_flags() {
+    use crate::accel::Intersection;
+    let scene = random_scene();
+    for (intersection, test) in [
+        (Intersection::Robust, ffi::RTCSceneFlags::ROBUST),
+        (Intersection::Fast, ffi::RTCSceneFlags::NONE),
+    ] {
+        for (compact, layout) in
+            [(false, ffi::RTCSceneFlags::NONE), (true, ffi::RTCSceneFlags::COMPACT)]
+        {
+            let options = AccelOptions { intersection, compact, ..AccelOptions::default() };
+            let accel = EmbreeAccel::build(&scene, &options).unwrap();
+            assert_eq!(accel.scene_flags(), test | layout, "{options:?}");
+        }
+    }
+}
+
 fn build_error(shapes: Vec<Shape>) -> String {
     match EmbreeAccel::build(&render_scene(shapes), &AccelOptions::default()) {
         Err(AccelError::Embree(msg)) => msg,
