@@ -9,7 +9,11 @@
 #                       then the median over the rounds
 #   Embree's share      of a 64-spp render's `perf record` profile, by library
 #
-#   [ROUNDS=3] bash scripts/speed-vs-mitsuba.sh [EMBRAY_BINARY]   (default: a release build)
+#   [ROUNDS=3] [EMBRAY_ARGS=...] bash scripts/speed-vs-mitsuba.sh [EMBRAY_BINARY]
+#
+# (default binary: a release build). EMBRAY_ARGS are added to every embray render, e.g.
+# EMBRAY_ARGS="--intersection fast --build-quality high" for Mitsuba 3's own Embree settings
+# (RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_HIGH) instead of embray's robust default.
 #
 # Needs the peers' Python environment (`SKIP_BPY=1 bash ../shared/peers/setup_peers.sh`,
 # found through $PEERS_DIR, default /tmp/peers) and `perf`. Prints the CPU's widest vector
@@ -37,12 +41,13 @@ trap 'rm -rf "$work"' EXIT
 
 if grep -qw avx512f /proc/cpuinfo; then isa=AVX-512; elif grep -qw avx2 /proc/cpuinfo; then isa=AVX2; else isa="neither AVX2 nor AVX-512"; fi
 echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) cores, $isa"
-echo "embray: $("$embray" --version | head -1)"
+echo "embray: $("$embray" --version | head -1)${EMBRAY_ARGS:+, with $EMBRAY_ARGS}"
+read -ra embray_args <<< "${EMBRAY_ARGS:-}"
 
 rounds=${ROUNDS:-3}
 for round in $(seq "$rounds"); do
     PEERS_DIR=$peers_dir "$python" "$harness/equal_error.py" "$embray" --scene cornell \
-        --spps 64,256 --only embray,mitsuba --out "$work/round$round" > "$work/harness$round.log" 2>&1 ||
+        --spps 64,256 --only embray,mitsuba "--embray-args=${EMBRAY_ARGS:-}" --out "$work/round$round" > "$work/harness$round.log" 2>&1 ||
         { cat "$work/harness$round.log" >&2; echo "the peers harness failed (its log above)" >&2; exit 1; }
 done
 
@@ -76,6 +81,6 @@ print(f"time to equal error, embray / mitsuba: {med(equal):.2f}x (median over th
 PY
 
 perf record -q -e cpu-clock -F 2000 -o "$work/perf.data" \
-    "$embray" render "$harness/embray/cornell.toml" --spp 64 -o "$work/perf.exr" -q 2>/dev/null
+    "$embray" render "$harness/embray/cornell.toml" --spp 64 -o "$work/perf.exr" -q "${embray_args[@]}" 2>/dev/null
 perf report -i "$work/perf.data" --no-children --sort dso -g none 2>/dev/null |
     awk '/libembree/ { share += $1 } END { printf "Embree share of a 64-spp render (perf, by library): %.1f %%\n", share }'
