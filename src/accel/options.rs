@@ -25,8 +25,8 @@ impl BackendKind {
 /// Measured here (`benches/throughput.rs`, one thread, 256×256 camera rays): with Embree
 /// 3.13.5 `Low` builds the 1M-triangle sphere about 10 % faster but traces 5-20 % fewer
 /// rays per second; `High` is the same as `Medium`, because Embree has no spatial-split
-/// builder for the robust triangle layout every scene of ours uses (`RTC_SCENE_FLAG_ROBUST`;
-/// also none for user geometry and instances). obvhs: `Low` builds about 20 % faster and
+/// builder for the robust triangle layout our scenes use by default (`RTC_SCENE_FLAG_ROBUST`,
+/// `Intersection::Robust`; also none for user geometry and instances). obvhs: `Low` builds about 20 % faster and
 /// `High` 2× slower, with whole renders within 2 % of `Medium`. Hence `Medium`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -37,7 +37,7 @@ pub enum BuildQuality {
     #[default]
     Medium,
     /// Embree `RTC_BUILD_QUALITY_HIGH` (SAH with spatial splits, where Embree has it: not for
-    /// our robust scenes in 3.13.5); obvhs `slow_build`.
+    /// robust scenes in 3.13.5, see `Intersection`); obvhs `slow_build`.
     High,
 }
 
@@ -73,10 +73,12 @@ pub enum BatchMode {
 /// `Robust` (`RTC_SCENE_FLAG_ROBUST`) is watertight: a ray through an edge or a vertex that
 /// triangles share hits one of them, never slips between them, at any coordinate size.
 /// `Fast` (`RTC_SCENE_FLAG_NONE`, Mitsuba 3's setting) is Embree's default test, which may
-/// let such a ray through, and lets `BuildQuality::High` build spatial splits. Measured on
-/// the Cornell box (AMD EPYC, AVX2, 11 alternated pairs, 16 spp): `Fast` renders 8 % faster
-/// (0.92×); at 64 spp 12 % of the pixels differ, by at most 0.005 (hit points rounded
-/// otherwise), and the image's mean by 2e-7 of itself.
+/// let such a ray through, and lets `BuildQuality::High` build spatial splits. Measured
+/// (AMD EPYC, AVX2, 256², alternated pairs, medians): `Fast` renders the Cornell box in
+/// 0.87× the wall time (15 pairs, 16 spp) and the city block in 0.95× (7 pairs). At 64 spp
+/// with the same seed, 12 % of the Cornell box's pixels differ (glass 2 %, city block
+/// under 0.1 %), by at most 0.009, hit points rounded otherwise; each image's mean moves by
+/// less than 4e-7 of itself.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Intersection {
