@@ -2,12 +2,13 @@
 //! packets, plain Lambertian bounces in vector lanes) renders exactly the scalar one's
 //! image, ray counts included, and so does the reference (every BSDF through the general
 //! code): on every bundled scene, on Mitsuba's render suite scenes and on the course's
-//! path-tracing scenes, on both backends and with each of Embree's batch modes.
+//! path-tracing scenes, on both backends and with each of Embree's batch modes (and with
+//! its fast triangle test).
 
 mod common;
 
 use common::*;
-use embray::accel::{BackendKind, BatchMode};
+use embray::accel::{BackendKind, BatchMode, Intersection};
 use embray::choice::Choice;
 use embray::render_options::PathBatching;
 use embray::scene::SceneDesc;
@@ -52,6 +53,17 @@ fn assert_batched_is_scalar(
             batched.accel.batch = batch;
             let image = render_ok(&scene, &batched);
             let what = format!("{name} on {} with {batch:?}", backend.name());
+            assert!(image.film == reference.film, "{what}: the batched image differs");
+            assert_eq!(image.stats, reference.stats, "{what}: ray counts");
+        }
+        if backend == BackendKind::Embree {
+            // Embree's fast triangle test: its own image, the same batched and scalar.
+            let mut fast = scalar.clone();
+            fast.accel.intersection = Intersection::Fast;
+            let reference = render_ok(&scene, &fast);
+            fast.paths = PathBatching::Batched;
+            let image = render_ok(&scene, &fast);
+            let what = format!("{name} on embree with the fast triangle test");
             assert!(image.film == reference.film, "{what}: the batched image differs");
             assert_eq!(image.stats, reference.stats, "{what}: ray counts");
         }
