@@ -25,9 +25,10 @@ impl BackendKind {
 /// Measured here (`benches/throughput.rs`, one thread, 256×256 camera rays): with Embree
 /// 3.13.5 `Low` builds the 1M-triangle sphere about 10 % faster but traces 5-20 % fewer
 /// rays per second; `High` is the same as `Medium`, because Embree has no spatial-split
-/// builder for the robust triangle layout our scenes use by default (`RTC_SCENE_FLAG_ROBUST`,
-/// `Intersection::Robust`; also none for user geometry and instances). obvhs: `Low` builds about 20 % faster and
-/// `High` 2× slower, with whole renders within 2 % of `Medium`. Hence `Medium`.
+/// builder for the robust triangle layout our scenes use by default
+/// (`RTC_SCENE_FLAG_ROBUST`, `Intersection::Robust`; also none for user geometry and
+/// instances). obvhs: `Low` builds about 20 % faster and `High` 2× slower, with whole
+/// renders within 2 % of `Medium`. Hence `Medium`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum BuildQuality {
@@ -71,7 +72,7 @@ pub enum BatchMode {
 /// How Embree tests rays against triangles (the obvhs backend has one test, and ignores this).
 ///
 /// `Robust` (`RTC_SCENE_FLAG_ROBUST`) is watertight: a ray through an edge or a vertex that
-/// triangles share hits one of them, never slips between them, at any coordinate size.
+/// triangles share hits one of them, never slips between them.
 /// `Fast` (`RTC_SCENE_FLAG_NONE`, Mitsuba 3's setting) is Embree's default test, which may
 /// let such a ray through, and lets `BuildQuality::High` build spatial splits. Measured
 /// (AMD EPYC, AVX2, 256², alternated pairs, medians): `Fast` renders the Cornell box in

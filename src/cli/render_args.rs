@@ -74,8 +74,8 @@ pub struct RenderArgs {
     #[arg(long, value_parser = choice::<BatchMode>(), default_value_t = BatchMode::Native)]
     pub batch: BatchMode,
     /// Embree: watertight triangle tests (robust), or Embree's fast ones, Mitsuba 3's
-    /// setting (a ray through an edge that triangles share may slip between them; about
-    /// 8 % faster on the Cornell box, README: Speed).
+    /// setting (a ray through an edge that triangles share may slip between them; 13 %
+    /// faster on the Cornell box, README: Speed).
     #[arg(long, value_parser = choice::<Intersection>(), default_value_t = Intersection::Robust)]
     pub intersection: Intersection,
     /// How the path tracer advances its paths: batched (the paths of a tile's pixels
