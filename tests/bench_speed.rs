@@ -35,16 +35,21 @@ fn speed_rows_of_a_tiny_scene_are_finite_and_positive() {
 }
 
 #[test]
-fn query_rows_cover_every_backend_and_batch_mode_with_sane_costs() {
+fn query_rows_cover_every_backend_batch_mode_and_triangle_test_with_sane_costs() {
     use embray::bench::queries;
     let scene = procedural::displaced_sphere_scene(2000, 16, 16);
     let rows = queries::measure(&scene, &BackendKind::compiled(), 1).expect("measures");
     let expected: Vec<(&str, &str)> = BackendKind::compiled()
         .into_iter()
         .flat_map(|b| match b {
-            BackendKind::Embree => {
-                vec![("embree", "single"), ("embree", "packets8"), ("embree", "packets16")]
-            }
+            BackendKind::Embree => vec![
+                ("embree", "single"),
+                ("embree", "packets8"),
+                ("embree", "packets16"),
+                ("embree", "single (fast)"),
+                ("embree", "packets8 (fast)"),
+                ("embree", "packets16 (fast)"),
+            ],
             BackendKind::Obvhs => vec![("obvhs", "single")],
         })
         .collect();

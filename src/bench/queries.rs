@@ -2,11 +2,12 @@
 //! measurement that picks how the batched path tracer calls each backend. On one thread:
 //! camera rays through every pixel centre (closest hits, coherent batches), cosine bounces
 //! from their hits (closest hits, incoherent batches), and the same bounces as occlusion
-//! queries (shadow rays), each one at a time and in the renderer's batches of each mode.
+//! queries (shadow rays), each one at a time and in the renderer's batches of each mode;
+//! on Embree with its robust triangle test (the default) and with its fast one.
 
 use super::median;
 use super::speed::{diffuse_rays, primary_rays};
-use crate::accel::{Accel, AccelOptions, BackendKind, BatchMode, Coherence, build};
+use crate::accel::{Accel, AccelOptions, BackendKind, BatchMode, Coherence, Intersection, build};
 use crate::choice::Choice;
 use crate::ray::Ray;
 use crate::render::{RenderError, RenderOptions, prepare_scene};
@@ -21,7 +22,8 @@ const BATCH: usize = 256;
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct QueryRow {
     pub backend: &'static str,
-    /// `single` for one query per ray; else the batch mode's name.
+    /// `single` for one query per ray; else the batch mode's name; ` (fast)` after it for
+    /// Embree's fast triangle test (`Intersection::Fast`).
     pub mode: String,
     pub camera_ns: f64,
     pub bounce_ns: f64,
@@ -39,7 +41,7 @@ fn ns_per_ray(rays: &[Ray], runs: usize, mut query: impl FnMut(&[Ray])) -> f64 {
 }
 
 /// The query costs on `desc` for every backend in `backends`: one row of single queries
-/// each, and one per Embree batch mode.
+/// each, and one per Embree batch mode, for each of Embree's triangle tests.
 pub fn measure(
     desc: &SceneDesc,
     backends: &[BackendKind],
@@ -48,19 +50,25 @@ pub fn measure(
     let scene = prepare_scene(desc, &RenderOptions::for_scene(desc))?;
     let mut rows = Vec::new();
     for &backend in backends {
-        let modes: &[Option<BatchMode>] = match backend {
-            BackendKind::Embree => &[None, Some(BatchMode::Packets8), Some(BatchMode::Packets16)],
-            BackendKind::Obvhs => &[None],
+        let (modes, tests): (&[Option<BatchMode>], &[Intersection]) = match backend {
+            BackendKind::Embree => (
+                &[None, Some(BatchMode::Packets8), Some(BatchMode::Packets16)],
+                &[Intersection::Robust, Intersection::Fast],
+            ),
+            BackendKind::Obvhs => (&[None], &[Intersection::Robust]),
         };
-        for &mode in modes {
-            let options = AccelOptions { batch: mode.unwrap_or_default(), ..AccelOptions::DEFAULT };
+        let builds = tests.iter().flat_map(|&test| modes.iter().map(move |&mode| (test, mode)));
+        for (intersection, mode) in builds {
+            let batch = mode.unwrap_or_default();
+            let options = AccelOptions { batch, intersection, ..AccelOptions::DEFAULT };
             let accel = build(backend, &scene, &options)?;
+            let test = if intersection == Intersection::Fast { " (fast)" } else { "" };
             let camera = primary_rays(&scene);
             let bounces = diffuse_rays(&scene, accel.as_ref(), &camera);
             let row = match mode {
                 None => QueryRow {
                     backend: backend.name(),
-                    mode: "single".into(),
+                    mode: format!("single{test}"),
                     camera_ns: ns_per_ray(&camera, runs, |r| one_by_one(accel.as_ref(), r)),
                     bounce_ns: ns_per_ray(&bounces, runs, |r| one_by_one(accel.as_ref(), r)),
                     shadow_ns: ns_per_ray(&bounces, runs, |r| occluded(accel.as_ref(), r)),
@@ -71,7 +79,7 @@ pub fn measure(
                     let incoherent = |r: &[Ray]| batched(accel, r, Coherence::Incoherent);
                     QueryRow {
                         backend: backend.name(),
-                        mode: mode.name().into(),
+                        mode: format!("{}{test}", mode.name()),
                         camera_ns: ns_per_ray(&camera, runs, coherent),
                         bounce_ns: ns_per_ray(&bounces, runs, incoherent),
                         shadow_ns: ns_per_ray(&bounces, runs, |r| occluded_batched(accel, r)),
