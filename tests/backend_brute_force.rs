@@ -216,7 +216,7 @@ fn every_build() -> Vec<(BackendKind, AccelOptions)> {
     let mut all = Vec::new();
     for backend in backends() {
         let tests: &[Intersection] = match backend {
-            BackendKind::Embree => &[Intersection::Robust, Intersection::Fast],
+            BackendKind::Embree => Intersection::ALL,
             BackendKind::Obvhs => &[Intersection::Robust],
         };
         for &intersection in tests {

@@ -51,10 +51,9 @@ pub fn measure(
     let mut rows = Vec::new();
     for &backend in backends {
         let (modes, tests): (&[Option<BatchMode>], &[Intersection]) = match backend {
-            BackendKind::Embree => (
-                &[None, Some(BatchMode::Packets8), Some(BatchMode::Packets16)],
-                &[Intersection::Robust, Intersection::Fast],
-            ),
+            BackendKind::Embree => {
+                (&[None, Some(BatchMode::Packets8), Some(BatchMode::Packets16)], Intersection::ALL)
+            }
             BackendKind::Obvhs => (&[None], &[Intersection::Robust]),
         };
         let builds = tests.iter().flat_map(|&test| modes.iter().map(move |&mode| (test, mode)));
@@ -62,7 +61,11 @@ pub fn measure(
             let batch = mode.unwrap_or_default();
             let options = AccelOptions { batch, intersection, ..AccelOptions::DEFAULT };
             let accel = build(backend, &scene, &options)?;
-            let test = if intersection == Intersection::Fast { " (fast)" } else { "" };
+            // The default test unnamed, as the rows before there was a choice.
+            let test = match intersection {
+                Intersection::Robust => String::new(),
+                other => format!(" ({})", other.name()),
+            };
             let camera = primary_rays(&scene);
             let bounces = diffuse_rays(&scene, accel.as_ref(), &camera);
             let row = match mode {

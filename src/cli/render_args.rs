@@ -3,7 +3,7 @@
 use super::choices::{LookArgs, TonemapArg, choice, tonemap};
 use anyhow::{Result, bail};
 use clap::Args;
-use embray::accel::{BackendKind, BatchMode, BuildQuality, Intersection};
+use embray::accel::{AccelOptions, BackendKind, BatchMode, BuildQuality, Intersection};
 use embray::compile::EffectsMode;
 use embray::distributed::Split;
 use embray::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SPP, MAX_THREADS};
@@ -76,7 +76,7 @@ pub struct RenderArgs {
     /// Embree: watertight triangle tests (robust), or Embree's fast ones, Mitsuba 3's
     /// setting (a ray through an edge that triangles share may slip between them; 13 %
     /// faster on the Cornell box, README: Speed).
-    #[arg(long, value_parser = choice::<Intersection>(), default_value_t = Intersection::Robust)]
+    #[arg(long, value_parser = choice::<Intersection>(), default_value_t = AccelOptions::DEFAULT.intersection)]
     pub intersection: Intersection,
     /// How the path tracer advances its paths: batched (the paths of a tile's pixels
     /// together, a bounce at a time, rays traced in packets, plain Lambertian bounces
