@@ -62,9 +62,10 @@ pub fn measure(
             let options = AccelOptions { batch, intersection, ..AccelOptions::DEFAULT };
             let accel = build(backend, &scene, &options)?;
             // The default test unnamed, as the rows before there was a choice.
-            let test = match intersection {
-                Intersection::Robust => String::new(),
-                other => format!(" ({})", other.name()),
+            let test = if intersection == AccelOptions::DEFAULT.intersection {
+                String::new()
+            } else {
+                format!(" ({})", intersection.name())
             };
             let camera = primary_rays(&scene);
             let bounces = diffuse_rays(&scene, accel.as_ref(), &camera);
