@@ -26,13 +26,17 @@ pub fn embree_library() -> Option<EmbreeLibrary> {
 /// What this binary's backends are, for `--version` and `info`: e.g.
 /// "Embree 3.13.5 (AVX2 kernels), obvhs". An Embree that cannot start says why.
 pub fn backends_description() -> String {
-    let mut parts: Vec<String> = Vec::new();
+    let backends = [embree_description(), cfg!(feature = "obvhs").then(|| "obvhs".to_owned())];
+    backends.into_iter().flatten().collect::<Vec<_>>().join(", ")
+}
+
+/// The Embree part of `backends_description`, if the binary has the backend.
+fn embree_description() -> Option<String> {
     #[cfg(feature = "embree")]
-    parts.push(match super::embree::library() {
+    return Some(match super::embree::library() {
         Ok(library) => library.to_string(),
         Err(e) => format!("Embree (cannot start: {e})"),
     });
-    #[cfg(feature = "obvhs")]
-    parts.push("obvhs".to_owned());
-    parts.join(", ")
+    #[cfg(not(feature = "embree"))]
+    None
 }
