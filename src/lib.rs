@@ -37,6 +37,7 @@ pub mod limits;
 pub mod mitsuba_rule;
 pub mod output;
 pub mod params;
+pub mod phase_times;
 pub mod ray;
 pub mod render;
 pub mod render_options;

@@ -75,6 +75,8 @@ pub struct RenderOptions {
     pub crop: Option<crate::film::Tile>,
     /// Stops a progressive render early (a signal, a time limit) with the passes done.
     pub stop: Option<crate::render_stop::Stop>,
+    /// Times the batched path tracer's phases (`RenderStats::phases`); the image is the same.
+    pub time_phases: bool,
 }
 
 impl RenderOptions {
@@ -104,6 +106,7 @@ impl RenderOptions {
             first_hit_albedo: false,
             crop: None,
             stop: None,
+            time_phases: false,
         }
     }
 }

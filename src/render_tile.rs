@@ -4,6 +4,7 @@
 
 use crate::film::Tile;
 use crate::integrator::{PathSample, Tracer, Wavefront};
+use crate::phase_times::{Phase, PhaseClock};
 use crate::ray::Ray;
 use crate::render_options::{PathBatching, RenderOptions};
 use crate::render_scene::RenderScene;
@@ -126,6 +127,7 @@ pub(crate) fn render_tile(
         return Some(result);
     };
     let wavefront = &mut scratch.wavefront;
+    let mut clock = PhaseClock::new(options.time_phases);
     for s in samples {
         if stopped() {
             return None;
@@ -142,12 +144,14 @@ pub(crate) fn render_tile(
             wavefront.push(path.start(ray, backdrop), stream);
             scratch.weights.push(weight);
         }
-        wavefront.run(path, &mut result.stats);
+        clock.lap(Phase::CameraRays, &mut result.stats.phases);
+        wavefront.run(path, &mut result.stats, &mut clock);
         for ((sums, sample), weight) in
             result.sums.iter_mut().zip(wavefront.results()).zip(&scratch.weights)
         {
             add(sums, sample, *weight);
         }
+        clock.lap(Phase::Accumulate, &mut result.stats.phases);
     }
     Some(result)
 }

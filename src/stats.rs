@@ -2,6 +2,7 @@
 //! primitive tests. Each worker owns a plain struct; they are merged once at the end, so
 //! counting needs no atomics and the totals do not depend on the thread count.
 
+use crate::phase_times::PhaseTimes;
 use std::ops::AddAssign;
 
 /// `AddAssign` that adds every listed field.
@@ -57,6 +58,9 @@ pub struct RenderStats {
     /// Absent from part files written before it was counted.
     #[serde(default)]
     pub bounces: BounceCounts,
+    /// CPU time by phase of the batched path tracer, when timed (`--time-phases`).
+    #[serde(default, skip_serializing_if = "PhaseTimes::is_empty")]
+    pub phases: PhaseTimes,
 }
 
 impl RenderStats {
@@ -65,4 +69,4 @@ impl RenderStats {
     }
 }
 
-add_fields!(RenderStats { camera, shadow, indirect, traversal, bounces });
+add_fields!(RenderStats { camera, shadow, indirect, traversal, bounces, phases });

@@ -89,7 +89,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         if !args.quiet {
             note(line);
         }
-        if args.stats {
+        if args.stats || args.time_phases {
             out(table)?;
         }
     }

@@ -101,6 +101,12 @@ pub struct RenderArgs {
     /// Write the counters as JSON to this file (implies counting, like --stats).
     #[arg(long)]
     pub stats_json: Option<PathBuf>,
+    /// Print the ray counters and the CPU time of each phase of the batched path tracer
+    /// (camera rays, closest hits, Sobol draws, shading, vector lanes, lane outcomes, shadow
+    /// rays, accumulate), summed over the threads: where a render's time goes. Unlike
+    /// --stats it does not count traversal, so the render runs as it otherwise would.
+    #[arg(long)]
+    pub time_phases: bool,
     /// Shadow rays to area lights per shading point (default: the scene's, else 1).
     #[arg(long)]
     pub light_samples: Option<u32>,
@@ -257,6 +263,7 @@ impl RenderArgs {
             options.backend = backend;
         }
         options.count_traversal = self.stats || self.stats_json.is_some();
+        options.time_phases = self.time_phases;
         options.accel.build_quality = self.build_quality;
         options.accel.compact = self.compact;
         options.accel.batch = self.batch;

@@ -105,10 +105,17 @@ pub fn process_cpu_seconds() -> f64 {
 }
 
 /// The render options that decide the image, as text: the options less the thread count and
-/// the progress bar, which do not change a pixel.
+/// the progress bar (and the other options that do not change a pixel: the stop, the crop,
+/// the phase timing).
 pub fn options_fingerprint(options: &RenderOptions) -> String {
-    let canonical =
-        RenderOptions { threads: None, progress: false, stop: None, crop: None, ..options.clone() };
+    let canonical = RenderOptions {
+        threads: None,
+        progress: false,
+        stop: None,
+        crop: None,
+        time_phases: false,
+        ..options.clone()
+    };
     format!("{canonical:?}")
 }
 

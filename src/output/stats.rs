@@ -85,5 +85,5 @@ pub fn stats_table(stats: &RenderStats, observes: Observes) -> String {
             100.0 * bounces.scalar as f64 / total as f64
         );
     }
-    out
+    out + &crate::phase_times::phase_table(&stats.phases)
 }

@@ -11,6 +11,7 @@ use super::lanes::LambertLanes;
 use super::{PathState, PathTracer, ShadowSink};
 use crate::accel::Coherence;
 use crate::integrator::PathSample;
+use crate::phase_times::{Phase, PhaseClock};
 use crate::ray::{Hit, Ray};
 use crate::sampling::SampleStream;
 use crate::stats::RenderStats;
@@ -84,8 +85,8 @@ impl Wavefront {
         self.states.iter().map(|s| &s.result)
     }
 
-    /// Traces every path of the batch to its end.
-    pub fn run(&mut self, path: &PathTracer, stats: &mut RenderStats) {
+    /// Traces every path of the batch to its end, its phases' times charged on `clock`.
+    pub fn run(&mut self, path: &PathTracer, stats: &mut RenderStats, clock: &mut PhaseClock) {
         self.direct.resize(self.states.len(), Vec3::ZERO);
         loop {
             self.rays.clear();
@@ -112,6 +113,7 @@ impl Wavefront {
                 coherence,
                 &mut stats.traversal,
             );
+            clock.lap(Phase::ClosestHits, &mut stats.phases);
             let shadows = &mut self.shadows;
             shadows.rays.clear();
             shadows.contributions.clear();
@@ -120,6 +122,7 @@ impl Wavefront {
             // A ray that found nothing ends its path without drawing.
             let hit_lanes = lanes.iter().zip(&self.hits).filter(|(_, hit)| hit.is_some());
             crate::sampling::draw_ahead(&mut self.streams, hit_lanes.map(|(&lane, _)| lane));
+            clock.lap(Phase::Draws, &mut stats.phases);
             for ((&lane, ray), &hit) in lanes.iter().zip(&self.rays).zip(&self.hits) {
                 let hit = path.tracer.closest_hit(ray, at_camera, Some(hit), stats);
                 shadows.lane = lane;
@@ -129,14 +132,18 @@ impl Wavefront {
                     self.lambert.commit(lane);
                 }
             }
+            clock.lap(Phase::Shading, &mut stats.phases);
             self.lambert.run(&path.spaces, path.lone_emitter.as_deref());
+            clock.lap(Phase::Lanes, &mut stats.phases);
             for (lane, outcome) in self.lambert.outcomes() {
                 shadows.lane = lane;
                 path.finish_lambert(&mut self.states[lane as usize], &outcome, shadows, stats);
             }
+            clock.lap(Phase::Outcomes, &mut stats.phases);
             shadows.blocked.clear();
             shadows.blocked.resize(shadows.rays.len(), true);
             path.tracer.occluded_batch(&shadows.rays, &mut shadows.blocked, stats);
+            clock.lap(Phase::ShadowRays, &mut stats.phases);
             let tests = shadows.lanes.iter().zip(&shadows.contributions).zip(&shadows.blocked);
             for ((&lane, &contribution), &blocked) in tests {
                 if !blocked {
@@ -147,6 +154,7 @@ impl Wavefront {
                 let direct = std::mem::take(&mut self.direct[lane as usize]);
                 self.states[lane as usize].finish_direct(direct);
             }
+            clock.lap(Phase::Accumulate, &mut stats.phases);
         }
     }
 }
