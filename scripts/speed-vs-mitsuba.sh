@@ -8,7 +8,7 @@
 #   time to equal error (MSE × seconds) / Mitsuba's: the harness's median over those spp,
 #                       then the median over the rounds
 #   Embree's share      of a 64-spp render's `perf record` profile, by library
-#   (and, beside them, embray's CPU time by phase of a 64-spp render: `--time-phases`)
+#   (and, beside them, embray's threads' time by phase of a 64-spp render: `--time-phases`)
 #
 #   [ROUNDS=3] [EMBRAY_ARGS=...] bash scripts/speed-vs-mitsuba.sh [EMBRAY_BINARY]
 #
@@ -87,6 +87,6 @@ perf report -i "$work/perf.data" --no-children --sort dso -g none 2>/dev/null |
     awk '/libembree/ { share += $1 } END { printf "Embree share of a 64-spp render (perf, by library): %.1f %%\n", share }'
 
 # Where embray's own time goes, by phase of the batched path tracer (`--time-phases`).
-echo "embray's CPU time by phase, 64 spp:"
+echo "embray's time by phase (summed over its threads), 64 spp:"
 "$embray" render "$harness/embray/cornell.toml" --spp 64 -o "$work/phases.exr" -q --time-phases "${embray_args[@]}" |
     sed -n '/^phase /,$p'

@@ -1,7 +1,7 @@
-//! Where a batched path-traced render spends its time (`--time-phases`): the CPU time of
-//! each phase of a tile's batches, summed over the workers. Off by default; when on, a
-//! clock is read once per phase per batch of 256 paths (not per path), about a hundred
-//! nanoseconds per batch bounce.
+//! Where a batched path-traced render spends its time (`--time-phases`): the time each
+//! worker thread spends in each phase of its tiles' batches, summed over the threads (their
+//! CPU time, unless the system takes a core away from them). Off by default; when on, a
+//! clock is read once per phase per batch of 256 paths, not per path.
 
 use std::ops::AddAssign;
 use std::time::Instant;
@@ -54,7 +54,7 @@ impl Phase {
     }
 }
 
-/// CPU nanoseconds per phase (`Phase::ALL`'s order); all zero unless timed.
+/// Nanoseconds per phase, summed over the threads (`Phase::ALL`'s order); all zero unless timed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct PhaseTimes {
     pub nanos: [u64; Phase::ALL.len()],
@@ -112,7 +112,9 @@ pub fn phase_table(times: &PhaseTimes) -> String {
         return String::new();
     }
     let total = times.total_seconds();
-    let mut out = format!("phase            CPU s     share (batched paths, {total:.3} s timed)\n");
+    let mut out = format!(
+        "phase            seconds   share (threads' time in batched paths: {total:.3} s)\n"
+    );
     for phase in Phase::ALL {
         let seconds = times.seconds(phase);
         out += &format!("{:<16} {seconds:<9.3} {:.1} %\n", phase.name(), 100.0 * seconds / total);

@@ -101,7 +101,7 @@ pub struct RenderArgs {
     /// Write the counters as JSON to this file (implies counting, like --stats).
     #[arg(long)]
     pub stats_json: Option<PathBuf>,
-    /// Print the ray counters and the CPU time of each phase of the batched path tracer
+    /// Print the ray counters and the time spent in each phase of the batched path tracer
     /// (camera rays, closest hits, Sobol draws, shading, vector lanes, lane outcomes, shadow
     /// rays, accumulate), summed over the threads: where a render's time goes. Unlike
     /// --stats it does not count traversal, so the render runs as it otherwise would.

@@ -29,6 +29,12 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
             );
         }
     }
+    if args.time_phases {
+        bail!(
+            "--time-phases cannot be used with --part: it prints where one render's time goes; \
+             time the whole render, or a --crop of it"
+        );
+    }
     if let Some(flag) = args.whole_render_only_flag() {
         bail!(
             "{flag} cannot be used with --part: a part file holds all of its samples of its \
