@@ -53,7 +53,7 @@ fn phases_are_timed_within_the_render_time_and_change_no_pixel() {
 }
 
 #[test]
-fn renders_without_phases_say_so_and_parts_refuse_the_timing() {
+fn renders_without_phases_say_so_and_parts_print_their_own() {
     let dir = temp_dir("time-phases-none");
     std::fs::write(dir.join("s.toml"), GOOD_SCENE).unwrap();
     let scalar =
@@ -62,9 +62,14 @@ fn renders_without_phases_say_so_and_parts_refuse_the_timing() {
     assert!(scalar.status.success(), "{}", String::from_utf8_lossy(&scalar.stderr));
     assert!(stdout.contains("not timed") && !stdout.contains("closest hits"), "{stdout}");
 
-    let part = embray(&["render", "s.toml", "--part", "1/2", "-o", "p.exr", "--time-phases"], &dir);
-    let stderr = String::from_utf8_lossy(&part.stderr);
-    assert_eq!(part.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("--time-phases cannot be used with --part"), "{stderr}");
-    assert!(!dir.join("p.exr").exists(), "no part written");
+    // A part prints its counters and phases as a whole render does (`--stats` too).
+    for flag in ["--time-phases", "--stats"] {
+        let args = ["render", "s.toml", "--part", "1/2", "--split", "samples", "-o", "p.exr", flag];
+        let part = embray(&args, &dir);
+        let stdout = String::from_utf8_lossy(&part.stdout);
+        assert!(part.status.success(), "{}", String::from_utf8_lossy(&part.stderr));
+        assert!(stdout.contains("camera ") && stdout.contains("shadow "), "{flag}: {stdout}");
+        assert_eq!(stdout.contains("closest hits"), flag == "--time-phases", "{flag}: {stdout}");
+        assert!(dir.join("p.exr").exists(), "{flag}: the part is written");
+    }
 }

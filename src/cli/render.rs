@@ -183,11 +183,7 @@ fn render_jobs(
             files.write(target, |w| report.encode(w))?;
         }
         let line = summary(&output, &options, &job.paths());
-        let mut table = stats_table(&output.stats, output.observes);
-        if options.time_phases && output.stats.phases.is_empty() {
-            table += "phases           not timed: only the path tracer's batched paths have them \
-                       (--paths batched)\n";
-        }
+        let table = stats_table(&output.stats, output.observes, options.time_phases);
         reports.push((line, table));
         if let Some(reason) = output.stopped {
             let skipped = jobs[k + 1..].iter().flat_map(job_paths).collect();

@@ -1,12 +1,13 @@
 //! `embray render SCENE --part I/N`: one part of a split render, written as a part file for
 //! `embray merge`.
 
-use super::console::note;
+use super::console::{note, out};
 use super::render_args::RenderArgs;
 use anyhow::{Result, bail};
 use embray::distributed::{
     Part, PartMeta, PartTiming, PngSettings, encode_part, hash_files, options_fingerprint,
 };
+use embray::output::stats::stats_table;
 use embray::output::{OutputPlan, OutputSet};
 use embray::render::{TILE_SIZE, render_part};
 use std::path::PathBuf;
@@ -28,12 +29,6 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
                  every part is done"
             );
         }
-    }
-    if args.time_phases {
-        bail!(
-            "--time-phases cannot be used with --part: it prints where one render's time goes; \
-             time the whole render, or a --crop of it"
-        );
     }
     if let Some(flag) = args.whole_render_only_flag() {
         bail!(
@@ -103,6 +98,9 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
             rendered.stats.total_rays(),
             output.display()
         ));
+    }
+    if args.stats || args.time_phases {
+        out(stats_table(&rendered.stats, rendered.observes, options.time_phases))?;
     }
     Ok(())
 }

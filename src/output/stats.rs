@@ -59,8 +59,9 @@ impl StatsReport {
     }
 }
 
-/// Counters as a plain-text table.
-pub fn stats_table(stats: &RenderStats, observes: Observes) -> String {
+/// Counters as a plain-text table, with the phases' times if they were to be timed
+/// (`timed`: `RenderOptions::time_phases`).
+pub fn stats_table(stats: &RenderStats, observes: Observes, timed: bool) -> String {
     let mut out = String::from("ray kind   rays          hits\n");
     for (name, c) in
         [("camera", stats.camera), ("shadow", stats.shadow), ("indirect", stats.indirect)]
@@ -84,6 +85,10 @@ pub fn stats_table(stats: &RenderStats, observes: Observes) -> String {
             bounces.scalar,
             100.0 * bounces.scalar as f64 / total as f64
         );
+    }
+    if timed && stats.phases.is_empty() {
+        out += "phases           not timed: only the path tracer's batched paths have them \
+                (--paths batched)\n";
     }
     out + &crate::phase_times::phase_table(&stats.phases)
 }
