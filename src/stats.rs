@@ -58,7 +58,8 @@ pub struct RenderStats {
     /// Absent from part files written before it was counted.
     #[serde(default)]
     pub bounces: BounceCounts,
-    /// CPU time by phase of the batched path tracer, when timed (`--time-phases`).
+    /// Time by phase of the batched path tracer, summed over the threads, when timed
+    /// (`--time-phases`).
     #[serde(default, skip_serializing_if = "PhaseTimes::is_empty")]
     pub phases: PhaseTimes,
 }
