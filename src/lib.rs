@@ -39,6 +39,7 @@ pub mod output;
 pub mod params;
 pub mod phase_times;
 pub mod ray;
+pub mod ray_columns;
 pub mod render;
 pub mod render_options;
 pub mod render_passes;

@@ -13,6 +13,7 @@ use embray::bench::speed;
 use embray::choice::Choice;
 use embray::intersect::{intersect_sphere, intersect_triangle};
 use embray::ray::{Hit, Ray};
+use embray::ray_columns::RayColumns;
 use embray::render::{RenderOptions, prepare_scene};
 use embray::render_scene::{Geometry, Placement, RenderScene};
 use embray::scene::{MaterialDesc, MeshData, ObjectDesc, SceneDesc, ShapeDesc};
@@ -172,6 +173,22 @@ fn assert_batches_match(scene: &RenderScene, rays: &[Ray], what: &str) {
                         backend.name()
                     );
                     assert_eq!(counters, single_blocked_counters, "{what}: occlusion counters");
+                    // The same rays queued in columns (as the path tracer queues its shadow
+                    // rays): the same answers and counters.
+                    let mut counters = TraversalCounters::default();
+                    let mut blocked = vec![false; rays.len()];
+                    for (r, b) in rays.chunks(size).zip(blocked.chunks_mut(size)) {
+                        let mut columns = RayColumns::default();
+                        r.iter().for_each(|ray| columns.push(ray));
+                        accel.occluded_columns(&columns, b, &mut counters);
+                    }
+                    assert_eq!(
+                        blocked,
+                        single_blocked,
+                        "{what}, {} {batch:?}, occlusion of columns in batches of {size}",
+                        backend.name()
+                    );
+                    assert_eq!(counters, single_blocked_counters, "{what}: columns' counters");
                     let mut counters = TraversalCounters::default();
                     let stale = Hit { t: -1.0, geom_id: 9, prim_id: 9, u: 0.0, v: 0.0 };
                     let mut hits = vec![Some(stale); rays.len()];

@@ -2,6 +2,7 @@
 //! `cfg(feature)` branching over backends lives in this file.
 
 use crate::ray::{Hit, Ray};
+use crate::ray_columns::RayColumns;
 use crate::render_scene::RenderScene;
 use crate::stats::TraversalCounters;
 
@@ -59,6 +60,18 @@ pub trait Accel: Send + Sync {
     fn occluded_batch(&self, rays: &[Ray], blocked: &mut [bool], counters: &mut TraversalCounters) {
         occluded_one_by_one(self, rays, blocked, counters);
     }
+    /// [`Accel::occluded_batch`] of rays queued in columns: `blocked[i]` for `rays.ray(i)`.
+    ///
+    /// # Panics
+    /// If `rays` and `blocked` differ in length.
+    fn occluded_columns(
+        &self,
+        rays: &RayColumns,
+        blocked: &mut [bool],
+        counters: &mut TraversalCounters,
+    ) {
+        occluded_columns_one_by_one(self, rays, blocked, counters);
+    }
     /// Which counters this backend fills in (with `AccelOptions::count_traversal`).
     fn observes(&self) -> Observes {
         Observes::default()
@@ -101,6 +114,23 @@ pub fn occluded_one_by_one<A: Accel + ?Sized>(
     assert_eq!(rays.len(), blocked.len(), "one answer per ray");
     for (ray, blocked) in rays.iter().zip(blocked) {
         *blocked = !ray.is_valid() || accel.occluded(ray, counters);
+    }
+}
+
+/// [`Accel::occluded_columns`] done one [`Accel::occluded`] at a time (invalid rays are
+/// blocked).
+///
+/// # Panics
+/// If `rays` and `blocked` differ in length.
+pub fn occluded_columns_one_by_one<A: Accel + ?Sized>(
+    accel: &A,
+    rays: &RayColumns,
+    blocked: &mut [bool],
+    counters: &mut TraversalCounters,
+) {
+    assert_eq!(rays.len(), blocked.len(), "one answer per ray");
+    for (ray, blocked) in rays.iter().zip(blocked) {
+        *blocked = !ray.is_valid() || accel.occluded(&ray, counters);
     }
 }
 

@@ -3,6 +3,7 @@
 
 use crate::accel::Accel;
 use crate::ray::{Hit, Ray};
+use crate::ray_columns::RayColumns;
 use crate::render_scene::RenderScene;
 use crate::scene::BumpScale;
 use crate::shading::material::Material;
@@ -37,12 +38,12 @@ impl SceneTracer<'_> {
         blocked
     }
 
-    /// `blocked[i]` becomes `occluded(&rays[i], stats)` for valid rays (the caller leaves
-    /// invalid ones out), traced as one batch (`Accel::occluded_batch`) and counted as
-    /// `occluded` counts them.
-    pub fn occluded_batch(&self, rays: &[Ray], blocked: &mut [bool], stats: &mut RenderStats) {
-        debug_assert!(rays.iter().all(Ray::is_valid), "invalid shadow rays are never traced");
-        self.accel.occluded_batch(rays, blocked, &mut stats.traversal);
+    /// `blocked[i]` becomes `occluded(&rays.ray(i), stats)` for valid rays (the caller
+    /// leaves invalid ones out), traced as one batch (`Accel::occluded_columns`) and counted
+    /// as `occluded` counts them.
+    pub fn occluded_batch(&self, rays: &RayColumns, blocked: &mut [bool], stats: &mut RenderStats) {
+        debug_assert!(rays.iter().all(|r| r.is_valid()), "invalid shadow rays are never traced");
+        self.accel.occluded_columns(rays, blocked, &mut stats.traversal);
         stats.shadow.rays += rays.len() as u64;
         stats.shadow.hits += blocked.iter().filter(|&&b| b).count() as u64;
     }

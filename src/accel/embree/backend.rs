@@ -11,6 +11,7 @@ use crate::accel::{
     Accel, AccelError, AccelOptions, BatchMode, BuildQuality, Coherence, Intersection, Observes,
 };
 use crate::ray::{Hit, Ray};
+use crate::ray_columns::RayColumns;
 use crate::render_scene::{self, Placement, RenderScene};
 use crate::stats::TraversalCounters;
 use std::sync::Arc;
@@ -325,6 +326,20 @@ impl Accel for EmbreeAccel {
             return;
         }
         self.scene.occluded_batch(self.batch, rays, blocked);
+    }
+
+    /// As `occluded_batch`, the packets filled a column at a time.
+    fn occluded_columns(
+        &self,
+        rays: &RayColumns,
+        blocked: &mut [bool],
+        counters: &mut TraversalCounters,
+    ) {
+        if self.counting || self.batch == BatchKind::Single {
+            crate::accel::occluded_columns_one_by_one(self, rays, blocked, counters);
+            return;
+        }
+        self.scene.occluded_columns(self.batch, rays, blocked);
     }
 
     /// Primitive tests in counting mode; node visits never (see [`EmbreeAccel`]).

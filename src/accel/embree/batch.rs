@@ -6,6 +6,7 @@ use super::ffi;
 use super::ray::{self, RayHitPacket};
 use super::scene::{CommittedScene, embree_accepts};
 use crate::ray::{Hit, Ray};
+use crate::ray_columns::{BLOCK, RayBlock, RayColumns};
 use glam::Vec3;
 
 /// How a batch of rays is handed to Embree.
@@ -72,6 +73,41 @@ impl CommittedScene {
             }
             BatchKind::Packet16 => {
                 self.occluded_packets::<compat::Padded<ffi::RTCRayHit16, 16>>(rays, blocked)
+            }
+        }
+    }
+
+    /// [`CommittedScene::occluded_batch`] of rays queued in columns, each packet filled a
+    /// column at a time (packets of 4 are not: they trace one ray at a time).
+    pub fn occluded_columns(&self, kind: BatchKind, rays: &RayColumns, blocked: &mut [bool]) {
+        assert_eq!(rays.len(), blocked.len(), "one answer per ray");
+        match kind {
+            BatchKind::Single | BatchKind::Packet4 => {
+                for (ray, blocked) in rays.iter().zip(blocked) {
+                    *blocked = !embree_accepts(&ray) || self.occluded(&ray, None);
+                }
+            }
+            BatchKind::Packet8 | BatchKind::StreamCoherent | BatchKind::StreamIncoherent => {
+                self.occluded_blocks::<compat::Padded<ffi::RTCRayHit8, 8>>(rays, blocked)
+            }
+            BatchKind::Packet16 => {
+                self.occluded_blocks::<compat::Padded<ffi::RTCRayHit16, 16>>(rays, blocked)
+            }
+        }
+    }
+
+    fn occluded_blocks<P: RayHitPacket>(&self, rays: &RayColumns, blocked: &mut [bool]) {
+        let mut packet = P::empty();
+        let packets = rays.blocks().chunks(P::WIDTH / BLOCK).zip(blocked.chunks_mut(P::WIDTH));
+        for (blocks, blocked) in packets {
+            let valid = load_blocks(&mut packet, blocks, blocked.len());
+            if valid.any() {
+                // SAFETY: the scene is live and committed; exactly the lanes just set from
+                // rays that passed `embree_accepts` are marked valid.
+                unsafe { packet.occluded(self.handle(), &valid) };
+            }
+            for (lane, blocked) in blocked.iter_mut().enumerate() {
+                *blocked = valid.0[lane] == 0 || packet.blocked(lane);
             }
         }
     }
@@ -159,6 +195,33 @@ impl CommittedScene {
     }
 }
 
+/// A ray Embree accepts, set in the lanes of a packet that are not traced.
+const HARMLESS: Ray = Ray { origin: Vec3::ZERO, dir: Vec3::Z, tmin: 0.0, tmax: 0.0, time: 0.0 };
+
+/// Sets the lanes of `packet` (a whole number of blocks wide) from `blocks`, their first
+/// `count` rays queued, a column at a time, and returns the mask marking (-1) exactly the
+/// queued rays Embree accepts. The other lanes get a harmless ray (never traced).
+fn load_blocks<P: RayHitPacket>(
+    packet: &mut P,
+    blocks: &[RayBlock],
+    count: usize,
+) -> compat::ValidMask {
+    let mut valid = compat::ValidMask([0; 16]);
+    for (k, block) in blocks.iter().enumerate() {
+        packet.set_block(k * BLOCK, block);
+        let accepted = block.valid();
+        for (j, &accepted) in accepted.iter().enumerate() {
+            valid.0[k * BLOCK + j] = -i32::from(accepted & (k * BLOCK + j < count));
+        }
+    }
+    for lane in 0..P::WIDTH {
+        if valid.0[lane] == 0 {
+            packet.set_lane(lane, &HARMLESS);
+        }
+    }
+    valid
+}
+
 /// Sets the lanes of `packet` from `rays` (no more than its width), with no hit if
 /// `clear_hits` (for a closest-hit query), and returns the mask marking (-1) exactly those
 /// whose rays Embree accepts, without a branch per ray on its validity. The other lanes are
@@ -169,7 +232,6 @@ fn load_packet<P: RayHitPacket>(
     rays: &[Ray],
     clear_hits: bool,
 ) -> compat::ValidMask {
-    const HARMLESS: Ray = Ray { origin: Vec3::ZERO, dir: Vec3::Z, tmin: 0.0, tmax: 0.0, time: 0.0 };
     let mut valid = compat::ValidMask([0; 16]);
     for (lane, ray) in rays.iter().enumerate() {
         let accepted = embree_accepts(ray);

@@ -2,6 +2,7 @@
 
 use super::{compat, ffi};
 use crate::ray::{Hit, Ray};
+use crate::ray_columns::{BLOCK, RayBlock};
 
 /// Embree's ray for `ray`, its time clamped to the shutter interval [0, 1]. Only call with a
 /// ray that satisfies `Ray::is_valid`: Debian's Embree aborts the process on NaN/Inf rays.
@@ -66,6 +67,12 @@ pub trait RayHitPacket {
     /// `empty` set (Embree never writes them), and its hit fields stay as they were:
     /// `clear_hits` clears them for a closest-hit query (an occlusion query never reads them).
     fn set_lane(&mut self, lane: usize, ray: &Ray);
+    /// Lanes `at..at + BLOCK` become the rays of `block` (as `set_lane` sets each), a
+    /// column at a time.
+    ///
+    /// # Panics
+    /// If the packet has no such lanes.
+    fn set_block(&mut self, at: usize, block: &RayBlock);
     /// No lane has a hit.
     fn clear_hits(&mut self);
     /// The hit Embree recorded in lane `lane`, if any (see [`from_rtc_ray_hit`]).
@@ -114,6 +121,24 @@ macro_rules! ray_hit_packet {
                 (p.org_x[i], p.org_y[i], p.org_z[i]) = (r.org_x, r.org_y, r.org_z);
                 (p.dir_x[i], p.dir_y[i], p.dir_z[i]) = (r.dir_x, r.dir_y, r.dir_z);
                 (p.tnear[i], p.tfar[i], p.time[i]) = (r.tnear, r.tfar, r.time);
+            }
+
+            #[inline]
+            fn set_block(&mut self, at: usize, block: &RayBlock) {
+                let p = &mut self.ray;
+                let lanes = at..at + BLOCK;
+                let [ox, oy, oz] = &block.origin;
+                let [dx, dy, dz] = &block.dir;
+                p.org_x[lanes.clone()].copy_from_slice(ox);
+                p.org_y[lanes.clone()].copy_from_slice(oy);
+                p.org_z[lanes.clone()].copy_from_slice(oz);
+                p.dir_x[lanes.clone()].copy_from_slice(dx);
+                p.dir_y[lanes.clone()].copy_from_slice(dy);
+                p.dir_z[lanes.clone()].copy_from_slice(dz);
+                p.tnear[lanes.clone()].copy_from_slice(&block.tmin);
+                p.tfar[lanes.clone()].copy_from_slice(&block.tmax);
+                // As `to_rtc_ray` clamps it.
+                p.time[lanes].copy_from_slice(&block.time.map(|t| t.clamp(0.0, 1.0)));
             }
 
             #[inline]

@@ -13,6 +13,7 @@ use crate::accel::Coherence;
 use crate::integrator::PathSample;
 use crate::phase_times::{Phase, PhaseClock};
 use crate::ray::{Hit, Ray};
+use crate::ray_columns::RayColumns;
 use crate::sampling::SampleStream;
 use crate::stats::RenderStats;
 use glam::Vec3;
@@ -40,7 +41,7 @@ pub(crate) struct Wavefront {
 struct QueuedShadows {
     /// The path whose bounce is being shaded.
     lane: u32,
-    rays: Vec<Ray>,
+    rays: RayColumns,
     contributions: Vec<Vec3>,
     lanes: Vec<u32>,
     blocked: Vec<bool>,
@@ -59,7 +60,7 @@ impl ShadowSink for QueuedShadows {
     #[inline]
     fn valid_shadow(&mut self, ray: Ray, contribution: Vec3, _stats: &mut RenderStats) {
         debug_assert!(ray.is_valid(), "{ray:?}");
-        self.rays.push(ray);
+        self.rays.push(&ray);
         self.contributions.push(contribution);
         self.lanes.push(self.lane);
     }

@@ -1,0 +1,192 @@
+//! A queue of rays in blocks of eight, each field a column of the block: the layout of a
+//! packet of eight rays, so that a backend fills its packets (Embree's `RTCRay8`) a column
+//! at a time rather than ray by ray. The batched path tracer queues its shadow rays so.
+
+use crate::ray::Ray;
+use glam::Vec3;
+
+/// Rays per block.
+pub const BLOCK: usize = 8;
+
+/// Eight rays, field by field.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RayBlock {
+    pub origin: [[f32; BLOCK]; 3],
+    pub dir: [[f32; BLOCK]; 3],
+    pub tmin: [f32; BLOCK],
+    pub tmax: [f32; BLOCK],
+    pub time: [f32; BLOCK],
+}
+
+impl RayBlock {
+    /// Ray `j` of the block.
+    #[inline]
+    pub fn ray(&self, j: usize) -> Ray {
+        let [ox, oy, oz] = &self.origin;
+        let [dx, dy, dz] = &self.dir;
+        Ray {
+            origin: Vec3::new(ox[j], oy[j], oz[j]),
+            dir: Vec3::new(dx[j], dy[j], dz[j]),
+            tmin: self.tmin[j],
+            tmax: self.tmax[j],
+            time: self.time[j],
+        }
+    }
+
+    /// Whether each ray passes [`Ray::is_valid`], tested column by column (the same
+    /// comparisons, so that it vectorises).
+    #[inline]
+    pub fn valid(&self) -> [bool; BLOCK] {
+        let below = |x: f32| x.abs() < Ray::COORDINATE_LIMIT;
+        let ([ox, oy, oz], [dx, dy, dz]) = (&self.origin, &self.dir);
+        std::array::from_fn(|j| {
+            (below(ox[j]) & below(oy[j]) & below(oz[j]))
+                & (below(dx[j]) & below(dy[j]) & below(dz[j]))
+                & ((dx[j] != 0.0) | (dy[j] != 0.0) | (dz[j] != 0.0))
+                & (self.tmin[j] >= 0.0)
+                & (self.tmin[j] < f32::INFINITY)
+                & (self.tmax[j] >= self.tmin[j])
+                & self.time[j].is_finite()
+        })
+    }
+}
+
+/// Rays queued in blocks (see the module's comment). The spare lanes of the last block
+/// hold whatever they held (rays queued earlier, or zeros): only `len` rays are queued.
+#[derive(Clone, Debug, Default)]
+pub struct RayColumns {
+    blocks: Vec<RayBlock>,
+    len: usize,
+}
+
+impl RayColumns {
+    /// How many rays are queued.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Empties the queue (its blocks are kept for reuse).
+    pub fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// Queues `ray`.
+    #[inline]
+    pub fn push(&mut self, ray: &Ray) {
+        let (b, j) = (self.len / BLOCK, self.len % BLOCK);
+        if b == self.blocks.len() {
+            self.blocks.push(RayBlock::default());
+        }
+        let block = &mut self.blocks[b];
+        for axis in 0..3 {
+            block.origin[axis][j] = ray.origin[axis];
+            block.dir[axis][j] = ray.dir[axis];
+        }
+        block.tmin[j] = ray.tmin;
+        block.tmax[j] = ray.tmax;
+        block.time[j] = ray.time;
+        self.len += 1;
+    }
+
+    /// The blocks holding the queued rays, the last possibly part full.
+    #[inline]
+    pub fn blocks(&self) -> &[RayBlock] {
+        &self.blocks[..self.len.div_ceil(BLOCK)]
+    }
+
+    /// Ray `i` of the queue.
+    ///
+    /// # Panics
+    /// If `i` is not below `len`.
+    #[inline]
+    pub fn ray(&self, i: usize) -> Ray {
+        assert!(i < self.len, "ray {i} of {}", self.len);
+        self.blocks[i / BLOCK].ray(i % BLOCK)
+    }
+
+    /// The queued rays, in order.
+    pub fn iter(&self) -> impl Iterator<Item = Ray> + '_ {
+        (0..self.len).map(|i| self.ray(i))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ray(k: usize) -> Ray {
+        let k = k as f32;
+        Ray {
+            origin: Vec3::new(k, -k, 2.0 * k),
+            dir: Vec3::new(1.0, k, -0.5),
+            tmin: 0.25 * k,
+            tmax: 10.0 + k,
+            time: 0.01 * k,
+        }
+    }
+
+    /// Rays come back as they were queued, over several blocks and after a clear.
+    #[test]
+    fn rays_come_back_in_order() {
+        let mut columns = RayColumns::default();
+        for round in 0..2 {
+            columns.clear();
+            assert!(columns.is_empty());
+            let n = 19 - 5 * round;
+            for k in 0..n {
+                columns.push(&ray(k + round));
+            }
+            assert_eq!(columns.len(), n);
+            assert_eq!(columns.blocks().len(), n.div_ceil(BLOCK));
+            let back: Vec<Ray> = columns.iter().collect();
+            let expected: Vec<Ray> = (0..n).map(|k| ray(k + round)).collect();
+            assert_eq!(back, expected, "round {round}");
+        }
+    }
+
+    /// A block's validity is `Ray::is_valid` of each of its rays.
+    #[test]
+    fn validity_is_each_rays() {
+        let bad = [f32::NAN, f32::INFINITY, -1.0, Ray::COORDINATE_LIMIT, 0.0];
+        let mut checked = 0;
+        for (field, &value) in (0..9).flat_map(|f| bad.iter().map(move |v| (f, v))) {
+            let mut block = RayBlock::default();
+            for j in 0..BLOCK {
+                let mut r = ray(j + 1);
+                if j == field % BLOCK {
+                    match field {
+                        0..=2 => r.origin[field] = value,
+                        3..=5 => r.dir = Vec3::ZERO.with_x(value),
+                        6 => r.tmin = value,
+                        7 => r.tmax = value,
+                        _ => r.time = value,
+                    }
+                }
+                block = with_lane(block, j, &r);
+            }
+            let valid = block.valid();
+            for (j, &v) in valid.iter().enumerate() {
+                assert_eq!(v, block.ray(j).is_valid(), "field {field}, value {value}, lane {j}");
+                checked += usize::from(!v);
+            }
+        }
+        // Invalid: 3 values of each origin coordinate (NaN, ∞, the limit), 4 of the direction
+        // (and zero), 4 of tmin (all but 0), 3 of tmax (NaN, -1, 0 below tmin), 2 of time.
+        assert_eq!(checked, 3 * 3 + 3 * 4 + 4 + 3 + 2, "invalid rays among the cases");
+    }
+
+    fn with_lane(mut block: RayBlock, j: usize, r: &Ray) -> RayBlock {
+        for axis in 0..3 {
+            block.origin[axis][j] = r.origin[axis];
+            block.dir[axis][j] = r.dir[axis];
+        }
+        (block.tmin[j], block.tmax[j], block.time[j]) = (r.tmin, r.tmax, r.time);
+        block
+    }
+}
