@@ -116,6 +116,33 @@ impl RayColumns {
     }
 }
 
+/// A batch of rays, by index: a slice of them, or a queue of columns.
+pub trait RayBatch {
+    fn count(&self) -> usize;
+    /// Ray `i` (below `count`).
+    fn ray_at(&self, i: usize) -> Ray;
+}
+
+impl RayBatch for [Ray] {
+    fn count(&self) -> usize {
+        self.len()
+    }
+
+    fn ray_at(&self, i: usize) -> Ray {
+        self[i]
+    }
+}
+
+impl RayBatch for RayColumns {
+    fn count(&self) -> usize {
+        self.len
+    }
+
+    fn ray_at(&self, i: usize) -> Ray {
+        self.ray(i)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

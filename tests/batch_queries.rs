@@ -4,6 +4,8 @@
 //! Embree traces them as packets), bounce rays, random rays with shutter times (moving
 //! instances), rays exactly through the shared edge of two triangles (where Embree's packet
 //! and single-ray kernels break ties differently), and invalid rays mixed into the batches.
+//! The same rays queued in columns (`Accel::intersect_columns`, `Accel::occluded_columns`,
+//! as the path tracer queues them) give the slices' answers bit for bit.
 
 mod common;
 
@@ -195,6 +197,18 @@ fn assert_batches_match(scene: &RenderScene, rays: &[Ray], what: &str) {
                     for (r, h) in rays.chunks(size).zip(hits.chunks_mut(size)) {
                         accel.intersect_batch(r, h, coherence, &mut counters);
                     }
+                    // The same rays queued in columns fill the same packets: the same hits,
+                    // ties broken alike, and the same counters.
+                    let mut column_counters = TraversalCounters::default();
+                    let mut column_hits = vec![Some(stale); rays.len()];
+                    for (r, h) in rays.chunks(size).zip(column_hits.chunks_mut(size)) {
+                        let mut columns = RayColumns::default();
+                        r.iter().for_each(|ray| columns.push(ray));
+                        accel.intersect_columns(&columns, h, coherence, &mut column_counters);
+                    }
+                    let same = hits.iter().zip(&column_hits).all(|(a, b)| bits(*a) == bits(*b));
+                    assert!(same, "{what}, {batch:?}: columns' hits differ, batches of {size}");
+                    assert_eq!(column_counters, counters, "{what}: columns' hit counters");
                     let mut ties = 0;
                     for (k, (batched, one)) in hits.iter().zip(&single).enumerate() {
                         if bits(*batched) == bits(*one) {

@@ -2,7 +2,7 @@
 //! `cfg(feature)` branching over backends lives in this file.
 
 use crate::ray::{Hit, Ray};
-use crate::ray_columns::RayColumns;
+use crate::ray_columns::{RayBatch, RayColumns};
 use crate::render_scene::RenderScene;
 use crate::stats::TraversalCounters;
 
@@ -60,6 +60,20 @@ pub trait Accel: Send + Sync {
     fn occluded_batch(&self, rays: &[Ray], blocked: &mut [bool], counters: &mut TraversalCounters) {
         occluded_one_by_one(self, rays, blocked, counters);
     }
+    /// [`Accel::intersect_batch`] of rays queued in columns: `hits[i]` for `rays.ray(i)`.
+    ///
+    /// # Panics
+    /// If `rays` and `hits` differ in length.
+    fn intersect_columns(
+        &self,
+        rays: &RayColumns,
+        hits: &mut [Option<Hit>],
+        coherence: Coherence,
+        counters: &mut TraversalCounters,
+    ) {
+        let _ = coherence;
+        intersect_one_by_one(self, rays, hits, counters);
+    }
     /// [`Accel::occluded_batch`] of rays queued in columns: `blocked[i]` for `rays.ray(i)`.
     ///
     /// # Panics
@@ -70,7 +84,7 @@ pub trait Accel: Send + Sync {
         blocked: &mut [bool],
         counters: &mut TraversalCounters,
     ) {
-        occluded_columns_one_by_one(self, rays, blocked, counters);
+        occluded_one_by_one(self, rays, blocked, counters);
     }
     /// Which counters this backend fills in (with `AccelOptions::count_traversal`).
     fn observes(&self) -> Observes {
@@ -83,53 +97,38 @@ pub trait Accel: Send + Sync {
     }
 }
 
-/// [`Accel::intersect_batch`] done one [`Accel::intersect`] at a time (invalid rays miss):
-/// what every batched path must equal.
+/// [`Accel::intersect_batch`] (or `intersect_columns`) done one [`Accel::intersect`] at a
+/// time (invalid rays miss): what every batched path must equal.
 ///
 /// # Panics
 /// If `rays` and `hits` differ in length.
-pub fn intersect_one_by_one<A: Accel + ?Sized>(
+pub fn intersect_one_by_one<A: Accel + ?Sized, R: RayBatch + ?Sized>(
     accel: &A,
-    rays: &[Ray],
+    rays: &R,
     hits: &mut [Option<Hit>],
     counters: &mut TraversalCounters,
 ) {
-    assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
-    for (ray, hit) in rays.iter().zip(hits) {
-        *hit = if ray.is_valid() { accel.intersect(ray, counters) } else { None };
+    assert_eq!(rays.count(), hits.len(), "one hit slot per ray");
+    for (i, hit) in hits.iter_mut().enumerate() {
+        let ray = rays.ray_at(i);
+        *hit = if ray.is_valid() { accel.intersect(&ray, counters) } else { None };
     }
 }
 
-/// [`Accel::occluded_batch`] done one [`Accel::occluded`] at a time (invalid rays are
-/// blocked): what every batched path must equal.
+/// [`Accel::occluded_batch`] (or `occluded_columns`) done one [`Accel::occluded`] at a time
+/// (invalid rays are blocked): what every batched path must equal.
 ///
 /// # Panics
 /// If `rays` and `blocked` differ in length.
-pub fn occluded_one_by_one<A: Accel + ?Sized>(
+pub fn occluded_one_by_one<A: Accel + ?Sized, R: RayBatch + ?Sized>(
     accel: &A,
-    rays: &[Ray],
+    rays: &R,
     blocked: &mut [bool],
     counters: &mut TraversalCounters,
 ) {
-    assert_eq!(rays.len(), blocked.len(), "one answer per ray");
-    for (ray, blocked) in rays.iter().zip(blocked) {
-        *blocked = !ray.is_valid() || accel.occluded(ray, counters);
-    }
-}
-
-/// [`Accel::occluded_columns`] done one [`Accel::occluded`] at a time (invalid rays are
-/// blocked).
-///
-/// # Panics
-/// If `rays` and `blocked` differ in length.
-pub fn occluded_columns_one_by_one<A: Accel + ?Sized>(
-    accel: &A,
-    rays: &RayColumns,
-    blocked: &mut [bool],
-    counters: &mut TraversalCounters,
-) {
-    assert_eq!(rays.len(), blocked.len(), "one answer per ray");
-    for (ray, blocked) in rays.iter().zip(blocked) {
+    assert_eq!(rays.count(), blocked.len(), "one answer per ray");
+    for (i, blocked) in blocked.iter_mut().enumerate() {
+        let ray = rays.ray_at(i);
         *blocked = !ray.is_valid() || accel.occluded(&ray, counters);
     }
 }

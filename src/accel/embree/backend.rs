@@ -201,6 +201,19 @@ impl EmbreeAccel {
         self.scene.intersect_batch(kind, Coherence::Coherent, rays, hits);
     }
 
+    /// Traces again, one ray at a time, every packet hit that may be a tie the single-ray
+    /// kernel breaks otherwise (see `intersect_batch`); `ray(i)` is the ray of `hits[i]`.
+    fn retrace_ties(&self, hits: &mut [Option<Hit>], ray: impl Fn(usize) -> Ray) {
+        for (i, hit) in hits.iter_mut().enumerate() {
+            if let Some(h) = hit
+                && self.triangle_meshes.get(h.geom_id as usize).copied().unwrap_or(true)
+                && h.u.min(h.v).min(1.0 - h.u - h.v) < TIE_EDGE
+            {
+                *hit = self.scene.intersect(&ray(i), None);
+            }
+        }
+    }
+
     fn counters<'a>(
         &self,
         counters: &'a mut TraversalCounters,
@@ -308,14 +321,23 @@ impl Accel for EmbreeAccel {
             return;
         }
         self.scene.intersect_batch(self.batch, coherence, rays, hits);
-        for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
-            if let Some(h) = hit
-                && self.triangle_meshes.get(h.geom_id as usize).copied().unwrap_or(true)
-                && h.u.min(h.v).min(1.0 - h.u - h.v) < TIE_EDGE
-            {
-                *hit = self.scene.intersect(ray, None);
-            }
+        self.retrace_ties(hits, |i| rays[i]);
+    }
+
+    /// As `intersect_batch`, the packets filled a column at a time.
+    fn intersect_columns(
+        &self,
+        rays: &RayColumns,
+        hits: &mut [Option<Hit>],
+        coherence: Coherence,
+        counters: &mut TraversalCounters,
+    ) {
+        if self.counting || self.batch == BatchKind::Single {
+            crate::accel::intersect_one_by_one(self, rays, hits, counters);
+            return;
         }
+        self.scene.intersect_columns(self.batch, coherence, rays, hits);
+        self.retrace_ties(hits, |i| rays.ray(i));
     }
 
     /// As `intersect_batch`: packets unless counting or with motion blur (occlusion has
@@ -336,7 +358,7 @@ impl Accel for EmbreeAccel {
         counters: &mut TraversalCounters,
     ) {
         if self.counting || self.batch == BatchKind::Single {
-            crate::accel::occluded_columns_one_by_one(self, rays, blocked, counters);
+            crate::accel::occluded_one_by_one(self, rays, blocked, counters);
             return;
         }
         self.scene.occluded_columns(self.batch, rays, blocked);

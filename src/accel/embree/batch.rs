@@ -77,6 +77,42 @@ impl CommittedScene {
         }
     }
 
+    /// [`CommittedScene::intersect_batch`] of rays queued in columns, each packet of 8 or 16
+    /// filled a column at a time (other kinds take the rays one by one into their own form).
+    pub fn intersect_columns(
+        &self,
+        kind: BatchKind,
+        coherence: Coherence,
+        rays: &RayColumns,
+        hits: &mut [Option<Hit>],
+    ) {
+        assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
+        match kind {
+            BatchKind::Packet8 => {
+                self.intersect_blocks::<compat::Padded<ffi::RTCRayHit8, 8>>(coherence, rays, hits)
+            }
+            BatchKind::Packet16 => {
+                self.intersect_blocks::<compat::Padded<ffi::RTCRayHit16, 16>>(coherence, rays, hits)
+            }
+            _ => {
+                let rays: Vec<Ray> = rays.iter().collect();
+                self.intersect_batch(kind, coherence, &rays, hits);
+            }
+        }
+    }
+
+    fn intersect_blocks<P: RayHitPacket>(
+        &self,
+        coherence: Coherence,
+        rays: &RayColumns,
+        hits: &mut [Option<Hit>],
+    ) {
+        let blocks = rays.blocks();
+        self.intersect_each_packet::<P>(coherence, hits, |packet, k, n| {
+            load_blocks(packet, &blocks[k * P::WIDTH / BLOCK..][..n.div_ceil(BLOCK)], n)
+        });
+    }
+
     /// [`CommittedScene::occluded_batch`] of rays queued in columns, each packet filled a
     /// column at a time (packets of 4 are not: they trace one ray at a time).
     pub fn occluded_columns(&self, kind: BatchKind, rays: &RayColumns, blocked: &mut [bool]) {
@@ -97,13 +133,31 @@ impl CommittedScene {
     }
 
     fn occluded_blocks<P: RayHitPacket>(&self, rays: &RayColumns, blocked: &mut [bool]) {
+        let blocks = rays.blocks();
+        self.occluded_each_packet::<P>(blocked, |packet, k, n| {
+            load_blocks(packet, &blocks[k * P::WIDTH / BLOCK..][..n.div_ceil(BLOCK)], n)
+        });
+    }
+
+    fn occluded_packets<P: RayHitPacket>(&self, rays: &[Ray], blocked: &mut [bool]) {
+        self.occluded_each_packet::<P>(blocked, |packet, k, n| {
+            load_packet(packet, &rays[k * P::WIDTH..][..n])
+        });
+    }
+
+    /// Occlusion into `blocked` through packets of `P`: `load(packet, k, n)` sets packet `k`
+    /// (of `n` rays: those of `blocked[k * WIDTH..][..n]`) and returns the lanes to trace.
+    fn occluded_each_packet<P: RayHitPacket>(
+        &self,
+        blocked: &mut [bool],
+        mut load: impl FnMut(&mut P, usize, usize) -> compat::ValidMask,
+    ) {
         let mut packet = P::empty();
-        let packets = rays.blocks().chunks(P::WIDTH / BLOCK).zip(blocked.chunks_mut(P::WIDTH));
-        for (blocks, blocked) in packets {
-            let valid = load_blocks(&mut packet, blocks, blocked.len());
+        for (k, blocked) in blocked.chunks_mut(P::WIDTH).enumerate() {
+            let valid = load(&mut packet, k, blocked.len());
             if valid.any() {
-                // SAFETY: the scene is live and committed; exactly the lanes just set from
-                // rays that passed `embree_accepts` are marked valid.
+                // SAFETY: the scene is live and committed; `load` marks valid exactly the
+                // lanes it set from rays that passed `embree_accepts`.
                 unsafe { packet.occluded(self.handle(), &valid) };
             }
             for (lane, blocked) in blocked.iter_mut().enumerate() {
@@ -112,17 +166,25 @@ impl CommittedScene {
         }
     }
 
-    fn occluded_packets<P: RayHitPacket>(&self, rays: &[Ray], blocked: &mut [bool]) {
+    /// Closest hits into `hits` through packets of `P`, set by `load` as for
+    /// `occluded_each_packet`, with no hit yet.
+    fn intersect_each_packet<P: RayHitPacket>(
+        &self,
+        coherence: Coherence,
+        hits: &mut [Option<Hit>],
+        mut load: impl FnMut(&mut P, usize, usize) -> compat::ValidMask,
+    ) {
         let mut packet = P::empty();
-        for (rays, blocked) in rays.chunks(P::WIDTH).zip(blocked.chunks_mut(P::WIDTH)) {
-            let valid = load_packet(&mut packet, rays, false);
+        for (k, hits) in hits.chunks_mut(P::WIDTH).enumerate() {
+            let valid = load(&mut packet, k, hits.len());
+            packet.clear_hits();
             if valid.any() {
-                // SAFETY: the scene is live and committed; exactly the lanes just set from
-                // rays that passed `embree_accepts` are marked valid.
-                unsafe { packet.occluded(self.handle(), &valid) };
+                // SAFETY: the scene is live and committed; `load` marks valid exactly the
+                // lanes it set from rays that passed `embree_accepts`.
+                unsafe { packet.intersect(self.handle(), &valid, coherence) };
             }
-            for (lane, blocked) in blocked.iter_mut().enumerate() {
-                *blocked = valid.0[lane] == 0 || packet.blocked(lane);
+            for (lane, hit) in hits.iter_mut().enumerate() {
+                *hit = if valid.0[lane] != 0 { packet.hit(lane) } else { None };
             }
         }
     }
@@ -133,18 +195,9 @@ impl CommittedScene {
         rays: &[Ray],
         hits: &mut [Option<Hit>],
     ) {
-        let mut packet = P::empty();
-        for (rays, hits) in rays.chunks(P::WIDTH).zip(hits.chunks_mut(P::WIDTH)) {
-            let valid = load_packet(&mut packet, rays, true);
-            if valid.any() {
-                // SAFETY: the scene is live and committed; exactly the lanes just set from
-                // rays that passed `embree_accepts` are marked valid.
-                unsafe { packet.intersect(self.handle(), &valid, coherence) };
-            }
-            for (lane, hit) in hits.iter_mut().enumerate() {
-                *hit = if valid.0[lane] != 0 { packet.hit(lane) } else { None };
-            }
-        }
+        self.intersect_each_packet::<P>(coherence, hits, |packet, k, n| {
+            load_packet(packet, &rays[k * P::WIDTH..][..n])
+        });
     }
 
     #[cfg(not(embree4))]
@@ -222,24 +275,17 @@ fn load_blocks<P: RayHitPacket>(
     valid
 }
 
-/// Sets the lanes of `packet` from `rays` (no more than its width), with no hit if
-/// `clear_hits` (for a closest-hit query), and returns the mask marking (-1) exactly those
-/// whose rays Embree accepts, without a branch per ray on its validity. The other lanes are
-/// never traced: a refused ray's lane gets a harmless ray, and the lanes past the end of
-/// `rays` keep the one they had (from `empty` or an earlier chunk, accepted or harmless).
-fn load_packet<P: RayHitPacket>(
-    packet: &mut P,
-    rays: &[Ray],
-    clear_hits: bool,
-) -> compat::ValidMask {
+/// Sets the lanes of `packet` from `rays` (no more than its width) and returns the mask
+/// marking (-1) exactly those whose rays Embree accepts, without a branch per ray on its
+/// validity. The other lanes are never traced: a refused ray's lane gets a harmless ray, and
+/// the lanes past the end of `rays` keep the one they had (from `empty` or an earlier chunk,
+/// accepted or harmless).
+fn load_packet<P: RayHitPacket>(packet: &mut P, rays: &[Ray]) -> compat::ValidMask {
     let mut valid = compat::ValidMask([0; 16]);
     for (lane, ray) in rays.iter().enumerate() {
         let accepted = embree_accepts(ray);
         packet.set_lane(lane, if accepted { ray } else { &HARMLESS });
         valid.0[lane] = -i32::from(accepted);
-    }
-    if clear_hits {
-        packet.clear_hits();
     }
     valid
 }

@@ -26,7 +26,7 @@ pub(crate) struct Wavefront {
     streams: Vec<SampleStream>,
     /// The paths still going, in order: during a bounce, those whose rays are in `rays`.
     live: Vec<u32>,
-    rays: Vec<Ray>,
+    rays: RayColumns,
     hits: Vec<Option<Hit>>,
     shadows: QueuedShadows,
     /// Per path, the light of its unblocked shadow rays this bounce: zero between bounces
@@ -97,7 +97,7 @@ impl Wavefront {
             self.live.retain(|&lane| {
                 let state = &mut states[lane as usize];
                 let Some(ray) = state.pending_ray() else { return false };
-                rays.push(*ray);
+                rays.push(ray);
                 at_camera = state.at_camera();
                 true
             });
@@ -108,7 +108,7 @@ impl Wavefront {
             self.hits.clear();
             self.hits.resize(self.rays.len(), None);
             let coherence = if at_camera { Coherence::Coherent } else { Coherence::Incoherent };
-            path.accel().intersect_batch(
+            path.accel().intersect_columns(
                 &self.rays,
                 &mut self.hits,
                 coherence,
@@ -124,11 +124,11 @@ impl Wavefront {
             let hit_lanes = lanes.iter().zip(&self.hits).filter(|(_, hit)| hit.is_some());
             crate::sampling::draw_ahead(&mut self.streams, hit_lanes.map(|(&lane, _)| lane));
             clock.lap(Phase::Draws, &mut stats.phases);
-            for ((&lane, ray), &hit) in lanes.iter().zip(&self.rays).zip(&self.hits) {
-                let hit = path.tracer.closest_hit(ray, at_camera, Some(hit), stats);
+            for (&lane, &hit) in lanes.iter().zip(&self.hits) {
                 shadows.lane = lane;
                 let (state, stream) =
                     (&mut self.states[lane as usize], &mut self.streams[lane as usize]);
+                let hit = path.tracer.closest_hit(&state.ray, at_camera, Some(hit), stats);
                 if path.on_hit(state, hit, stream, stats, shadows, &mut self.lambert.next_lane()) {
                     self.lambert.commit(lane);
                 }
