@@ -48,19 +48,20 @@ impl SceneTracer<'_> {
         stats.shadow.hits += blocked.iter().filter(|&&b| b).count() as u64;
     }
 
-    /// The closest hit of a valid `ray`, counted as a camera or an indirect ray. `known` is
-    /// the hit when a batch already found it (it is then not looked up again).
-    pub fn closest_hit(
-        &self,
-        ray: &Ray,
+    /// The closest hit of a valid `ray`, counted as a camera or an indirect ray.
+    pub fn closest_hit(&self, ray: &Ray, camera_ray: bool, stats: &mut RenderStats) -> Option<Hit> {
+        let hit = self.accel.intersect(ray, &mut stats.traversal);
+        Self::count_closest_hit(hit, camera_ray, stats)
+    }
+
+    /// Counts `hit`, the closest hit a batch found for a camera or an indirect ray, as
+    /// `closest_hit` counts its own.
+    #[inline]
+    pub fn count_closest_hit(
+        hit: Option<Hit>,
         camera_ray: bool,
-        known: Option<Option<Hit>>,
         stats: &mut RenderStats,
     ) -> Option<Hit> {
-        let hit = match known {
-            Some(hit) => hit,
-            None => self.accel.intersect(ray, &mut stats.traversal),
-        };
         let counts = if camera_ray { &mut stats.camera } else { &mut stats.indirect };
         counts.rays += 1;
         counts.hits += hit.is_some() as u64;

@@ -129,7 +129,7 @@ impl PathTracer<'_> {
         let mut state = self.start(camera_ray, backdrop);
         let mut lane = LambertLane::default();
         while let Some(&ray) = state.pending_ray() {
-            let found = self.tracer.closest_hit(&ray, state.at_camera(), None, stats);
+            let found = self.tracer.closest_hit(&ray, state.at_camera(), stats);
             let mut shadows = ImmediateShadows { path: self, direct: Vec3::ZERO };
             if self.on_hit(&mut state, found, stream, stats, &mut shadows, &mut lane) {
                 if let Some(emitter) = &self.lone_emitter {

@@ -172,7 +172,7 @@ impl<'a> PathTracer<'a> {
                 return Some(hit);
             }
             *ray = self.tracer.spawn.ray(&si.surface, ray.dir, ray.time);
-            found = self.tracer.closest_hit(ray, false, None, stats);
+            found = self.tracer.closest_hit(ray, false, stats);
         }
         None
     }

@@ -11,6 +11,7 @@ use super::lanes::LambertLanes;
 use super::{PathState, PathTracer, ShadowSink};
 use crate::accel::Coherence;
 use crate::integrator::PathSample;
+use crate::integrator::trace::SceneTracer;
 use crate::phase_times::{Phase, PhaseClock};
 use crate::ray::{Hit, Ray};
 use crate::ray_columns::RayColumns;
@@ -128,7 +129,7 @@ impl Wavefront {
                 shadows.lane = lane;
                 let (state, stream) =
                     (&mut self.states[lane as usize], &mut self.streams[lane as usize]);
-                let hit = path.tracer.closest_hit(&state.ray, at_camera, Some(hit), stats);
+                let hit = SceneTracer::count_closest_hit(hit, at_camera, stats);
                 if path.on_hit(state, hit, stream, stats, shadows, &mut self.lambert.next_lane()) {
                     self.lambert.commit(lane);
                 }

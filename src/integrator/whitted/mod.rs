@@ -122,7 +122,7 @@ impl<'a> WhittedTracer<'a> {
             values.push(Vec3::ZERO);
             return;
         }
-        let Some(hit) = self.tracer.closest_hit(&ray, camera_ray, None, stats) else {
+        let Some(hit) = self.tracer.closest_hit(&ray, camera_ray, stats) else {
             values.push(backdrop.unwrap_or_else(|| self.tracer.escaped(ray.dir)));
             return;
         };
