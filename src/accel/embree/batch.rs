@@ -113,21 +113,20 @@ impl CommittedScene {
         });
     }
 
-    /// [`CommittedScene::occluded_batch`] of rays queued in columns, each packet filled a
-    /// column at a time (packets of 4 are not: they trace one ray at a time).
+    /// [`CommittedScene::occluded_batch`] of rays queued in columns, each packet of 8 or 16
+    /// filled a column at a time (other kinds take the rays one by one into their own form).
     pub fn occluded_columns(&self, kind: BatchKind, rays: &RayColumns, blocked: &mut [bool]) {
         assert_eq!(rays.len(), blocked.len(), "one answer per ray");
         match kind {
-            BatchKind::Single | BatchKind::Packet4 => {
-                for (ray, blocked) in rays.iter().zip(blocked) {
-                    *blocked = !embree_accepts(&ray) || self.occluded(&ray, None);
-                }
-            }
-            BatchKind::Packet8 | BatchKind::StreamCoherent | BatchKind::StreamIncoherent => {
+            BatchKind::Packet8 => {
                 self.occluded_blocks::<compat::Padded<ffi::RTCRayHit8, 8>>(rays, blocked)
             }
             BatchKind::Packet16 => {
                 self.occluded_blocks::<compat::Padded<ffi::RTCRayHit16, 16>>(rays, blocked)
+            }
+            _ => {
+                let rays: Vec<Ray> = rays.iter().collect();
+                self.occluded_batch(kind, &rays, blocked);
             }
         }
     }

@@ -1,5 +1,6 @@
 //! Many paths advanced together, a bounce at a time: the closest hits of all their rays
-//! found by one batched query (Embree packets), the bounce's Sobol draws of all of them made
+//! found by one batched query (Embree packets, filled a column at a time from the rays queued
+//! in columns, `RayColumns`), the bounce's Sobol draws of all of them made
 //! together (`sampling::draw_ahead`), each path shaded by the scalar integrator's
 //! own code (`PathTracer::on_hit`) — its plain Lambertian bounces all in one vectorised
 //! loop (`LambertLanes`) — then the shadow rays of all of them tested by one batched
