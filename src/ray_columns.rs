@@ -1,6 +1,7 @@
 //! A queue of rays in blocks of eight, each field a column of the block: the layout of a
 //! packet of eight rays, so that a backend fills its packets (Embree's `RTCRay8`) a column
-//! at a time rather than ray by ray. The batched path tracer queues its shadow rays so.
+//! at a time rather than ray by ray. The batched path tracer queues a bounce's closest-hit
+//! rays and its shadow rays so.
 
 use crate::ray::Ray;
 use glam::Vec3;

@@ -276,15 +276,18 @@ fn load_blocks<P: RayHitPacket>(
 
 /// Sets the lanes of `packet` from `rays` (no more than its width) and returns the mask
 /// marking (-1) exactly those whose rays Embree accepts, without a branch per ray on its
-/// validity. The other lanes are never traced: a refused ray's lane gets a harmless ray, and
-/// the lanes past the end of `rays` keep the one they had (from `empty` or an earlier chunk,
-/// accepted or harmless).
+/// validity. The other lanes are never traced, and hold a harmless ray: a refused ray's lane,
+/// and the lanes past the end of `rays` (which an earlier occlusion query may have left with
+/// `tfar` = -∞).
 fn load_packet<P: RayHitPacket>(packet: &mut P, rays: &[Ray]) -> compat::ValidMask {
     let mut valid = compat::ValidMask([0; 16]);
     for (lane, ray) in rays.iter().enumerate() {
         let accepted = embree_accepts(ray);
         packet.set_lane(lane, if accepted { ray } else { &HARMLESS });
         valid.0[lane] = -i32::from(accepted);
+    }
+    for lane in rays.len()..P::WIDTH {
+        packet.set_lane(lane, &HARMLESS);
     }
     valid
 }
