@@ -49,11 +49,16 @@ impl<Which: Iterator<Item = u32>> pulp::WithSimd for DrawAhead<'_, Which> {
 /// the spare lanes, whose values are not kept).
 #[inline(always)]
 fn draw_for(streams: &mut [SampleStream], chosen: &[u32]) {
-    let stream = |j: usize| &streams[chosen[(j / 2).min(chosen.len() - 1)] as usize];
-    let indices: [u32; LANES] = std::array::from_fn(|j| stream(j).sample as u32);
-    let prefixes: [u64; LANES] = std::array::from_fn(|j| stream(j).scramble_prefix);
-    let dimensions: [u64; LANES] =
-        std::array::from_fn(|j| stream(j).dimension + 4 * (j % 2) as u64);
+    // Each stream is read once, for both of its lanes.
+    let (mut indices, mut prefixes, mut dimensions) = ([0u32; LANES], [0u64; LANES], [0u64; LANES]);
+    for k in 0..STREAMS {
+        let stream = &streams[chosen[k.min(chosen.len() - 1)] as usize];
+        for half in 0..2 {
+            indices[2 * k + half] = stream.sample as u32;
+            prefixes[2 * k + half] = stream.scramble_prefix;
+            dimensions[2 * k + half] = stream.dimension + 4 * half as u64;
+        }
+    }
     let seeds: [u32; LANES] =
         std::array::from_fn(|j| super::sobol_seed(prefixes[j], dimensions[j]));
     let values = sobol::sample_4d_lanes(&indices, &seeds);
