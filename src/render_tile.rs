@@ -39,6 +39,8 @@ pub(crate) struct TileScratch {
     /// The batch's random streams and pixel-position draws, made before its camera rays.
     streams: Vec<SampleStream>,
     positions: Vec<Vec2>,
+    /// The tile's pixels, row-major: found once per tile, not by a division per sample.
+    pixels: Vec<(u32, u32)>,
 }
 
 /// The random stream of sample `s` of pixel (`x`, `y`).
@@ -127,6 +129,9 @@ pub(crate) fn render_tile(
         return Some(result);
     };
     let wavefront = &mut scratch.wavefront;
+    scratch.pixels.clear();
+    let rows = (tile.y0..tile.y1).map(|y| (tile.x0..tile.x1).map(move |x| (x, y)));
+    scratch.pixels.extend(rows.flatten());
     let mut clock = PhaseClock::new(options.time_phases);
     for s in samples {
         if stopped() {
@@ -135,12 +140,13 @@ pub(crate) fn render_tile(
         wavefront.clear();
         scratch.weights.clear();
         scratch.streams.clear();
-        scratch.streams.extend((0..n).map(|i| sample_stream(scene, options, pixel(i), s)));
+        let streams = scratch.pixels.iter().map(|&p| sample_stream(scene, options, p, s));
+        scratch.streams.extend(streams);
         let draw = (s, spp, options.jitters());
         sampling::pixel_positions(&mut scratch.streams, draw, &mut scratch.positions);
-        let starts = scratch.streams.drain(..).zip(&scratch.positions).enumerate();
-        for (i, (stream, &uniform)) in starts {
-            let (ray, backdrop, weight) = camera_ray(scene, pixel(i), uniform, &stream);
+        let starts = scratch.streams.drain(..).zip(&scratch.positions).zip(&scratch.pixels);
+        for ((stream, &uniform), &pixel) in starts {
+            let (ray, backdrop, weight) = camera_ray(scene, pixel, uniform, &stream);
             wavefront.push(path.start(ray, backdrop), stream);
             scratch.weights.push(weight);
         }

@@ -200,8 +200,22 @@ impl FilterSampler {
 
     /// The position in pixel (`x`, `y`) (from its top-left corner; beyond [0, 1) where the
     /// filter reaches) for the uniform numbers `u`, and the sample's weight.
-    pub fn sample(&self, (x, y): (u32, u32), u: Vec2) -> (Vec2, f32) {
-        let Some([x_axis, y_axis]) = &self.axes else { return (u, 1.0) };
+    #[inline]
+    pub fn sample(&self, pixel: (u32, u32), u: Vec2) -> (Vec2, f32) {
+        // The box filter's sample is the uniform one, inline; the others' out of line.
+        match &self.axes {
+            None => (u, 1.0),
+            Some(axes) => self.sample_windows(axes, pixel, u),
+        }
+    }
+
+    #[inline(never)]
+    fn sample_windows(
+        &self,
+        [x_axis, y_axis]: &[Axis; 2],
+        (x, y): (u32, u32),
+        u: Vec2,
+    ) -> (Vec2, f32) {
         let (dx, wx) = x_axis.window(x).sample(self.filter, u.x);
         let (dy, wy) = y_axis.window(y).sample(self.filter, u.y);
         (Vec2::new(0.5 + dx, 0.5 + dy), (wx * wy) as f32)
