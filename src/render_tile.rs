@@ -39,7 +39,8 @@ pub(crate) struct TileScratch {
     /// The batch's random streams and pixel-position draws, made before its camera rays.
     streams: Vec<SampleStream>,
     positions: Vec<Vec2>,
-    /// The tile's pixels, row-major: found once per tile, not by a division per sample.
+    /// The tile's pixels, row-major: listed once per tile, not found by two integer
+    /// divisions per camera ray.
     pixels: Vec<(u32, u32)>,
 }
 

@@ -209,6 +209,7 @@ impl FilterSampler {
         }
     }
 
+    /// `sample` for a filter other than the box.
     #[inline(never)]
     fn sample_windows(
         &self,
