@@ -83,6 +83,12 @@ pub struct Tile {
 }
 
 impl Tile {
+    /// Its pixels (`x`, `y`), row by row from the top-left one: the order of a tile's sums.
+    pub fn pixels(&self) -> impl Iterator<Item = (u32, u32)> + use<> {
+        let (x0, x1) = (self.x0, self.x1);
+        (self.y0..self.y1).flat_map(move |y| (x0..x1).map(move |x| (x, y)))
+    }
+
     /// Whether the two share a pixel.
     pub fn meets(&self, other: &Tile) -> bool {
         self.x0 < other.x1 && other.x0 < self.x1 && self.y0 < other.y1 && other.y0 < self.y1
@@ -134,5 +140,13 @@ mod tests {
             }
         }
         assert!(seen.iter().all(|&n| n == 1));
+    }
+
+    #[test]
+    fn a_tiles_pixels_go_row_by_row() {
+        let tile = Tile { x0: 3, y0: 5, x1: 5, y1: 8 };
+        let pixels: Vec<(u32, u32)> = tile.pixels().collect();
+        assert_eq!(pixels, [(3, 5), (4, 5), (3, 6), (4, 6), (3, 7), (4, 7)]);
+        assert_eq!(Tile { x0: 2, y0: 2, x1: 2, y1: 9 }.pixels().count(), 0);
     }
 }

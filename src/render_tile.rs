@@ -39,8 +39,8 @@ pub(crate) struct TileScratch {
     /// The batch's random streams and pixel-position draws, made before its camera rays.
     streams: Vec<SampleStream>,
     positions: Vec<Vec2>,
-    /// The tile's pixels, row-major: listed once per tile, not found by two integer
-    /// divisions per camera ray.
+    /// The tile's pixels (`Tile::pixels`): listed once per tile, not found from a sample's
+    /// index by two integer divisions per camera ray.
     pixels: Vec<(u32, u32)>,
 }
 
@@ -91,12 +91,12 @@ pub(crate) fn render_tile(
     scratch: &mut TileScratch,
 ) -> Option<TileResult> {
     let scene = tracer.scene();
-    let width = (tile.x1 - tile.x0) as usize;
-    let n = width * (tile.y1 - tile.y0) as usize;
+    scratch.pixels.clear();
+    scratch.pixels.extend(tile.pixels());
+    let n = scratch.pixels.len();
     let mut result =
         TileResult { tile, sums: vec![PixelSums::default(); n], stats: RenderStats::default() };
     let spp = options.spp.max(1);
-    let pixel = |i: usize| (tile.x0 + (i % width) as u32, tile.y0 + (i / width) as u32);
     let clamp = options.clamp;
     let add = |sums: &mut PixelSums, sample: &PathSample, weight: f32| {
         let radiance = match clamp {
@@ -115,14 +115,14 @@ pub(crate) fn render_tile(
     // A stop ends the tile too (its pass is dropped), so that a long pass stops promptly.
     let stopped = || options.stop.as_ref().is_some_and(|s| s.requested().is_some());
     let Some(path) = batched else {
-        for (i, sums) in result.sums.iter_mut().enumerate() {
+        for (i, (sums, &pixel)) in result.sums.iter_mut().zip(&scratch.pixels).enumerate() {
             if i % 16 == 0 && stopped() {
                 return None;
             }
             for s in samples.clone() {
-                let mut stream = sample_stream(scene, options, pixel(i), s);
+                let mut stream = sample_stream(scene, options, pixel, s);
                 let uniform = stream.pixel_position(s, spp, options.jitters());
-                let (ray, backdrop, weight) = camera_ray(scene, pixel(i), uniform, &stream);
+                let (ray, backdrop, weight) = camera_ray(scene, pixel, uniform, &stream);
                 let sample = tracer.trace(ray, backdrop, &mut stream, &mut result.stats);
                 add(sums, &sample, weight);
             }
@@ -130,9 +130,6 @@ pub(crate) fn render_tile(
         return Some(result);
     };
     let wavefront = &mut scratch.wavefront;
-    scratch.pixels.clear();
-    let rows = (tile.y0..tile.y1).map(|y| (tile.x0..tile.x1).map(move |x| (x, y)));
-    scratch.pixels.extend(rows.flatten());
     let mut clock = PhaseClock::new(options.time_phases);
     for s in samples {
         if stopped() {
