@@ -9,7 +9,7 @@ use crate::integrator::Tracer;
 use crate::render_passes::{Passes, Progress, add_tile, pass_ranges};
 use crate::render_scene::RenderScene;
 pub use crate::render_tile::{CAMERA_BATCH, TILE_SIZE};
-use crate::render_tile::{TileScratch, render_tile};
+use crate::render_tile::{WorkerScratches, render_tile};
 use crate::sample_sums::FilmSums;
 use crate::scene::SceneDesc;
 use crate::stats::RenderStats;
@@ -239,6 +239,7 @@ pub fn render_passes(
         spp_done: 0,
         stopped: None,
     };
+    let scratches = WorkerScratches::for_pool();
     for samples in passes {
         // Each tile is added to the film as it ends (exact sums: in any order), so no copy
         // of the image's sums is held per pass. A stop leaves the tiles of the pass not yet
@@ -248,11 +249,16 @@ pub fn render_passes(
             RenderStats::default(),
             0usize,
         ));
-        all_tiles.par_iter().for_each_init(TileScratch::default, |scratch, &tile| {
+        // One tile per rayon job: with longer runs of tiles, rayon splits a range only
+        // when another thread steals it, and a thread that ran out of work waited for the
+        // other's run to end at each pass's end.
+        all_tiles.par_iter().with_max_len(1).for_each(|&tile| {
             if stop().is_some() {
                 return;
             }
-            let Some(r) = render_tile(&tracer, tile, samples.clone(), options, scratch) else {
+            let traced = scratches
+                .with(|scratch| render_tile(&tracer, tile, samples.clone(), options, scratch));
+            let Some(r) = traced else {
                 return;
             };
             progress.tile_done(r.stats.total_rays());

@@ -44,12 +44,9 @@ pub struct Passes {
 
 /// Adds a tile's sums into the film.
 pub fn add_tile(film: &mut FilmSums, tile: Tile, sums: &[crate::sample_sums::PixelSums]) {
-    let mut sums = sums.iter();
-    for (x, y) in tile.pixels() {
+    for ((x, y), sums) in tile.pixels().zip(sums) {
         let idx = film.index(x, y);
-        let pixel = &mut film.pixels[idx];
-        // Saturating only against corrupt input: a render's own sums never come near.
-        *pixel = pixel.checked_add(sums.next().unwrap_or(&Default::default())).unwrap_or(*pixel);
+        film.pixels[idx].add(sums);
     }
 }
 

@@ -12,6 +12,7 @@ use crate::sample_sums::PixelSums;
 use crate::sampling::{self, SLOT_LENS, SLOT_TIME, SampleStream};
 use crate::stats::RenderStats;
 use glam::{Vec2, Vec3};
+use std::sync::{Mutex, TryLockError};
 
 /// Side of the square tiles rayon schedules, one task each (`par_iter` over the tiles,
 /// buffers reused per worker). Measured on the Cornell box and the 1M-triangle sphere:
@@ -42,6 +43,33 @@ pub(crate) struct TileScratch {
     /// The tile's pixels (`Tile::pixels`): listed once per tile, not found from a sample's
     /// index by two integer divisions per camera ray.
     pixels: Vec<(u32, u32)>,
+}
+
+/// One `TileScratch` per worker of the rayon pool, kept for a whole render: rayon's
+/// `for_each_init` would make one per job (one per tile when each tile is a job), whose
+/// buffers would grow afresh every time.
+pub(crate) struct WorkerScratches(Vec<Mutex<TileScratch>>);
+
+impl WorkerScratches {
+    /// One per thread of the current pool.
+    pub fn for_pool() -> Self {
+        WorkerScratches((0..rayon::current_num_threads()).map(|_| Mutex::default()).collect())
+    }
+
+    /// `f` of the calling worker's scratch; of a fresh one outside the pool, or where the
+    /// worker's is in use (a tile taken while in another, should rayon nest them).
+    pub fn with<R>(&self, f: impl FnOnce(&mut TileScratch) -> R) -> R {
+        let own = rayon::current_thread_index().and_then(|i| self.0.get(i));
+        let held = own.and_then(|scratch| match scratch.try_lock() {
+            Ok(held) => Some(held),
+            Err(TryLockError::Poisoned(poisoned)) => Some(poisoned.into_inner()),
+            Err(TryLockError::WouldBlock) => None,
+        });
+        match held {
+            Some(mut held) => f(&mut held),
+            None => f(&mut TileScratch::default()),
+        }
+    }
 }
 
 /// The random stream of sample `s` of pixel (`x`, `y`).

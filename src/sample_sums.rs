@@ -110,6 +110,23 @@ impl PixelSums {
         }
     }
 
+    /// Adds another set of sums of the same pixel from this render, whose sums stay far
+    /// from overflowing (see `MAX_MAGNITUDE_LOG2`), as `add_sample` adds: without the
+    /// checks of `checked_add`, which made adding a tile's sums to the film cost 1.7 % of a
+    /// render's threads' time.
+    #[inline]
+    pub fn add(&mut self, other: &PixelSums) {
+        let add3 =
+            |a: &mut [i128; 3], b: &[i128; 3]| a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
+        add3(&mut self.color, &other.color);
+        self.samples += other.samples;
+        self.depth += other.depth;
+        self.depth_samples += other.depth_samples;
+        add3(&mut self.normal, &other.normal);
+        add3(&mut self.albedo, &other.albedo);
+        add3(&mut self.square, &other.square);
+    }
+
     /// Adds another set of sums of the same pixel; `None` if a sum overflows (only a
     /// corrupted part file can do that).
     pub fn checked_add(&self, other: &PixelSums) -> Option<PixelSums> {
