@@ -112,8 +112,8 @@ impl PixelSums {
 
     /// Adds another set of sums of the same pixel from this render, whose sums stay far
     /// from overflowing (see `MAX_MAGNITUDE_LOG2`), as `add_sample` adds: without the
-    /// checks of `checked_add`, which made adding a tile's sums to the film cost 1.7 % of a
-    /// render's threads' time.
+    /// checks of `checked_add`, which cost a Cornell box render 0.6 % of its threads' time
+    /// as every tile of every pass was added to the film.
     #[inline]
     pub fn add(&mut self, other: &PixelSums) {
         let add3 =
