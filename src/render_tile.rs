@@ -187,3 +187,23 @@ pub(crate) fn render_tile(
     }
     Some(result)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A worker gets its own scratch back, as it left it; a call from outside the pool, or
+    /// nested in the worker's own, gets a fresh one.
+    #[test]
+    fn a_worker_keeps_its_scratch_and_others_get_fresh_ones() {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().expect("a pool");
+        let scratches = pool.install(WorkerScratches::for_pool);
+        assert_eq!(scratches.with(|s| s.pixels.len()), 0, "outside the pool");
+        pool.install(|| {
+            scratches.with(|s| s.pixels.push((3, 4)));
+            let nested = scratches.with(|s| (s.pixels.clone(), scratches.with(|t| t.pixels.len())));
+            assert_eq!(nested, (vec![(3, 4)], 0));
+        });
+        assert_eq!(scratches.with(|s| s.pixels.len()), 0, "outside the pool again");
+    }
+}

@@ -313,6 +313,11 @@ mod tests {
                 a.add_sample(Vec3::splat(*v), Some(*v), None, Some(Vec3::splat(*v)));
             }
             assert_eq!(b.checked_add(&a), Some(whole), "cut at {cut}");
+            // A render's own tiles are added unchecked: the same sums, in either order.
+            let (mut ab, mut ba) = (a, b);
+            ab.add(&b);
+            ba.add(&a);
+            assert_eq!((ab, ba), (whole, whole), "cut at {cut}, unchecked");
         }
     }
 
