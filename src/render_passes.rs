@@ -42,8 +42,9 @@ pub struct Passes {
     pub stopped: Option<StopReason>,
 }
 
-/// Adds a tile's sums into the film.
-pub fn add_tile(film: &mut FilmSums, tile: Tile, sums: &[crate::sample_sums::PixelSums]) {
+/// Adds the sums of one of this render's tiles into the film, unchecked
+/// (`PixelSums::add`): part files from outside are added by `checked_add`.
+pub(crate) fn add_tile(film: &mut FilmSums, tile: Tile, sums: &[crate::sample_sums::PixelSums]) {
     for ((x, y), sums) in tile.pixels().zip(sums) {
         let idx = film.index(x, y);
         film.pixels[idx].add(sums);

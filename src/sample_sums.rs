@@ -110,12 +110,13 @@ impl PixelSums {
         }
     }
 
-    /// Adds another set of sums of the same pixel from this render, whose sums stay far
-    /// from overflowing (see `MAX_MAGNITUDE_LOG2`), as `add_sample` adds: without the
-    /// checks of `checked_add`, which cost a Cornell box render 0.6 % of its threads' time
-    /// as every tile of every pass was added to the film.
+    /// Adds another set of sums of the same pixel from this render, whose sums stay below
+    /// `i128::MAX` for up to `limits::MAX_SPP` samples (see `MAX_MAGNITUDE_LOG2`), as
+    /// `add_sample` adds: without the checks of `checked_add` (for part files, which come
+    /// from outside), which cost a Cornell box render 0.6 % of its threads' time as every
+    /// tile of every pass was added to the film.
     #[inline]
-    pub fn add(&mut self, other: &PixelSums) {
+    pub(crate) fn add(&mut self, other: &PixelSums) {
         let add3 =
             |a: &mut [i128; 3], b: &[i128; 3]| a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
         add3(&mut self.color, &other.color);
@@ -300,17 +301,23 @@ mod tests {
     fn sums_in_any_grouping_are_identical() {
         let values: Vec<f32> =
             (0..97).map(|i| ((i * 7919) % 1000) as f32 * 0.37e-3 + 1e-7).collect();
+        // Every field of the sums differs from the others, so a field added to the wrong
+        // one, or left out, shows.
+        let add = |sums: &mut PixelSums, v: f32| {
+            let normal = Vec3::new(v, -2.0 * v, 0.5);
+            sums.add_sample(Vec3::new(v, 3.0 * v, -v), Some(5.0 * v), Some(normal), Some(-normal))
+        };
         let mut whole = PixelSums::default();
         for v in &values {
-            whole.add_sample(Vec3::splat(*v), Some(*v), None, Some(Vec3::splat(*v)));
+            add(&mut whole, *v);
         }
         for cut in [1usize, 13, 50, 96] {
             let (mut a, mut b) = (PixelSums::default(), PixelSums::default());
             for v in &values[cut..] {
-                b.add_sample(Vec3::splat(*v), Some(*v), None, Some(Vec3::splat(*v)));
+                add(&mut b, *v);
             }
             for v in &values[..cut] {
-                a.add_sample(Vec3::splat(*v), Some(*v), None, Some(Vec3::splat(*v)));
+                add(&mut a, *v);
             }
             assert_eq!(b.checked_add(&a), Some(whole), "cut at {cut}");
             // A render's own tiles are added unchecked: the same sums, in either order.
