@@ -36,13 +36,22 @@ pub const CAMERA_BATCH: usize = (TILE_SIZE * TILE_SIZE) as usize;
 #[derive(Default)]
 pub(crate) struct TileScratch {
     wavefront: Wavefront,
-    weights: Vec<f32>,
-    /// The batch's random streams and pixel-position draws, made before its camera rays.
+    /// The batch's random streams, made before its camera rays.
     streams: Vec<SampleStream>,
-    positions: Vec<Vec2>,
+    camera: CameraSamples,
     /// The tile's pixels (`Tile::pixels`): listed once per tile, not found from a sample's
     /// index by two integer divisions per camera ray.
     pixels: Vec<(u32, u32)>,
+}
+
+/// The camera samples of a batch, in order: each one's pixel-position draw, where in the
+/// image it lies, its filter weight and its ray.
+#[derive(Default)]
+struct CameraSamples {
+    positions: Vec<Vec2>,
+    rasters: Vec<Vec2>,
+    weights: Vec<f32>,
+    rays: Vec<Ray>,
 }
 
 /// One `TileScratch` per worker of the rayon pool, kept for a whole render: rayon's
@@ -89,19 +98,63 @@ fn sample_stream(
 #[inline(always)]
 fn camera_ray(
     scene: &RenderScene,
-    (x, y): (u32, u32),
+    pixel: (u32, u32),
     uniform: Vec2,
     stream: &SampleStream,
 ) -> (Ray, Option<Vec3>, f32) {
-    let (in_pixel, weight) = scene.pixel_filter.sample((x, y), uniform);
-    let raster = Vec2::new(x as f32, y as f32) + in_pixel;
-    let effects = &scene.effects;
-    let lens = effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS));
+    let (raster, weight) = raster_position(scene, pixel, uniform);
+    let lens = scene.effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS));
     let mut ray = scene.camera.generate_ray(raster, lens);
-    if effects.motion_blur {
+    set_time(scene, &mut ray, stream);
+    (ray, scene.backdrop_at(raster), weight)
+}
+
+/// Where in the image a sample of pixel (`x`, `y`) at `uniform` lies, and its filter weight.
+#[inline(always)]
+fn raster_position(scene: &RenderScene, (x, y): (u32, u32), uniform: Vec2) -> (Vec2, f32) {
+    let (in_pixel, weight) = scene.pixel_filter.sample((x, y), uniform);
+    (Vec2::new(x as f32, y as f32) + in_pixel, weight)
+}
+
+/// The ray's time, drawn from `stream` where the scene has motion blur.
+#[inline(always)]
+fn set_time(scene: &RenderScene, ray: &mut Ray, stream: &SampleStream) {
+    if scene.effects.motion_blur {
         ray.time = stream.reserved_1d(SLOT_TIME);
     }
-    (ray, scene.backdrop_at(raster), weight)
+}
+
+/// `camera_ray` of every sample of a batch (of `pixels`, with `streams`, their position
+/// draws made into `samples`) into `samples`: a pinhole camera's rays computed together
+/// (`Camera::pinhole_rays`).
+fn camera_rays(
+    scene: &RenderScene,
+    pixels: &[(u32, u32)],
+    streams: &[SampleStream],
+    samples: &mut CameraSamples,
+) {
+    let CameraSamples { positions, rasters, weights, rays } = samples;
+    rasters.clear();
+    weights.clear();
+    rays.clear();
+    for (&pixel, &uniform) in pixels.iter().zip(positions.iter()) {
+        let (raster, weight) = raster_position(scene, pixel, uniform);
+        rasters.push(raster);
+        weights.push(weight);
+    }
+    let camera = &scene.camera;
+    if camera.is_pinhole() {
+        camera.pinhole_rays(rasters, rays);
+    } else {
+        let lens = |stream: &SampleStream| {
+            scene.effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS))
+        };
+        let generated = rasters.iter().zip(streams.iter());
+        rays.extend(generated.map(|(&raster, stream)| camera.generate_ray(raster, lens(stream))));
+    }
+    for (ray, stream) in rays.iter_mut().zip(streams.iter()) {
+        set_time(scene, ray, stream);
+    }
 }
 
 /// Renders the samples `samples` of every pixel of one tile. The path tracer (unless asked
@@ -164,22 +217,21 @@ pub(crate) fn render_tile(
             return None;
         }
         wavefront.clear();
-        scratch.weights.clear();
         scratch.streams.clear();
         let streams = scratch.pixels.iter().map(|&p| sample_stream(scene, options, p, s));
         scratch.streams.extend(streams);
         let draw = (s, spp, options.jitters());
-        sampling::pixel_positions(&mut scratch.streams, draw, &mut scratch.positions);
-        let starts = scratch.streams.drain(..).zip(&scratch.positions).zip(&scratch.pixels);
-        for ((stream, &uniform), &pixel) in starts {
-            let (ray, backdrop, weight) = camera_ray(scene, pixel, uniform, &stream);
-            wavefront.push(path.start(ray, backdrop), stream);
-            scratch.weights.push(weight);
+        let camera = &mut scratch.camera;
+        sampling::pixel_positions(&mut scratch.streams, draw, &mut camera.positions);
+        camera_rays(scene, &scratch.pixels, &scratch.streams, camera);
+        let starts = scratch.streams.drain(..).zip(&camera.rays).zip(&camera.rasters);
+        for ((stream, &ray), &raster) in starts {
+            wavefront.push(path.start(ray, scene.backdrop_at(raster)), stream);
         }
         clock.lap(Phase::CameraRays, &mut result.stats.phases);
         wavefront.run(path, &mut result.stats, &mut clock);
         for ((sums, sample), weight) in
-            result.sums.iter_mut().zip(wavefront.results()).zip(&scratch.weights)
+            result.sums.iter_mut().zip(wavefront.results()).zip(&scratch.camera.weights)
         {
             add(sums, sample, *weight);
         }

@@ -128,16 +128,15 @@ impl SampleStream {
     /// the rest is computed out of line.
     #[inline]
     fn draw<const N: usize>(&self, d: u64) -> [f32; N] {
-        if self.draws_sobol() {
-            let values = match d.wrapping_sub(self.ahead_at) {
-                0 => self.ahead[0],
-                4 => self.ahead[1],
-                _ => self.sobol_draw(d),
-            };
-            std::array::from_fn(|k| values[k])
-        } else {
-            self.hashed_draw(d)
-        }
+        // Only Sobol streams have draws made ahead (`draw_ahead`), so those are looked for
+        // first: the bounces' draws then cost no test of the stream's kind.
+        let values = match d.wrapping_sub(self.ahead_at) {
+            0 => self.ahead[0],
+            4 => self.ahead[1],
+            _ if self.draws_sobol() => self.sobol_draw(d),
+            _ => return self.hashed_draw(d),
+        };
+        std::array::from_fn(|k| values[k])
     }
 
     #[inline(never)]
