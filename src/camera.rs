@@ -137,8 +137,8 @@ impl Camera {
     }
 }
 
-/// Camera rays computed together in blocks of `LANES`.
-const LANES: usize = 16;
+/// Camera rays computed together: AVX-512's width (two AVX2 registers).
+const RAY_LANES: usize = 16;
 
 /// `Camera::pinhole_rays`, compiled once per instruction set `pulp` dispatches to.
 struct PinholeRays<'a> {
@@ -156,11 +156,11 @@ impl pulp::WithSimd for PinholeRays<'_> {
         // `generate_ray`'s origin for a pinhole: the same sum, once.
         let origin = camera.position + camera.render_from_camera_rotation * Vec3::ZERO;
         self.rays.reserve(self.rasters.len());
-        for block in self.rasters.chunks(LANES) {
-            let mut dirs = [[0.0f32; LANES]; 3];
+        for block in self.rasters.chunks(RAY_LANES) {
+            let mut dirs = [[0.0f32; RAY_LANES]; 3];
             // A full block of lanes (the spare ones from the block's first raster), so that
             // the loop has a fixed length and vectorises.
-            for j in 0..LANES {
+            for j in 0..RAY_LANES {
                 let raster = block[if j < block.len() { j } else { 0 }];
                 let dir = camera.render_direction(camera.camera_direction(raster));
                 (dirs[0][j], dirs[1][j], dirs[2][j]) = (dir.x, dir.y, dir.z);
@@ -220,7 +220,6 @@ mod tests {
                 tan_half_vfov: 0.7,
                 shift: Vec2::new(0.125, -0.3),
                 pixel_aspect: 1.25,
-                lens_radius: 0.0,
                 ..Default::default()
             },
         ];
@@ -258,5 +257,12 @@ mod tests {
         assert!(!Camera { ortho_half_height: Some(2.0), ..pinhole.clone() }.is_pinhole());
         assert!(!Camera { clip: (0.5, f32::INFINITY), ..pinhole.clone() }.is_pinhole());
         assert!(!Camera { clip: (0.0, 100.0), ..pinhole.clone() }.is_pinhole());
+        // Clip distances `generate_ray` does not apply leave a pinhole a pinhole.
+        for clip in [(-1.0, f32::INFINITY), (f32::NAN, f32::NAN), (0.0, f32::NEG_INFINITY)] {
+            let camera = Camera { clip, ..pinhole.clone() };
+            assert!(camera.is_pinhole(), "{clip:?}");
+            let ray = camera.generate_ray(Vec2::new(1.0, 3.0), None);
+            assert_eq!((ray.tmin, ray.tmax), (0.0, f32::INFINITY), "{clip:?}: unclipped");
+        }
     }
 }

@@ -38,6 +38,7 @@ pub(crate) struct TileScratch {
     wavefront: Wavefront,
     /// The batch's random streams, made before its camera rays.
     streams: Vec<SampleStream>,
+    /// The batch's camera rays, and what they are made from.
     camera: CameraSamples,
     /// The tile's pixels (`Tile::pixels`): listed once per tile, not found from a sample's
     /// index by two integer divisions per camera ray.
@@ -92,7 +93,7 @@ fn sample_stream(
     SampleStream::new(options.sampler, options.seed, pixel, s as u64)
 }
 
-/// The camera ray through pixel (`x`, `y`) at `uniform` (the sample's position draw,
+/// The camera ray through `pixel` at `uniform` (the sample's position draw,
 /// `SampleStream::pixel_position`) with the rest of its draws from `stream`, the scene's
 /// backdrop behind it (if it has one), and the sample's filter weight.
 #[inline(always)]
@@ -103,8 +104,7 @@ fn camera_ray(
     stream: &SampleStream,
 ) -> (Ray, Option<Vec3>, f32) {
     let (raster, weight) = raster_position(scene, pixel, uniform);
-    let lens = scene.effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS));
-    let mut ray = scene.camera.generate_ray(raster, lens);
+    let mut ray = scene.camera.generate_ray(raster, lens_sample(scene, stream));
     set_time(scene, &mut ray, stream);
     (ray, scene.backdrop_at(raster), weight)
 }
@@ -116,6 +116,12 @@ fn raster_position(scene: &RenderScene, (x, y): (u32, u32), uniform: Vec2) -> (V
     (Vec2::new(x as f32, y as f32) + in_pixel, weight)
 }
 
+/// The lens draw, where the scene has depth of field.
+#[inline(always)]
+fn lens_sample(scene: &RenderScene, stream: &SampleStream) -> Option<Vec2> {
+    scene.effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS))
+}
+
 /// The ray's time, drawn from `stream` where the scene has motion blur.
 #[inline(always)]
 fn set_time(scene: &RenderScene, ray: &mut Ray, stream: &SampleStream) {
@@ -124,36 +130,40 @@ fn set_time(scene: &RenderScene, ray: &mut Ray, stream: &SampleStream) {
     }
 }
 
-/// `camera_ray` of every sample of a batch (of `pixels`, with `streams`, their position
-/// draws made into `samples`) into `samples`: a pinhole camera's rays computed together
-/// (`Camera::pinhole_rays`).
-fn camera_rays(
-    scene: &RenderScene,
-    pixels: &[(u32, u32)],
-    streams: &[SampleStream],
-    samples: &mut CameraSamples,
-) {
-    let CameraSamples { positions, rasters, weights, rays } = samples;
-    rasters.clear();
-    weights.clear();
-    rays.clear();
-    for (&pixel, &uniform) in pixels.iter().zip(positions.iter()) {
-        let (raster, weight) = raster_position(scene, pixel, uniform);
-        rasters.push(raster);
-        weights.push(weight);
-    }
-    let camera = &scene.camera;
-    if camera.is_pinhole() {
-        camera.pinhole_rays(rasters, rays);
-    } else {
-        let lens = |stream: &SampleStream| {
-            scene.effects.depth_of_field.then(|| stream.reserved_2d(SLOT_LENS))
-        };
-        let generated = rasters.iter().zip(streams.iter());
-        rays.extend(generated.map(|(&raster, stream)| camera.generate_ray(raster, lens(stream))));
-    }
-    for (ray, stream) in rays.iter_mut().zip(streams.iter()) {
-        set_time(scene, ray, stream);
+impl CameraSamples {
+    /// The samples of a batch: one of each pixel of `pixels`, drawn from its stream in
+    /// `streams` (`draw`: the sample index, the pixel's sample count and whether positions
+    /// are jittered, as `sampling::pixel_positions` takes them). Each is `camera_ray`'s but
+    /// for the backdrop, which the caller looks up from `rasters`; a pinhole camera's rays
+    /// are computed together (`Camera::pinhole_rays`).
+    fn make(
+        &mut self,
+        scene: &RenderScene,
+        pixels: &[(u32, u32)],
+        streams: &mut [SampleStream],
+        draw: (u32, u32, bool),
+    ) {
+        let CameraSamples { positions, rasters, weights, rays } = self;
+        sampling::pixel_positions(streams, draw, positions);
+        rasters.clear();
+        weights.clear();
+        rays.clear();
+        for (&pixel, &uniform) in pixels.iter().zip(positions.iter()) {
+            let (raster, weight) = raster_position(scene, pixel, uniform);
+            rasters.push(raster);
+            weights.push(weight);
+        }
+        let camera = &scene.camera;
+        if camera.is_pinhole() {
+            camera.pinhole_rays(rasters, rays);
+        } else {
+            let generated = rasters.iter().zip(streams.iter());
+            let ray = |(&raster, stream)| camera.generate_ray(raster, lens_sample(scene, stream));
+            rays.extend(generated.map(ray));
+        }
+        for (ray, stream) in rays.iter_mut().zip(streams.iter()) {
+            set_time(scene, ray, stream);
+        }
     }
 }
 
@@ -222,8 +232,7 @@ pub(crate) fn render_tile(
         scratch.streams.extend(streams);
         let draw = (s, spp, options.jitters());
         let camera = &mut scratch.camera;
-        sampling::pixel_positions(&mut scratch.streams, draw, &mut camera.positions);
-        camera_rays(scene, &scratch.pixels, &scratch.streams, camera);
+        camera.make(scene, &scratch.pixels, &mut scratch.streams, draw);
         let starts = scratch.streams.drain(..).zip(&camera.rays).zip(&camera.rasters);
         for ((stream, &ray), &raster) in starts {
             wavefront.push(path.start(ray, scene.backdrop_at(raster)), stream);
