@@ -117,7 +117,7 @@ impl Camera {
     /// a pinhole camera (`is_pinhole`). The directions are computed 16 lanes at a time, in
     /// columns the compiler vectorises (for the widest vector unit the CPU has, `pulp`): one
     /// camera ray at a time, they were most of the camera-ray phase of a Cornell box render.
-    pub fn pinhole_rays(&self, rasters: &[Vec2], rays: &mut Vec<Ray>) {
+    pub(crate) fn pinhole_rays(&self, rasters: &[Vec2], rays: &mut Vec<Ray>) {
         debug_assert!(self.is_pinhole());
         pulp::Arch::new().dispatch(PinholeRays { camera: self, rasters, rays });
     }
