@@ -83,7 +83,14 @@ impl LoneEmitter {
     /// solid angle, or not at all behind a one-sided emitter).
     #[inline]
     pub fn by_area(&self, reference: Vec3) -> bool {
-        (self.sampler.two_sided || self.shape.faces(reference)) && !self.shape.is_near(reference)
+        !self.behind(reference) && !self.shape.is_near(reference)
+    }
+
+    /// Whether `reference` is behind the emitter, one-sided, so that `sample_emitter`
+    /// finds no light for it (the emitter is the light set's only one, and emits).
+    #[inline]
+    pub fn behind(&self, reference: Vec3) -> bool {
+        !self.sampler.two_sided && !self.shape.faces(reference)
     }
 }
 

@@ -13,15 +13,20 @@ fn lights_with(shape: EmitterShape, two_sided: bool) -> LightSet {
 }
 
 /// Every area sample of the lone emitter against `sample_emitter`'s, bit for bit, from
-/// points on both sides at assorted numbers. Points near it (sampled by solid angle) and
-/// behind a one-sided one are left to `sample_emitter`.
+/// points on both sides at assorted numbers. Points near it (sampled by solid angle) are
+/// left to `sample_emitter`; behind a one-sided one it must find nothing.
 fn assert_same_samples(lights: &LightSet) {
     let lone = lights.lone_emitter().expect("one flat emitter");
     let mut rng = SplitMix64(9);
-    let (mut by_area, mut found, mut left) = (0, 0, 0);
+    let (mut by_area, mut found, mut left, mut behind) = (0, 0, 0, 0);
     for _ in 0..20_000 {
         let reference = rng.vec3(-12.0, 12.0);
         let (u, pick) = (Vec2::new(rng.unit(), rng.unit()), Vec2::new(rng.unit(), rng.unit()));
+        if lone.behind(reference) {
+            behind += 1;
+            assert!(!lone.by_area(reference), "{reference}");
+            assert!(lights.sample_emitter(reference, pick, u).is_none(), "{reference} {u}");
+        }
         if !lone.by_area(reference) {
             left += 1;
             continue;
@@ -44,6 +49,8 @@ fn assert_same_samples(lights: &LightSet) {
         }
     }
     assert!(by_area > 1000 && found > 1000 && left > 1000, "{by_area} {found} {left}");
+    // Only a one-sided emitter has a back.
+    assert_eq!(behind > 1000, !lone.sampler.two_sided, "{behind}");
 }
 
 #[test]

@@ -86,13 +86,20 @@ impl PathTracer<'_> {
             // The point takes the draw's best stratified pair.
             let [u0, u1, u2, u3] = stream.next_4d();
             let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
-            if self.lone_emitter.as_ref().is_some_and(|e| e.by_area(point)) {
-                // Left for the lanes to sample (`with_light_point`).
-                return LaneLight {
-                    kind: BY_AREA,
-                    point: Vec3::new(u0, u1, 0.0),
-                    ..LaneLight::NONE
-                };
+            if let Some(emitter) = &self.lone_emitter {
+                if emitter.by_area(point) {
+                    // Left for the lanes to sample (`with_light_point`).
+                    return LaneLight {
+                        kind: BY_AREA,
+                        point: Vec3::new(u0, u1, 0.0),
+                        ..LaneLight::NONE
+                    };
+                }
+                // `sample_emitter`'s answer there, without its light choice and tests (a
+                // Cornell box's ceiling is behind its lamp: a sixth of the bounces).
+                if emitter.behind(point) {
+                    return LaneLight::NONE;
+                }
             }
             let Some(light) = lights.sample_emitter(point, u_choice, u_point) else {
                 return LaneLight::NONE;
