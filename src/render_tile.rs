@@ -35,9 +35,8 @@ pub const CAMERA_BATCH: usize = (TILE_SIZE * TILE_SIZE) as usize;
 /// Buffers one worker reuses from tile to tile, so tracing a tile allocates only its result.
 #[derive(Default)]
 pub(crate) struct TileScratch {
+    /// The batch's paths, and their random streams (made before their camera rays).
     wavefront: Wavefront,
-    /// The batch's random streams, made before its camera rays.
-    streams: Vec<SampleStream>,
     /// The batch's camera rays, and what they are made from.
     camera: CameraSamples,
     /// The tile's pixels (`Tile::pixels`): listed once per tile, not found from a sample's
@@ -226,16 +225,13 @@ pub(crate) fn render_tile(
         if stopped() {
             return None;
         }
-        wavefront.clear();
-        scratch.streams.clear();
-        let streams = scratch.pixels.iter().map(|&p| sample_stream(scene, options, p, s));
-        scratch.streams.extend(streams);
+        let streams = wavefront.clear();
+        streams.extend(scratch.pixels.iter().map(|&p| sample_stream(scene, options, p, s)));
         let draw = (s, spp, options.jitters());
         let camera = &mut scratch.camera;
-        camera.make(scene, &scratch.pixels, &mut scratch.streams, draw);
-        let starts = scratch.streams.drain(..).zip(&camera.rays).zip(&camera.rasters);
-        for ((stream, &ray), &raster) in starts {
-            wavefront.push(path.start(ray, scene.backdrop_at(raster)), stream);
+        camera.make(scene, &scratch.pixels, streams, draw);
+        for (&ray, &raster) in camera.rays.iter().zip(&camera.rasters) {
+            wavefront.push(path.start(ray, scene.backdrop_at(raster)));
         }
         clock.lap(Phase::CameraRays, &mut result.stats.phases);
         wavefront.run(path, &mut result.stats, &mut clock);

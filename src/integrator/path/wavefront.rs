@@ -69,18 +69,22 @@ impl ShadowSink for QueuedShadows {
 }
 
 impl Wavefront {
-    /// Empties the batch.
-    pub fn clear(&mut self) {
+    /// Empties the batch, and gives the random streams its paths are to go on with, to be
+    /// filled (and drawn from for their camera rays) where they stay: then each path is
+    /// added by `push`, in the order of its stream.
+    pub fn clear(&mut self) -> &mut Vec<SampleStream> {
         self.states.clear();
         self.streams.clear();
         self.live.clear();
+        &mut self.streams
     }
 
-    /// Adds a path (its first ray and the random stream it goes on with).
-    pub fn push(&mut self, state: PathState, stream: SampleStream) {
+    /// Adds a path, its first ray in `state`: the path of the next stream of those
+    /// `clear` gave.
+    pub fn push(&mut self, state: PathState) {
+        debug_assert!(self.states.len() < self.streams.len(), "a path without a stream");
         self.live.push(self.states.len() as u32);
         self.states.push(state);
-        self.streams.push(stream);
     }
 
     /// The samples of the paths, in the order they were pushed (after `run`).
@@ -90,6 +94,7 @@ impl Wavefront {
 
     /// Traces every path of the batch to its end, its phases' times charged on `clock`.
     pub fn run(&mut self, path: &PathTracer, stats: &mut RenderStats, clock: &mut PhaseClock) {
+        assert_eq!(self.states.len(), self.streams.len(), "one stream per path");
         self.direct.resize(self.states.len(), Vec3::ZERO);
         loop {
             self.rays.clear();
