@@ -225,8 +225,8 @@ pub(crate) fn render_tile(
         if stopped() {
             return None;
         }
-        let streams = wavefront.clear();
-        streams.extend(scratch.pixels.iter().map(|&p| sample_stream(scene, options, p, s)));
+        let streams =
+            wavefront.begin(scratch.pixels.iter().map(|&p| sample_stream(scene, options, p, s)));
         let draw = (s, spp, options.jitters());
         let camera = &mut scratch.camera;
         camera.make(scene, &scratch.pixels, streams, draw);

@@ -98,6 +98,13 @@ impl EmitterShape {
         }
     }
 
+    /// Whether `reference` is behind the shape as an emitter that is `two_sided` or not:
+    /// where it sends no light (the back of a one-sided flat emitter).
+    #[inline]
+    pub fn is_behind(&self, two_sided: bool, reference: Vec3) -> bool {
+        !two_sided && !self.faces(reference)
+    }
+
     pub fn area(&self) -> f32 {
         match self {
             EmitterShape::Triangle { area, .. } | EmitterShape::Quad { area, .. } => *area,

@@ -90,7 +90,7 @@ impl LoneEmitter {
     /// finds no light for it (the emitter is the light set's only one, and emits).
     #[inline]
     pub fn behind(&self, reference: Vec3) -> bool {
-        !self.sampler.two_sided && !self.shape.faces(reference)
+        self.shape.is_behind(self.sampler.two_sided, reference)
     }
 }
 

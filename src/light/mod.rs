@@ -243,7 +243,7 @@ impl LightSet {
             return None;
         }
         // Behind a one-sided emitter nothing arrives: skip the sampling work.
-        if !emitter.two_sided && !emitter.shape.faces(reference) {
+        if emitter.shape.is_behind(emitter.two_sided, reference) {
             return None;
         }
         let sample = emitter.shape.sample_from(reference, on_surface)?;

@@ -69,18 +69,22 @@ impl ShadowSink for QueuedShadows {
 }
 
 impl Wavefront {
-    /// Empties the batch, and gives the random streams its paths are to go on with, to be
-    /// filled (and drawn from for their camera rays) where they stay: then each path is
+    /// Starts a new batch, of the paths that go on with `streams`, in order: returns the
+    /// streams where they stay, to be drawn from for the camera rays, and then each path is
     /// added by `push`, in the order of its stream.
-    pub fn clear(&mut self) -> &mut Vec<SampleStream> {
+    pub fn begin(
+        &mut self,
+        streams: impl IntoIterator<Item = SampleStream>,
+    ) -> &mut [SampleStream] {
         self.states.clear();
         self.streams.clear();
         self.live.clear();
+        self.streams.extend(streams);
         &mut self.streams
     }
 
-    /// Adds a path, its first ray in `state`: the path of the next stream of those
-    /// `clear` gave.
+    /// Adds a path, its first ray in `state`: the path of the next stream of those the
+    /// batch began with.
     pub fn push(&mut self, state: PathState) {
         debug_assert!(self.states.len() < self.streams.len(), "a path without a stream");
         self.live.push(self.states.len() as u32);
