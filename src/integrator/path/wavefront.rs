@@ -103,10 +103,12 @@ impl Wavefront {
         loop {
             self.rays.clear();
             let mut at_camera = false;
-            // A path that ended stays ended: only the paths live last bounce are asked.
-            let (states, rays) = (&mut self.states, &mut self.rays);
+            // A path that ended stays ended: only the paths live last bounce are asked, each
+            // given the light of last bounce's unblocked shadow rays first.
+            let (states, rays, direct) = (&mut self.states, &mut self.rays, &mut self.direct);
             self.live.retain(|&lane| {
                 let state = &mut states[lane as usize];
+                state.finish_direct(std::mem::take(&mut direct[lane as usize]));
                 let Some(ray) = state.pending_ray() else { return false };
                 rays.push(ray);
                 at_camera = state.at_camera();
@@ -161,10 +163,6 @@ impl Wavefront {
                 if !blocked {
                     self.direct[lane as usize] += contribution;
                 }
-            }
-            for &lane in lanes {
-                let direct = std::mem::take(&mut self.direct[lane as usize]);
-                self.states[lane as usize].finish_direct(direct);
             }
             clock.lap(Phase::Accumulate, &mut stats.phases);
         }
