@@ -10,7 +10,13 @@
 #   Embree's share      of a 64-spp render's `perf record` profile, by library
 #   (and, beside them, embray's threads' time by phase of a 64-spp render: `--time-phases`)
 #
-#   [ROUNDS=3] [EMBRAY_ARGS=...] bash scripts/speed-vs-mitsuba.sh [EMBRAY_BINARY]
+#   [ROUNDS=3] [EMBRAY_ARGS=...] [RR_DEPTH=...] bash scripts/speed-vs-mitsuba.sh [EMBRAY_BINARY]
+#
+# Like for like: the harness renders Mitsuba with its `rr_depth` default of 5 (Russian
+# roulette from the fifth surface interaction on), and embray's copy of the scene sets none,
+# so embray would take its own default of 4, which traces 10 % fewer rays a sample. The
+# script renders a copy of the harness whose embray scene sets Mitsuba's `rr_depth` (read
+# from the harness); RR_DEPTH=4 measures embray's default instead.
 #
 # (default binary: a release build). EMBRAY_ARGS are added to every embray render, e.g.
 # EMBRAY_ARGS="--intersection fast --build-quality high" for Mitsuba 3's own Embree settings
@@ -40,9 +46,22 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
+# Mitsuba's roulette start, as the harness renders it, given to embray's scene in a copy of
+# the harness (its scripts find their files next to themselves).
+mitsuba_rr=$(sed -n 's/.*"--rr-depth", type=int, default=\([0-9]*\).*/\1/p' "$harness/mitsuba_render.py")
+[ -n "$mitsuba_rr" ] || { echo "no --rr-depth default found in $harness/mitsuba_render.py" >&2; exit 1; }
+rr_depth=${RR_DEPTH:-$mitsuba_rr}
+cp -r "$harness" "$work/harness"
+harness=$work/harness
+scene=$harness/embray/cornell.toml
+grep -q '^rr_depth' "$scene" && { echo "$scene already sets rr_depth" >&2; exit 1; }
+sed -i "s/^\[render\]\$/[render]\nrr_depth = $rr_depth/" "$scene"
+grep -q "^rr_depth = $rr_depth\$" "$scene" || { echo "$scene: no [render] table to set rr_depth in" >&2; exit 1; }
+
 if grep -qw avx512f /proc/cpuinfo; then isa=AVX-512; elif grep -qw avx2 /proc/cpuinfo; then isa=AVX2; else isa="neither AVX2 nor AVX-512"; fi
 echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) cores, $isa"
 echo "embray: $("$embray" --version | head -1)${EMBRAY_ARGS:+, with $EMBRAY_ARGS}"
+echo "Russian roulette from interaction $rr_depth for embray, $mitsuba_rr for Mitsuba (its default)"
 read -ra embray_args <<< "${EMBRAY_ARGS:-}"
 
 rounds=${ROUNDS:-3}
@@ -82,11 +101,11 @@ print(f"time to equal error, embray / mitsuba: {med(equal):.2f}x (median over th
 PY
 
 perf record -q -e cpu-clock -F 2000 -o "$work/perf.data" \
-    "$embray" render "$harness/embray/cornell.toml" --spp 64 -o "$work/perf.exr" -q "${embray_args[@]}" 2>/dev/null
+    "$embray" render "$scene" --spp 64 -o "$work/perf.exr" -q "${embray_args[@]}" 2>/dev/null
 perf report -i "$work/perf.data" --no-children --sort dso -g none 2>/dev/null |
     awk '/libembree/ { share += $1 } END { printf "Embree share of a 64-spp render (perf, by library): %.1f %%\n", share }'
 
 # Where embray's own time goes, by phase of the batched path tracer (`--time-phases`).
 echo "embray's time by phase (summed over its threads), 64 spp:"
-"$embray" render "$harness/embray/cornell.toml" --spp 64 -o "$work/phases.exr" -q --time-phases "${embray_args[@]}" |
+"$embray" render "$scene" --spp 64 -o "$work/phases.exr" -q --time-phases "${embray_args[@]}" |
     sed -n '/^phase /,$p'
