@@ -51,7 +51,9 @@ trap 'rm -rf "$work"' EXIT
 mitsuba_rr=$(sed -n 's/.*"--rr-depth", type=int, default=\([0-9]*\).*/\1/p' "$harness/mitsuba_render.py")
 [ -n "$mitsuba_rr" ] || { echo "no --rr-depth default found in $harness/mitsuba_render.py" >&2; exit 1; }
 rr_depth=${RR_DEPTH:-$mitsuba_rr}
-cp -r "$harness" "$work/harness"
+[[ $rr_depth =~ ^[1-9][0-9]*$ ]] || { echo "RR_DEPTH must be a whole number of at least 1" >&2; exit 1; }
+# The shared harness may be read-only: the copy is made writable.
+cp -r --no-preserve=mode "$harness" "$work/harness"
 harness=$work/harness
 scene=$harness/embray/cornell.toml
 grep -q '^rr_depth' "$scene" && { echo "$scene already sets rr_depth" >&2; exit 1; }

@@ -11,7 +11,8 @@ use std::time::Instant;
 pub enum Phase {
     /// Random streams, pixel positions and camera rays of a batch.
     CameraRays,
-    /// Gathering the live paths' rays and the backend's closest-hit query (Embree's packets
+    /// Gathering the live paths' rays (each path given the light of its last bounce's
+    /// unblocked shadow rays first) and the backend's closest-hit query (Embree's packets
     /// and their wrapper).
     ClosestHits,
     /// The bounce's Sobol draws, made ahead for all paths that hit.
@@ -24,7 +25,7 @@ pub enum Phase {
     Outcomes,
     /// The backend's occlusion query of the shadow rays.
     ShadowRays,
-    /// Unblocked light added to the paths, and the finished samples to the pixels' sums.
+    /// Unblocked light summed per path, and the finished samples added to the pixels' sums.
     Accumulate,
 }
 

@@ -31,8 +31,8 @@ pub(crate) struct Wavefront {
     rays: RayColumns,
     hits: Vec<Option<Hit>>,
     shadows: QueuedShadows,
-    /// Per path, the light of its unblocked shadow rays this bounce: zero between bounces
-    /// (each sum is taken when it is applied).
+    /// Per path, the light of its unblocked shadow rays last bounce, applied as its next ray
+    /// is gathered: zero between batches (each sum is taken when it is applied).
     direct: Vec<Vec3>,
     /// The bounce's plain Lambertian hits, computed together (`lanes`).
     lambert: LambertLanes,
