@@ -5,7 +5,8 @@
 //! they give the same image bit for bit.
 
 use super::PathTracer;
-use super::lambert::{LambertLane, LambertOutcome, LaneSink, lambert_bounce, with_light_point};
+use super::lambert::{LambertLane, LaneSink, lambert_bounce, with_light_point};
+use super::lanes::OutcomeFields;
 use crate::integrator::PathSample;
 use crate::ray::{Hit, Ray};
 use crate::sampling::SampleStream;
@@ -215,22 +216,22 @@ impl PathTracer<'_> {
     pub(crate) fn finish_lambert(
         &self,
         state: &mut PathState,
-        outcome: &LambertOutcome,
+        outcome: &impl OutcomeFields,
         shadows: &mut impl ShadowSink,
         stats: &mut RenderStats,
     ) {
         let time = state.ray.time;
-        if outcome.shadow != 0.0 {
+        if outcome.shadow() != 0.0 {
             let (origin, dir, tmax) =
-                (outcome.shadow_origin, outcome.shadow_dir, outcome.shadow_tmax);
+                (outcome.shadow_origin(), outcome.shadow_dir(), outcome.shadow_tmax());
             let ray = Ray { origin, dir, tmin: 0.0, tmax, time };
-            shadows.valid_shadow(ray, outcome.contribution, stats);
+            shadows.valid_shadow(ray, outcome.contribution(), stats);
         }
-        if outcome.next != 0.0 {
-            state.throughput = outcome.throughput;
+        if outcome.next() != 0.0 {
+            state.throughput = outcome.throughput();
             state.specular_bounce = false;
-            state.pdf_bsdf = outcome.pdf;
-            let (origin, dir) = (outcome.next_origin, outcome.next_dir);
+            state.pdf_bsdf = outcome.pdf();
+            let (origin, dir) = (outcome.next_origin(), outcome.next_dir());
             let next = Ray { origin, dir, tmin: 0.0, tmax: f32::INFINITY, time };
             self.advance_valid(state, next, true);
         }

@@ -14,9 +14,9 @@ use glam::Vec3;
 macro_rules! lane_columns {
     ($record:ident { $($vector:ident),* ; $($scalar:ident),* }) => {
         impl $record {
-            /// Its number of `f32` columns.
-            pub const COLUMNS: usize = 3 * [$(stringify!($vector)),*].len()
-                + [$(stringify!($scalar)),*].len();
+            /// Its number of `Vec3` fields, and of `f32` columns.
+            pub const VECTORS: usize = [$(stringify!($vector)),*].len();
+            pub const COLUMNS: usize = 3 * Self::VECTORS + [$(stringify!($scalar)),*].len();
 
             /// Writes it into position `j` of the columns of a block, straight from its
             /// fields (no array in between).
@@ -37,7 +37,9 @@ macro_rules! lane_columns {
                 debug_assert_eq!(k, Self::COLUMNS);
             }
 
-            /// The record at position `j` of the columns of a block.
+            /// The record at position `j` of the columns of a block. (The outcomes are read
+            /// field by field, `lane_fields`: only tests read them whole.)
+            #[cfg_attr(not(test), allow(dead_code))]
             #[inline(always)]
             fn read_at(block: &Block<{ Self::COLUMNS }>, j: usize) -> Self {
                 let j = j % CHUNK;
@@ -58,6 +60,64 @@ macro_rules! lane_columns {
     };
 }
 
+/// Reads a lane record's fields one at a time, from the record or straight from its
+/// position in the columns of a block (`$view`): what reads it need not copy all of it first
+/// (a read-back of all 22 columns spilled half of them to the stack before they were used).
+macro_rules! lane_fields {
+    ($record:ident, $fields:ident, $view:ident, $column:ident {
+        $($vector:ident),* ; $($scalar:ident),*
+    }) => {
+        /// The fields of a record, read one at a time.
+        pub(crate) trait $fields {
+            $(fn $vector(&self) -> Vec3;)*
+            $(fn $scalar(&self) -> f32;)*
+        }
+
+        impl $fields for $record {
+            $(#[inline(always)] fn $vector(&self) -> Vec3 { self.$vector })*
+            $(#[inline(always)] fn $scalar(&self) -> f32 { self.$scalar })*
+        }
+
+        /// Each field's place in the order `lane_columns` lays them out: a vector's first
+        /// column is three times its place, a scalar's column its place plus two per vector.
+        #[allow(non_camel_case_types)]
+        enum $column {
+            $($vector,)*
+            $($scalar,)*
+        }
+
+        /// A record at position `j` of the columns of a block.
+        pub(crate) struct $view<'a> {
+            block: &'a Block<{ $record::COLUMNS }>,
+            j: usize,
+        }
+
+        impl $view<'_> {
+            /// The whole record.
+            #[cfg(test)]
+            pub fn record(&self) -> $record {
+                $record::read_at(self.block, self.j)
+            }
+        }
+
+        impl $fields for $view<'_> {
+            $(
+                #[inline(always)]
+                fn $vector(&self) -> Vec3 {
+                    let (k, j) = (3 * $column::$vector as usize, self.j % CHUNK);
+                    Vec3::new(self.block[k][j], self.block[k + 1][j], self.block[k + 2][j])
+                }
+            )*
+            $(
+                #[inline(always)]
+                fn $scalar(&self) -> f32 {
+                    self.block[$column::$scalar as usize + 2 * $record::VECTORS][self.j % CHUNK]
+                }
+            )*
+        }
+    };
+}
+
 lane_columns!(LambertLane {
     dir, point, error, normal, shading_normal, diffuse, throughput, light_point, light_error,
     light_normal, emission;
@@ -66,6 +126,11 @@ lane_columns!(LambertLane {
 });
 
 lane_columns!(LambertOutcome {
+    shadow_origin, shadow_dir, contribution, next_origin, next_dir, throughput;
+    shadow, next, pdf, shadow_tmax
+});
+
+lane_fields!(LambertOutcome, OutcomeFields, OutcomeAt, OutcomeColumn {
     shadow_origin, shadow_dir, contribution, next_origin, next_dir, throughput;
     shadow, next, pdf, shadow_tmax
 });
@@ -142,12 +207,13 @@ impl LambertLanes {
         pulp::Arch::new().dispatch(Kernel { spaces, emitter, inputs, outputs });
     }
 
-    /// The queued bounces' paths and outcomes, in the order they were queued (after `run`).
-    pub fn outcomes(&self) -> impl Iterator<Item = (u32, LambertOutcome)> + '_ {
-        self.paths.iter().enumerate().map(|(i, &path)| {
-            let (block, j) = (&self.outputs[i / CHUNK], i % CHUNK);
-            (path, LambertOutcome::read_at(block, j))
-        })
+    /// The queued bounces' paths and outcomes, in the order they were queued (after `run`):
+    /// each outcome read where it lies, field by field.
+    pub fn outcomes(&self) -> impl Iterator<Item = (u32, OutcomeAt<'_>)> + '_ {
+        self.paths
+            .iter()
+            .enumerate()
+            .map(|(i, &path)| (path, OutcomeAt { block: &self.outputs[i / CHUNK], j: i % CHUNK }))
     }
 }
 

@@ -85,7 +85,7 @@ fn the_vector_loop_gives_each_lane_s_own_result_bit_for_bit() {
             queue.push(i as u32 * 2, lane);
         }
         queue.run(&spaces, None);
-        let outcomes: Vec<_> = queue.outcomes().collect();
+        let outcomes: Vec<_> = queue.outcomes().map(|(p, o)| (p, o.record())).collect();
         assert_eq!(outcomes.len(), n);
         let (mut shadows, mut nexts) = (0, 0);
         for (i, (lane, (path, outcome))) in lanes.iter().zip(outcomes).enumerate() {
@@ -121,7 +121,7 @@ fn lane_directions_follow_the_cosine_density_at_every_lane_position() {
     // cos²θ and φ are uniform under the cosine density: equal cells.
     let mut counts = vec![[0u64; BINS * BINS]; CHUNK];
     let mut taken = [0u64; CHUNK];
-    for (path, outcome) in queue.outcomes() {
+    for (path, outcome) in queue.outcomes().map(|(p, o)| (p, o.record())) {
         let local = frames[path as usize].transpose() * outcome.next_dir;
         assert!((outcome.pdf - local.z * std::f32::consts::FRAC_1_PI).abs() < 1e-5);
         if outcome.next == 0.0 {
@@ -173,6 +173,7 @@ fn light_points_left_to_the_vector_loop_are_those_of_one_lane_bit_for_bit() {
     queue.run(&spaces, Some(&emitter));
     let mut lit = 0;
     for (i, (lane, (_, outcome))) in lanes.iter().zip(queue.outcomes()).enumerate() {
+        let outcome = outcome.record();
         let single = lambert_bounce(&with_light_point(lane, &emitter.sampler), &spaces);
         assert_eq!(bits(outcome), bits(single), "lane {i}");
         lit += (lane.light_kind == BY_AREA && outcome.shadow != 0.0) as u32;
