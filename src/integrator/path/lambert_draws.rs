@@ -5,6 +5,7 @@
 use super::PathTracer;
 use super::bounce::PathState;
 use super::lambert::{AREA, BY_AREA, DISTANT, LambertLane, LaneSink, POINT};
+use crate::light::LoneEmitter;
 use crate::sampling::SampleStream;
 use crate::shading::spawn::SurfacePoint;
 use glam::{Vec2, Vec3};
@@ -26,8 +27,19 @@ impl PathTracer<'_> {
             // As `albedo_bound` has it (a -0 channel reads +0).
             state.result.albedo = Some((diffuse + Vec3::ZERO).min(Vec3::ONE));
         }
-        let light = self.light_sample(surface.point, stream);
-        let [u0, u1, _, u_survive] = stream.next_4d();
+        let (light, [u0, u1, _, u_survive]) = match self.lone_emitter.as_deref() {
+            // Both draws made first (the light's, then the direction's, as `light_sample`
+            // and the mixture BSDF draw them), so that no light field is held across a
+            // draw: a draw may call out of line, around which every live register was
+            // spilled to the stack (a Cornell box render's bounces spent 40 instructions
+            // each on that).
+            Some(emitter) => {
+                let light_draw = stream.next_4d();
+                let direction_draw = stream.next_4d();
+                (self.lone_emitter_sample(emitter, surface.point, light_draw), direction_draw)
+            }
+            None => (self.light_sample(surface.point, stream), stream.next_4d()),
+        };
         // Every field named, none set twice: the lane is written once, where it goes.
         lane.put(LambertLane {
             dir: state.ray.dir,
@@ -57,7 +69,8 @@ impl PathTracer<'_> {
     }
 
     /// The light sample of a plain Lambertian bounce at `point`, from the scene's one light
-    /// (`PathTracer::lambert_lanes`), as `direct_light` samples it.
+    /// (`PathTracer::lambert_lanes`), as `direct_light` samples it; a lone emitter's is
+    /// `lone_emitter_sample`'s.
     #[inline(always)]
     fn light_sample(&self, point: Vec3, stream: &mut SampleStream) -> LaneLight {
         let lights = &self.tracer.scene.lights;
@@ -83,38 +96,7 @@ impl PathTracer<'_> {
             };
         }
         if lights.has_emitters() {
-            // The point takes the draw's best stratified pair.
-            let [u0, u1, u2, u3] = stream.next_4d();
-            let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
-            if let Some(emitter) = &self.lone_emitter {
-                if emitter.by_area(point) {
-                    // Left for the lanes to sample (`with_light_point`).
-                    return LaneLight {
-                        kind: BY_AREA,
-                        point: Vec3::new(u0, u1, 0.0),
-                        ..LaneLight::NONE
-                    };
-                }
-                // `sample_emitter`'s answer there, without its light choice and tests (a
-                // Cornell box's ceiling is behind its lamp: a sixth of the bounces).
-                if emitter.behind(point) {
-                    return LaneLight::NONE;
-                }
-            }
-            let Some(light) = lights.sample_emitter(point, u_choice, u_point) else {
-                return LaneLight::NONE;
-            };
-            return LaneLight {
-                has_light: 1.0,
-                kind: AREA,
-                point: light.point,
-                error: light.error,
-                normal: light.normal,
-                emission: light.emission,
-                pdf: light.pdf,
-                visible: if light.visible { 1.0 } else { 0.0 },
-                two_sided: if light.two_sided { 1.0 } else { 0.0 },
-            };
+            return self.emitter_sample(point, stream.next_4d());
         }
         match lights.environment.as_ref().filter(|e| e.is_lit()) {
             Some(environment) => match environment.sample(stream.next_2d()) {
@@ -130,6 +112,48 @@ impl PathTracer<'_> {
                 None => LaneLight::NONE,
             },
             None => LaneLight::NONE,
+        }
+    }
+}
+
+impl PathTracer<'_> {
+    /// `light_sample` where the scene's one light is `emitter`, from the light's draw.
+    #[inline(always)]
+    fn lone_emitter_sample(&self, emitter: &LoneEmitter, point: Vec3, draw: [f32; 4]) -> LaneLight {
+        if emitter.by_area(point) {
+            // Left for the lanes to sample (`with_light_point`), from the draw's best
+            // stratified pair, as `emitter_sample` takes it.
+            return LaneLight {
+                kind: BY_AREA,
+                point: Vec3::new(draw[0], draw[1], 0.0),
+                ..LaneLight::NONE
+            };
+        }
+        // `sample_emitter`'s answer there, without its light choice and tests (a Cornell
+        // box's ceiling is behind its lamp: a sixth of the bounces).
+        if emitter.behind(point) {
+            return LaneLight::NONE;
+        }
+        self.emitter_sample(point, draw)
+    }
+
+    /// `light_sample` from the scene's emitters, from the light's draw.
+    fn emitter_sample(&self, point: Vec3, [u0, u1, u2, u3]: [f32; 4]) -> LaneLight {
+        // The point takes the draw's best stratified pair.
+        let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));
+        let Some(light) = self.tracer.scene.lights.sample_emitter(point, u_choice, u_point) else {
+            return LaneLight::NONE;
+        };
+        LaneLight {
+            has_light: 1.0,
+            kind: AREA,
+            point: light.point,
+            error: light.error,
+            normal: light.normal,
+            emission: light.emission,
+            pdf: light.pdf,
+            visible: if light.visible { 1.0 } else { 0.0 },
+            two_sided: if light.two_sided { 1.0 } else { 0.0 },
         }
     }
 }
