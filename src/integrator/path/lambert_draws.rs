@@ -138,6 +138,7 @@ impl PathTracer<'_> {
     }
 
     /// `light_sample` from the scene's emitters, from the light's draw.
+    #[inline(always)]
     fn emitter_sample(&self, point: Vec3, [u0, u1, u2, u3]: [f32; 4]) -> LaneLight {
         // The point takes the draw's best stratified pair.
         let (u_choice, u_point) = (Vec2::new(u2, u3), Vec2::new(u0, u1));

@@ -60,13 +60,17 @@ macro_rules! lane_columns {
     };
 }
 
-/// Reads a lane record's fields one at a time, from the record or straight from its
-/// position in the columns of a block (`$view`): what reads it need not copy all of it first
-/// (a read-back of all 22 columns spilled half of them to the stack before they were used).
+/// Lays a lane record out in columns (`lane_columns`) and reads its fields one at a time,
+/// from the record or straight from its position in the columns of a block (`$view`): what
+/// reads it need not copy all of it first (a read-back of all 22 columns of an outcome
+/// spilled half of them to the stack before they were used).
 macro_rules! lane_fields {
-    ($record:ident, $fields:ident, $view:ident, $column:ident {
+    ($record:ident, $fields:ident, $view:ident, $place:ident {
         $($vector:ident),* ; $($scalar:ident),*
     }) => {
+        // One list of the fields for both, so that the view reads the layout it was written in.
+        lane_columns!($record { $($vector),* ; $($scalar),* });
+
         /// The fields of a record, read one at a time.
         pub(crate) trait $fields {
             $(fn $vector(&self) -> Vec3;)*
@@ -81,7 +85,7 @@ macro_rules! lane_fields {
         /// Each field's place in the order `lane_columns` lays them out: a vector's first
         /// column is three times its place, a scalar's column its place plus two per vector.
         #[allow(non_camel_case_types)]
-        enum $column {
+        enum $place {
             $($vector,)*
             $($scalar,)*
         }
@@ -104,14 +108,14 @@ macro_rules! lane_fields {
             $(
                 #[inline(always)]
                 fn $vector(&self) -> Vec3 {
-                    let (k, j) = (3 * $column::$vector as usize, self.j % CHUNK);
+                    let (k, j) = (3 * $place::$vector as usize, self.j % CHUNK);
                     Vec3::new(self.block[k][j], self.block[k + 1][j], self.block[k + 2][j])
                 }
             )*
             $(
                 #[inline(always)]
                 fn $scalar(&self) -> f32 {
-                    self.block[$column::$scalar as usize + 2 * $record::VECTORS][self.j % CHUNK]
+                    self.block[$place::$scalar as usize + 2 * $record::VECTORS][self.j % CHUNK]
                 }
             )*
         }
@@ -125,12 +129,7 @@ lane_columns!(LambertLane {
     u_survive, roulette
 });
 
-lane_columns!(LambertOutcome {
-    shadow_origin, shadow_dir, contribution, next_origin, next_dir, throughput;
-    shadow, next, pdf, shadow_tmax
-});
-
-lane_fields!(LambertOutcome, OutcomeFields, OutcomeAt, OutcomeColumn {
+lane_fields!(LambertOutcome, OutcomeFields, OutcomeAt, OutcomePlace {
     shadow_origin, shadow_dir, contribution, next_origin, next_dir, throughput;
     shadow, next, pdf, shadow_tmax
 });

@@ -72,6 +72,43 @@ fn a_lane_survives_its_columns() {
     assert_eq!(LambertLane::COLUMNS, 11 * 3 + 10);
 }
 
+/// The bits of every field of `outcome` as its getters read them, in column order.
+fn field_bits(outcome: &impl OutcomeFields) -> [u32; OUT] {
+    let vectors = [
+        outcome.shadow_origin(),
+        outcome.shadow_dir(),
+        outcome.contribution(),
+        outcome.next_origin(),
+        outcome.next_dir(),
+        outcome.throughput(),
+    ];
+    let scalars = [outcome.shadow(), outcome.next(), outcome.pdf(), outcome.shadow_tmax()];
+    let values: Vec<f32> = vectors.iter().flat_map(|v| v.to_array()).chain(scalars).collect();
+    std::array::from_fn(|k| values[k].to_bits())
+}
+
+#[test]
+fn an_outcome_s_view_reads_each_field_from_its_own_columns() {
+    let mut rng = SplitMix64(13);
+    let mut block = [[f32::NAN; CHUNK]; OUT];
+    let outcomes: Vec<LambertOutcome> = (0..CHUNK)
+        .map(|_| {
+            let record = lambert_bounce(&random_lane(&mut rng), &spaces());
+            // Distinct values in every column, so that a field read from another's column
+            // shows.
+            LambertOutcome { shadow: rng.unit(), next: rng.unit(), pdf: rng.unit(), ..record }
+        })
+        .collect();
+    for (j, outcome) in outcomes.iter().enumerate() {
+        outcome.write_at(&mut block, j);
+    }
+    for j in [0, 5, CHUNK - 1] {
+        let view = OutcomeAt { block: &block, j };
+        assert_eq!(field_bits(&view), bits(outcomes[j]), "position {j}");
+        assert_eq!(field_bits(&outcomes[j]), bits(outcomes[j]), "position {j}");
+    }
+}
+
 #[test]
 fn the_vector_loop_gives_each_lane_s_own_result_bit_for_bit() {
     let spaces = spaces();
