@@ -91,15 +91,28 @@ fn field_bits(outcome: &impl OutcomeFields) -> [u32; OUT] {
 fn an_outcome_s_view_reads_each_field_from_its_own_columns() {
     let mut rng = SplitMix64(13);
     let mut block = [[f32::NAN; CHUNK]; OUT];
+    // Random values in every column (a bounce's own outcome often has equal ones: its shadow
+    // ray and next ray may leave from the same point), so that a field read from another's
+    // column shows.
     let outcomes: Vec<LambertOutcome> = (0..CHUNK)
-        .map(|_| {
-            let record = lambert_bounce(&random_lane(&mut rng), &spaces());
-            // Distinct values in every column, so that a field read from another's column
-            // shows.
-            LambertOutcome { shadow: rng.unit(), next: rng.unit(), pdf: rng.unit(), ..record }
+        .map(|_| LambertOutcome {
+            shadow: rng.unit(),
+            shadow_origin: rng.vec3(-1.0, 1.0),
+            shadow_dir: rng.vec3(-1.0, 1.0),
+            shadow_tmax: rng.unit(),
+            contribution: rng.vec3(-1.0, 1.0),
+            next: rng.unit(),
+            next_origin: rng.vec3(-1.0, 1.0),
+            next_dir: rng.vec3(-1.0, 1.0),
+            throughput: rng.vec3(-1.0, 1.0),
+            pdf: rng.unit(),
         })
         .collect();
     for (j, outcome) in outcomes.iter().enumerate() {
+        let mut values = bits(*outcome).to_vec();
+        values.sort_unstable();
+        values.dedup();
+        assert_eq!(values.len(), OUT, "a value in two columns at position {j}");
         outcome.write_at(&mut block, j);
     }
     for j in [0, 5, CHUNK - 1] {
