@@ -59,8 +59,10 @@ fn draw_for(streams: &mut [SampleStream], chosen: &[u32]) {
             dimensions[2 * k + half] = stream.dimension + 4 * half as u64;
         }
     }
-    let seeds: [u32; LANES] =
-        std::array::from_fn(|j| super::sobol_seed(prefixes[j], dimensions[j]));
+    let mut seeds = [0u32; LANES];
+    for j in 0..LANES {
+        seeds[j] = super::sobol_seed(prefixes[j], dimensions[j]);
+    }
     let values = sobol::sample_4d_lanes(&indices, &seeds);
     for (k, &i) in chosen.iter().enumerate() {
         let stream = &mut streams[i as usize];

@@ -53,9 +53,12 @@ pub const LANES: usize = 16;
 /// reads go lane by lane.
 #[inline(always)]
 pub fn sample_4d_lanes(indices: &[u32; LANES], seeds: &[u32; LANES]) -> [[f32; LANES]; 4] {
-    let shuffled_rev: [u32; LANES] = std::array::from_fn(|j| {
-        owen_scramble_rev(indices[j].reverse_bits(), hash(seeds[j] ^ INDEX_KEY))
-    });
+    // Plain loops, not `array::from_fn`: its closure was called out of line, a lane at a
+    // time, where these loops are vectorised.
+    let mut shuffled_rev = [0u32; LANES];
+    for j in 0..LANES {
+        shuffled_rev[j] = owen_scramble_rev(indices[j].reverse_bits(), hash(seeds[j] ^ INDEX_KEY));
+    }
     let tables = &*TABLES;
     let mut sobol_rev = [[0u32; LANES]; 4];
     for (j, &shuffled) in shuffled_rev.iter().enumerate() {
@@ -65,13 +68,15 @@ pub fn sample_4d_lanes(indices: &[u32; LANES], seeds: &[u32; LANES]) -> [[f32; L
             sobol_rev[d][j] = top[d] ^ next[d];
         }
     }
-    let seed_scrambles: [u32; LANES] = std::array::from_fn(|j| seeds[j].wrapping_mul(SEED_FACTOR));
-    std::array::from_fn(|d| {
-        std::array::from_fn(|j| {
-            let scramble = hash(seed_scrambles[j] ^ DIMENSION_KEYS[d]);
-            u32_to_f32_norm(owen_scramble_rev(sobol_rev[d][j], scramble).reverse_bits())
-        })
-    })
+    let mut values = [[0.0f32; LANES]; 4];
+    for d in 0..4 {
+        for j in 0..LANES {
+            let scramble = hash(seeds[j].wrapping_mul(SEED_FACTOR) ^ DIMENSION_KEYS[d]);
+            values[d][j] =
+                u32_to_f32_norm(owen_scramble_rev(sobol_rev[d][j], scramble).reverse_bits());
+        }
+    }
+    values
 }
 
 #[cfg(test)]
