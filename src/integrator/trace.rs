@@ -51,21 +51,17 @@ impl SceneTracer<'_> {
     /// The closest hit of a valid `ray`, counted as a camera or an indirect ray.
     pub fn closest_hit(&self, ray: &Ray, camera_ray: bool, stats: &mut RenderStats) -> Option<Hit> {
         let hit = self.accel.intersect(ray, &mut stats.traversal);
-        Self::count_closest_hit(hit, camera_ray, stats)
+        Self::count_closest_hits(std::slice::from_ref(&hit), camera_ray, stats);
+        hit
     }
 
-    /// Counts `hit`, the closest hit a batch found for a camera or an indirect ray, as
-    /// `closest_hit` counts its own.
+    /// Counts `hits`, the closest hits found for camera rays or for indirect rays: one
+    /// (`closest_hit`'s) or a batch's.
     #[inline]
-    pub fn count_closest_hit(
-        hit: Option<Hit>,
-        camera_ray: bool,
-        stats: &mut RenderStats,
-    ) -> Option<Hit> {
-        let counts = if camera_ray { &mut stats.camera } else { &mut stats.indirect };
-        counts.rays += 1;
-        counts.hits += hit.is_some() as u64;
-        hit
+    pub fn count_closest_hits(hits: &[Option<Hit>], camera_rays: bool, stats: &mut RenderStats) {
+        let counts = if camera_rays { &mut stats.camera } else { &mut stats.indirect };
+        counts.rays += hits.len() as u64;
+        counts.hits += hits.iter().filter(|hit| hit.is_some()).count() as u64;
     }
 
     /// Radiance arriving along a ray that leaves the scene in direction `dir`: the

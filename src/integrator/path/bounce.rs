@@ -252,9 +252,9 @@ impl PathTracer<'_> {
         if depth == 0 && scene.hide_emitters {
             found = self.past_emitters(&mut state.ray, found, stats);
         }
-        let ray = state.ray;
         let result = &mut state.result;
         let Some(hit) = found else {
+            let ray = &state.ray;
             if let (0, Some(backdrop)) = (depth, state.backdrop) {
                 result.radiance += backdrop;
                 return Scattered::End;
@@ -270,8 +270,8 @@ impl PathTracer<'_> {
             result.radiance += state.throughput * self.tracer.escaped(ray.dir) * weight;
             return Scattered::End;
         };
-        if state.absorption != Vec3::ZERO {
-            let distance = hit.t * ray.dir.length();
+        if state.absorption.cmpne(Vec3::ZERO).any() {
+            let distance = hit.t * state.ray.dir.length();
             state.throughput *= (-state.absorption * distance).exp();
         }
         if let Some(plain) = self.plain_surfaces.get(hit.geom_id)
@@ -279,6 +279,8 @@ impl PathTracer<'_> {
         {
             return scattered;
         }
+        // Copied only here: the plain hits, most of a render's, read it in place.
+        let ray = state.ray;
         let result = &mut state.result;
         let mut si = interaction(scene, &ray, &hit);
         let material = &scene.materials[si.material as usize];

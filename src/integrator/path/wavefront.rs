@@ -137,11 +137,11 @@ impl Wavefront {
             let hit_lanes = lanes.iter().zip(&self.hits).filter(|(_, hit)| hit.is_some());
             crate::sampling::draw_ahead(&mut self.streams, hit_lanes.map(|(&lane, _)| lane));
             clock.lap(Phase::Draws, &mut stats.phases);
+            SceneTracer::count_closest_hits(&self.hits, at_camera, stats);
             for (&lane, &hit) in lanes.iter().zip(&self.hits) {
                 shadows.lane = lane;
                 let (state, stream) =
                     (&mut self.states[lane as usize], &mut self.streams[lane as usize]);
-                let hit = SceneTracer::count_closest_hit(hit, at_camera, stats);
                 if path.on_hit(state, hit, stream, stats, shadows, &mut self.lambert.next_lane()) {
                     self.lambert.commit(lane);
                 }
