@@ -44,8 +44,9 @@ struct QueuedShadows {
     /// The path whose bounce is being shaded.
     lane: u32,
     rays: RayColumns,
-    contributions: Vec<Vec3>,
-    lanes: Vec<u32>,
+    /// Per ray, its path and the light it brings if it is not blocked (one list: one
+    /// push a ray).
+    lights: Vec<(u32, Vec3)>,
     blocked: Vec<bool>,
 }
 
@@ -63,8 +64,7 @@ impl ShadowSink for QueuedShadows {
     fn valid_shadow(&mut self, ray: Ray, contribution: Vec3, _stats: &mut RenderStats) {
         debug_assert!(ray.is_valid(), "{ray:?}");
         self.rays.push(&ray);
-        self.contributions.push(contribution);
-        self.lanes.push(self.lane);
+        self.lights.push((self.lane, contribution));
     }
 }
 
@@ -130,8 +130,7 @@ impl Wavefront {
             clock.lap(Phase::ClosestHits, &mut stats.phases);
             let shadows = &mut self.shadows;
             shadows.rays.clear();
-            shadows.contributions.clear();
-            shadows.lanes.clear();
+            shadows.lights.clear();
             self.lambert.clear();
             // A ray that found nothing ends its path without drawing.
             let hit_lanes = lanes.iter().zip(&self.hits).filter(|(_, hit)| hit.is_some());
@@ -158,8 +157,7 @@ impl Wavefront {
             shadows.blocked.resize(shadows.rays.len(), true);
             path.tracer.occluded_batch(&shadows.rays, &mut shadows.blocked, stats);
             clock.lap(Phase::ShadowRays, &mut stats.phases);
-            let tests = shadows.lanes.iter().zip(&shadows.contributions).zip(&shadows.blocked);
-            for ((&lane, &contribution), &blocked) in tests {
+            for (&(lane, contribution), &blocked) in shadows.lights.iter().zip(&shadows.blocked) {
                 if !blocked {
                     self.direct[lane as usize] += contribution;
                 }
