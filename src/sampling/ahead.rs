@@ -59,9 +59,10 @@ fn draw_for(streams: &mut [SampleStream], chosen: &[u32]) {
             dimensions[2 * k + half] = stream.dimension + 4 * half as u64;
         }
     }
+    // A plain loop, not `array::from_fn` (see `sample_4d_lanes`).
     let mut seeds = [0u32; LANES];
-    for j in 0..LANES {
-        seeds[j] = super::sobol_seed(prefixes[j], dimensions[j]);
+    for ((seed, &prefix), &dimension) in seeds.iter_mut().zip(&prefixes).zip(&dimensions) {
+        *seed = super::sobol_seed(prefix, dimension);
     }
     let values = sobol::sample_4d_lanes(&indices, &seeds);
     for (k, &i) in chosen.iter().enumerate() {

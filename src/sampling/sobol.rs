@@ -56,8 +56,8 @@ pub fn sample_4d_lanes(indices: &[u32; LANES], seeds: &[u32; LANES]) -> [[f32; L
     // Plain loops, not `array::from_fn`: its closure was called out of line, a lane at a
     // time, where these loops are vectorised.
     let mut shuffled_rev = [0u32; LANES];
-    for j in 0..LANES {
-        shuffled_rev[j] = owen_scramble_rev(indices[j].reverse_bits(), hash(seeds[j] ^ INDEX_KEY));
+    for ((shuffled, &index), &seed) in shuffled_rev.iter_mut().zip(indices).zip(seeds) {
+        *shuffled = owen_scramble_rev(index.reverse_bits(), hash(seed ^ INDEX_KEY));
     }
     let tables = &*TABLES;
     let mut sobol_rev = [[0u32; LANES]; 4];
@@ -70,8 +70,8 @@ pub fn sample_4d_lanes(indices: &[u32; LANES], seeds: &[u32; LANES]) -> [[f32; L
     }
     let mut values = [[0.0f32; LANES]; 4];
     for d in 0..4 {
-        for j in 0..LANES {
-            let scramble = hash(seeds[j].wrapping_mul(SEED_FACTOR) ^ DIMENSION_KEYS[d]);
+        for (j, &seed) in seeds.iter().enumerate() {
+            let scramble = hash(seed.wrapping_mul(SEED_FACTOR) ^ DIMENSION_KEYS[d]);
             values[d][j] =
                 u32_to_f32_norm(owen_scramble_rev(sobol_rev[d][j], scramble).reverse_bits());
         }

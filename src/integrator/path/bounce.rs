@@ -252,9 +252,8 @@ impl PathTracer<'_> {
         if depth == 0 && scene.hide_emitters {
             found = self.past_emitters(&mut state.ray, found, stats);
         }
-        let result = &mut state.result;
         let Some(hit) = found else {
-            let ray = &state.ray;
+            let (ray, result) = (&state.ray, &mut state.result);
             if let (0, Some(backdrop)) = (depth, state.backdrop) {
                 result.radiance += backdrop;
                 return Scattered::End;
@@ -270,7 +269,7 @@ impl PathTracer<'_> {
             result.radiance += state.throughput * self.tracer.escaped(ray.dir) * weight;
             return Scattered::End;
         };
-        if state.absorption.cmpne(Vec3::ZERO).any() {
+        if state.absorption != Vec3::ZERO {
             let distance = hit.t * state.ray.dir.length();
             state.throughput *= (-state.absorption * distance).exp();
         }
