@@ -2,6 +2,7 @@
 //! rounding bound γ(n), one-ulp steps, and hit points on triangles and spheres with a
 //! conservative bound on their error. Below everything that spawns rays or samples lights.
 
+use crate::lane_select::select3;
 use glam::{Affine3A, Mat3, Vec3};
 
 /// γ(n) = nε / (1 − nε), the relative error bound of n chained f32 operations.
@@ -82,23 +83,23 @@ pub fn triangle_point(tri: &[Vec3; 3], plane: &TrianglePlane, b1: f32, b2: f32) 
 }
 
 /// Hit point on a triangle from the ray (`origin + t·dir`) projected onto the triangle's
-/// plane, with its error bound; `None` if the triangle is degenerate.
+/// plane, with its error bound; meaningless for a degenerate triangle (a zero normal).
 ///
 /// For a huge triangle seen from close by (a kilometre ground plane under a camera), the
 /// barycentric sum of `triangle_point` carries the vertices' rounding (millimetres), while
 /// the ray point is accurate in the plane and the projection removes its error across it.
-/// `surface.rs` keeps whichever of the two has the smaller bound across the surface.
-pub fn triangle_point_from_ray(
+/// `triangle_hit_point` keeps whichever of the two has the smaller bound across the surface.
+/// The plane's normal may be either orientation: it enters through products of two of its
+/// components and through absolute values, which both give the same bits.
+#[inline(always)]
+fn triangle_point_from_ray(
     tri: &[Vec3; 3],
     plane: &TrianglePlane,
     origin: Vec3,
     dir: Vec3,
     t: f32,
-) -> Option<(Vec3, Vec3)> {
+) -> (Vec3, Vec3) {
     let normal = plane.normal;
-    if normal == Vec3::ZERO {
-        return None;
-    }
     let on_ray = origin + dir * t;
     let from_vertex = on_ray - tri[0];
     let distance = from_vertex.dot(normal);
@@ -109,12 +110,13 @@ pub fn triangle_point_from_ray(
         + gamma(2) * distance.abs()
         + from_vertex.length() * plane.tilt;
     let error = Vec3::splat(across) + point.abs() * gamma(2) + Vec3::splat(MIN_OFFSET);
-    Some((point, error))
+    (point, error)
 }
 
 /// A triangle hit's point and error bound: of `triangle_point` (from the barycentrics `b1`,
 /// `b2`) and `triangle_point_from_ray` (from `origin + t·dir`), the one with the smaller
-/// bound across the surface.
+/// bound across the surface. Written as selects, so that a loop over many hits vectorises;
+/// `plane.normal` may face either way (see `triangle_point_from_ray`).
 #[inline(always)]
 pub fn triangle_hit_point(
     tri: &[Vec3; 3],
@@ -122,14 +124,12 @@ pub fn triangle_hit_point(
     (b1, b2): (f32, f32),
     (origin, dir, t): (Vec3, Vec3, f32),
 ) -> (Vec3, Vec3) {
-    let (mut point, mut error) = triangle_point(tri, plane, b1, b2);
-    if let Some((p, e)) = triangle_point_from_ray(tri, plane, origin, dir, t) {
-        let across = |e: Vec3| plane.normal.abs().dot(e);
-        if across(e) < across(error) && p.is_finite() {
-            (point, error) = (p, e);
-        }
-    }
-    (point, error)
+    let (point, error) = triangle_point(tri, plane, b1, b2);
+    let (ray_point, ray_error) = triangle_point_from_ray(tri, plane, origin, dir, t);
+    let across = |e: Vec3| plane.normal.abs().dot(e);
+    let from_ray =
+        plane.normal != Vec3::ZERO && across(ray_error) < across(error) && ray_point.is_finite();
+    (select3(from_ray, ray_point, point), select3(from_ray, ray_error, error))
 }
 
 /// Floor of every error bound: far below any geometric feature, but large enough that

@@ -118,9 +118,9 @@ impl EmitterShape {
 /// its centre (kept, since every light sample asks).
 #[derive(Clone, Copy, Debug)]
 pub struct NearSphere {
-    center: Vec3,
+    pub(super) center: Vec3,
     /// The square of `NEAR_RADII` bounding radii.
-    radius2: f32,
+    pub(super) radius2: f32,
 }
 
 impl NearSphere {

@@ -4,6 +4,7 @@
 //! the loop over the Lambertian lanes vectorises it. The emitter sample is then made for
 //! many paths at once instead of one chain of dependent operations per path.
 
+use super::emitter::NearSphere;
 use super::shape_sample::solid_angle_density;
 use super::{EmitterShape, LightSet, NO_GEOMETRY};
 use crate::float_error::{TrianglePlane, triangle_point};
@@ -11,11 +12,10 @@ use crate::lane_select::{select, select3};
 use crate::sampling::uniform_triangle;
 use glam::{Vec2, Vec3};
 
-/// The emitter: its shape, to decide how a point is sampled, and a copy of what sampling by
-/// area needs.
+/// The emitter: a copy of what deciding how a point is sampled, and sampling it by area,
+/// need.
 #[derive(Clone, Debug)]
 pub struct LoneEmitter {
-    shape: EmitterShape,
     pub sampler: AreaSampler,
 }
 
@@ -36,6 +36,8 @@ pub struct AreaSampler {
     pub emission: Vec3,
     pub visible: bool,
     pub two_sided: bool,
+    /// The shape's `NearSphere`, within which `sample_emitter` samples by solid angle.
+    near: NearSphere,
 }
 
 /// A point sampled by area on the emitter: its error bound, and the density per unit
@@ -57,10 +59,12 @@ impl LightSet {
         if !(probability > 0.0 && emitter.area > 0.0) {
             return None;
         }
-        let (quad, triangles, planes) = match &emitter.shape {
-            EmitterShape::Triangle { vertices, plane, .. } => (false, [*vertices; 2], [*plane; 2]),
-            EmitterShape::Quad { vertices: [v0, v1, v2, v3], planes, .. } => {
-                (true, [[*v0, *v1, *v3], [*v2, *v3, *v1]], *planes)
+        let (quad, triangles, planes, near) = match &emitter.shape {
+            EmitterShape::Triangle { vertices, plane, near, .. } => {
+                (false, [*vertices; 2], [*plane; 2], *near)
+            }
+            EmitterShape::Quad { vertices: [v0, v1, v2, v3], planes, near, .. } => {
+                (true, [[*v0, *v1, *v3], [*v2, *v3, *v1]], *planes, *near)
             }
             EmitterShape::Sphere(_) | EmitterShape::Ellipsoid(_) => return None,
         };
@@ -73,28 +77,35 @@ impl LightSet {
             emission: emitter.emission,
             visible: emitter.geom_id != NO_GEOMETRY,
             two_sided: emitter.two_sided,
+            near,
         };
-        Some(LoneEmitter { shape: emitter.shape.clone(), sampler })
-    }
-}
-
-impl LoneEmitter {
-    /// Whether `sample_emitter` samples a point from `reference` by area (rather than by
-    /// solid angle, or not at all behind a one-sided emitter).
-    #[inline]
-    pub fn by_area(&self, reference: Vec3) -> bool {
-        !self.behind(reference) && !self.shape.is_near(reference)
-    }
-
-    /// Whether `reference` is behind the emitter, one-sided, so that `sample_emitter`
-    /// finds no light for it (the emitter is the light set's only one, and emits).
-    #[inline]
-    pub fn behind(&self, reference: Vec3) -> bool {
-        self.shape.is_behind(self.sampler.two_sided, reference)
+        Some(LoneEmitter { sampler })
     }
 }
 
 impl AreaSampler {
+    /// Whether `sample_emitter` samples a point from `reference` by area (rather than by
+    /// solid angle, or not at all behind a one-sided emitter).
+    #[inline(always)]
+    pub fn by_area(&self, reference: Vec3) -> bool {
+        !self.behind(reference) && !self.is_near(reference)
+    }
+
+    /// Whether `reference` is behind the emitter, one-sided, so that `sample_emitter` finds
+    /// no light for it (the emitter is the light set's only one, and emits): the same
+    /// operations as `EmitterShape::is_behind` (both shapes' first triangle starts at their
+    /// first vertex and has their normal).
+    #[inline(always)]
+    pub fn behind(&self, reference: Vec3) -> bool {
+        !self.two_sided && !((reference - self.triangles[0][0]).dot(self.planes[0].normal) > 0.0)
+    }
+
+    /// `EmitterShape::is_near`, in select form.
+    #[inline(always)]
+    pub fn is_near(&self, reference: Vec3) -> bool {
+        (self.near.center - reference).length_squared() < self.near.radius2
+    }
+
     /// The point `sample_emitter(reference, _, u)` samples where `by_area(reference)`.
     #[inline(always)]
     pub fn sample_by_area(&self, reference: Vec3, u: Vec2) -> AreaSample {

@@ -22,11 +22,15 @@ fn assert_same_samples(lights: &LightSet) {
     for _ in 0..20_000 {
         let reference = rng.vec3(-12.0, 12.0);
         let (u, pick) = (Vec2::new(rng.unit(), rng.unit()), Vec2::new(rng.unit(), rng.unit()));
-        if lone.behind(reference) {
+        // The sampler's copies of the shape's tests decide as the shape does.
+        let (shape, two_sided) = (&lights.emitters[0].shape, lone.sampler.two_sided);
+        assert_eq!(lone.sampler.behind(reference), shape.is_behind(two_sided, reference));
+        assert_eq!(lone.sampler.is_near(reference), shape.is_near(reference), "{reference}");
+        if lone.sampler.behind(reference) {
             behind += 1;
             assert!(lights.sample_emitter(reference, pick, u).is_none(), "{reference} {u}");
         }
-        if !lone.by_area(reference) {
+        if !lone.sampler.by_area(reference) {
             left += 1;
             continue;
         }

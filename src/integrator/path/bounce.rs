@@ -5,7 +5,8 @@
 //! they give the same image bit for bit.
 
 use super::PathTracer;
-use super::lambert::{LambertLane, LaneSink, lambert_bounce, with_light_point};
+use super::lambert::{LambertLane, LaneSink};
+use super::lane_light::BouncePoint;
 use super::lanes::OutcomeFields;
 use crate::integrator::PathSample;
 use crate::ray::{Hit, Ray};
@@ -133,10 +134,7 @@ impl PathTracer<'_> {
             let found = self.tracer.closest_hit(&ray, state.at_camera(), stats);
             let mut shadows = ImmediateShadows { path: self, direct: Vec3::ZERO };
             if self.on_hit(&mut state, found, stream, stats, &mut shadows, &mut lane) {
-                if let Some(emitter) = &self.lone_emitter {
-                    lane = with_light_point(&lane, &emitter.sampler);
-                }
-                let outcome = lambert_bounce(&lane, &self.spaces);
+                let outcome = self.lambert_outcome(&lane);
                 self.finish_lambert(&mut state, &outcome, &mut shadows, stats);
             }
             state.finish_direct(shadows.direct);
@@ -221,6 +219,7 @@ impl PathTracer<'_> {
         stats: &mut RenderStats,
     ) {
         let time = state.ray.time;
+        state.from = outcome.point();
         if outcome.shadow() != 0.0 {
             let (origin, dir, tmax) =
                 (outcome.shadow_origin(), outcome.shadow_dir(), outcome.shadow_tmax());
@@ -314,7 +313,8 @@ impl PathTracer<'_> {
             stats.bounces.lanes += 1;
             let albedo = self.tracer.surface_albedo(material, &si, ray.time);
             let diffuse = self.energy.lambertian(albedo);
-            self.lambert_lane(state, diffuse, (&si.surface, si.shading_normal), stream, lane);
+            let at = BouncePoint::Known(si.surface);
+            self.lambert_lane(state, diffuse, (at, si.shading_normal), stream, lane);
             return Scattered::Lambert;
         }
         stats.bounces.scalar += 1;

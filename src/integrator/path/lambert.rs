@@ -2,14 +2,14 @@
 //! in a scene with one light to sample (emitters, a point or directional light, or the
 //! environment), once its random numbers are drawn and its light point sampled:
 //! the shadow ray and the light it brings, the next direction, the throughput and Russian
-//! roulette. Written as straight-line arithmetic over one lane with selects for its
+//! roulette. (With a lone emitter, the hit point and the light sample are left to the
+//! lanes too: `lane_light`.) Written as straight-line arithmetic over one lane with selects for its
 //! conditions, so that a loop over many lanes (`lanes`) vectorises; the scalar integrator
 //! calls the same function, and both give the mixture BSDF's results bit for bit (the same
 //! operations in the same order: `tests` compares them).
 
 use super::light_sampling::power_heuristic;
 use crate::lane_select::{select, select3};
-use crate::light::AreaSampler;
 use crate::ray::Ray;
 use crate::shading::spawn::{SHADOW_TMAX, SurfacePoint};
 use glam::{Mat3, Vec2, Vec3};
@@ -20,10 +20,17 @@ use std::f32::consts::FRAC_1_PI;
 pub(crate) struct LambertLane {
     /// Direction of the ray that hit.
     pub dir: Vec3,
-    /// The hit point, its error bound and its geometric normal (facing the ray).
+    /// The hit point, its error bound and its geometric normal (facing the ray). Where
+    /// `on_triangle` is set, the point and bound are still to be computed
+    /// (`with_hit_point`) from the triangle hit in the `hit_` fields.
     pub point: Vec3,
     pub error: Vec3,
     pub normal: Vec3,
+    /// The triangle's vertices, and the origin of the ray that hit it.
+    pub hit_v0: Vec3,
+    pub hit_v1: Vec3,
+    pub hit_v2: Vec3,
+    pub hit_origin: Vec3,
     pub shading_normal: Vec3,
     /// The Lambertian reflectance (after the energy model's clamp).
     pub diffuse: Vec3,
@@ -50,6 +57,14 @@ pub(crate) struct LambertLane {
     pub u_survive: f32,
     /// 1 where Russian roulette may end the path at this bounce, else 0.
     pub roulette: f32,
+    /// 1 where the point is to be computed from the triangle hit, else 0.
+    pub on_triangle: f32,
+    /// The hit's barycentrics and distance, and its triangle plane's `tilt` and `edge_tilt`.
+    pub hit_b1: f32,
+    pub hit_b2: f32,
+    pub hit_t: f32,
+    pub hit_tilt: f32,
+    pub hit_edge_tilt: f32,
 }
 
 /// Where a path writes its plain Lambertian bounce: a lane of its own (one path at a time),
@@ -70,9 +85,13 @@ impl LaneSink for LambertLane {
 pub(crate) const AREA: f32 = 0.0;
 pub(crate) const POINT: f32 = 1.0;
 pub(crate) const DISTANT: f32 = 2.0;
-/// An `AREA` light point still to be sampled on the scene's lone emitter, from the two
-/// numbers `light_point` holds (`with_light_point`).
-pub(crate) const BY_AREA: f32 = 3.0;
+/// The light of the scene's lone emitter, still to be sampled where the point is known
+/// (`with_lone_light`), from the light's draw: its first two numbers in `light_point`, its
+/// last two in `light_normal`.
+pub(crate) const LONE: f32 = 3.0;
+/// A `LONE` light near the emitter, where it is sampled by solid angle, one lane at a time
+/// (`PathTracer::lambert_outcome`): until then the lane has no light.
+pub(crate) const NEAR: f32 = 4.0;
 
 /// What a plain Lambertian bounce gives.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -92,6 +111,11 @@ pub(crate) struct LambertOutcome {
     pub next_dir: Vec3,
     pub throughput: Vec3,
     pub pdf: f32,
+    /// The hit point (the path's next `from`).
+    pub point: Vec3,
+    /// 1 where the lane's light is to be sampled one lane at a time (`NEAR`): the rest of the
+    /// outcome is to be computed again then, else 0.
+    pub near: f32,
 }
 
 /// The rotations the shading frame is built through (`PathTracer::shading_frame`).
@@ -99,28 +123,6 @@ pub(crate) struct LambertOutcome {
 pub(crate) struct FrameSpaces {
     pub sampling_from_render: Mat3,
     pub render_from_sampling: Mat3,
-}
-
-/// `lane` with its light point sampled where it was left (`BY_AREA`) to be sampled with
-/// many lanes' at once: the light `lambert_lane` would have found with `sample_emitter`.
-#[inline(always)]
-pub(crate) fn with_light_point(lane: &LambertLane, emitter: &AreaSampler) -> LambertLane {
-    let left = lane.light_kind == BY_AREA;
-    let u = Vec2::new(lane.light_point.x, lane.light_point.y);
-    let sample = emitter.sample_by_area(lane.point, u);
-    let flag = |set: bool| if set { 1.0 } else { 0.0 };
-    LambertLane {
-        has_light: select(left && sample.pdf > 0.0, 1.0, lane.has_light),
-        light_kind: select(left, AREA, lane.light_kind),
-        light_point: select3(left, sample.point, lane.light_point),
-        light_error: select3(left, sample.error, lane.light_error),
-        light_normal: select3(left, sample.normal, lane.light_normal),
-        emission: select3(left, emitter.emission, lane.emission),
-        light_pdf: select(left, sample.pdf, lane.light_pdf),
-        light_visible: select(left, flag(emitter.visible), lane.light_visible),
-        light_two_sided: select(left, flag(emitter.two_sided), lane.light_two_sided),
-        ..*lane
-    }
 }
 
 /// The bounce of `lane` (see the module's comment).
@@ -199,5 +201,7 @@ pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> Lamber
         next_dir,
         throughput,
         pdf,
+        point: lane.point,
+        near: select(lane.light_kind == NEAR, 1.0, 0.0),
     }
 }

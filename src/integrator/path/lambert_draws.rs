@@ -4,22 +4,27 @@
 
 use super::PathTracer;
 use super::bounce::PathState;
-use super::lambert::{AREA, BY_AREA, DISTANT, LambertLane, LaneSink, POINT};
-use crate::light::LoneEmitter;
+use super::lambert::lambert_bounce;
+use super::lambert::{AREA, DISTANT, LONE, LambertLane, LambertOutcome, LaneSink, NEAR, POINT};
+use super::lane_light::{
+    BouncePoint, TriangleHit, lone_draw, lone_draw_fields, with_hit_point, with_lone_light,
+};
 use crate::sampling::SampleStream;
 use crate::shading::spawn::SurfacePoint;
 use glam::{Vec2, Vec3};
 
 impl PathTracer<'_> {
     /// The plain Lambertian bounce of reflectance `diffuse` (after the energy model) at
-    /// `surface`, with the random numbers the mixture BSDF's would draw, in the same order:
+    /// `at`, with the random numbers the mixture BSDF's would draw, in the same order:
     /// the light point's, then the direction's, written into `lane`. Sets what the bounce
-    /// leaves as it is, whether the path goes on or not.
+    /// leaves as it is, whether the path goes on or not. With a lone emitter the point and
+    /// the light sample are left to the lanes (`lane_light`); otherwise the point is
+    /// computed here, for the light sample.
     pub(super) fn lambert_lane(
         &self,
         state: &mut PathState,
         diffuse: Vec3,
-        (surface, shading_normal): (&SurfacePoint, Vec3),
+        (at, shading_normal): (BouncePoint, Vec3),
         stream: &mut SampleStream,
         lane: &mut impl LaneSink,
     ) {
@@ -27,25 +32,40 @@ impl PathTracer<'_> {
             // As `albedo_bound` has it (a -0 channel reads +0).
             state.result.albedo = Some((diffuse + Vec3::ZERO).min(Vec3::ONE));
         }
-        let (light, [u0, u1, _, u_survive]) = match self.lone_emitter.as_deref() {
+        let (light, at, [u0, u1, _, u_survive]) = match self.lone_emitter {
             // Both draws made first (the light's, then the direction's, as `light_sample`
             // and the mixture BSDF draw them), so that no light field is held across a
             // draw: a draw may call out of line, around which every live register was
             // spilled to the stack (a Cornell box render's bounces spent 40 instructions
             // each on that).
-            Some(emitter) => {
+            Some(_) => {
                 let light_draw = stream.next_4d();
                 let direction_draw = stream.next_4d();
-                (self.lone_emitter_sample(emitter, surface.point, light_draw), direction_draw)
+                (LaneLight::lone(light_draw), at, direction_draw)
             }
-            None => (self.light_sample(surface.point, stream), stream.next_4d()),
+            None => {
+                let surface = at.resolve(state.ray.dir);
+                let light = self.light_sample(surface.point, stream);
+                (light, BouncePoint::Known(surface), stream.next_4d())
+            }
         };
+        let (surface, hit, on_triangle) = match at {
+            BouncePoint::Known(surface) => (surface, TriangleHit::default(), 0.0),
+            BouncePoint::Triangle(hit, normal) => {
+                (SurfacePoint { point: Vec3::ZERO, error: Vec3::ZERO, normal }, hit, 1.0)
+            }
+        };
+        let [hit_v0, hit_v1, hit_v2] = hit.triangle;
         // Every field named, none set twice: the lane is written once, where it goes.
         lane.put(LambertLane {
             dir: state.ray.dir,
             point: surface.point,
             error: surface.error,
             normal: surface.normal,
+            hit_v0,
+            hit_v1,
+            hit_v2,
+            hit_origin: hit.origin,
             shading_normal,
             diffuse,
             throughput: state.throughput,
@@ -63,9 +83,29 @@ impl PathTracer<'_> {
             u1,
             u_survive,
             roulette: if state.depth + 1 >= self.rr_depth { 1.0 } else { 0.0 },
+            on_triangle,
+            hit_b1: hit.barycentrics.0,
+            hit_b2: hit.barycentrics.1,
+            hit_t: hit.t,
+            hit_tilt: hit.tilt,
+            hit_edge_tilt: hit.edge_tilt,
         });
         state.direct_weight = Some(state.throughput);
-        state.from = surface.point;
+    }
+
+    /// The outcome of the bounce `lambert_lane` wrote into `lane`, one lane at a time: its
+    /// point and light sampled first where they were left to the lanes (`lane_light`),
+    /// with the light of a `NEAR` lane, which the lanes leave to this.
+    pub(crate) fn lambert_outcome(&self, lane: &LambertLane) -> LambertOutcome {
+        let Some(emitter) = &self.lone_emitter else {
+            return lambert_bounce(lane, &self.spaces);
+        };
+        let lane = with_lone_light(&with_hit_point(lane), &emitter.sampler);
+        if lane.light_kind != NEAR {
+            return lambert_bounce(&lane, &self.spaces);
+        }
+        let light = self.emitter_sample(lane.point, lone_draw(&lane));
+        lambert_bounce(&light.lighting(&lane), &self.spaces)
     }
 
     /// The light sample of a plain Lambertian bounce at `point`, from the scene's one light
@@ -117,26 +157,6 @@ impl PathTracer<'_> {
 }
 
 impl PathTracer<'_> {
-    /// `light_sample` where the scene's one light is `emitter`, from the light's draw.
-    #[inline(always)]
-    fn lone_emitter_sample(&self, emitter: &LoneEmitter, point: Vec3, draw: [f32; 4]) -> LaneLight {
-        if emitter.by_area(point) {
-            // Left for the lanes to sample (`with_light_point`), from the draw's best
-            // stratified pair, as `emitter_sample` takes it.
-            return LaneLight {
-                kind: BY_AREA,
-                point: Vec3::new(draw[0], draw[1], 0.0),
-                ..LaneLight::NONE
-            };
-        }
-        // `sample_emitter`'s answer there, without its light choice and tests (a Cornell
-        // box's ceiling is behind its lamp: a sixth of the bounces).
-        if emitter.behind(point) {
-            return LaneLight::NONE;
-        }
-        self.emitter_sample(point, draw)
-    }
-
     /// `light_sample` from the scene's emitters, from the light's draw.
     #[inline(always)]
     fn emitter_sample(&self, point: Vec3, [u0, u1, u2, u3]: [f32; 4]) -> LaneLight {
@@ -173,6 +193,28 @@ struct LaneLight {
 }
 
 impl LaneLight {
+    /// The lone emitter's light, left to the lanes (`LONE`), from the light's draw.
+    fn lone(draw: [f32; 4]) -> LaneLight {
+        let (point, normal) = lone_draw_fields(draw);
+        LaneLight { kind: LONE, point, normal, ..LaneLight::NONE }
+    }
+
+    /// `lane` lit by this light instead.
+    fn lighting(&self, lane: &LambertLane) -> LambertLane {
+        LambertLane {
+            has_light: self.has_light,
+            light_kind: self.kind,
+            light_point: self.point,
+            light_error: self.error,
+            light_normal: self.normal,
+            emission: self.emission,
+            light_pdf: self.pdf,
+            light_visible: self.visible,
+            light_two_sided: self.two_sided,
+            ..*lane
+        }
+    }
+
     /// No light sampled.
     const NONE: LaneLight = LaneLight {
         has_light: 0.0,

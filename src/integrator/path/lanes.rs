@@ -4,9 +4,8 @@
 //! unit the CPU has, chosen at run time (`pulp`: AVX-512, else AVX2, else the build's
 //! baseline), so one portable binary uses all of it — and read back lane by lane.
 
-use super::lambert::{
-    FrameSpaces, LambertLane, LambertOutcome, LaneSink, lambert_bounce, with_light_point,
-};
+use super::lambert::{FrameSpaces, LambertLane, LambertOutcome, LaneSink, lambert_bounce};
+use super::lane_light::{with_hit_point, with_lone_light};
 use crate::light::{AreaSampler, LoneEmitter};
 use glam::Vec3;
 
@@ -123,15 +122,15 @@ macro_rules! lane_fields {
 }
 
 lane_columns!(LambertLane {
-    dir, point, error, normal, shading_normal, diffuse, throughput, light_point, light_error,
-    light_normal, emission;
+    dir, point, error, normal, hit_v0, hit_v1, hit_v2, hit_origin, shading_normal, diffuse,
+    throughput, light_point, light_error, light_normal, emission;
     eta_scale, has_light, light_kind, light_pdf, light_visible, light_two_sided, u0, u1,
-    u_survive, roulette
+    u_survive, roulette, on_triangle, hit_b1, hit_b2, hit_t, hit_tilt, hit_edge_tilt
 });
 
 lane_fields!(LambertOutcome, OutcomeFields, OutcomeAt, OutcomePlace {
-    shadow_origin, shadow_dir, contribution, next_origin, next_dir, throughput;
-    shadow, next, pdf, shadow_tmax
+    shadow_origin, shadow_dir, contribution, next_origin, next_dir, throughput, point;
+    shadow, next, pdf, shadow_tmax, near
 });
 
 const IN: usize = LambertLane::COLUMNS;
@@ -198,21 +197,25 @@ impl LambertLanes {
         self.commit(path);
     }
 
-    /// Computes every queued bounce, its light point sampled on `emitter` first where it
-    /// was left to be (`with_light_point`).
+    /// Computes every queued bounce, its point and light sampled on `emitter` first where
+    /// they were left to be (`lane_light`).
     pub fn run(&mut self, spaces: &FrameSpaces, emitter: Option<&LoneEmitter>) {
         let blocks = self.paths.len().div_ceil(CHUNK);
         let (inputs, outputs) = (&self.inputs[..blocks], &mut self.outputs[..blocks]);
         pulp::Arch::new().dispatch(Kernel { spaces, emitter, inputs, outputs });
     }
 
-    /// The queued bounces' paths and outcomes, in the order they were queued (after `run`):
-    /// each outcome read where it lies, field by field.
-    pub fn outcomes(&self) -> impl Iterator<Item = (u32, OutcomeAt<'_>)> + '_ {
-        self.paths
-            .iter()
-            .enumerate()
-            .map(|(i, &path)| (path, OutcomeAt { block: &self.outputs[i / CHUNK], j: i % CHUNK }))
+    /// The queued bounces' positions in the queue, paths and outcomes, in the order they
+    /// were queued (after `run`): each outcome read where it lies, field by field.
+    pub fn outcomes(&self) -> impl Iterator<Item = (usize, u32, OutcomeAt<'_>)> + '_ {
+        self.paths.iter().enumerate().map(|(i, &path)| {
+            (i, path, OutcomeAt { block: &self.outputs[i / CHUNK], j: i % CHUNK })
+        })
+    }
+
+    /// The bounce queued at position `i`, as it was queued.
+    pub fn queued(&self, i: usize) -> LambertLane {
+        LambertLane::read_at(&self.inputs[i / CHUNK], i % CHUNK)
     }
 }
 
@@ -250,7 +253,8 @@ trait Prepare: Copy {
     fn prepare(&self, lane: LambertLane) -> LambertLane;
 }
 
-/// Nothing: every light point is sampled already.
+/// Nothing: every point and light point is known already (they are left to the lanes only
+/// where the scene's light is a lone emitter).
 #[derive(Clone, Copy)]
 struct Unchanged;
 
@@ -261,11 +265,12 @@ impl Prepare for Unchanged {
     }
 }
 
-/// The light points left to sample on the lone emitter.
+/// The points and light samples left to the lanes where the scene's light is the lone
+/// emitter.
 impl Prepare for AreaSampler {
     #[inline(always)]
     fn prepare(&self, lane: LambertLane) -> LambertLane {
-        with_light_point(&lane, self)
+        with_lone_light(&with_hit_point(&lane), self)
     }
 }
 

@@ -2,7 +2,9 @@
 //! density, lane position by lane position.
 
 use super::*;
-use crate::integrator::path::lambert::{AREA, BY_AREA, DISTANT, POINT};
+use crate::float_error::{TrianglePlane, triangle_hit_point};
+use crate::integrator::path::lambert::{AREA, DISTANT, LONE, NEAR, POINT};
+use crate::integrator::path::lane_light::{lone_draw_fields, with_hit_point, with_lone_light};
 use crate::light::{Emitter, EmitterShape, InstanceEmitters, LightSet};
 use crate::sampling::chi_square;
 use crate::splitmix::SplitMix64;
@@ -49,6 +51,45 @@ fn random_lane(rng: &mut SplitMix64) -> LambertLane {
         u1: rng.unit(),
         u_survive: rng.unit(),
         roulette: if rng.unit() < 0.5 { 1.0 } else { 0.0 },
+        // A triangle hit that is not to be used (see `on_triangle_lane`).
+        hit_v0: rng.vec3(-1.0, 1.0),
+        hit_v1: rng.vec3(-1.0, 1.0),
+        hit_v2: rng.vec3(-1.0, 1.0),
+        hit_origin: rng.vec3(-1.0, 1.0),
+        on_triangle: 0.0,
+        hit_b1: rng.unit(),
+        hit_b2: rng.unit(),
+        hit_t: rng.unit(),
+        hit_tilt: rng.unit(),
+        hit_edge_tilt: rng.unit(),
+    }
+}
+
+/// `lane` moved onto a random triangle around `center`, hit by a ray along its direction,
+/// its point and bound left to be computed from the hit; the triangle's normal faces the ray.
+fn on_triangle_lane(rng: &mut SplitMix64, lane: &LambertLane, center: Vec3) -> LambertLane {
+    let triangle = [(); 3].map(|_| center + rng.vec3(-2.0, 2.0));
+    let plane = TrianglePlane::new(&triangle);
+    let (b1, b2) = (rng.unit() * 0.5, rng.unit() * 0.5);
+    let on_plane = triangle[0] * (1.0 - b1 - b2) + triangle[1] * b1 + triangle[2] * b2;
+    let t = rng.range(0.1, 20.0);
+    let normal = if plane.normal.dot(lane.dir) < 0.0 { plane.normal } else { -plane.normal };
+    LambertLane {
+        point: Vec3::ZERO,
+        error: Vec3::ZERO,
+        normal,
+        shading_normal: normal,
+        hit_v0: triangle[0],
+        hit_v1: triangle[1],
+        hit_v2: triangle[2],
+        hit_origin: on_plane - lane.dir * t,
+        on_triangle: 1.0,
+        hit_b1: b1,
+        hit_b2: b2,
+        hit_t: t,
+        hit_tilt: plane.tilt,
+        hit_edge_tilt: plane.edge_tilt,
+        ..*lane
     }
 }
 
@@ -69,7 +110,7 @@ fn a_lane_survives_its_columns() {
     }
     let filled = block.iter().flatten().filter(|v| !v.is_nan()).count();
     assert_eq!(filled, 3 * IN, "each lane writes one value per column");
-    assert_eq!(LambertLane::COLUMNS, 11 * 3 + 10);
+    assert_eq!(LambertLane::COLUMNS, 15 * 3 + 16);
 }
 
 /// The bits of every field of `outcome` as its getters read them, in column order.
@@ -81,8 +122,10 @@ fn field_bits(outcome: &impl OutcomeFields) -> [u32; OUT] {
         outcome.next_origin(),
         outcome.next_dir(),
         outcome.throughput(),
+        outcome.point(),
     ];
-    let scalars = [outcome.shadow(), outcome.next(), outcome.pdf(), outcome.shadow_tmax()];
+    let scalars =
+        [outcome.shadow(), outcome.next(), outcome.pdf(), outcome.shadow_tmax(), outcome.near()];
     let values: Vec<f32> = vectors.iter().flat_map(|v| v.to_array()).chain(scalars).collect();
     std::array::from_fn(|k| values[k].to_bits())
 }
@@ -106,6 +149,8 @@ fn an_outcome_s_view_reads_each_field_from_its_own_columns() {
             next_dir: rng.vec3(-1.0, 1.0),
             throughput: rng.vec3(-1.0, 1.0),
             pdf: rng.unit(),
+            point: rng.vec3(-1.0, 1.0),
+            near: rng.unit(),
         })
         .collect();
     for (j, outcome) in outcomes.iter().enumerate() {
@@ -135,7 +180,7 @@ fn the_vector_loop_gives_each_lane_s_own_result_bit_for_bit() {
             queue.push(i as u32 * 2, lane);
         }
         queue.run(&spaces, None);
-        let outcomes: Vec<_> = queue.outcomes().map(|(p, o)| (p, o.record())).collect();
+        let outcomes: Vec<_> = queue.outcomes().map(|(_, p, o)| (p, o.record())).collect();
         assert_eq!(outcomes.len(), n);
         let (mut shadows, mut nexts) = (0, 0);
         for (i, (lane, (path, outcome))) in lanes.iter().zip(outcomes).enumerate() {
@@ -171,7 +216,7 @@ fn lane_directions_follow_the_cosine_density_at_every_lane_position() {
     // cos²θ and φ are uniform under the cosine density: equal cells.
     let mut counts = vec![[0u64; BINS * BINS]; CHUNK];
     let mut taken = [0u64; CHUNK];
-    for (path, outcome) in queue.outcomes().map(|(p, o)| (p, o.record())) {
+    for (path, outcome) in queue.outcomes().map(|(_, p, o)| (p, o.record())) {
         let local = frames[path as usize].transpose() * outcome.next_dir;
         assert!((outcome.pdf - local.z * std::f32::consts::FRAC_1_PI).abs() < 1e-5);
         if outcome.next == 0.0 {
@@ -192,42 +237,78 @@ fn lane_directions_follow_the_cosine_density_at_every_lane_position() {
     }
 }
 
-/// A two-sided rectangle emitter above the random lanes' points, as `LightSet` copies it.
-fn lone_rectangle() -> LoneEmitter {
+/// A rectangle emitter above the random lanes' points, as `LightSet` copies it.
+fn lone_rectangle(two_sided: bool) -> LoneEmitter {
     let corners = [(-2.0, -1.5), (2.0, -1.5), (2.0, 1.5), (-2.0, 1.5)];
     let shape = EmitterShape::quad(corners.map(|(x, z)| Vec3::new(x, 30.0, z))).expect("a quad");
-    let emitters = vec![Emitter::new(0, shape, Vec3::splat(10.0), true)];
+    let emitters = vec![Emitter::new(0, shape, Vec3::splat(10.0), two_sided)];
     let instance = InstanceEmitters { emitters, by_instance: vec![Some(vec![0])] };
     let lights = LightSet::new(Vec::new(), Vec::new(), instance, Vec::new());
     lights.lone_emitter().expect("one flat emitter")
 }
 
+/// A triangle hit's point computed in a lane is `triangle_hit_point`'s with the triangle's
+/// own plane, bit for bit, whichever way the lane's normal faces.
 #[test]
-fn light_points_left_to_the_vector_loop_are_those_of_one_lane_bit_for_bit() {
-    let (spaces, emitter) = (spaces(), lone_rectangle());
+fn a_lane_s_hit_point_is_the_triangle_s() {
+    let mut rng = SplitMix64(17);
+    for i in 0..2000 {
+        let (lane, center) = (random_lane(&mut rng), rng.vec3(-50.0, 50.0));
+        let lane = on_triangle_lane(&mut rng, &lane, center);
+        let triangle = [lane.hit_v0, lane.hit_v1, lane.hit_v2];
+        let hit = ((lane.hit_b1, lane.hit_b2), (lane.hit_origin, lane.dir, lane.hit_t));
+        let plane = TrianglePlane::new(&triangle);
+        let (point, error) = triangle_hit_point(&triangle, &plane, hit.0, hit.1);
+        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+        let computed = with_hit_point(&lane);
+        assert_eq!(bits(computed.point), bits(point), "lane {i}");
+        assert_eq!(bits(computed.error), bits(error), "lane {i}");
+        // A point already known stays.
+        let known = with_hit_point(&LambertLane { on_triangle: 0.0, ..lane });
+        assert_eq!((known.point, known.error), (lane.point, lane.error));
+    }
+}
+
+#[test]
+fn points_and_lights_left_to_the_vector_loop_are_those_of_one_lane_bit_for_bit() {
+    let spaces = spaces();
     let mut rng = SplitMix64(5);
-    let mut queue = LambertLanes::default();
-    let lanes: Vec<LambertLane> = (0..5 * CHUNK + 7)
-        .map(|_| {
-            let mut lane = random_lane(&mut rng);
-            if rng.unit() < 0.7 {
-                (lane.light_kind, lane.has_light) = (BY_AREA, 0.0);
-                lane.light_point = Vec3::new(rng.unit(), rng.unit(), 0.0);
-            }
-            lane
-        })
-        .collect();
-    for (i, lane) in lanes.iter().enumerate() {
-        queue.push(i as u32, lane);
+    for two_sided in [true, false] {
+        let emitter = lone_rectangle(two_sided);
+        let mut queue = LambertLanes::default();
+        // Some lanes on triangles near the emitter (within its three bounding radii), some
+        // far, some above it (behind, if it is one-sided); most with their light left.
+        let lanes: Vec<LambertLane> = (0..8 * CHUNK + 7)
+            .map(|_| {
+                let mut lane = random_lane(&mut rng);
+                let center = [Vec3::ZERO, Vec3::new(0.0, 26.0, 0.0), Vec3::new(0.0, 40.0, 0.0)]
+                    [(rng.next_u64() % 3) as usize];
+                if rng.unit() < 0.8 {
+                    lane = on_triangle_lane(&mut rng, &lane, center);
+                }
+                if rng.unit() < 0.7 {
+                    (lane.light_kind, lane.has_light) = (LONE, 0.0);
+                    let draw = [(); 4].map(|_| rng.unit());
+                    (lane.light_point, lane.light_normal) = lone_draw_fields(draw);
+                }
+                lane
+            })
+            .collect();
+        for (i, lane) in lanes.iter().enumerate() {
+            queue.push(i as u32, lane);
+        }
+        queue.run(&spaces, Some(&emitter));
+        let (mut lit, mut near) = (0, 0);
+        for (i, (lane, (_, _, outcome))) in lanes.iter().zip(queue.outcomes()).enumerate() {
+            let outcome = outcome.record();
+            let single = with_lone_light(&with_hit_point(lane), &emitter.sampler);
+            assert_eq!(bits(outcome), bits(lambert_bounce(&single, &spaces)), "lane {i}");
+            assert_eq!(outcome.near != 0.0, single.light_kind == NEAR, "lane {i}");
+            lit += (lane.light_kind == LONE && outcome.shadow != 0.0) as u32;
+            near += (single.light_kind == NEAR) as u32;
+        }
+        // Light points sampled in the loop do light their lanes, and some are left to one
+        // lane at a time, so the comparison covers both.
+        assert!(lit > 10 && near > 10, "{lit} {near}");
     }
-    queue.run(&spaces, Some(&emitter));
-    let mut lit = 0;
-    for (i, (lane, (_, outcome))) in lanes.iter().zip(queue.outcomes()).enumerate() {
-        let outcome = outcome.record();
-        let single = lambert_bounce(&with_light_point(lane, &emitter.sampler), &spaces);
-        assert_eq!(bits(outcome), bits(single), "lane {i}");
-        lit += (lane.light_kind == BY_AREA && outcome.shadow != 0.0) as u32;
-    }
-    // Light points sampled in the loop do light their lanes, so the comparison covers them.
-    assert!(lit > 10, "{lit}");
 }

@@ -8,6 +8,7 @@
 mod bounce;
 mod lambert;
 mod lambert_draws;
+mod lane_light;
 mod lanes;
 mod light_sampling;
 mod plain_hit;

@@ -10,12 +10,11 @@
 use super::PathTracer;
 use super::bounce::{PathState, Scattered};
 use super::lambert::LaneSink;
-use crate::float_error::triangle_hit_point;
+use super::lane_light::{BouncePoint, TriangleHit};
 use crate::ray::Hit;
 use crate::render_scene::{Geometry, Placement, RenderScene, TriangleMesh};
 use crate::sampling::SampleStream;
 use crate::shading::bsdf::Energy;
-use crate::shading::spawn::SurfacePoint;
 use crate::stats::RenderStats;
 use glam::Vec3;
 
@@ -86,8 +85,7 @@ impl PathTracer<'_> {
         if plain.one_sided && !front_face {
             return None;
         }
-        let (point, error) =
-            triangle_hit_point(&tri, &plane, (hit.u, hit.v), (ray.origin, ray.dir, hit.t));
+        let at = TriangleHit::new(tri, &plane, ray.origin, hit);
         let normal = if front_face { plane.normal } else { -plane.normal };
         if state.depth == 0 {
             self.record_first_hit(&mut state.result, hit.t, normal);
@@ -96,8 +94,8 @@ impl PathTracer<'_> {
             return Some(Scattered::End);
         }
         stats.bounces.lanes += 1;
-        let surface = SurfacePoint { point, error, normal };
-        self.lambert_lane(state, plain.diffuse, (&surface, normal), stream, lane);
+        let at = BouncePoint::Triangle(at, normal);
+        self.lambert_lane(state, plain.diffuse, (at, normal), stream, lane);
         Some(Scattered::Lambert)
     }
 }

@@ -8,7 +8,7 @@
 //! `PathTracer::trace`, so the image is the scalar one bit for bit (the backends' batched
 //! queries return the single-ray answers, see `Accel::intersect_batch`).
 
-use super::lanes::LambertLanes;
+use super::lanes::{LambertLanes, OutcomeFields};
 use super::{PathState, PathTracer, ShadowSink};
 use crate::accel::Coherence;
 use crate::integrator::PathSample;
@@ -148,9 +148,16 @@ impl Wavefront {
             clock.lap(Phase::Shading, &mut stats.phases);
             self.lambert.run(&path.spaces, path.lone_emitter.as_deref());
             clock.lap(Phase::Lanes, &mut stats.phases);
-            for (lane, outcome) in self.lambert.outcomes() {
+            for (i, lane, outcome) in self.lambert.outcomes() {
                 shadows.lane = lane;
-                path.finish_lambert(&mut self.states[lane as usize], &outcome, shadows, stats);
+                let state = &mut self.states[lane as usize];
+                if outcome.near() != 0.0 {
+                    // Its light is sampled by solid angle, one lane at a time.
+                    let outcome = path.lambert_outcome(&self.lambert.queued(i));
+                    path.finish_lambert(state, &outcome, shadows, stats);
+                } else {
+                    path.finish_lambert(state, &outcome, shadows, stats);
+                }
             }
             clock.lap(Phase::Outcomes, &mut stats.phases);
             shadows.blocked.clear();

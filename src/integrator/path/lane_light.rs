@@ -1,0 +1,141 @@
+//! What a plain Lambertian lane still needs before its bounce where the scene's one light is
+//! a lone flat emitter, left to the lanes so that the loop over them computes it for many
+//! paths at once: the hit point of a triangle hit (`with_hit_point`), and then the light
+//! sample its place calls for (`with_lone_light`): none behind a one-sided emitter, a point
+//! sampled by area far from it, and near it a point sampled by solid angle, which is left
+//! to one lane at a time (`NEAR`, `PathTracer::lambert_outcome`). Both in select form, and
+//! the same operations as the scalar code's (`triangle_hit_point`, `sample_emitter`), so
+//! the numbers are the same bit for bit.
+
+use super::lambert::{AREA, LONE, LambertLane, NEAR};
+use crate::float_error::{TrianglePlane, triangle_hit_point};
+use crate::lane_select::{select, select3};
+use crate::light::AreaSampler;
+use crate::ray::Hit;
+use crate::shading::spawn::SurfacePoint;
+use glam::{Vec2, Vec3};
+
+/// Where a plain Lambertian bounce is.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum BouncePoint {
+    /// Its point, error bound and normal (facing the ray) known.
+    Known(SurfacePoint),
+    /// A triangle hit, whose point and bound are still to be computed; and its normal.
+    Triangle(TriangleHit, Vec3),
+}
+
+impl BouncePoint {
+    /// The point, computed if need be, of a hit by a ray of direction `dir`.
+    #[inline(always)]
+    pub fn resolve(self, dir: Vec3) -> SurfacePoint {
+        match self {
+            BouncePoint::Known(surface) => surface,
+            BouncePoint::Triangle(hit, normal) => {
+                let (point, error) = hit.point(dir, normal);
+                SurfacePoint { point, error, normal }
+            }
+        }
+    }
+}
+
+/// What a triangle hit's point and error bound are computed from (`triangle_hit_point`).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct TriangleHit {
+    pub triangle: [Vec3; 3],
+    /// The origin of the ray that hit.
+    pub origin: Vec3,
+    pub barycentrics: (f32, f32),
+    pub t: f32,
+    /// The triangle plane's `tilt` and `edge_tilt`.
+    pub tilt: f32,
+    pub edge_tilt: f32,
+}
+
+impl TriangleHit {
+    /// The hit of a ray from `origin` on `triangle`, of plane `plane`, at `hit`.
+    #[inline(always)]
+    pub fn new(triangle: [Vec3; 3], plane: &TrianglePlane, origin: Vec3, hit: &Hit) -> Self {
+        let (barycentrics, t) = ((hit.u, hit.v), hit.t);
+        TriangleHit {
+            triangle,
+            origin,
+            barycentrics,
+            t,
+            tilt: plane.tilt,
+            edge_tilt: plane.edge_tilt,
+        }
+    }
+
+    /// The point and its bound, for a ray of direction `dir`, where the triangle's unit
+    /// normal is `normal` (either orientation: `triangle_hit_point` takes both).
+    #[inline(always)]
+    fn point(&self, dir: Vec3, normal: Vec3) -> (Vec3, Vec3) {
+        let [v0, v1, v2] = self.triangle;
+        // The plane `TrianglePlane::new` gives the triangle: its edges are these differences.
+        let plane = TrianglePlane {
+            e1: v1 - v0,
+            e2: v2 - v0,
+            normal,
+            tilt: self.tilt,
+            edge_tilt: self.edge_tilt,
+        };
+        triangle_hit_point(&self.triangle, &plane, self.barycentrics, (self.origin, dir, self.t))
+    }
+}
+
+/// `lane` with its point and error bound computed where they are left to be (`on_triangle`).
+#[inline(always)]
+pub(crate) fn with_hit_point(lane: &LambertLane) -> LambertLane {
+    let hit = TriangleHit {
+        triangle: [lane.hit_v0, lane.hit_v1, lane.hit_v2],
+        origin: lane.hit_origin,
+        barycentrics: (lane.hit_b1, lane.hit_b2),
+        t: lane.hit_t,
+        tilt: lane.hit_tilt,
+        edge_tilt: lane.hit_edge_tilt,
+    };
+    let (point, error) = hit.point(lane.dir, lane.normal);
+    let computed = lane.on_triangle != 0.0;
+    LambertLane {
+        point: select3(computed, point, lane.point),
+        error: select3(computed, error, lane.error),
+        ..*lane
+    }
+}
+
+/// `lane` (its point known) with its light sampled on `emitter` where it was left to be
+/// (`LONE`), as `sample_emitter` would sample it; near the emitter, marked `NEAR` instead,
+/// its draw kept and no light yet.
+#[inline(always)]
+pub(crate) fn with_lone_light(lane: &LambertLane, emitter: &AreaSampler) -> LambertLane {
+    let lone = lane.light_kind == LONE;
+    let (behind, near) = (emitter.behind(lane.point), emitter.is_near(lane.point));
+    let by_area = lone && !behind && !near;
+    let u = Vec2::new(lane.light_point.x, lane.light_point.y);
+    let sample = emitter.sample_by_area(lane.point, u);
+    let flag = |set: bool| if set { 1.0 } else { 0.0 };
+    let kind = select(near && !behind, NEAR, AREA);
+    LambertLane {
+        has_light: select(lone, flag(by_area && sample.pdf > 0.0), lane.has_light),
+        light_kind: select(lone, kind, lane.light_kind),
+        light_point: select3(by_area, sample.point, lane.light_point),
+        light_error: select3(by_area, sample.error, lane.light_error),
+        light_normal: select3(by_area, sample.normal, lane.light_normal),
+        emission: select3(by_area, emitter.emission, lane.emission),
+        light_pdf: select(by_area, sample.pdf, lane.light_pdf),
+        light_visible: select(by_area, flag(emitter.visible), lane.light_visible),
+        light_two_sided: select(by_area, flag(emitter.two_sided), lane.light_two_sided),
+        ..*lane
+    }
+}
+
+/// The light's draw of a `LONE` or `NEAR` lane, as `light_point` and `light_normal` keep it.
+pub(crate) fn lone_draw(lane: &LambertLane) -> [f32; 4] {
+    let (first, second) = (lane.light_point, lane.light_normal);
+    [first.x, first.y, second.x, second.y]
+}
+
+/// The light fields of a `LONE` lane that keep the light's draw (see `LONE`).
+pub(crate) fn lone_draw_fields([u0, u1, u2, u3]: [f32; 4]) -> (Vec3, Vec3) {
+    (Vec3::new(u0, u1, 0.0), Vec3::new(u2, u3, 0.0))
+}
