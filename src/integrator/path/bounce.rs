@@ -6,7 +6,6 @@
 
 use super::PathTracer;
 use super::lambert::{LambertLane, LaneSink};
-use super::lane_light::BouncePoint;
 use super::lanes::OutcomeFields;
 use crate::integrator::PathSample;
 use crate::ray::{Hit, Ray};
@@ -313,8 +312,7 @@ impl PathTracer<'_> {
             stats.bounces.lanes += 1;
             let albedo = self.tracer.surface_albedo(material, &si, ray.time);
             let diffuse = self.energy.lambertian(albedo);
-            let at = BouncePoint::Known(si.surface);
-            self.lambert_lane(state, diffuse, (at, si.shading_normal), stream, lane);
+            self.lambert_lane(state, diffuse, (si.surface, si.shading_normal), stream, lane);
             return Scattered::Lambert;
         }
         stats.bounces.scalar += 1;

@@ -7,7 +7,7 @@ use super::bounce::PathState;
 use super::lambert::lambert_bounce;
 use super::lambert::{AREA, DISTANT, LONE, LambertLane, LambertOutcome, LaneSink, NEAR, POINT};
 use super::lane_light::{
-    BouncePoint, TriangleHit, lone_draw, lone_draw_fields, with_hit_point, with_lone_light,
+    BounceAt, TriangleHit, lone_draw, lone_draw_fields, with_hit_point, with_lone_light,
 };
 use crate::sampling::SampleStream;
 use crate::shading::spawn::SurfacePoint;
@@ -24,7 +24,7 @@ impl PathTracer<'_> {
         &self,
         state: &mut PathState,
         diffuse: Vec3,
-        (at, shading_normal): (BouncePoint, Vec3),
+        (at, shading_normal): (impl BounceAt, Vec3),
         stream: &mut SampleStream,
         lane: &mut impl LaneSink,
     ) {
@@ -32,7 +32,8 @@ impl PathTracer<'_> {
             // As `albedo_bound` has it (a -0 channel reads +0).
             state.result.albedo = Some((diffuse + Vec3::ZERO).min(Vec3::ONE));
         }
-        let (light, at, [u0, u1, _, u_survive]) = match self.lone_emitter {
+        let surface = (diffuse, shading_normal);
+        match self.lone_emitter {
             // Both draws made first (the light's, then the direction's, as `light_sample`
             // and the mixture BSDF draw them), so that no light field is held across a
             // draw: a draw may call out of line, around which every live register was
@@ -41,23 +42,34 @@ impl PathTracer<'_> {
             Some(_) => {
                 let light_draw = stream.next_4d();
                 let direction_draw = stream.next_4d();
-                (LaneLight::lone(light_draw), at, direction_draw)
+                let light = LaneLight::lone(light_draw);
+                lane.put(self.lane_record(state, at.lane_fields(), surface, light, direction_draw));
             }
             None => {
-                let surface = at.resolve(state.ray.dir);
-                let light = self.light_sample(surface.point, stream);
-                (light, BouncePoint::Known(surface), stream.next_4d())
+                let at = at.resolve(state.ray.dir);
+                let light = self.light_sample(at.point, stream);
+                let direction_draw = stream.next_4d();
+                lane.put(self.lane_record(state, at.lane_fields(), surface, light, direction_draw));
             }
-        };
-        let (surface, hit, on_triangle) = match at {
-            BouncePoint::Known(surface) => (surface, TriangleHit::default(), 0.0),
-            BouncePoint::Triangle(hit, normal) => {
-                (SurfacePoint { point: Vec3::ZERO, error: Vec3::ZERO, normal }, hit, 1.0)
-            }
-        };
+        }
+        state.direct_weight = Some(state.throughput);
+    }
+
+    /// The lane of `lambert_lane`, from where its bounce is (`BounceAt::lane_fields`), its
+    /// surface's reflectance and shading normal, its light and its direction's draw.
+    /// Written out in each of `lambert_lane`'s branches: every field named, none set twice,
+    /// and the lane written once, where it goes.
+    #[inline(always)]
+    fn lane_record(
+        &self,
+        state: &PathState,
+        (surface, hit, on_triangle): (SurfacePoint, TriangleHit, f32),
+        (diffuse, shading_normal): (Vec3, Vec3),
+        light: LaneLight,
+        [u0, u1, _, u_survive]: [f32; 4],
+    ) -> LambertLane {
         let [hit_v0, hit_v1, hit_v2] = hit.triangle;
-        // Every field named, none set twice: the lane is written once, where it goes.
-        lane.put(LambertLane {
+        LambertLane {
             dir: state.ray.dir,
             point: surface.point,
             error: surface.error,
@@ -89,8 +101,7 @@ impl PathTracer<'_> {
             hit_t: hit.t,
             hit_tilt: hit.tilt,
             hit_edge_tilt: hit.edge_tilt,
-        });
-        state.direct_weight = Some(state.throughput);
+        }
     }
 
     /// The outcome of the bounce `lambert_lane` wrote into `lane`, one lane at a time: its
@@ -109,8 +120,8 @@ impl PathTracer<'_> {
     }
 
     /// The light sample of a plain Lambertian bounce at `point`, from the scene's one light
-    /// (`PathTracer::lambert_lanes`), as `direct_light` samples it; a lone emitter's is
-    /// `lone_emitter_sample`'s.
+    /// (`PathTracer::lambert_lanes`), as `direct_light` samples it, where it is not a lone
+    /// emitter (whose light the lanes sample: `lane_light`).
     #[inline(always)]
     fn light_sample(&self, point: Vec3, stream: &mut SampleStream) -> LaneLight {
         let lights = &self.tracer.scene.lights;

@@ -15,26 +15,49 @@ use crate::ray::Hit;
 use crate::shading::spawn::SurfacePoint;
 use glam::{Vec2, Vec3};
 
-/// Where a plain Lambertian bounce is.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum BouncePoint {
-    /// Its point, error bound and normal (facing the ray) known.
-    Known(SurfacePoint),
-    /// A triangle hit, whose point and bound are still to be computed; and its normal.
-    Triangle(TriangleHit, Vec3),
+/// Where a plain Lambertian bounce is: at a point known (`SurfacePoint`), or on a triangle
+/// hit whose point is still to be computed (`OnTriangle`). A trait rather than an enum, so
+/// that `lambert_lane` is compiled for each on its own: the two merged spilled their fields
+/// to the stack (60 instructions a bounce).
+pub(crate) trait BounceAt: Copy {
+    /// The point, its bound and its normal (facing the ray), computed if need be, for a ray
+    /// of direction `dir`.
+    fn resolve(&self, dir: Vec3) -> SurfacePoint;
+    /// What a lane holds of it: the point, its bound (both zero where they are left to the
+    /// lanes) and its normal, the triangle hit, and 1 where the point is left, else 0.
+    fn lane_fields(&self) -> (SurfacePoint, TriangleHit, f32);
 }
 
-impl BouncePoint {
-    /// The point, computed if need be, of a hit by a ray of direction `dir`.
+impl BounceAt for SurfacePoint {
     #[inline(always)]
-    pub fn resolve(self, dir: Vec3) -> SurfacePoint {
-        match self {
-            BouncePoint::Known(surface) => surface,
-            BouncePoint::Triangle(hit, normal) => {
-                let (point, error) = hit.point(dir, normal);
-                SurfacePoint { point, error, normal }
-            }
-        }
+    fn resolve(&self, _dir: Vec3) -> SurfacePoint {
+        *self
+    }
+
+    #[inline(always)]
+    fn lane_fields(&self) -> (SurfacePoint, TriangleHit, f32) {
+        (*self, TriangleHit::default(), 0.0)
+    }
+}
+
+/// A triangle hit, and the triangle's normal facing the ray.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct OnTriangle {
+    pub hit: TriangleHit,
+    pub normal: Vec3,
+}
+
+impl BounceAt for OnTriangle {
+    #[inline(always)]
+    fn resolve(&self, dir: Vec3) -> SurfacePoint {
+        let (point, error) = self.hit.point(dir, self.normal);
+        SurfacePoint { point, error, normal: self.normal }
+    }
+
+    #[inline(always)]
+    fn lane_fields(&self) -> (SurfacePoint, TriangleHit, f32) {
+        let surface = SurfacePoint { point: Vec3::ZERO, error: Vec3::ZERO, normal: self.normal };
+        (surface, self.hit, 1.0)
     }
 }
 
@@ -109,12 +132,12 @@ pub(crate) fn with_hit_point(lane: &LambertLane) -> LambertLane {
 #[inline(always)]
 pub(crate) fn with_lone_light(lane: &LambertLane, emitter: &AreaSampler) -> LambertLane {
     let lone = lane.light_kind == LONE;
-    let (behind, near) = (emitter.behind(lane.point), emitter.is_near(lane.point));
-    let by_area = lone && !behind && !near;
+    let by_area = lone && emitter.by_area(lane.point);
+    let near = !emitter.behind(lane.point) && emitter.is_near(lane.point);
     let u = Vec2::new(lane.light_point.x, lane.light_point.y);
     let sample = emitter.sample_by_area(lane.point, u);
     let flag = |set: bool| if set { 1.0 } else { 0.0 };
-    let kind = select(near && !behind, NEAR, AREA);
+    let kind = select(near, NEAR, AREA);
     LambertLane {
         has_light: select(lone, flag(by_area && sample.pdf > 0.0), lane.has_light),
         light_kind: select(lone, kind, lane.light_kind),

@@ -10,7 +10,7 @@
 use super::PathTracer;
 use super::bounce::{PathState, Scattered};
 use super::lambert::LaneSink;
-use super::lane_light::{BouncePoint, TriangleHit};
+use super::lane_light::{OnTriangle, TriangleHit};
 use crate::ray::Hit;
 use crate::render_scene::{Geometry, Placement, RenderScene, TriangleMesh};
 use crate::sampling::SampleStream;
@@ -94,7 +94,7 @@ impl PathTracer<'_> {
             return Some(Scattered::End);
         }
         stats.bounces.lanes += 1;
-        let at = BouncePoint::Triangle(at, normal);
+        let at = OnTriangle { hit: at, normal };
         self.lambert_lane(state, plain.diffuse, (at, normal), stream, lane);
         Some(Scattered::Lambert)
     }
