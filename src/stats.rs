@@ -43,9 +43,14 @@ pub struct BounceCounts {
     pub lanes: u64,
     /// Bounces through the general BSDF code.
     pub scalar: u64,
+    /// Of the `lanes`, those whose light was sampled one lane at a time (near the scene's
+    /// lone emitter, by solid angle), their lane computed once more then. Absent from part
+    /// files written before it was counted.
+    #[serde(default)]
+    pub near_lights: u64,
 }
 
-add_fields!(BounceCounts { lanes, scalar });
+add_fields!(BounceCounts { lanes, scalar, near_lights });
 
 /// All counters of a render (or of one worker's share of it).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]

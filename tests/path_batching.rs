@@ -12,19 +12,20 @@ use embray::accel::{BackendKind, BatchMode, Intersection};
 use embray::choice::Choice;
 use embray::render_options::PathBatching;
 use embray::scene::SceneDesc;
+use embray::stats::BounceCounts;
 use std::path::{Path, PathBuf};
 
 /// Renders `scene` at `width`×`height`, `spp` samples, scalar and batched on every backend
 /// (and Embree batch mode), and asserts the images and ray counts are the same.
-/// Returns how many bounces the Lambertian lanes took.
+/// Returns the bounces counted, summed over the backends.
 fn assert_batched_is_scalar(
     name: &str,
     scene: &SceneDesc,
     width: u32,
     height: u32,
     spp: u32,
-) -> u64 {
-    let mut lanes = 0;
+) -> BounceCounts {
+    let mut counted = BounceCounts::default();
     let mut scene = scene.clone();
     scene.camera.width = width;
     scene.camera.height = height;
@@ -42,7 +43,7 @@ fn assert_batched_is_scalar(
         assert_eq!(rays(&general.stats), rays(&reference.stats), "{what}: ray counts, lanes");
         let bounces = reference.stats.bounces;
         assert_eq!(general.stats.bounces.scalar, bounces.lanes + bounces.scalar, "{what}");
-        lanes += bounces.lanes;
+        counted += bounces;
         let modes: &[BatchMode] = match backend {
             BackendKind::Embree => &[BatchMode::Single, BatchMode::Packets8, BatchMode::Packets16],
             BackendKind::Obvhs => &[BatchMode::Packets8],
@@ -68,7 +69,7 @@ fn assert_batched_is_scalar(
             assert_eq!(image.stats, reference.stats, "{what}: ray counts");
         }
     }
-    lanes
+    counted
 }
 
 #[test]
@@ -82,10 +83,13 @@ fn bundled_scenes_render_the_same_batched_and_scalar() {
     assert!(files.len() >= 8, "the bundled scenes: {files:?}");
     for file in files {
         let scene = embray::scene::load(&file).unwrap();
-        let lanes = assert_batched_is_scalar(&file.display().to_string(), &scene, 40, 30, 2);
-        // The Cornell box is Lambertian throughout: the comparison is not vacuous.
+        let counted = assert_batched_is_scalar(&file.display().to_string(), &scene, 40, 30, 2);
+        // The Cornell box is Lambertian throughout, and some of its points are near its
+        // lamp: the comparison is not vacuous, for the lanes nor for the lights sampled
+        // one lane at a time.
         if file.ends_with("cornell.toml") {
-            assert!(lanes > 1000, "the Cornell box's bounces in lanes: {lanes}");
+            assert!(counted.lanes > 1000, "the Cornell box's bounces in lanes: {counted:?}");
+            assert!(counted.near_lights > 10, "lit one lane at a time: {counted:?}");
         }
     }
 }

@@ -80,8 +80,10 @@ pub fn stats_table(stats: &RenderStats, observes: Observes, timed: bool) -> Stri
     let total = bounces.lanes + bounces.scalar;
     if total > 0 {
         out += &format!(
-            "bounces          {total}: {} in vector lanes, {} scalar ({:.1} %)\n",
+            "bounces          {total}: {} in vector lanes ({} of them lit one lane at a \
+             time), {} scalar ({:.1} %)\n",
             bounces.lanes,
+            bounces.near_lights,
             bounces.scalar,
             100.0 * bounces.scalar as f64 / total as f64
         );

@@ -133,7 +133,7 @@ impl PathTracer<'_> {
             let found = self.tracer.closest_hit(&ray, state.at_camera(), stats);
             let mut shadows = ImmediateShadows { path: self, direct: Vec3::ZERO };
             if self.on_hit(&mut state, found, stream, stats, &mut shadows, &mut lane) {
-                let outcome = self.lambert_outcome(&lane);
+                let outcome = self.lambert_outcome(&lane, stats);
                 self.finish_lambert(&mut state, &outcome, &mut shadows, stats);
             }
             state.finish_direct(shadows.direct);

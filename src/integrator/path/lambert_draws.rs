@@ -11,6 +11,7 @@ use super::lane_light::{
 };
 use crate::sampling::SampleStream;
 use crate::shading::spawn::SurfacePoint;
+use crate::stats::RenderStats;
 use glam::{Vec2, Vec3};
 
 impl PathTracer<'_> {
@@ -107,7 +108,11 @@ impl PathTracer<'_> {
     /// The outcome of the bounce `lambert_lane` wrote into `lane`, one lane at a time: its
     /// point and light sampled first where they were left to the lanes (`lane_light`),
     /// with the light of a `NEAR` lane, which the lanes leave to this.
-    pub(crate) fn lambert_outcome(&self, lane: &LambertLane) -> LambertOutcome {
+    pub(crate) fn lambert_outcome(
+        &self,
+        lane: &LambertLane,
+        stats: &mut RenderStats,
+    ) -> LambertOutcome {
         let Some(emitter) = &self.lone_emitter else {
             return lambert_bounce(lane, &self.spaces);
         };
@@ -115,6 +120,7 @@ impl PathTracer<'_> {
         if lane.light_kind != NEAR {
             return lambert_bounce(&lane, &self.spaces);
         }
+        stats.bounces.near_lights += 1;
         let light = self.emitter_sample(lane.point, lone_draw(&lane));
         lambert_bounce(&light.lighting(&lane), &self.spaces)
     }

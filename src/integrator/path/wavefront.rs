@@ -153,7 +153,7 @@ impl Wavefront {
                 let state = &mut self.states[lane as usize];
                 if outcome.near() != 0.0 {
                     // Its light is sampled by solid angle, one lane at a time.
-                    let outcome = path.lambert_outcome(&self.lambert.queued(i));
+                    let outcome = path.lambert_outcome(&self.lambert.queued(i), stats);
                     path.finish_lambert(state, &outcome, shadows, stats);
                 } else {
                     path.finish_lambert(state, &outcome, shadows, stats);
