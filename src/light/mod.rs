@@ -39,6 +39,11 @@ pub struct PointLight {
 }
 
 impl PointLight {
+    /// Whether its intensity is the same every way (no cone, no projected image).
+    pub fn is_isotropic(&self) -> bool {
+        self.spot.is_none() && self.projection.is_none()
+    }
+
     /// Radiant intensity towards the unit direction `w` (from the light).
     pub fn intensity_towards(&self, w: Vec3) -> Vec3 {
         let intensity = match &self.spot {

@@ -18,9 +18,10 @@ impl PathTracer<'_> {
     /// The plain Lambertian bounce of reflectance `diffuse` (after the energy model) at
     /// `at`, with the random numbers the mixture BSDF's would draw, in the same order:
     /// the light point's, then the direction's, written into `lane`. Sets what the bounce
-    /// leaves as it is, whether the path goes on or not. With a lone emitter the point and
-    /// the light sample are left to the lanes (`lane_light`); otherwise the point is
-    /// computed here, for the light sample.
+    /// leaves as it is, whether the path goes on or not. A triangle hit's point is left to
+    /// the lanes (`lane_light`), and with a lone emitter the light sample too; a light
+    /// sample that needs the point (a spot's, one of several emitters') computes it here
+    /// as well.
     pub(super) fn lambert_lane(
         &self,
         state: &mut PathState,
@@ -47,8 +48,7 @@ impl PathTracer<'_> {
                 lane.put(self.lane_record(state, at.lane_fields(), surface, light, direction_draw));
             }
             None => {
-                let at = at.resolve(state.ray.dir);
-                let light = self.light_sample(at.point, stream);
+                let light = self.light_sample(&at, state.ray.dir, stream);
                 let direction_draw = stream.next_4d();
                 lane.put(self.lane_record(state, at.lane_fields(), surface, light, direction_draw));
             }
@@ -114,7 +114,7 @@ impl PathTracer<'_> {
         stats: &mut RenderStats,
     ) -> LambertOutcome {
         let Some(emitter) = &self.lone_emitter else {
-            return lambert_bounce(lane, &self.spaces);
+            return lambert_bounce(&with_hit_point(lane), &self.spaces);
         };
         let lane = with_lone_light(&with_hit_point(lane), &emitter.sampler);
         if lane.light_kind != NEAR {
@@ -125,20 +125,27 @@ impl PathTracer<'_> {
         lambert_bounce(&light.lighting(&lane), &self.spaces)
     }
 
-    /// The light sample of a plain Lambertian bounce at `point`, from the scene's one light
-    /// (`PathTracer::lambert_lanes`), as `direct_light` samples it, where it is not a lone
-    /// emitter (whose light the lanes sample: `lane_light`).
+    /// The light sample of a plain Lambertian bounce at `at`, hit by a ray of direction
+    /// `dir`, from the scene's one light (`PathTracer::lambert_lanes`), as `direct_light`
+    /// samples it, where it is not a lone emitter (whose light the lanes sample:
+    /// `lane_light`). Only a spot or projector, or one of several emitters, needs the point.
     #[inline(always)]
-    fn light_sample(&self, point: Vec3, stream: &mut SampleStream) -> LaneLight {
+    fn light_sample(&self, at: &impl BounceAt, dir: Vec3, stream: &mut SampleStream) -> LaneLight {
         let lights = &self.tracer.scene.lights;
         if let Some(light) = lights.points.first() {
-            let to_light = light.position - point;
-            let wi = to_light / to_light.length_squared().sqrt();
+            // An isotropic light's intensity is `intensity_towards`'s every way.
+            let emission = if light.is_isotropic() {
+                light.intensity
+            } else {
+                let to_light = light.position - at.resolve(dir).point;
+                let wi = to_light / to_light.length_squared().sqrt();
+                light.intensity_towards(-wi)
+            };
             return LaneLight {
                 has_light: 1.0,
                 kind: POINT,
                 point: light.position,
-                emission: light.intensity_towards(-wi),
+                emission,
                 ..LaneLight::NONE
             };
         }
@@ -153,7 +160,7 @@ impl PathTracer<'_> {
             };
         }
         if lights.has_emitters() {
-            return self.emitter_sample(point, stream.next_4d());
+            return self.emitter_sample(at.resolve(dir).point, stream.next_4d());
         }
         match lights.environment.as_ref().filter(|e| e.is_lit()) {
             Some(environment) => match environment.sample(stream.next_2d()) {

@@ -197,8 +197,8 @@ impl LambertLanes {
         self.commit(path);
     }
 
-    /// Computes every queued bounce, its point and light sampled on `emitter` first where
-    /// they were left to be (`lane_light`).
+    /// Computes every queued bounce, its point computed first where it was left to the
+    /// lanes, and its light sampled on `emitter` where that was (`lane_light`).
     pub fn run(&mut self, spaces: &FrameSpaces, emitter: Option<&LoneEmitter>) {
         let blocks = self.paths.len().div_ceil(CHUNK);
         let (inputs, outputs) = (&self.inputs[..blocks], &mut self.outputs[..blocks]);
@@ -241,7 +241,7 @@ impl pulp::WithSimd for Kernel<'_> {
             }
             None => {
                 for (inputs, outputs) in blocks {
-                    run_block(self.spaces, Unchanged, inputs, outputs);
+                    run_block(self.spaces, HitPoints, inputs, outputs);
                 }
             }
         }
@@ -253,15 +253,14 @@ trait Prepare: Copy {
     fn prepare(&self, lane: LambertLane) -> LambertLane;
 }
 
-/// Nothing: every point and light point is known already (they are left to the lanes only
-/// where the scene's light is a lone emitter).
+/// The points left to the lanes (where the scene's light is not a lone emitter).
 #[derive(Clone, Copy)]
-struct Unchanged;
+struct HitPoints;
 
-impl Prepare for Unchanged {
+impl Prepare for HitPoints {
     #[inline(always)]
     fn prepare(&self, lane: LambertLane) -> LambertLane {
-        lane
+        with_hit_point(&lane)
     }
 }
 

@@ -270,6 +270,35 @@ fn a_lane_s_hit_point_is_the_triangle_s() {
 }
 
 #[test]
+fn points_left_to_the_vector_loop_are_those_of_one_lane_bit_for_bit() {
+    let spaces = spaces();
+    let mut rng = SplitMix64(19);
+    let mut queue = LambertLanes::default();
+    // Most lanes' points left to the loop, the rest known; the lights all known already.
+    let lanes: Vec<LambertLane> = (0..4 * CHUNK + 9)
+        .map(|_| {
+            let (lane, center) = (random_lane(&mut rng), rng.vec3(-10.0, 10.0));
+            match rng.unit() < 0.7 {
+                true => on_triangle_lane(&mut rng, &lane, center),
+                false => lane,
+            }
+        })
+        .collect();
+    for (i, lane) in lanes.iter().enumerate() {
+        queue.push(i as u32, lane);
+    }
+    queue.run(&spaces, None);
+    let mut found = 0;
+    for (i, (lane, (_, _, outcome))) in lanes.iter().zip(queue.outcomes()).enumerate() {
+        let single = lambert_bounce(&with_hit_point(lane), &spaces);
+        assert_eq!(bits(outcome.record()), bits(single), "lane {i}");
+        found += (lane.on_triangle != 0.0 && single.next != 0.0) as u32;
+    }
+    // Lanes whose points the loop found go on, so the comparison covers them.
+    assert!(found > 10, "{found}");
+}
+
+#[test]
 fn points_and_lights_left_to_the_vector_loop_are_those_of_one_lane_bit_for_bit() {
     let spaces = spaces();
     let mut rng = SplitMix64(5);
