@@ -89,8 +89,6 @@ pub fn triangle_point(tri: &[Vec3; 3], plane: &TrianglePlane, b1: f32, b2: f32) 
 /// barycentric sum of `triangle_point` carries the vertices' rounding (millimetres), while
 /// the ray point is accurate in the plane and the projection removes its error across it.
 /// `triangle_hit_point` keeps whichever of the two has the smaller bound across the surface.
-/// The plane's normal may be either orientation: it enters through products of two of its
-/// components and through absolute values, which both give the same bits.
 #[inline(always)]
 fn triangle_point_from_ray(
     tri: &[Vec3; 3],
@@ -115,8 +113,7 @@ fn triangle_point_from_ray(
 
 /// A triangle hit's point and error bound: of `triangle_point` (from the barycentrics `b1`,
 /// `b2`) and `triangle_point_from_ray` (from `origin + t·dir`), the one with the smaller
-/// bound across the surface. Written as selects, so that a loop over many hits vectorises;
-/// `plane.normal` may face either way (see `triangle_point_from_ray`).
+/// bound across the surface. Written as selects, so that a loop over many hits vectorises.
 #[inline(always)]
 pub fn triangle_hit_point(
     tri: &[Vec3; 3],

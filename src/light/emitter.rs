@@ -118,14 +118,20 @@ impl EmitterShape {
 /// its centre (kept, since every light sample asks).
 #[derive(Clone, Copy, Debug)]
 pub struct NearSphere {
-    pub(super) center: Vec3,
+    center: Vec3,
     /// The square of `NEAR_RADII` bounding radii.
-    pub(super) radius2: f32,
+    radius2: f32,
 }
 
 impl NearSphere {
     fn around(center: Vec3, bounding_radius2: f32) -> Self {
         NearSphere { center, radius2: NEAR_RADII * NEAR_RADII * bounding_radius2 }
+    }
+
+    /// Whether `reference` is inside.
+    #[inline(always)]
+    pub fn contains(&self, reference: Vec3) -> bool {
+        (self.center - reference).length_squared() < self.radius2
     }
 }
 
@@ -172,7 +178,7 @@ impl EmitterShape {
     pub(super) fn is_near(&self, reference: Vec3) -> bool {
         match self {
             EmitterShape::Triangle { near, .. } | EmitterShape::Quad { near, .. } => {
-                (near.center - reference).length_squared() < near.radius2
+                near.contains(reference)
             }
             EmitterShape::Sphere(_) | EmitterShape::Ellipsoid(_) => true,
         }

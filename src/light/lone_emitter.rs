@@ -100,10 +100,10 @@ impl AreaSampler {
         !self.two_sided && !((reference - self.triangles[0][0]).dot(self.planes[0].normal) > 0.0)
     }
 
-    /// `EmitterShape::is_near`, in select form.
+    /// `EmitterShape::is_near`.
     #[inline(always)]
     pub fn is_near(&self, reference: Vec3) -> bool {
-        (self.near.center - reference).length_squared() < self.near.radius2
+        self.near.contains(reference)
     }
 
     /// The point `sample_emitter(reference, _, u)` samples where `by_area(reference)`.

@@ -79,11 +79,14 @@ pub fn stats_table(stats: &RenderStats, observes: Observes, timed: bool) -> Stri
     let bounces = stats.bounces;
     let total = bounces.lanes + bounces.scalar;
     if total > 0 {
+        // Lights sampled one lane at a time are named only where there are some.
+        let near = match bounces.near_lights {
+            0 => String::new(),
+            n => format!(" ({n} of them lit one lane at a time)"),
+        };
         out += &format!(
-            "bounces          {total}: {} in vector lanes ({} of them lit one lane at a \
-             time), {} scalar ({:.1} %)\n",
+            "bounces          {total}: {} in vector lanes{near}, {} scalar ({:.1} %)\n",
             bounces.lanes,
-            bounces.near_lights,
             bounces.scalar,
             100.0 * bounces.scalar as f64 / total as f64
         );

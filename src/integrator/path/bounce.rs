@@ -152,8 +152,8 @@ impl PathTracer<'_> {
     /// holes) see the lights at all.
     ///
     /// A plain Lambertian bounce is left to the caller (`true`), written into `lane` with
-    /// its random numbers drawn and its light point sampled: `lambert_bounce` computes it
-    /// (alone, or with many paths' in `LambertLanes`), `finish_lambert` applies it. Handed
+    /// its random numbers drawn: `lambert_outcome` computes it (or `LambertLanes`, with many
+    /// paths'), `finish_lambert` applies it. Handed
     /// to `lane`, not returned: the lane is large, and a `LaneSink` writes it once where it
     /// goes (copies of it cost a Cornell box render 2 % of its instructions).
     pub(crate) fn on_hit(

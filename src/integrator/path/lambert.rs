@@ -1,10 +1,10 @@
 //! One bounce at a plain Lambertian surface (no other lobe, mask, blend or bump shadowing)
 //! in a scene with one light to sample (emitters, a point or directional light, or the
-//! environment), once its random numbers are drawn and its light point sampled:
-//! the shadow ray and the light it brings, the next direction, the throughput and Russian
-//! roulette. (With a lone emitter, the hit point and the light sample are left to the
-//! lanes too: `lane_light`.) Written as straight-line arithmetic over one lane with selects for its
-//! conditions, so that a loop over many lanes (`lanes`) vectorises; the scalar integrator
+//! environment), once its random numbers are drawn, its point known and its light sampled
+//! (a triangle hit's point, and a lone emitter's light, are computed by the lanes first:
+//! `lane_light`): the shadow ray and the light it brings, the next direction, the
+//! throughput and Russian roulette. Written as straight-line arithmetic over one lane with
+//! selects for its conditions, so that a loop over many lanes (`lanes`) vectorises; the scalar integrator
 //! calls the same function, and both give the mixture BSDF's results bit for bit (the same
 //! operations in the same order: `tests` compares them).
 
@@ -21,7 +21,7 @@ pub(crate) struct LambertLane {
     /// Direction of the ray that hit.
     pub dir: Vec3,
     /// The hit point, its error bound and its geometric normal (facing the ray). Where
-    /// `on_triangle` is set, the point and bound are still to be computed
+    /// `on_triangle` is not 0, the point and bound are still to be computed
     /// (`with_hit_point`) from the triangle hit in the `hit_` fields.
     pub point: Vec3,
     pub error: Vec3,
@@ -39,7 +39,9 @@ pub(crate) struct LambertLane {
     /// 1 where a light was sampled, else 0.
     pub has_light: f32,
     /// What was sampled: `AREA` (a point on an emitter), `POINT` (a point light) or
-    /// `DISTANT` (a direction: the environment, or a directional light).
+    /// `DISTANT` (a direction: the environment, or a directional light); or what is still
+    /// to be: `LONE` or `NEAR` (the lone emitter's light, whose draw `light_point` and
+    /// `light_normal` then hold).
     pub light_kind: f32,
     /// The light point sampled, or the direction towards a distant light.
     pub light_point: Vec3,
@@ -57,7 +59,9 @@ pub(crate) struct LambertLane {
     pub u_survive: f32,
     /// 1 where Russian roulette may end the path at this bounce, else 0.
     pub roulette: f32,
-    /// 1 where the point is to be computed from the triangle hit, else 0.
+    /// Where the point is to be computed from the triangle hit, 1 if `normal` is the
+    /// triangle's own and -1 if it is its opposite (the back was hit), else 0: the lanes
+    /// take the triangle's own normal back exactly, signed zeros included.
     pub on_triangle: f32,
     /// The hit's barycentrics and distance, and its triangle plane's `tilt` and `edge_tilt`.
     pub hit_b1: f32,

@@ -40,24 +40,28 @@ impl BounceAt for SurfacePoint {
     }
 }
 
-/// A triangle hit, and the triangle's normal facing the ray.
+/// A triangle hit, the triangle's normal facing the ray, and whether that is the triangle's
+/// own (its front was hit) or its opposite.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct OnTriangle {
     pub hit: TriangleHit,
     pub normal: Vec3,
+    pub front_face: bool,
 }
 
 impl BounceAt for OnTriangle {
     #[inline(always)]
     fn resolve(&self, dir: Vec3) -> SurfacePoint {
-        let (point, error) = self.hit.point(dir, self.normal);
+        // The triangle's own normal again: a negation is exact.
+        let own = if self.front_face { self.normal } else { -self.normal };
+        let (point, error) = self.hit.point(dir, own);
         SurfacePoint { point, error, normal: self.normal }
     }
 
     #[inline(always)]
     fn lane_fields(&self) -> (SurfacePoint, TriangleHit, f32) {
         let surface = SurfacePoint { point: Vec3::ZERO, error: Vec3::ZERO, normal: self.normal };
-        (surface, self.hit, 1.0)
+        (surface, self.hit, if self.front_face { 1.0 } else { -1.0 })
     }
 }
 
@@ -89,8 +93,8 @@ impl TriangleHit {
         }
     }
 
-    /// The point and its bound, for a ray of direction `dir`, where the triangle's unit
-    /// normal is `normal` (either orientation: `triangle_hit_point` takes both).
+    /// The point and its bound, for a ray of direction `dir`, where the triangle's own unit
+    /// normal (its plane's) is `normal`.
     #[inline(always)]
     fn point(&self, dir: Vec3, normal: Vec3) -> (Vec3, Vec3) {
         let [v0, v1, v2] = self.triangle;
@@ -117,7 +121,8 @@ pub(crate) fn with_hit_point(lane: &LambertLane) -> LambertLane {
         tilt: lane.hit_tilt,
         edge_tilt: lane.hit_edge_tilt,
     };
-    let (point, error) = hit.point(lane.dir, lane.normal);
+    // The triangle's own normal again (`on_triangle` is 1 or -1 here): exact.
+    let (point, error) = hit.point(lane.dir, lane.normal * lane.on_triangle);
     let computed = lane.on_triangle != 0.0;
     LambertLane {
         point: select3(computed, point, lane.point),
@@ -132,8 +137,10 @@ pub(crate) fn with_hit_point(lane: &LambertLane) -> LambertLane {
 #[inline(always)]
 pub(crate) fn with_lone_light(lane: &LambertLane, emitter: &AreaSampler) -> LambertLane {
     let lone = lane.light_kind == LONE;
-    let by_area = lone && emitter.by_area(lane.point);
-    let near = !emitter.behind(lane.point) && emitter.is_near(lane.point);
+    let (behind, near) = (emitter.behind(lane.point), emitter.is_near(lane.point));
+    // As `AreaSampler::by_area` has it.
+    let by_area = lone && !behind && !near;
+    let near = !behind && near;
     let u = Vec2::new(lane.light_point.x, lane.light_point.y);
     let sample = emitter.sample_by_area(lane.point, u);
     let flag = |set: bool| if set { 1.0 } else { 0.0 };

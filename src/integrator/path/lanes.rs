@@ -61,8 +61,8 @@ macro_rules! lane_columns {
 
 /// Lays a lane record out in columns (`lane_columns`) and reads its fields one at a time,
 /// from the record or straight from its position in the columns of a block (`$view`): what
-/// reads it need not copy all of it first (a read-back of all 22 columns of an outcome
-/// spilled half of them to the stack before they were used).
+/// reads it need not copy all of it first (a read-back of all of an outcome's columns, 22
+/// then, spilled half of them to the stack before they were used).
 macro_rules! lane_fields {
     ($record:ident, $fields:ident, $view:ident, $place:ident {
         $($vector:ident),* ; $($scalar:ident),*
@@ -198,11 +198,18 @@ impl LambertLanes {
     }
 
     /// Computes every queued bounce, its point computed first where it was left to the
-    /// lanes, and its light sampled on `emitter` where that was (`lane_light`).
-    pub fn run(&mut self, spaces: &FrameSpaces, emitter: Option<&LoneEmitter>) {
+    /// lanes (only ever on a plain surface: none without `plain_surfaces`), and its light
+    /// sampled on `emitter` where that was (`lane_light`).
+    pub fn run(
+        &mut self,
+        spaces: &FrameSpaces,
+        emitter: Option<&LoneEmitter>,
+        plain_surfaces: bool,
+    ) {
         let blocks = self.paths.len().div_ceil(CHUNK);
         let (inputs, outputs) = (&self.inputs[..blocks], &mut self.outputs[..blocks]);
-        pulp::Arch::new().dispatch(Kernel { spaces, emitter, inputs, outputs });
+        let kernel = Kernel { spaces, emitter, plain_surfaces, inputs, outputs };
+        pulp::Arch::new().dispatch(kernel);
     }
 
     /// The queued bounces' positions in the queue, paths and outcomes, in the order they
@@ -223,6 +230,7 @@ impl LambertLanes {
 struct Kernel<'a> {
     spaces: &'a FrameSpaces,
     emitter: Option<&'a LoneEmitter>,
+    plain_surfaces: bool,
     inputs: &'a [Block<IN>],
     outputs: &'a mut [Block<OUT>],
 }
@@ -233,15 +241,20 @@ impl pulp::WithSimd for Kernel<'_> {
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
         let blocks = self.inputs.iter().zip(self.outputs.iter_mut());
-        match self.emitter {
-            Some(emitter) => {
+        match (self.emitter, self.plain_surfaces) {
+            (Some(emitter), _) => {
                 for (inputs, outputs) in blocks {
                     run_block(self.spaces, emitter.sampler, inputs, outputs);
                 }
             }
-            None => {
+            (None, true) => {
                 for (inputs, outputs) in blocks {
                     run_block(self.spaces, HitPoints, inputs, outputs);
+                }
+            }
+            (None, false) => {
+                for (inputs, outputs) in blocks {
+                    run_block(self.spaces, Unchanged, inputs, outputs);
                 }
             }
         }
@@ -251,6 +264,17 @@ impl pulp::WithSimd for Kernel<'_> {
 /// What a lane needs before its bounce is computed.
 trait Prepare: Copy {
     fn prepare(&self, lane: LambertLane) -> LambertLane;
+}
+
+/// Nothing: every point and light point is known already.
+#[derive(Clone, Copy)]
+struct Unchanged;
+
+impl Prepare for Unchanged {
+    #[inline(always)]
+    fn prepare(&self, lane: LambertLane) -> LambertLane {
+        lane
+    }
 }
 
 /// The points left to the lanes (where the scene's light is not a lone emitter).

@@ -2,7 +2,7 @@
 //! density, lane position by lane position.
 
 use super::*;
-use crate::float_error::{TrianglePlane, triangle_hit_point};
+use crate::float_error::{TrianglePlane, triangle_hit_point, triangle_point};
 use crate::integrator::path::lambert::{AREA, DISTANT, LONE, NEAR, POINT};
 use crate::integrator::path::lane_light::{lone_draw_fields, with_hit_point, with_lone_light};
 use crate::light::{Emitter, EmitterShape, InstanceEmitters, LightSet};
@@ -69,11 +69,17 @@ fn random_lane(rng: &mut SplitMix64) -> LambertLane {
 /// its point and bound left to be computed from the hit; the triangle's normal faces the ray.
 fn on_triangle_lane(rng: &mut SplitMix64, lane: &LambertLane, center: Vec3) -> LambertLane {
     let triangle = [(); 3].map(|_| center + rng.vec3(-2.0, 2.0));
+    lane_on(triangle, rng, lane)
+}
+
+/// `lane` moved onto `triangle` (see `on_triangle_lane`).
+fn lane_on(triangle: [Vec3; 3], rng: &mut SplitMix64, lane: &LambertLane) -> LambertLane {
     let plane = TrianglePlane::new(&triangle);
     let (b1, b2) = (rng.unit() * 0.5, rng.unit() * 0.5);
     let on_plane = triangle[0] * (1.0 - b1 - b2) + triangle[1] * b1 + triangle[2] * b2;
     let t = rng.range(0.1, 20.0);
-    let normal = if plane.normal.dot(lane.dir) < 0.0 { plane.normal } else { -plane.normal };
+    let front_face = plane.normal.dot(lane.dir) < 0.0;
+    let normal = if front_face { plane.normal } else { -plane.normal };
     LambertLane {
         point: Vec3::ZERO,
         error: Vec3::ZERO,
@@ -83,7 +89,7 @@ fn on_triangle_lane(rng: &mut SplitMix64, lane: &LambertLane, center: Vec3) -> L
         hit_v1: triangle[1],
         hit_v2: triangle[2],
         hit_origin: on_plane - lane.dir * t,
-        on_triangle: 1.0,
+        on_triangle: if front_face { 1.0 } else { -1.0 },
         hit_b1: b1,
         hit_b2: b2,
         hit_t: t,
@@ -179,7 +185,7 @@ fn the_vector_loop_gives_each_lane_s_own_result_bit_for_bit() {
         for (i, lane) in lanes.iter().enumerate() {
             queue.push(i as u32 * 2, lane);
         }
-        queue.run(&spaces, None);
+        queue.run(&spaces, None, true);
         let outcomes: Vec<_> = queue.outcomes().map(|(_, p, o)| (p, o.record())).collect();
         assert_eq!(outcomes.len(), n);
         let (mut shadows, mut nexts) = (0, 0);
@@ -212,7 +218,7 @@ fn lane_directions_follow_the_cosine_density_at_every_lane_position() {
         frames.push(crate::integrator::path::shading_frame_in(&spaces, lane.shading_normal));
         queue.push(i as u32, &lane);
     }
-    queue.run(&spaces, None);
+    queue.run(&spaces, None, true);
     // cos²θ and φ are uniform under the cosine density: equal cells.
     let mut counts = vec![[0u64; BINS * BINS]; CHUNK];
     let mut taken = [0u64; CHUNK];
@@ -248,25 +254,42 @@ fn lone_rectangle(two_sided: bool) -> LoneEmitter {
 }
 
 /// A triangle hit's point computed in a lane is `triangle_hit_point`'s with the triangle's
-/// own plane, bit for bit, whichever way the lane's normal faces.
+/// own plane, bit for bit, whichever side was hit; both of its candidates are taken, and a
+/// degenerate triangle's is the barycentric one.
 #[test]
 fn a_lane_s_hit_point_is_the_triangle_s() {
     let mut rng = SplitMix64(17);
-    for i in 0..2000 {
-        let (lane, center) = (random_lane(&mut rng), rng.vec3(-50.0, 50.0));
-        let lane = on_triangle_lane(&mut rng, &lane, center);
+    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+    let (mut from_ray, mut backs, mut degenerate) = (0, 0, 0);
+    for i in 0..4000 {
+        // Far from the origin too, where the barycentric sum's bound grows.
+        let (lane, center) = (random_lane(&mut rng), rng.vec3(-50.0, 50.0) * rng.range(1.0, 1e4));
+        let mut lane = on_triangle_lane(&mut rng, &lane, center);
+        if i % 100 == 0 {
+            // Degenerate: the third vertex is the first again (a zero normal).
+            let (v0, v1) = (lane.hit_v0, lane.hit_v1);
+            lane = lane_on([v0, v1, v0], &mut rng, &lane);
+        }
         let triangle = [lane.hit_v0, lane.hit_v1, lane.hit_v2];
         let hit = ((lane.hit_b1, lane.hit_b2), (lane.hit_origin, lane.dir, lane.hit_t));
         let plane = TrianglePlane::new(&triangle);
         let (point, error) = triangle_hit_point(&triangle, &plane, hit.0, hit.1);
-        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
         let computed = with_hit_point(&lane);
         assert_eq!(bits(computed.point), bits(point), "lane {i}");
         assert_eq!(bits(computed.error), bits(error), "lane {i}");
+        let barycentric = triangle_point(&triangle, &plane, hit.0.0, hit.0.1);
+        from_ray += (bits(point) != bits(barycentric.0)) as u32;
+        backs += (lane.on_triangle < 0.0) as u32;
+        if plane.normal == Vec3::ZERO {
+            degenerate += 1;
+            assert_eq!(bits(point), bits(barycentric.0), "degenerate lane {i}");
+        }
         // A point already known stays.
         let known = with_hit_point(&LambertLane { on_triangle: 0.0, ..lane });
         assert_eq!((known.point, known.error), (lane.point, lane.error));
     }
+    assert!(from_ray > 100 && from_ray < 3900 && backs > 100, "{from_ray} {backs}");
+    assert_eq!(degenerate, 40);
 }
 
 #[test]
@@ -287,7 +310,7 @@ fn points_left_to_the_vector_loop_are_those_of_one_lane_bit_for_bit() {
     for (i, lane) in lanes.iter().enumerate() {
         queue.push(i as u32, lane);
     }
-    queue.run(&spaces, None);
+    queue.run(&spaces, None, true);
     let mut found = 0;
     for (i, (lane, (_, _, outcome))) in lanes.iter().zip(queue.outcomes()).enumerate() {
         let single = lambert_bounce(&with_hit_point(lane), &spaces);
@@ -326,18 +349,24 @@ fn points_and_lights_left_to_the_vector_loop_are_those_of_one_lane_bit_for_bit()
         for (i, lane) in lanes.iter().enumerate() {
             queue.push(i as u32, lane);
         }
-        queue.run(&spaces, Some(&emitter));
-        let (mut lit, mut near) = (0, 0);
+        queue.run(&spaces, Some(&emitter), true);
+        let (mut lit, mut near, mut behind) = (0, 0, 0);
         for (i, (lane, (_, _, outcome))) in lanes.iter().zip(queue.outcomes()).enumerate() {
             let outcome = outcome.record();
             let single = with_lone_light(&with_hit_point(lane), &emitter.sampler);
             assert_eq!(bits(outcome), bits(lambert_bounce(&single, &spaces)), "lane {i}");
             assert_eq!(outcome.near != 0.0, single.light_kind == NEAR, "lane {i}");
-            lit += (lane.light_kind == LONE && outcome.shadow != 0.0) as u32;
+            let left = lane.light_kind == LONE;
+            lit += (left && outcome.shadow != 0.0) as u32;
             near += (single.light_kind == NEAR) as u32;
+            if left && emitter.sampler.behind(single.point) {
+                behind += 1;
+                assert_eq!((single.has_light, outcome.shadow), (0.0, 0.0), "lane {i}");
+            }
         }
-        // Light points sampled in the loop do light their lanes, and some are left to one
-        // lane at a time, so the comparison covers both.
+        // Light points sampled in the loop do light their lanes, some are left to one lane
+        // at a time, and (one-sided) some lanes are behind: the comparison covers all three.
         assert!(lit > 10 && near > 10, "{lit} {near}");
+        assert!(two_sided == (behind == 0) && (two_sided || behind > 10), "{behind}");
     }
 }

@@ -32,6 +32,8 @@ pub(super) struct PlainSurface<'a> {
 #[derive(Clone, Debug, Default)]
 pub(super) struct PlainSurfaces<'a> {
     by_instance: Vec<Option<PlainSurface<'a>>>,
+    /// Whether any is.
+    any: bool,
 }
 
 impl<'a> PlainSurfaces<'a> {
@@ -56,7 +58,14 @@ impl<'a> PlainSurfaces<'a> {
                 one_sided: material.one_sided,
             })
         };
-        PlainSurfaces { by_instance: scene.instances.iter().map(plain).collect() }
+        let by_instance: Vec<_> = scene.instances.iter().map(plain).collect();
+        let any = by_instance.iter().any(Option::is_some);
+        PlainSurfaces { by_instance, any }
+    }
+
+    /// Whether any instance is plain.
+    pub fn any(&self) -> bool {
+        self.any
     }
 
     /// The plain surface instance `instance` has, if it is one.
@@ -94,7 +103,7 @@ impl PathTracer<'_> {
             return Some(Scattered::End);
         }
         stats.bounces.lanes += 1;
-        let at = OnTriangle { hit: at, normal };
+        let at = OnTriangle { hit: at, normal, front_face };
         self.lambert_lane(state, plain.diffuse, (at, normal), stream, lane);
         Some(Scattered::Lambert)
     }
@@ -157,6 +166,7 @@ mod tests {
             let diffuse = plain.get(0).map(|p| p.diffuse);
             assert_eq!(diffuse, Some(energy.lambertian(Vec3::new(0.9, 0.5, 0.25))));
             assert!(plain.get(6).is_none(), "past the last instance");
+            assert!(plain.any());
         }
     }
 }

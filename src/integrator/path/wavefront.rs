@@ -146,7 +146,8 @@ impl Wavefront {
                 }
             }
             clock.lap(Phase::Shading, &mut stats.phases);
-            self.lambert.run(&path.spaces, path.lone_emitter.as_deref());
+            let plain = path.plain_surfaces.any();
+            self.lambert.run(&path.spaces, path.lone_emitter.as_deref(), plain);
             clock.lap(Phase::Lanes, &mut stats.phases);
             for (i, lane, outcome) in self.lambert.outcomes() {
                 shadows.lane = lane;
