@@ -1,6 +1,6 @@
-//! What a plain Lambertian lane still needs before its bounce where the scene's one light is
-//! a lone flat emitter, left to the lanes so that the loop over them computes it for many
-//! paths at once: the hit point of a triangle hit (`with_hit_point`), and then the light
+//! What a plain Lambertian lane may still need before its bounce, left to the lanes so that
+//! the loop over them computes it for many paths at once: the hit point of a triangle hit
+//! (`with_hit_point`), and, where the scene's one light is a lone flat emitter, the light
 //! sample its place calls for (`with_lone_light`): none behind a one-sided emitter, a point
 //! sampled by area far from it, and near it a point sampled by solid angle, which is left
 //! to one lane at a time (`NEAR`, `PathTracer::lambert_outcome`). Both in select form, and
@@ -24,7 +24,8 @@ pub(crate) trait BounceAt: Copy {
     /// of direction `dir`.
     fn resolve(&self, dir: Vec3) -> SurfacePoint;
     /// What a lane holds of it: the point, its bound (both zero where they are left to the
-    /// lanes) and its normal, the triangle hit, and 1 where the point is left, else 0.
+    /// lanes) and its normal, the triangle hit, and its `on_triangle` (0 where the point is
+    /// known).
     fn lane_fields(&self) -> (SurfacePoint, TriangleHit, f32);
 }
 
