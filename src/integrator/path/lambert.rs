@@ -75,12 +75,17 @@ pub(crate) struct LambertLane {
 /// or straight into its column position among the lanes computed together
 /// (`LambertLanes::next_lane`), with no lane in between to copy from.
 pub(crate) trait LaneSink {
-    fn put(&mut self, lane: LambertLane);
+    /// Writes `lane`, but for the fields of `unwritten` (`LanePlace` bits), which need not
+    /// be: the lanes set them before they are read (`lanes::POINT_UNWRITTEN`,
+    /// `lanes::LONE_UNWRITTEN`).
+    fn put(&mut self, lane: LambertLane, unwritten: u64);
 }
 
 impl LaneSink for LambertLane {
+    /// The whole lane, whatever `unwritten` says: one path's lane is not a column, and a
+    /// copy of all of it costs no more.
     #[inline(always)]
-    fn put(&mut self, lane: LambertLane) {
+    fn put(&mut self, lane: LambertLane, _unwritten: u64) {
         *self = lane;
     }
 }

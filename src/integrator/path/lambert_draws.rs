@@ -9,6 +9,7 @@ use super::lambert::{AREA, DISTANT, LONE, LambertLane, LambertOutcome, LaneSink,
 use super::lane_light::{
     BounceAt, TriangleHit, lone_draw, lone_draw_fields, with_hit_point, with_lone_light,
 };
+use super::lanes::{LONE_UNWRITTEN, POINT_UNWRITTEN};
 use crate::sampling::SampleStream;
 use crate::shading::spawn::SurfacePoint;
 use crate::stats::RenderStats;
@@ -22,11 +23,11 @@ impl PathTracer<'_> {
     /// the lanes (`lane_light`), and with a lone emitter the light sample too; a light
     /// sample that needs the point (a spot's, one of several emitters') computes it here
     /// as well.
-    pub(super) fn lambert_lane(
+    pub(super) fn lambert_lane<At: BounceAt>(
         &self,
         state: &mut PathState,
         diffuse: Vec3,
-        (at, shading_normal): (impl BounceAt, Vec3),
+        (at, shading_normal): (At, Vec3),
         stream: &mut SampleStream,
         lane: &mut impl LaneSink,
     ) {
@@ -35,7 +36,9 @@ impl PathTracer<'_> {
             state.result.albedo = Some((diffuse + Vec3::ZERO).min(Vec3::ONE));
         }
         let surface = (diffuse, shading_normal);
-        match self.lone_emitter {
+        // The columns the lanes set themselves are not written.
+        let point_unwritten = if At::POINT_LEFT_TO_LANES { POINT_UNWRITTEN } else { 0 };
+        let (light, direction_draw, light_unwritten) = match self.lone_emitter {
             // Both draws made first (the light's, then the direction's, as `light_sample`
             // and the mixture BSDF draw them), so that no light field is held across a
             // draw: a draw may call out of line, around which every live register was
@@ -44,15 +47,17 @@ impl PathTracer<'_> {
             Some(_) => {
                 let light_draw = stream.next_4d();
                 let direction_draw = stream.next_4d();
-                let light = LaneLight::lone(light_draw);
-                lane.put(self.lane_record(state, at.lane_fields(), surface, light, direction_draw));
+                (LaneLight::lone(light_draw), direction_draw, LONE_UNWRITTEN)
             }
             None => {
                 let light = self.light_sample(&at, state.ray.dir, stream);
-                let direction_draw = stream.next_4d();
-                lane.put(self.lane_record(state, at.lane_fields(), surface, light, direction_draw));
+                (light, stream.next_4d(), 0)
             }
-        }
+        };
+        lane.put(
+            self.lane_record(state, at.lane_fields(), surface, light, direction_draw),
+            point_unwritten | light_unwritten,
+        );
         state.direct_weight = Some(state.throughput);
     }
 

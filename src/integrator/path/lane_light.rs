@@ -20,6 +20,8 @@ use glam::{Vec2, Vec3};
 /// that `lambert_lane` is compiled for each on its own: the two merged spilled their fields
 /// to the stack (60 instructions a bounce).
 pub(crate) trait BounceAt: Copy {
+    /// Whether the point is left to the lanes (`on_triangle` not 0).
+    const POINT_LEFT_TO_LANES: bool;
     /// The point, its bound and its normal (facing the ray), computed if need be, for a ray
     /// of direction `dir`.
     fn resolve(&self, dir: Vec3) -> SurfacePoint;
@@ -30,6 +32,8 @@ pub(crate) trait BounceAt: Copy {
 }
 
 impl BounceAt for SurfacePoint {
+    const POINT_LEFT_TO_LANES: bool = false;
+
     #[inline(always)]
     fn resolve(&self, _dir: Vec3) -> SurfacePoint {
         *self
@@ -51,6 +55,8 @@ pub(crate) struct OnTriangle {
 }
 
 impl BounceAt for OnTriangle {
+    const POINT_LEFT_TO_LANES: bool = true;
+
     #[inline(always)]
     fn resolve(&self, dir: Vec3) -> SurfacePoint {
         // The triangle's own normal again: a negation is exact.

@@ -9,31 +9,52 @@ use super::lane_light::{with_hit_point, with_lone_light};
 use crate::light::{AreaSampler, LoneEmitter};
 use glam::Vec3;
 
-/// Flattens a lane record into `f32` columns and back: `Vec3` fields first, then scalars.
+/// Flattens a lane record into `f32` columns and back: `Vec3` fields first, then scalars,
+/// each field at its place in the enum `$place` (listed in the same order).
 macro_rules! lane_columns {
-    ($record:ident { $($vector:ident),* ; $($scalar:ident),* }) => {
+    ($record:ident, $place:ident { $($vector:ident),* ; $($scalar:ident),* }) => {
+        /// Each field's place in the order `lane_columns` lays them out: a vector's first
+        /// column is three times its place, a scalar's column its place plus two per vector.
+        #[allow(non_camel_case_types, dead_code)]
+        #[derive(Clone, Copy)]
+        pub(crate) enum $place {
+            $($vector,)*
+            $($scalar,)*
+        }
+
+        impl $place {
+            /// Its bit in a set of fields (`write_at`'s `unwritten`).
+            #[allow(dead_code)]
+            pub const fn bit(self) -> u64 {
+                1 << self as u64
+            }
+        }
+
         impl $record {
             /// Its number of `Vec3` fields, and of `f32` columns.
             pub const VECTORS: usize = [$(stringify!($vector)),*].len();
             pub const COLUMNS: usize = 3 * Self::VECTORS + [$(stringify!($scalar)),*].len();
 
             /// Writes it into position `j` of the columns of a block, straight from its
-            /// fields (no array in between).
+            /// fields (no array in between), but for the fields of `unwritten` (bits of
+            /// `$place`: a constant once inlined, so that no test is left), whose columns
+            /// keep what they held.
             #[inline(always)]
-            fn write_at(&self, block: &mut Block<{ Self::COLUMNS }>, j: usize) {
+            fn write_at(&self, block: &mut Block<{ Self::COLUMNS }>, j: usize, unwritten: u64) {
                 let j = j % CHUNK;
-                let mut k = 0;
                 $(
-                    block[k][j] = self.$vector.x;
-                    block[k + 1][j] = self.$vector.y;
-                    block[k + 2][j] = self.$vector.z;
-                    k += 3;
+                    if unwritten & $place::$vector.bit() == 0 {
+                        let k = 3 * $place::$vector as usize;
+                        block[k][j] = self.$vector.x;
+                        block[k + 1][j] = self.$vector.y;
+                        block[k + 2][j] = self.$vector.z;
+                    }
                 )*
                 $(
-                    block[k][j] = self.$scalar;
-                    k += 1;
+                    if unwritten & $place::$scalar.bit() == 0 {
+                        block[$place::$scalar as usize + 2 * Self::VECTORS][j] = self.$scalar;
+                    }
                 )*
-                debug_assert_eq!(k, Self::COLUMNS);
             }
 
             /// The record at position `j` of the columns of a block. (The outcomes are read
@@ -43,16 +64,13 @@ macro_rules! lane_columns {
             fn read_at(block: &Block<{ Self::COLUMNS }>, j: usize) -> Self {
                 let j = j % CHUNK;
                 let mut record = Self::default();
-                let mut k = 0;
                 $(
+                    let k = 3 * $place::$vector as usize;
                     record.$vector = Vec3::new(block[k][j], block[k + 1][j], block[k + 2][j]);
-                    k += 3;
                 )*
                 $(
-                    record.$scalar = block[k][j];
-                    k += 1;
+                    record.$scalar = block[$place::$scalar as usize + 2 * Self::VECTORS][j];
                 )*
-                debug_assert_eq!(k, Self::COLUMNS);
                 record
             }
         }
@@ -68,7 +86,7 @@ macro_rules! lane_fields {
         $($vector:ident),* ; $($scalar:ident),*
     }) => {
         // One list of the fields for both, so that the view reads the layout it was written in.
-        lane_columns!($record { $($vector),* ; $($scalar),* });
+        lane_columns!($record, $place { $($vector),* ; $($scalar),* });
 
         /// The fields of a record, read one at a time.
         pub(crate) trait $fields {
@@ -79,14 +97,6 @@ macro_rules! lane_fields {
         impl $fields for $record {
             $(#[inline(always)] fn $vector(&self) -> Vec3 { self.$vector })*
             $(#[inline(always)] fn $scalar(&self) -> f32 { self.$scalar })*
-        }
-
-        /// Each field's place in the order `lane_columns` lays them out: a vector's first
-        /// column is three times its place, a scalar's column its place plus two per vector.
-        #[allow(non_camel_case_types)]
-        enum $place {
-            $($vector,)*
-            $($scalar,)*
         }
 
         /// A record at position `j` of the columns of a block.
@@ -121,7 +131,7 @@ macro_rules! lane_fields {
     };
 }
 
-lane_columns!(LambertLane {
+lane_columns!(LambertLane, LanePlace {
     dir, point, error, normal, hit_v0, hit_v1, hit_v2, hit_origin, shading_normal, diffuse,
     throughput, light_point, light_error, light_normal, emission;
     eta_scale, has_light, light_kind, light_pdf, light_visible, light_two_sided, u0, u1,
@@ -132,6 +142,22 @@ lane_fields!(LambertOutcome, OutcomeFields, OutcomeAt, OutcomePlace {
     shadow_origin, shadow_dir, contribution, next_origin, next_dir, throughput, point;
     shadow, next, pdf, shadow_tmax, near
 });
+
+/// The fields a lane whose point is left to the lanes (`on_triangle` not 0) need not write:
+/// `with_hit_point` sets them before anything reads them.
+pub(crate) const POINT_UNWRITTEN: u64 = LanePlace::point.bit() | LanePlace::error.bit();
+
+/// The fields a `LONE` lane need not write: `with_lone_light` sets them where it samples
+/// the light by area; where it does not, the lane has no light (`has_light`, which it
+/// always sets, is 0) and nothing reads them, and a `NEAR` lane gets all its light fields
+/// one lane at a time (`PathTracer::lambert_outcome`). A column left unwritten keeps an
+/// earlier bounce's value, which reaches no result that is read.
+pub(crate) const LONE_UNWRITTEN: u64 = LanePlace::has_light.bit()
+    | LanePlace::light_error.bit()
+    | LanePlace::emission.bit()
+    | LanePlace::light_pdf.bit()
+    | LanePlace::light_visible.bit()
+    | LanePlace::light_two_sided.bit();
 
 const IN: usize = LambertLane::COLUMNS;
 const OUT: usize = LambertOutcome::COLUMNS;
@@ -160,8 +186,8 @@ pub(crate) struct LaneSlot<'a> {
 
 impl LaneSink for LaneSlot<'_> {
     #[inline(always)]
-    fn put(&mut self, lane: LambertLane) {
-        lane.write_at(self.block, self.j);
+    fn put(&mut self, lane: LambertLane, unwritten: u64) {
+        lane.write_at(self.block, self.j, unwritten);
     }
 }
 
@@ -193,7 +219,7 @@ impl LambertLanes {
     /// Queues the bounce `lane` of path `path`.
     #[cfg(test)]
     pub fn push(&mut self, path: u32, lane: &LambertLane) {
-        self.next_lane().put(*lane);
+        self.next_lane().put(*lane, 0);
         self.commit(path);
     }
 
@@ -309,7 +335,7 @@ fn run_block(
 ) {
     for j in 0..CHUNK {
         let lane = prepare.prepare(LambertLane::read_at(inputs, j));
-        lambert_bounce(&lane, spaces).write_at(outputs, j);
+        lambert_bounce(&lane, spaces).write_at(outputs, j, 0);
     }
 }
 
