@@ -9,7 +9,7 @@ use crate::ray::Ray;
 use crate::render_options::{PathBatching, RenderOptions};
 use crate::render_scene::RenderScene;
 use crate::sample_sums::PixelSums;
-use crate::sampling::{self, SLOT_LENS, SLOT_TIME, SampleStream};
+use crate::sampling::{self, PixelStreams, SLOT_LENS, SLOT_TIME, SampleStream};
 use crate::stats::RenderStats;
 use glam::{Vec2, Vec3};
 use std::sync::{Mutex, TryLockError};
@@ -42,6 +42,8 @@ pub(crate) struct TileScratch {
     /// The tile's pixels (`Tile::pixels`): listed once per tile, not found from a sample's
     /// index by two integer divisions per camera ray.
     pixels: Vec<(u32, u32)>,
+    /// What the random streams of each pixel's samples share, hashed once per tile.
+    pixel_streams: Vec<PixelStreams>,
 }
 
 /// The camera samples of a batch, in order: each one's pixel-position draw, where in the
@@ -81,15 +83,10 @@ impl WorkerScratches {
     }
 }
 
-/// The random stream of sample `s` of pixel (`x`, `y`).
-fn sample_stream(
-    scene: &RenderScene,
-    options: &RenderOptions,
-    (x, y): (u32, u32),
-    s: u32,
-) -> SampleStream {
+/// The random streams of pixel `(x, y)`'s samples.
+fn pixel_streams(scene: &RenderScene, options: &RenderOptions, (x, y): (u32, u32)) -> PixelStreams {
     let pixel = y as u64 * scene.camera.width as u64 + x as u64;
-    SampleStream::new(options.sampler, options.seed, pixel, s as u64)
+    PixelStreams::new(options.sampler, options.seed, pixel)
 }
 
 /// The camera ray through `pixel` at `uniform` (the sample's position draw,
@@ -183,6 +180,9 @@ pub(crate) fn render_tile(
     let scene = tracer.scene();
     scratch.pixels.clear();
     scratch.pixels.extend(tile.pixels());
+    scratch.pixel_streams.clear();
+    let streams_of = |&pixel: &(u32, u32)| pixel_streams(scene, options, pixel);
+    scratch.pixel_streams.extend(scratch.pixels.iter().map(streams_of));
     let n = scratch.pixels.len();
     let mut result =
         TileResult { tile, sums: vec![PixelSums::default(); n], stats: RenderStats::default() };
@@ -205,12 +205,13 @@ pub(crate) fn render_tile(
     // A stop ends the tile too (its pass is dropped), so that a long pass stops promptly.
     let stopped = || options.stop.as_ref().is_some_and(|s| s.requested().is_some());
     let Some(path) = batched else {
-        for (i, (sums, &pixel)) in result.sums.iter_mut().zip(&scratch.pixels).enumerate() {
+        let pixels = scratch.pixels.iter().zip(&scratch.pixel_streams);
+        for (i, (sums, (&pixel, streams))) in result.sums.iter_mut().zip(pixels).enumerate() {
             if i % 16 == 0 && stopped() {
                 return None;
             }
             for s in samples.clone() {
-                let mut stream = sample_stream(scene, options, pixel, s);
+                let mut stream = streams.stream(s.into());
                 let uniform = stream.pixel_position(s, spp, options.jitters());
                 let (ray, backdrop, weight) = camera_ray(scene, pixel, uniform, &stream);
                 let sample = tracer.trace(ray, backdrop, &mut stream, &mut result.stats);
@@ -225,8 +226,7 @@ pub(crate) fn render_tile(
         if stopped() {
             return None;
         }
-        let streams =
-            wavefront.begin(scratch.pixels.iter().map(|&p| sample_stream(scene, options, p, s)));
+        let streams = wavefront.begin(scratch.pixel_streams.iter().map(|p| p.stream(s.into())));
         let draw = (s, spp, options.jitters());
         let camera = &mut scratch.camera;
         camera.make(scene, &scratch.pixels, streams, draw);

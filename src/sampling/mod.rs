@@ -32,8 +32,19 @@ pub fn hash4(seed: u64, pixel: u64, sample: u64, dimension: u64) -> u64 {
 
 /// The part of `hash4` that does not depend on the dimension (computed once per stream).
 fn hash_prefix(seed: u64, pixel: u64, sample: u64) -> u64 {
-    let h = mix64(mix64(seed ^ 0x9e37_79b9_7f4a_7c15) ^ pixel);
-    mix64(h ^ sample.wrapping_mul(0x632b_e59b_d9b4_e019))
+    sample_hash(pixel_hash(seed, pixel), sample)
+}
+
+/// The part of `hash_prefix` that depends on neither the sample nor the dimension.
+#[inline]
+fn pixel_hash(seed: u64, pixel: u64) -> u64 {
+    mix64(mix64(seed ^ 0x9e37_79b9_7f4a_7c15) ^ pixel)
+}
+
+/// `hash_prefix` from the pixel's `pixel_hash`.
+#[inline]
+fn sample_hash(pixel_hash: u64, sample: u64) -> u64 {
+    mix64(pixel_hash ^ sample.wrapping_mul(0x632b_e59b_d9b4_e019))
 }
 
 #[inline(always)]
@@ -105,19 +116,45 @@ pub struct SampleStream {
 /// `ahead_at` when no draw was made ahead: no stream reaches this dimension.
 const NOT_AHEAD: u64 = 1 << 63;
 
-impl SampleStream {
-    pub fn new(kind: SamplerKind, seed: u64, pixel: u64, sample: u64) -> Self {
+/// What the streams of one pixel's samples share, hashed once (`stream` then makes each
+/// sample's with one mix, not six: a tile's batches made every pixel's anew each sample).
+#[derive(Clone, Copy, Debug)]
+pub struct PixelStreams {
+    kind: SamplerKind,
+    seed: u64,
+    pixel: u64,
+    pixel_hash: u64,
+    scramble_prefix: u64,
+}
+
+impl PixelStreams {
+    pub fn new(kind: SamplerKind, seed: u64, pixel: u64) -> Self {
+        let pixel_hash = pixel_hash(seed, pixel);
+        let scramble_prefix = sample_hash(pixel_hash, u64::MAX);
+        PixelStreams { kind, seed, pixel, pixel_hash, scramble_prefix }
+    }
+
+    /// The stream of sample `sample`: `SampleStream::new` of the same counters.
+    #[inline]
+    pub fn stream(&self, sample: u64) -> SampleStream {
+        let PixelStreams { kind, seed, pixel, pixel_hash, scramble_prefix } = *self;
         SampleStream {
             kind,
             seed,
             pixel,
             sample,
             dimension: 0,
-            sample_prefix: hash_prefix(seed, pixel, sample),
-            scramble_prefix: hash_prefix(seed, pixel, u64::MAX),
+            sample_prefix: sample_hash(pixel_hash, sample),
+            scramble_prefix,
             ahead_at: NOT_AHEAD,
             ahead: [[0.0; 4]; 2],
         }
+    }
+}
+
+impl SampleStream {
+    pub fn new(kind: SamplerKind, seed: u64, pixel: u64, sample: u64) -> Self {
+        PixelStreams::new(kind, seed, pixel).stream(sample)
     }
 
     /// The first `N` (at most 4) values of the draw that starts at dimension `d`. A Sobol
@@ -222,5 +259,28 @@ mod tests {
         assert_eq!(a, b);
         let mean = (0..10_000).map(|i| to_unit_f32(hash4(1, i, 0, 0)) as f64).sum::<f64>() / 1e4;
         assert!((mean - 0.5).abs() < 0.01);
+    }
+
+    /// A pixel's streams made from its shared hashes are the streams made from scratch, with
+    /// the prefixes of the three chained mixes every image so far was drawn with.
+    #[test]
+    fn pixel_streams_make_the_streams_new_makes() {
+        let prefix = |seed: u64, pixel: u64, sample: u64| {
+            let h = mix64(mix64(seed ^ 0x9e37_79b9_7f4a_7c15) ^ pixel);
+            mix64(h ^ sample.wrapping_mul(0x632b_e59b_d9b4_e019))
+        };
+        for kind in [SamplerKind::Sobol, SamplerKind::Stratified, SamplerKind::Independent] {
+            for (seed, pixel) in [(0, 0), (7, 65_535), (u64::MAX, 12)] {
+                let shared = PixelStreams::new(kind, seed, pixel);
+                for sample in [0, 1, 70_000, u64::MAX - 1] {
+                    let (mut made, mut new) =
+                        (shared.stream(sample), SampleStream::new(kind, seed, pixel, sample));
+                    assert_eq!(made.sample_prefix, prefix(seed, pixel, sample));
+                    assert_eq!(made.scramble_prefix, prefix(seed, pixel, u64::MAX));
+                    let draws = |s: &mut SampleStream| [s.next_4d(), s.next_4d()].concat();
+                    assert_eq!(draws(&mut made), draws(&mut new), "{kind:?} {seed} {pixel}");
+                }
+            }
+        }
     }
 }
