@@ -102,7 +102,7 @@ fn lane_on(triangle: [Vec3; 3], rng: &mut SplitMix64, lane: &LambertLane) -> Lam
 /// The bits of every value of `outcome`, for comparisons that NaNs do not defeat.
 fn bits(outcome: LambertOutcome) -> [u32; OUT] {
     let mut block = [[0.0; CHUNK]; OUT];
-    outcome.write_at(&mut block, 0);
+    outcome.write_at(&mut block, 0, 0);
     std::array::from_fn(|k| block[k][0].to_bits())
 }
 
@@ -111,7 +111,7 @@ fn a_lane_survives_its_columns() {
     let lane = random_lane(&mut SplitMix64(7));
     let mut block = [[f32::NAN; CHUNK]; IN];
     for j in [0, 5, CHUNK - 1] {
-        lane.write_at(&mut block, j);
+        lane.write_at(&mut block, j, 0);
         assert_eq!(LambertLane::read_at(&block, j), lane);
     }
     let filled = block.iter().flatten().filter(|v| !v.is_nan()).count();
@@ -164,7 +164,7 @@ fn an_outcome_s_view_reads_each_field_from_its_own_columns() {
         values.sort_unstable();
         values.dedup();
         assert_eq!(values.len(), OUT, "a value in two columns at position {j}");
-        outcome.write_at(&mut block, j);
+        outcome.write_at(&mut block, j, 0);
     }
     for j in [0, 5, CHUNK - 1] {
         let view = OutcomeAt { block: &block, j };
@@ -370,3 +370,6 @@ fn points_and_lights_left_to_the_vector_loop_are_those_of_one_lane_bit_for_bit()
         assert!(two_sided == (behind == 0) && (two_sided || behind > 10), "{behind}");
     }
 }
+
+#[path = "lanes_unwritten_tests.rs"]
+mod unwritten;
