@@ -230,9 +230,9 @@ pub(crate) fn render_tile(
         let draw = (s, spp, options.jitters());
         let camera = &mut scratch.camera;
         camera.make(scene, &scratch.pixels, streams, draw);
-        for (&ray, &raster) in camera.rays.iter().zip(&camera.rasters) {
-            wavefront.push(path.start(ray, scene.backdrop_at(raster)));
-        }
+        let rays = camera.rays.iter().zip(&camera.rasters);
+        wavefront
+            .start_paths(rays.map(|(&ray, &raster)| path.start(ray, scene.backdrop_at(raster))));
         clock.lap(Phase::CameraRays, &mut result.stats.phases);
         wavefront.run(path, &mut result.stats, &mut clock);
         for ((sums, sample), weight) in

@@ -70,8 +70,8 @@ impl ShadowSink for QueuedShadows {
 
 impl Wavefront {
     /// Starts a new batch, of the paths that go on with `streams`, in order: returns the
-    /// streams where they stay, to be drawn from for the camera rays, and then each path is
-    /// added by `push`, in the order of its stream.
+    /// streams where they stay, to be drawn from for the camera rays, and then the paths
+    /// are added by `start_paths`, in the order of their streams.
     pub fn begin(
         &mut self,
         streams: impl IntoIterator<Item = SampleStream>,
@@ -83,12 +83,12 @@ impl Wavefront {
         &mut self.streams
     }
 
-    /// Adds a path, its first ray in `state`: the path of the next stream of those the
-    /// batch began with.
-    pub fn push(&mut self, state: PathState) {
-        debug_assert!(self.states.len() < self.streams.len(), "a path without a stream");
-        self.live.push(self.states.len() as u32);
-        self.states.push(state);
+    /// Adds the paths of the batch, their first rays in `states`: one for each stream the
+    /// batch began with, in order. (All at once, so that each is built where it stays.)
+    pub fn start_paths(&mut self, states: impl Iterator<Item = PathState>) {
+        self.states.extend(states);
+        debug_assert_eq!(self.states.len(), self.streams.len(), "one path per stream");
+        self.live.extend(0..self.states.len() as u32);
     }
 
     /// The samples of the paths, in the order they were pushed (after `run`).
