@@ -205,9 +205,10 @@ impl EmbreeAccel {
     /// kernel breaks otherwise (see `intersect_batch`); `ray(i)` is the ray of `hits[i]`.
     fn retrace_ties(&self, hits: &mut [Option<Hit>], ray: impl Fn(usize) -> Ray) {
         for (i, hit) in hits.iter_mut().enumerate() {
+            // The rare edge first: most hits then need no look at their geometry.
             if let Some(h) = hit
-                && self.triangle_meshes.get(h.geom_id as usize).copied().unwrap_or(true)
                 && h.u.min(h.v).min(1.0 - h.u - h.v) < TIE_EDGE
+                && self.triangle_meshes.get(h.geom_id as usize).copied().unwrap_or(true)
             {
                 *hit = self.scene.intersect(&ray(i), None);
             }
