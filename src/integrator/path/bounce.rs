@@ -209,7 +209,8 @@ impl PathTracer<'_> {
     }
 
     /// Applies the outcome of the plain Lambertian bounce `on_hit` left to the caller: its
-    /// shadow ray to `shadows`, and the next ray if the path goes on.
+    /// shadow ray to `shadows`, and the next ray if the path goes on. (What it reads, and
+    /// when, is what `lanes_unwritten_tests.rs` compares.)
     pub(crate) fn finish_lambert(
         &self,
         state: &mut PathState,

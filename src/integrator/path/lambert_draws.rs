@@ -62,9 +62,8 @@ impl PathTracer<'_> {
     }
 
     /// The lane of `lambert_lane`, from where its bounce is (`BounceAt::lane_fields`), its
-    /// surface's reflectance and shading normal, its light and its direction's draw.
-    /// Written out in each of `lambert_lane`'s branches: every field named, none set twice,
-    /// and the lane written once, where it goes.
+    /// surface's reflectance and shading normal, its light and its direction's draw: every
+    /// field named, none set twice, and the lane written once, where it goes.
     #[inline(always)]
     fn lane_record(
         &self,

@@ -26,8 +26,8 @@ pub(crate) trait BounceAt: Copy {
     /// of direction `dir`.
     fn resolve(&self, dir: Vec3) -> SurfacePoint;
     /// What a lane holds of it: the point, its bound (both zero where they are left to the
-    /// lanes) and its normal, the triangle hit, and its `on_triangle` (0 where the point is
-    /// known).
+    /// lanes, whose columns then are not written: `POINT_UNWRITTEN`) and its normal, the
+    /// triangle hit, and its `on_triangle` (0 where the point is known).
     fn lane_fields(&self) -> (SurfacePoint, TriangleHit, f32);
 }
 

@@ -13,38 +13,49 @@ use glam::Vec3;
 /// each field at its place in the enum `$place` (listed in the same order).
 macro_rules! lane_columns {
     ($record:ident, $place:ident { $($vector:ident),* ; $($scalar:ident),* }) => {
-        /// Each field's place in the order `lane_columns` lays them out: a vector's first
-        /// column is three times its place, a scalar's column its place plus two per vector.
+        /// Each field's place in the order `lane_columns` lays them out.
         #[allow(non_camel_case_types, dead_code)]
         #[derive(Clone, Copy)]
-        pub(crate) enum $place {
+        enum $place {
             $($vector,)*
             $($scalar,)*
         }
 
         impl $place {
+            const VECTORS: usize = [$(stringify!($vector)),*].len();
+            const FIELDS: usize = Self::VECTORS + [$(stringify!($scalar)),*].len();
+
             /// Its bit in a set of fields (`write_at`'s `unwritten`).
             #[allow(dead_code)]
-            pub const fn bit(self) -> u64 {
+            const fn bit(self) -> u64 {
                 1 << self as u64
+            }
+
+            /// Its (first) column: the vectors' come first, three each, then the scalars'.
+            const fn column(self) -> usize {
+                let place = self as usize;
+                if place < Self::VECTORS { 3 * place } else { place + 2 * Self::VECTORS }
             }
         }
 
+        // Every field has a bit.
+        const _: () = assert!($place::FIELDS <= 64);
+
         impl $record {
-            /// Its number of `Vec3` fields, and of `f32` columns.
-            pub const VECTORS: usize = [$(stringify!($vector)),*].len();
-            pub const COLUMNS: usize = 3 * Self::VECTORS + [$(stringify!($scalar)),*].len();
+            /// Its number of `f32` columns.
+            pub const COLUMNS: usize = $place::FIELDS + 2 * $place::VECTORS;
 
             /// Writes it into position `j` of the columns of a block, straight from its
             /// fields (no array in between), but for the fields of `unwritten` (bits of
-            /// `$place`: a constant once inlined, so that no test is left), whose columns
-            /// keep what they held.
+            /// `$place`), whose columns keep what they held. Where `unwritten` is a
+            /// constant once inlined no test is left; `lambert_lane`'s is one of two, and
+            /// costs a few tests and branches a lane, fewer than the columns it spares.
             #[inline(always)]
             fn write_at(&self, block: &mut Block<{ Self::COLUMNS }>, j: usize, unwritten: u64) {
                 let j = j % CHUNK;
                 $(
                     if unwritten & $place::$vector.bit() == 0 {
-                        let k = 3 * $place::$vector as usize;
+                        let k = $place::$vector.column();
                         block[k][j] = self.$vector.x;
                         block[k + 1][j] = self.$vector.y;
                         block[k + 2][j] = self.$vector.z;
@@ -52,7 +63,7 @@ macro_rules! lane_columns {
                 )*
                 $(
                     if unwritten & $place::$scalar.bit() == 0 {
-                        block[$place::$scalar as usize + 2 * Self::VECTORS][j] = self.$scalar;
+                        block[$place::$scalar.column()][j] = self.$scalar;
                     }
                 )*
             }
@@ -65,11 +76,11 @@ macro_rules! lane_columns {
                 let j = j % CHUNK;
                 let mut record = Self::default();
                 $(
-                    let k = 3 * $place::$vector as usize;
+                    let k = $place::$vector.column();
                     record.$vector = Vec3::new(block[k][j], block[k + 1][j], block[k + 2][j]);
                 )*
                 $(
-                    record.$scalar = block[$place::$scalar as usize + 2 * Self::VECTORS][j];
+                    record.$scalar = block[$place::$scalar.column()][j];
                 )*
                 record
             }
@@ -117,14 +128,14 @@ macro_rules! lane_fields {
             $(
                 #[inline(always)]
                 fn $vector(&self) -> Vec3 {
-                    let (k, j) = (3 * $place::$vector as usize, self.j % CHUNK);
+                    let (k, j) = ($place::$vector.column(), self.j % CHUNK);
                     Vec3::new(self.block[k][j], self.block[k + 1][j], self.block[k + 2][j])
                 }
             )*
             $(
                 #[inline(always)]
                 fn $scalar(&self) -> f32 {
-                    self.block[$place::$scalar as usize + 2 * $record::VECTORS][self.j % CHUNK]
+                    self.block[$place::$scalar.column()][self.j % CHUNK]
                 }
             )*
         }
@@ -246,7 +257,9 @@ impl LambertLanes {
         })
     }
 
-    /// The bounce queued at position `i`, as it was queued.
+    /// The bounce queued at position `i`, as it was queued, but for the columns its lane
+    /// left unwritten (`POINT_UNWRITTEN`, `LONE_UNWRITTEN`): `lambert_outcome` sets those
+    /// again.
     pub fn queued(&self, i: usize) -> LambertLane {
         LambertLane::read_at(&self.inputs[i / CHUNK], i % CHUNK)
     }

@@ -1,8 +1,12 @@
-//! Lanes written as a lone-emitter scene's paths write them, without the columns the loop
-//! sets itself (`POINT_UNWRITTEN`, `LONE_UNWRITTEN`), over columns that all hold NaN.
+//! Lanes written as a scene's paths write them, without the columns the loop sets itself
+//! (`POINT_UNWRITTEN`, `LONE_UNWRITTEN`), over columns that all hold a poison value.
 
 use super::*;
 use crate::integrator::path::lambert::LaneSink;
+
+/// What the columns hold before the lanes are written: NaN, which fails every comparison,
+/// and values that pass some.
+const POISONS: [f32; 3] = [f32::NAN, f32::INFINITY, -3.0e38];
 
 /// The bits of what `finish_lambert` reads of an outcome: its point and flags, and the
 /// shadow ray's and the next ray's fields where it takes them.
@@ -18,21 +22,78 @@ fn read_bits(outcome: &LambertOutcome) -> Vec<u32> {
     read.iter().flat_map(|v| v.to_array()).map(f32::to_bits).collect()
 }
 
+/// A queue of `lanes`, each written without the columns `unwritten` names for it, over
+/// blocks whose every column holds `poison`.
+fn queue_over(
+    poison: f32,
+    lanes: &[LambertLane],
+    unwritten: impl Fn(&LambertLane) -> u64,
+) -> LambertLanes {
+    let mut queue = LambertLanes::default();
+    let poisoned = LambertLane::read_at(&[[poison; CHUNK]; IN], 0);
+    for i in 0..lanes.len() {
+        queue.push(i as u32, &poisoned);
+    }
+    queue.clear();
+    for (i, lane) in lanes.iter().enumerate() {
+        queue.next_lane().put(*lane, unwritten(lane));
+        queue.commit(i as u32);
+    }
+    queue
+}
+
+/// The point's columns, where the loop computes the point.
+fn point_unwritten(lane: &LambertLane) -> u64 {
+    if lane.on_triangle != 0.0 { POINT_UNWRITTEN } else { 0 }
+}
+
 #[test]
-fn columns_left_unwritten_reach_no_result_that_is_read() {
+fn exactly_the_columns_named_are_left_unwritten() {
+    let lane = random_lane(&mut SplitMix64(3));
+    let mut block = [[f32::NAN; CHUNK]; IN];
+    lane.write_at(&mut block, 2, POINT_UNWRITTEN | LONE_UNWRITTEN);
+    let left = block.iter().filter(|column| column[2].is_nan()).count();
+    assert_eq!(left, 6 + 10, "the point and bound, and six light fields (10 columns)");
+    let read = LambertLane::read_at(&block, 2);
+    assert!(read.point.is_nan() && read.light_error.is_nan() && read.has_light.is_nan());
+    assert_eq!(
+        (read.light_point, read.light_normal, read.u0),
+        (lane.light_point, lane.light_normal, lane.u0)
+    );
+}
+
+/// Without a lone emitter only the points are left to the loop.
+#[test]
+fn unwritten_points_reach_no_result_that_is_read() {
+    let spaces = spaces();
+    let mut rng = SplitMix64(29);
+    let lanes: Vec<LambertLane> = (0..6 * CHUNK + 3)
+        .map(|_| {
+            let (lane, center) = (random_lane(&mut rng), rng.vec3(-10.0, 10.0));
+            if rng.unit() < 0.7 { on_triangle_lane(&mut rng, &lane, center) } else { lane }
+        })
+        .collect();
+    for poison in POISONS {
+        let mut queue = queue_over(poison, &lanes, point_unwritten);
+        queue.run(&spaces, None, true);
+        let mut lit = 0;
+        for (i, (lane, (_, _, outcome))) in lanes.iter().zip(queue.outcomes()).enumerate() {
+            let single = lambert_bounce(&with_hit_point(lane), &spaces);
+            assert_eq!(read_bits(&outcome.record()), read_bits(&single), "lane {i}, {poison}");
+            lit += (lane.on_triangle != 0.0 && single.shadow != 0.0) as u32;
+        }
+        assert!(lit > 10, "{lit}");
+    }
+}
+
+#[test]
+fn unwritten_points_and_lights_reach_no_result_that_is_read() {
     let spaces = spaces();
     let mut rng = SplitMix64(23);
-    let poison = LambertLane::read_at(&[[f32::NAN; CHUNK]; IN], 0);
-    for two_sided in [true, false] {
+    for (two_sided, poison) in [true, false].into_iter().flat_map(|t| POISONS.map(|p| (t, p))) {
         let emitter = lone_rectangle(two_sided);
-        let mut queue = LambertLanes::default();
-        let count = 8 * CHUNK + 5;
-        for i in 0..count {
-            queue.push(i as u32, &poison);
-        }
-        queue.clear();
         // As `points_and_lights_left_to_the_vector_loop_...`, every light left to the loop.
-        let lanes: Vec<LambertLane> = (0..count)
+        let lanes: Vec<LambertLane> = (0..8 * CHUNK + 5)
             .map(|_| {
                 let mut lane = random_lane(&mut rng);
                 let center = [Vec3::ZERO, Vec3::new(0.0, 26.0, 0.0), Vec3::new(0.0, 40.0, 0.0)]
@@ -46,13 +107,7 @@ fn columns_left_unwritten_reach_no_result_that_is_read() {
                 lane
             })
             .collect();
-        let unwritten = |lane: &LambertLane| {
-            LONE_UNWRITTEN | if lane.on_triangle != 0.0 { POINT_UNWRITTEN } else { 0 }
-        };
-        for (i, lane) in lanes.iter().enumerate() {
-            queue.next_lane().put(*lane, unwritten(lane));
-            queue.commit(i as u32);
-        }
+        let mut queue = queue_over(poison, &lanes, |lane| LONE_UNWRITTEN | point_unwritten(lane));
         queue.run(&spaces, Some(&emitter), true);
         let (mut lit, mut near, mut unlit) = (0, 0, 0);
         for (i, (lane, (_, _, outcome))) in lanes.iter().zip(queue.outcomes()).enumerate() {
@@ -76,11 +131,8 @@ fn columns_left_unwritten_reach_no_result_that_is_read() {
                 continue;
             }
             let outcome = outcome.record();
-            assert_eq!(
-                read_bits(&outcome),
-                read_bits(&lambert_bounce(&single, &spaces)),
-                "lane {i}"
-            );
+            let expected = read_bits(&lambert_bounce(&single, &spaces));
+            assert_eq!(read_bits(&outcome), expected, "lane {i}, {poison}");
             lit += (outcome.shadow != 0.0) as u32;
             unlit += (outcome.shadow == 0.0) as u32;
         }

@@ -85,13 +85,13 @@ impl Wavefront {
 
     /// Adds the paths of the batch, their first rays in `states`: one for each stream the
     /// batch began with, in order. (All at once, so that each is built where it stays.)
-    pub fn start_paths(&mut self, states: impl Iterator<Item = PathState>) {
+    pub fn start_paths(&mut self, states: impl IntoIterator<Item = PathState>) {
         self.states.extend(states);
         debug_assert_eq!(self.states.len(), self.streams.len(), "one path per stream");
         self.live.extend(0..self.states.len() as u32);
     }
 
-    /// The samples of the paths, in the order they were pushed (after `run`).
+    /// The samples of the paths, in the order they were started (after `run`).
     pub fn results(&self) -> impl Iterator<Item = &PathSample> {
         self.states.iter().map(|s| &s.result)
     }
