@@ -253,6 +253,24 @@ fn lone_rectangle(two_sided: bool) -> LoneEmitter {
     lights.lone_emitter().expect("one flat emitter")
 }
 
+/// A random lane, most on triangles, near the emitter of `lone_rectangle` (within its three
+/// bounding radii), far from it or above it (behind, if it is one-sided); its light left to
+/// the loop (`LONE`, with a random draw) at odds `left`.
+fn lane_under_emitter(rng: &mut SplitMix64, left: f32) -> LambertLane {
+    let mut lane = random_lane(rng);
+    let center = [Vec3::ZERO, Vec3::new(0.0, 26.0, 0.0), Vec3::new(0.0, 40.0, 0.0)]
+        [(rng.next_u64() % 3) as usize];
+    if rng.unit() < 0.8 {
+        lane = on_triangle_lane(rng, &lane, center);
+    }
+    if rng.unit() < left {
+        (lane.light_kind, lane.has_light) = (LONE, 0.0);
+        let draw = [(); 4].map(|_| rng.unit());
+        (lane.light_point, lane.light_normal) = lone_draw_fields(draw);
+    }
+    lane
+}
+
 /// A triangle hit's point computed in a lane is `triangle_hit_point`'s with the triangle's
 /// own plane, bit for bit, whichever side was hit; both of its candidates are taken, and a
 /// degenerate triangle's is the barycentric one.
@@ -328,24 +346,9 @@ fn points_and_lights_left_to_the_vector_loop_are_those_of_one_lane_bit_for_bit()
     for two_sided in [true, false] {
         let emitter = lone_rectangle(two_sided);
         let mut queue = LambertLanes::default();
-        // Some lanes on triangles near the emitter (within its three bounding radii), some
-        // far, some above it (behind, if it is one-sided); most with their light left.
-        let lanes: Vec<LambertLane> = (0..8 * CHUNK + 7)
-            .map(|_| {
-                let mut lane = random_lane(&mut rng);
-                let center = [Vec3::ZERO, Vec3::new(0.0, 26.0, 0.0), Vec3::new(0.0, 40.0, 0.0)]
-                    [(rng.next_u64() % 3) as usize];
-                if rng.unit() < 0.8 {
-                    lane = on_triangle_lane(&mut rng, &lane, center);
-                }
-                if rng.unit() < 0.7 {
-                    (lane.light_kind, lane.has_light) = (LONE, 0.0);
-                    let draw = [(); 4].map(|_| rng.unit());
-                    (lane.light_point, lane.light_normal) = lone_draw_fields(draw);
-                }
-                lane
-            })
-            .collect();
+        // Most with their light left.
+        let lanes: Vec<LambertLane> =
+            (0..8 * CHUNK + 7).map(|_| lane_under_emitter(&mut rng, 0.7)).collect();
         for (i, lane) in lanes.iter().enumerate() {
             queue.push(i as u32, lane);
         }

@@ -92,21 +92,9 @@ fn unwritten_points_and_lights_reach_no_result_that_is_read() {
     let mut rng = SplitMix64(23);
     for (two_sided, poison) in [true, false].into_iter().flat_map(|t| POISONS.map(|p| (t, p))) {
         let emitter = lone_rectangle(two_sided);
-        // As `points_and_lights_left_to_the_vector_loop_...`, every light left to the loop.
-        let lanes: Vec<LambertLane> = (0..8 * CHUNK + 5)
-            .map(|_| {
-                let mut lane = random_lane(&mut rng);
-                let center = [Vec3::ZERO, Vec3::new(0.0, 26.0, 0.0), Vec3::new(0.0, 40.0, 0.0)]
-                    [(rng.next_u64() % 3) as usize];
-                if rng.unit() < 0.8 {
-                    lane = on_triangle_lane(&mut rng, &lane, center);
-                }
-                (lane.light_kind, lane.has_light) = (LONE, 0.0);
-                (lane.light_point, lane.light_normal) =
-                    lone_draw_fields([(); 4].map(|_| rng.unit()));
-                lane
-            })
-            .collect();
+        // Every light left to the loop, as a lone emitter's scene leaves them.
+        let lanes: Vec<LambertLane> =
+            (0..8 * CHUNK + 5).map(|_| lane_under_emitter(&mut rng, 1.0)).collect();
         let mut queue = queue_over(poison, &lanes, |lane| LONE_UNWRITTEN | point_unwritten(lane));
         queue.run(&spaces, Some(&emitter), true);
         let (mut lit, mut near, mut unlit) = (0, 0, 0);
