@@ -1,7 +1,7 @@
 //! Where a batched path-traced render spends its time (`--time-phases`): the time each
 //! worker thread spends in each phase of its tiles' batches, summed over the threads (their
 //! CPU time, unless the system takes a core away from them). Off by default; when on, a
-//! clock is read once per phase per batch of 256 paths, not per path.
+//! clock is read once per phase per batch of paths (a tile's), not per path.
 
 use std::ops::AddAssign;
 use std::time::Instant;

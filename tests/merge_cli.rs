@@ -5,6 +5,7 @@
 mod common;
 
 use common::command::{GOOD_SCENE, embray, temp_dir};
+use embray::render::TILE_SIZE;
 use std::path::{Path, PathBuf};
 
 fn ok(args: &[&str], dir: &Path) {
@@ -12,12 +13,14 @@ fn ok(args: &[&str], dir: &Path) {
     assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
 }
 
-/// Three 16×16 tiles across, and four samples a pixel.
+/// The image's size: three tiles across (the last one cut), two down (the lower one cut).
+const WIDTH: u32 = 2 * TILE_SIZE + TILE_SIZE / 2;
+const HEIGHT: u32 = TILE_SIZE + TILE_SIZE / 2;
+
+/// Three tiles across, and four samples a pixel.
 fn scene() -> String {
-    format!(
-        "{}\n[render]\nspp = 4\n",
-        GOOD_SCENE.replace("resolution = [16, 12]", "resolution = [40, 24]")
-    )
+    let resolution = format!("resolution = [{WIDTH}, {HEIGHT}]");
+    format!("{}\n[render]\nspp = 4\n", GOOD_SCENE.replace("resolution = [16, 12]", &resolution))
 }
 
 /// A folder with the scene, its whole render, and its three tile parts.
@@ -158,13 +161,15 @@ fn a_partial_merge_previews_the_parts_there_are() {
         stderr.contains("parts 1/3 missing") && stderr.contains("merged 2 of 3 parts"),
         "{stderr}"
     );
-    // Tile t belongs to part t mod 3: the 16×16 tiles of part 1 are black, the others are
-    // the whole render's pixels exactly.
+    // Tile t belongs to part t mod 3: the tiles of part 1 are black, the others are the
+    // whole render's pixels exactly.
     let (whole, preview) = (pixels(&dir.join("whole.exr")), pixels(&dir.join("preview.exr")));
-    let tiles_across = 40usize.div_ceil(16);
+    let (width, tile_size) = (WIDTH as usize, TILE_SIZE as usize);
+    let tiles_across = width.div_ceil(tile_size);
+    assert_eq!(whole.len(), width * HEIGHT as usize);
     for (i, (w, p)) in whole.iter().zip(&preview).enumerate() {
-        let (x, y) = (i % 40, i / 40);
-        let tile = (y / 16) * tiles_across + x / 16;
+        let (x, y) = (i % width, i / width);
+        let tile = (y / tile_size) * tiles_across + x / tile_size;
         let expected = if tile % 3 == 1 { glam::Vec3::ZERO } else { *w };
         assert_eq!(*p, expected, "pixel ({x}, {y}) of tile {tile}");
     }

@@ -15,8 +15,8 @@ use crate::scene::SceneDesc;
 use crate::stats::TraversalCounters;
 use std::time::Instant;
 
-/// Rays per batched call: a 16×16 tile's paths, as the renderer batches them.
-const BATCH: usize = 256;
+/// Rays per batched call: a tile's paths, as the renderer batches them.
+const BATCH: usize = crate::render::CAMERA_BATCH;
 
 /// Nanoseconds per ray of one backend and batch mode, per query kind.
 #[derive(Clone, Debug, serde::Serialize)]
