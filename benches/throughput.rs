@@ -31,7 +31,7 @@ use std::path::Path;
 use std::time::Duration;
 
 /// Rays per `intersect_batch` call, as the renderer's camera batches.
-const BATCH: usize = 1024;
+const BATCH: usize = embray::render::CAMERA_BATCH;
 
 fn scenes() -> Vec<(&'static str, SceneDesc)> {
     let sphere = |n| procedural::displaced_sphere_scene(n, 256, 256);

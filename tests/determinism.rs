@@ -4,10 +4,12 @@ mod common;
 
 use common::*;
 use embray::choice::Choice;
+use embray::render::TILE_SIZE;
 
 #[test]
 fn one_and_two_threads_give_bit_identical_images() {
-    let scene = cornell(40, 24);
+    // 3×2 tiles, the right and bottom ones cut: more tiles than threads.
+    let scene = cornell(TILE_SIZE * 5 / 2, TILE_SIZE * 3 / 2);
     for backend in backends() {
         let mut one = options(&scene, backend, 3);
         one.threads = Some(1);

@@ -10,6 +10,7 @@ mod common;
 use common::*;
 use embray::accel::{BackendKind, BatchMode, Intersection};
 use embray::choice::Choice;
+use embray::render::TILE_SIZE;
 use embray::render_options::PathBatching;
 use embray::scene::SceneDesc;
 use embray::stats::BounceCounts;
@@ -92,6 +93,16 @@ fn bundled_scenes_render_the_same_batched_and_scalar() {
             assert!(counted.near_lights > 10, "lit one lane at a time: {counted:?}");
         }
     }
+}
+
+/// A whole tile's batch (its pixels' paths advanced together) and a cut one beside it: the
+/// bundled scenes above are smaller than a tile.
+#[test]
+fn a_whole_tiles_batch_renders_the_same_batched_and_scalar() {
+    let scene = embray::scene::load(&repo_path("scenes/cornell.toml")).unwrap();
+    let counted = assert_batched_is_scalar("a tile and a bit", &scene, TILE_SIZE + 8, TILE_SIZE, 2);
+    let paths = u64::from((TILE_SIZE + 8) * TILE_SIZE * 2);
+    assert!(counted.lanes > paths, "the Cornell box's bounces in lanes: {counted:?}");
 }
 
 /// The scenes of every `.xml` file under `dir` (each camera's, for a course file).

@@ -6,6 +6,7 @@ mod common;
 use common::command::{GOOD_SCENE, embray, temp_dir};
 use embray::bench::convergence::read_reference;
 use embray::choice::Choice;
+use embray::render::TILE_SIZE;
 
 fn run_ok(args: &[&str], dir: &std::path::Path) {
     let out = embray(args, dir);
@@ -15,8 +16,13 @@ fn run_ok(args: &[&str], dir: &std::path::Path) {
 #[test]
 fn a_crop_is_the_whole_renders_pixels_bit_for_bit() {
     let dir = temp_dir("crop");
-    // 40x28: tiles of 16 cut by the window on every side.
-    std::fs::write(dir.join("s.toml"), GOOD_SCENE.replace("[16, 12]", "[40, 28]")).unwrap();
+    // 3×2 tiles (40×28 for tiles of 16), tiles cut by the window on every side.
+    let t = TILE_SIZE;
+    let (width, height) = (t * 5 / 2, t * 7 / 4);
+    let (x0, y0, x1, y1) = (t * 7 / 16, t * 5 / 16, t * 33 / 16, t * 21 / 16);
+    let resolution = format!("[{width}, {height}]");
+    std::fs::write(dir.join("s.toml"), GOOD_SCENE.replace("[16, 12]", &resolution)).unwrap();
+    let window = format!("{x0},{y0},{x1},{y1}");
     for backend in common::backends() {
         let name = backend.name();
         let whole = ["render", "s.toml", "--spp", "3", "-q", "--backend", name, "-o", "whole.exr"];
@@ -30,7 +36,7 @@ fn a_crop_is_the_whole_renders_pixels_bit_for_bit() {
             "--backend",
             name,
             "--crop",
-            "7,5,33,21",
+            &window,
             "-o",
             "crop.exr",
         ];
@@ -39,10 +45,10 @@ fn a_crop_is_the_whole_renders_pixels_bit_for_bit() {
             read_reference(&dir.join("whole.exr")).unwrap(),
             read_reference(&dir.join("crop.exr")).unwrap(),
         );
-        assert_eq!((crop.width, crop.height), (26, 16));
-        for y in 0..16 {
-            for x in 0..26 {
-                let (c, w) = (crop.index(x, y), whole.index(x + 7, y + 5));
+        assert_eq!((crop.width, crop.height), (x1 - x0, y1 - y0));
+        for y in 0..crop.height {
+            for x in 0..crop.width {
+                let (c, w) = (crop.index(x, y), whole.index(x + x0, y + y0));
                 assert_eq!(
                     crop.color[c].to_array().map(f32::to_bits),
                     whole.color[w].to_array().map(f32::to_bits)
