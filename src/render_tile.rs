@@ -16,15 +16,17 @@ use std::sync::{Mutex, TryLockError};
 
 /// Side of the square tiles rayon schedules, one task each (`par_iter` over the tiles,
 /// buffers reused per worker); the batched path tracer advances one sample index of a
-/// tile's pixels together, so it is also the batch: 1024 paths. Against 16 (256 paths;
-/// alternated pairs, AVX-512 Xeon, same images bit for bit): 0.976× the wall time on the
-/// peers' Cornell box (7 pairs, 64 spp), 0.968× on the glass scene and 0.965× on the city
-/// block (5 pairs, 16 spp), since each bounce's last, partly empty block of vector lanes,
-/// Sobol draws and ray packets is a smaller share of a larger batch; 64 took 1.059× 32's
-/// time on the box (16 tasks for two threads, and a working set past the second-level
-/// cache). 32 still gives 64 tasks for a 256×256 image. (With scalar paths, before the
-/// batches, 8 to 64 cost the same within 1 %.)
-pub const TILE_SIZE: u32 = 32;
+/// tile's pixels together, so it is also the batch: 256 paths. 32 (1024 paths) was
+/// measured and left out (alternated pairs, AVX-512 Xeon, same images bit for bit): small
+/// scenes gain, as each bounce's last, partly empty block of lanes, Sobol draws and
+/// packets is a smaller share (0.976× the wall time on the peers' Cornell box, 0.968× the
+/// glass scene, 0.965× the city block, 0.989× the box on obvhs), but the 1M-triangle
+/// sphere of `embray bench speed` lost 1–4 % of its samples a second on both backends (two
+/// alternated runs each: the larger batch's working set crowds the BVH out of the caches),
+/// and on the AVX2 EPYC batches of 1024 paths had cost the Cornell box 1.015× its time.
+/// 24 and 48 were no better on the box than 32, and 64 worse (1.059× 32's time). (With
+/// scalar paths, before the batches, 8 to 64 cost the same within 1 %.)
+pub const TILE_SIZE: u32 = 16;
 
 /// What one tile's task gives: its pixels' sums (row-major) and its counters.
 pub(crate) struct TileResult {
