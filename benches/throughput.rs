@@ -8,8 +8,8 @@
 //! - `raw_embree`: a bare `rtcIntersect1` loop (`EmbreeAccel::raw_intersect_loop`), the
 //!   baseline the backend's wrapper is measured against;
 //! - `embree`: `Accel::intersect` one ray at a time (what the integrator calls);
-//! - `embree_batch`: `Accel::intersect_batch` on chunks of 1024 rays (what the renderer
-//!   does with a tile's camera rays; Embree packets);
+//! - `embree_batch`: `Accel::intersect_batch` on chunks of `CAMERA_BATCH` rays (what the
+//!   renderer does with a tile's camera rays; Embree packets);
 //! - `obvhs`, `obvhs_batch`: the same two calls on the pure-Rust backend.
 //!
 //! `build/{scene}` times building each backend, Embree at each `BuildQuality`.

@@ -22,7 +22,8 @@ use std::sync::{Mutex, TryLockError};
 /// packets is a smaller share (0.976× the wall time on the peers' Cornell box, 0.968× the
 /// glass scene, 0.965× the city block, 0.989× the box on obvhs), but the 1M-triangle
 /// sphere of `embray bench speed` lost 1–4 % of its samples a second on both backends (two
-/// alternated runs each: the larger batch's working set crowds the BVH out of the caches),
+/// alternated runs each; presumably the larger batch's working set competing with the BVH
+/// for the caches, not measured),
 /// and on the AVX2 EPYC batches of 1024 paths had cost the Cornell box 1.015× its time.
 /// 24 and 48 were no better on the box than 32, and 64 worse (1.059× 32's time). (With
 /// scalar paths, before the batches, 8 to 64 cost the same within 1 %.)
