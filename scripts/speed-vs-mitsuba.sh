@@ -7,7 +7,8 @@
 #                       the median of the rounds' ratios
 #   time to equal error (MSE × seconds) / Mitsuba's: the harness's median over those spp,
 #                       then the median over the rounds
-#   Embree's share      of a 64-spp render's `perf record` profile, by library
+#   Embree's share      of a 64-spp render's `perf record` profile, by library (and, beside
+#                       it, Mitsuba's profile of the same render: Embree and its JIT kernel)
 #   (and, beside them, embray's threads' time by phase of a 64-spp render: `--time-phases`)
 #
 #   [ROUNDS=3] [EMBRAY_ARGS=...] [RR_DEPTH=...] bash scripts/speed-vs-mitsuba.sh [EMBRAY_BINARY]
@@ -106,6 +107,18 @@ perf record -q -e cpu-clock -F 2000 -o "$work/perf.data" \
     "$embray" render "$scene" --spp 64 -o "$work/perf.exr" -q "${embray_args[@]}" 2>/dev/null
 perf report -i "$work/perf.data" --no-children --sort dso -g none 2>/dev/null |
     awk '/libembree/ { share += $1 } END { printf "Embree share of a 64-spp render (perf, by library): %.1f %%\n", share }'
+
+# Mitsuba's split of the same render, as the harness runs it (two renders in one process,
+# its default rr_depth): Embree's share and its JIT-compiled kernel's. Beside embray's
+# share it says whose Embree work or whose shading a gap is in (the README's "where each
+# renderer's time per sample goes").
+PEERS_DIR=$peers_dir perf record -q -e cpu-clock -F 2000 -o "$work/perf-mitsuba.data" \
+    "$python" "$harness/mitsuba_render.py" "$harness/scenes/cornell/scene.json" \
+    --variant llvm_ad_rgb --spp 64 --max-depth 8 --repeat 2 --out "$work/perf-mitsuba" \
+    > /dev/null 2>&1
+perf report -i "$work/perf-mitsuba.data" --no-children --sort dso -g none 2>/dev/null |
+    awk '/libembree/ { embree += $1 } /\[JIT\]/ { kernel += $1 }
+         END { printf "Mitsuba'"'"'s profile of the same render: Embree %.1f %%, its JIT-compiled kernel %.1f %%\n", embree, kernel }'
 
 # Where embray's own time goes, by phase of the batched path tracer (`--time-phases`).
 echo "embray's time by phase (summed over its threads), 64 spp:"
