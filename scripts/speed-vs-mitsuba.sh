@@ -103,22 +103,30 @@ print(f"time to equal error, embray / mitsuba: {med(equal):.2f}x (median over th
       f"harness's median over spp; rounds: {', '.join(f'{x:.2f}' for x in equal)})")
 PY
 
-perf record -q -e cpu-clock -F 2000 -o "$work/perf.data" \
-    "$embray" render "$scene" --spp 64 -o "$work/perf.exr" -q "${embray_args[@]}" 2>/dev/null
-perf report -i "$work/perf.data" --no-children --sort dso -g none 2>/dev/null |
-    awk '/libembree/ { share += $1 } END { printf "Embree share of a 64-spp render (perf, by library): %.1f %%\n", share }'
+# profile FILE COMMAND...: a `perf record` of the command into FILE.
+profile() {
+    local data=$1
+    shift
+    perf record -q -e cpu-clock -F 2000 -o "$data" "$@" > /dev/null 2>&1
+}
+# share FILE PATTERN: the per cent of profile FILE in the libraries matching the awk regex.
+share() {
+    perf report -i "$1" --no-children --sort dso -g none 2>/dev/null |
+        awk -v pattern="$2" '$0 ~ pattern { share += $1 } END { printf "%.1f", share }'
+}
+
+profile "$work/perf.data" "$embray" render "$scene" --spp 64 -o "$work/perf.exr" -q "${embray_args[@]}"
+echo "Embree share of a 64-spp render (perf, by library): $(share "$work/perf.data" libembree) %"
 
 # Mitsuba's split of the same render, as the harness runs it (two renders in one process,
 # its default rr_depth): Embree's share and its JIT-compiled kernel's. Beside embray's
 # share it says whose Embree work or whose shading a gap is in (the README's "where each
 # renderer's time per sample goes").
-PEERS_DIR=$peers_dir perf record -q -e cpu-clock -F 2000 -o "$work/perf-mitsuba.data" \
-    "$python" "$harness/mitsuba_render.py" "$harness/scenes/cornell/scene.json" \
-    --variant llvm_ad_rgb --spp 64 --max-depth 8 --repeat 2 --out "$work/perf-mitsuba" \
-    > /dev/null 2>&1
-perf report -i "$work/perf-mitsuba.data" --no-children --sort dso -g none 2>/dev/null |
-    awk '/libembree/ { embree += $1 } /\[JIT\]/ { kernel += $1 }
-         END { printf "Mitsuba'"'"'s profile of the same render: Embree %.1f %%, its JIT-compiled kernel %.1f %%\n", embree, kernel }'
+profile "$work/perf-mitsuba.data" env PEERS_DIR="$peers_dir" "$python" \
+    "$harness/mitsuba_render.py" "$harness/scenes/cornell/scene.json" --variant llvm_ad_rgb \
+    --spp 64 --max-depth 8 --repeat 2 --out "$work/perf-mitsuba"
+echo "Mitsuba's profile of the same render: Embree $(share "$work/perf-mitsuba.data" libembree) %," \
+    "its JIT-compiled kernel $(share "$work/perf-mitsuba.data" '\\[JIT\\]') %"
 
 # Where embray's own time goes, by phase of the batched path tracer (`--time-phases`).
 echo "embray's time by phase (summed over its threads), 64 spp:"

@@ -23,10 +23,10 @@ use std::sync::{Mutex, TryLockError};
 /// glass scene, 0.965× the city block, 0.989× the box on obvhs), but the 1M-triangle
 /// sphere of `embray bench speed` lost 1–4 % of its samples a second on both backends (two
 /// alternated runs each; presumably the larger batch's working set competing with the BVH
-/// for the caches, not measured),
-/// and on the AVX2 EPYC batches of 1024 paths had cost the Cornell box 1.015× its time.
-/// 24 and 48 were no better on the box than 32, and 64 worse (1.059× 32's time). (With
-/// scalar paths, before the batches, 8 to 64 cost the same within 1 %.)
+/// for the caches, not measured), and on the AVX2 EPYC batches of 1024 paths had cost the
+/// Cornell box 1.015× its time. 24 and 48 were no better on the box than 32, and 64 worse
+/// (1.059× 32's time). (With scalar paths, before the batches, 8 to 64 cost the same
+/// within 1 %.)
 pub const TILE_SIZE: u32 = 16;
 
 /// What one tile's task gives: its pixels' sums (row-major) and its counters.

@@ -82,9 +82,13 @@ fn bundled_scenes_render_the_same_batched_and_scalar() {
         .collect();
     files.sort();
     assert!(files.len() >= 8, "the bundled scenes: {files:?}");
+    // A whole tile's batch (its pixels' paths advanced together) and cut ones beside it,
+    // whatever the tile size.
+    let (width, height) = (40.max(TILE_SIZE + 8), 30.max(TILE_SIZE));
     for file in files {
         let scene = embray::scene::load(&file).unwrap();
-        let counted = assert_batched_is_scalar(&file.display().to_string(), &scene, 40, 30, 2);
+        let name = file.display().to_string();
+        let counted = assert_batched_is_scalar(&name, &scene, width, height, 2);
         // The Cornell box is Lambertian throughout, and some of its points are near its
         // lamp: the comparison is not vacuous, for the lanes nor for the lights sampled
         // one lane at a time.
@@ -93,18 +97,6 @@ fn bundled_scenes_render_the_same_batched_and_scalar() {
             assert!(counted.near_lights > 10, "lit one lane at a time: {counted:?}");
         }
     }
-}
-
-/// A whole tile's batch (its pixels' paths advanced together) and a cut one beside it,
-/// whatever the tile size: the bundled scenes above, at 40×30, hold whole tiles only while
-/// tiles are at most 30 pixels wide.
-#[test]
-fn a_whole_tiles_batch_renders_the_same_batched_and_scalar() {
-    let scene = embray::scene::load(&repo_path("scenes/cornell.toml")).unwrap();
-    let counted = assert_batched_is_scalar("a tile and a bit", &scene, TILE_SIZE + 8, TILE_SIZE, 2);
-    // More Lambertian bounces than paths on every backend: most paths bounce.
-    let paths = u64::from((TILE_SIZE + 8) * TILE_SIZE * 2) * backends().len() as u64;
-    assert!(counted.lanes > paths, "the Cornell box's bounces in lanes: {counted:?}");
 }
 
 /// The scenes of every `.xml` file under `dir` (each camera's, for a course file).
