@@ -6,12 +6,12 @@
 
 mod common;
 
+use common::command::TempPath;
 use common::*;
 use embray::film::Film;
 use embray::render_space::RenderSpace;
 use embray::scene::IntegratorKind;
 use glam::{DVec3, Vec3};
-use std::path::PathBuf;
 
 const ALBEDO: [f32; 3] = [0.8, 0.5, 0.2];
 
@@ -133,7 +133,7 @@ fn whitted_lights_a_diffuse_surface_with_the_sky_as_the_course_does() {
 }
 
 /// A `width` × `height` EXR map whose texel (col, row) is `texel(col, row)`.
-fn write_map(name: &str, width: u32, height: u32, texel: impl Fn(u32, u32) -> Vec3) -> PathBuf {
+fn write_map(name: &str, width: u32, height: u32, texel: impl Fn(u32, u32) -> Vec3) -> TempPath {
     let dir = common::command::temp_dir(name);
     let mut film = Film::new(width, height);
     for row in 0..height {
@@ -141,7 +141,7 @@ fn write_map(name: &str, width: u32, height: u32, texel: impl Fn(u32, u32) -> Ve
             film.color[(row * width + col) as usize] = texel(col, row);
         }
     }
-    let path = dir.join("sky.exr");
+    let path = dir.file("sky.exr");
     embray::output::write_exr(&film, &path).unwrap();
     path
 }

@@ -4,9 +4,9 @@
 
 mod common;
 
-use common::command::{GOOD_SCENE, embray, temp_dir};
+use common::command::{GOOD_SCENE, TempDir, embray, temp_dir};
 use embray::render::TILE_SIZE;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 fn ok(args: &[&str], dir: &Path) {
     let out = embray(args, dir);
@@ -24,7 +24,7 @@ fn scene() -> String {
 }
 
 /// A folder with the scene, its whole render, and its three tile parts.
-fn rendered(name: &str) -> PathBuf {
+fn rendered(name: &str) -> TempDir {
     let dir = temp_dir(name);
     std::fs::write(dir.join("scene.toml"), scene()).unwrap();
     ok(&["render", "scene.toml", "-q", "-o", "whole.exr"], &dir);

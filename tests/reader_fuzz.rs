@@ -146,16 +146,9 @@ fn corpus(reader: Reader) -> Vec<Vec<u8>> {
 }
 
 /// An empty folder of its own for each thread and reader.
-fn folder(reader: Reader) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "embray-reader-fuzz-{}-{:?}-{}",
-        std::process::id(),
-        std::thread::current().id(),
-        reader.name()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn folder(reader: Reader) -> common::command::TempDir {
+    let thread = std::thread::current().id();
+    common::command::temp_dir(&format!("reader-fuzz-{thread:?}-{}", reader.name()))
 }
 
 /// Reads a mutation of one of `reader`'s seeds.

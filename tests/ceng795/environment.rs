@@ -15,7 +15,7 @@ fn texel(col: u32, row: u32) -> Vec3 {
     Vec3::new(0.1 + col as f32, 0.2 + row as f32, 0.5 + (col * 5 + row) as f32 * 0.25)
 }
 
-fn environment_scene(name: &str, lights: &str) -> PathBuf {
+fn environment_scene(name: &str, lights: &str) -> crate::common::command::TempPath {
     let (w, h) = (9, 5);
     let mut film = Film::new(w, h);
     for row in 0..h {

@@ -61,11 +61,8 @@ fn scene_xml(body: &str) -> String {
     )
 }
 
-fn temp_scene(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("embray-ceng795-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("scene.xml");
+fn temp_scene(name: &str, text: &str) -> common::command::TempPath {
+    let path = common::command::temp_dir(&format!("ceng795-{name}")).file("scene.xml");
     std::fs::write(&path, text).unwrap();
     path
 }

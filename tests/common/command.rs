@@ -23,11 +23,62 @@ pub fn assert_render_refusals(dir: &Path, cases: &[(&[&str], &str)]) {
     }
 }
 
-pub fn temp_dir(name: &str) -> PathBuf {
+/// A scratch folder of its own for a test, emptied first, and removed with all it holds when
+/// the test is done with it (dropped, on success or on a failed assertion alike).
+pub struct TempDir(PathBuf);
+
+impl std::ops::Deref for TempDir {
+    type Target = Path;
+
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for TempDir {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+impl TempDir {
+    /// The path of `name` in it, which keeps the folder until it is dropped.
+    pub fn file(self, name: &str) -> TempPath {
+        TempPath { path: self.0.join(name), _dir: self }
+    }
+}
+
+/// A path in a `TempDir`, the folder's owner.
+pub struct TempPath {
+    path: PathBuf,
+    _dir: TempDir,
+}
+
+impl std::ops::Deref for TempPath {
+    type Target = Path;
+
+    fn deref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<Path> for TempPath {
+    fn as_ref(&self) -> &Path {
+        &self.path
+    }
+}
+
+pub fn temp_dir(name: &str) -> TempDir {
     let dir = std::env::temp_dir().join(format!("embray-test-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    dir
+    TempDir(dir)
 }
 
 pub const GOOD_SCENE: &str = r#"

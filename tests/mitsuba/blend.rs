@@ -77,8 +77,7 @@ fn a_blend_converts_to_toml_and_back() {
     let bsdf =
         format!("{BLEND}{}{}</bsdf></bsdf>", diffuse("0.8, 0.2, 0.2"), diffuse("0.2, 0.2, 0.8"));
     let scene = scene_with("m-blend-convert", &bsdf).unwrap();
-    let dir = std::env::temp_dir().join(format!("embray-blend-convert-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = super::common::command::temp_dir("blend-convert");
     let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
     let toml = dir.join("scene.toml");
     writer.write(&scene, &toml, "round trip").unwrap();
@@ -94,8 +93,7 @@ fn a_blend_converts_to_toml_and_back() {
 
 #[test]
 fn a_toml_blend_that_contains_itself_is_refused() {
-    let dir = std::env::temp_dir().join(format!("embray-blend-cycle-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = super::common::command::temp_dir("blend-cycle");
     let toml = dir.join("scene.toml");
     let text = "[camera]\nlookfrom = [0, 0, 5]\nlookat = [0, 0, 0]\nvfov = 40\nresolution = [8, 8]\n\n\
                 [materials.a]\ntype = \"blend\"\nweight = 0.5\nmaterials = [\"b\", \"red\"]\n\n\

@@ -2,14 +2,13 @@
 //! the errors that name the plugin, the file and the line.
 
 use super::common::assert_contains;
-use super::common::command::temp_dir;
+use super::common::command::{TempPath, temp_dir};
 use super::load_mitsuba;
 use embray::scene::{LightDesc, Specular};
 use glam::{DVec3, Vec3};
-use std::path::PathBuf;
 
 /// A folder with `main.xml` (and `extra` files), returning main.xml's path.
-pub(super) fn files(name: &str, main: &str, extra: &[(&str, &str)]) -> PathBuf {
+pub(super) fn files(name: &str, main: &str, extra: &[(&str, &str)]) -> TempPath {
     let dir = temp_dir(name);
     for (file, text) in extra {
         let path = dir.join(file);
@@ -17,7 +16,7 @@ pub(super) fn files(name: &str, main: &str, extra: &[(&str, &str)]) -> PathBuf {
         std::fs::write(path, text).unwrap();
     }
     std::fs::write(dir.join("main.xml"), main).unwrap();
-    dir.join("main.xml")
+    dir.file("main.xml")
 }
 
 pub(super) const SENSOR: &str = r#"

@@ -2,9 +2,8 @@
 //! about with the MTL file and line, and rendered as their statements say.
 
 use super::*;
-use crate::common::command::temp_dir;
+use crate::common::command::{TempDir, temp_dir};
 use crate::common::{options, render_ok};
-use std::path::PathBuf;
 
 /// Four unit-wide quads side by side at z = 0 (facing +z), one per material, left to right.
 const QUADS: &str = "mtllib four.mtl
@@ -68,7 +67,7 @@ v = [0.0, 4.0, 0.0]
 emission = [1.0, 1.0, 1.0]
 "#;
 
-fn four_quads(name: &str) -> PathBuf {
+fn four_quads(name: &str) -> TempDir {
     let dir = temp_dir(name);
     std::fs::write(dir.join("four.obj"), QUADS).unwrap();
     std::fs::write(dir.join("four.mtl"), FOUR_MTL).unwrap();
