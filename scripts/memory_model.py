@@ -7,8 +7,9 @@ integrator; prints every run, the fitted bytes per unit, and embray's own estima
     python3 scripts/memory_model.py [--embray target/release/embray] [--quick]
 
 Counts: pixels (resolution), triangles (a binary PLY grid), placements (`repeat` copies of
-a box), texels (a PNG texture of noise, the least compressible) and environment texels (an
-EXR radiance map, which also gets a sampling table).
+a box), texels (a PNG texture of noise, the least compressible), environment texels (an
+EXR radiance map, which also gets a sampling table) and worker threads (`--threads`; the
+estimate `embray info` prints is for one thread per core, so that series prints none).
 """
 
 import argparse
@@ -86,10 +87,10 @@ def png_noise(path, side):
     return side * side
 
 
-def peak_kib(embray, scene, backend, workdir):
+def peak_kib(embray, scene, backend, workdir, extra=()):
     out = subprocess.run(
         ["/usr/bin/time", "-f", "PEAK %M", embray, "render", scene, "--spp", "1", "-q",
-         "--backend", backend, "-o", "out.exr"],
+         "--backend", backend, "-o", "out.exr", *extra],
         cwd=workdir, capture_output=True, text=True,
     )
     if out.returncode != 0:
@@ -132,7 +133,14 @@ def main():
         "texels": [],
         "environment texels": [],
         "EXR environment texels": [],
+        "threads": [
+            (n, lambda i="": scene("w.toml", res=512, objects=floor.format(m="white"), integrator=i))
+            for n in (16, 256)
+        ],
     }
+    # Extra render arguments per series, from its count. (The threads render 1024 tiles,
+    # so that each of them works and holds its buffers.)
+    render_args = {"threads": lambda n: ["--threads", str(n)]}
     for t in (int(1e6 * scale), int(4e6 * scale)):
         count = ply_grid(os.path.join(work, "grid%d.ply" % t), t)
         obj = '\n[[objects]]\ntype = "mesh"\nmaterial = "white"\nfile = "grid%d.ply"\n' % t
@@ -170,8 +178,9 @@ def main():
                 points = []
                 for count, make in runs:
                     name = make(i=line)
-                    peak = peak_kib(embray, name, backend, work) * 1024
-                    est = estimate_bytes(embray, name, backend, work)
+                    extra = render_args.get(quantity, lambda _: [])(count)
+                    peak = peak_kib(embray, name, backend, work, extra) * 1024
+                    est = None if extra else estimate_bytes(embray, name, backend, work)
                     ratio = "%.2f" % (est / peak) if est else "-"
                     print("%-18s %9d  %-7s %-10s %9.1f  %12s  %8s" % (
                         quantity, count, backend, integ, peak / 1048576,

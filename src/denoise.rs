@@ -37,8 +37,9 @@ pub enum DenoiseError {
 pub fn check_memory(
     desc: &crate::scene::SceneDesc,
     bytes_per_triangle: u64,
+    threads: usize,
 ) -> Result<(), DenoiseError> {
-    let estimate = crate::scene::budget::memory_needed(desc, bytes_per_triangle);
+    let estimate = crate::scene::budget::memory_needed(desc, bytes_per_triangle, threads);
     let denoiser = estimate.pixels.saturating_mul(crate::limits::DENOISE_BYTES_PER_PIXEL);
     let needed = estimate.bytes.saturating_add(denoiser);
     match crate::limits::memory_available() {

@@ -72,15 +72,19 @@ pub fn describe(scene: &SceneDesc) -> String {
     }
     let moving = scene.objects.iter().filter(|o| o.is_moving()).count();
     out += &format!("moving objects: {moving}\n");
+    // A render's default: a worker thread per core.
+    let threads = rayon::current_num_threads();
+    let needed = |bytes_per_triangle| {
+        crate::scene::budget::memory_needed(scene, bytes_per_triangle, threads)
+    };
     let mib = |backend: crate::accel::BackendKind| {
-        let estimate = crate::scene::budget::memory_needed(scene, backend.bytes_per_triangle());
-        estimate.bytes as f64 / 1048576.0
+        needed(backend.bytes_per_triangle()).bytes as f64 / 1048576.0
     };
     out += &format!(
         "memory estimate: {:.1} MiB on embree, {:.1} MiB on obvhs ({})\n",
         mib(crate::accel::BackendKind::Embree),
         mib(crate::accel::BackendKind::Obvhs),
-        crate::scene::budget::memory_needed(scene, 0)
+        needed(0)
     );
     match to_render_scene(scene, RenderSpace::Cameraworld, EffectsMode::Auto) {
         Ok(render_scene) => {

@@ -137,7 +137,8 @@ pub fn render_part_with(
         return Err(RenderError::Option { what: "pixels × spp", value: samples, max });
     }
     part.check((desc.camera.width, desc.camera.height), TILE_SIZE, options.spp.max(1))?;
-    crate::scene::budget::check_memory(desc, options.backend.bytes_per_triangle())?;
+    let triangle = options.backend.bytes_per_triangle();
+    crate::scene::budget::check_memory(desc, triangle, options.worker_threads())?;
     let mut run = move || -> Result<PartOutput, RenderError> {
         let scene = prepare_scene(desc, options)?;
         let warnings = crate::unlit_emitters::emitters_facing_away(&scene);

@@ -112,6 +112,11 @@ impl RenderOptions {
 }
 
 impl RenderOptions {
+    /// The worker threads the render runs on: as asked, else one per core.
+    pub fn worker_threads(&self) -> usize {
+        self.threads.unwrap_or_else(rayon::current_num_threads)
+    }
+
     /// Whether sample positions are jittered: as asked, except that a Whitted render at one
     /// sample per pixel samples pixel centres (the course's convention).
     pub fn jitters(&self) -> bool {

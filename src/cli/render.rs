@@ -70,7 +70,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     for job in &jobs {
         let options = args.to_options(&job.scene)?;
         if args.denoise {
-            embray::denoise::check_memory(&job.scene, options.backend.bytes_per_triangle())?;
+            let triangle = options.backend.bytes_per_triangle();
+            embray::denoise::check_memory(&job.scene, triangle, options.worker_threads())?;
         }
         args.look.photographic.resolve(job.scene.settings.tonemap.as_ref())?;
         if job.display.is_some() {

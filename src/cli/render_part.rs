@@ -73,7 +73,7 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         build_seconds: rendered.build_time.as_secs_f64(),
         render_seconds: rendered.render_time.as_secs_f64(),
         cpu_seconds: embray::distributed::process_cpu_seconds(),
-        threads: options.threads.unwrap_or_else(rayon::current_num_threads),
+        threads: options.worker_threads(),
         host: std::fs::read_to_string("/proc/sys/kernel/hostname")
             .unwrap_or_default()
             .trim()

@@ -3,7 +3,7 @@
 
 use crate::limits::{
     BASE_BYTES, BYTES_PER_HDR_TEXEL, BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL,
-    BYTES_PER_TEXEL, MAX_COORDINATE, MAX_WORLD_COORDINATE, memory_available,
+    BYTES_PER_TEXEL, BYTES_PER_THREAD, MAX_COORDINATE, MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc};
@@ -17,7 +17,7 @@ pub enum LimitError {
     #[error(
         "{}: rendering it needs about {} of memory ({}), but only {} are \
          available; lower camera.resolution (or the CENG795 ImageResolution), the number of \
-         objects and repeat copies, or the size of the textures",
+         objects and repeat copies, the size of the textures, or --threads",
         .file.display(), size(.estimate.bytes), .estimate, size(*.available)
     )]
     Memory { file: std::path::PathBuf, estimate: MemoryEstimate, available: u64 },
@@ -58,22 +58,25 @@ pub struct MemoryEstimate {
     pub hdr_texels: u64,
     /// Texels of images that also get a sampling table (environment maps).
     pub sampled_texels: u64,
+    /// Worker threads.
+    pub threads: u64,
 }
 
 impl std::fmt::Display for MemoryEstimate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{}x{} pixels, {} object placements, {} mesh triangles, {} texture texels",
-            self.width, self.height, self.objects, self.triangles, self.texels
+            "{}x{} pixels, {} object placements, {} mesh triangles, {} texture texels, {} threads",
+            self.width, self.height, self.objects, self.triangles, self.texels, self.threads
         )
     }
 }
 
 /// The memory a render of `desc` needs on a backend whose BVH and build take
-/// `bytes_per_triangle` (`BackendKind::bytes_per_triangle`): the counts of what the render
-/// holds, each at its measured cost (`crate::limits`). Shared meshes and images count once.
-pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64) -> MemoryEstimate {
+/// `bytes_per_triangle` (`BackendKind::bytes_per_triangle`) with `threads` workers: the
+/// counts of what the render holds, each at its measured cost (`crate::limits`). Shared
+/// meshes and images count once.
+pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) -> MemoryEstimate {
     let pixels = u64::from(desc.camera.width) * u64::from(desc.camera.height);
     let mut meshes = HashSet::new();
     let mut triangles = 0u64;
@@ -101,6 +104,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64) -> MemoryEstimat
     background.into_iter().for_each(|i| count(i, false));
     desc.lights.iter().filter_map(|l| l.image()).for_each(|(i, sampled)| count(i, sampled));
     let objects = desc.objects.len() as u64;
+    let threads = threads as u64;
     // Saturating: counts from a file may be absurd, and an estimate that wrapped would pass.
     let bytes = [
         (pixels, BYTES_PER_PIXEL),
@@ -109,6 +113,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64) -> MemoryEstimat
         (texels - hdr_texels, BYTES_PER_TEXEL),
         (hdr_texels, BYTES_PER_HDR_TEXEL),
         (sampled_texels, BYTES_PER_SAMPLED_TEXEL),
+        (threads.saturating_sub(1), BYTES_PER_THREAD),
     ]
     .iter()
     .fold(BASE_BYTES, |sum, (count, each)| sum.saturating_add(count.saturating_mul(*each)));
@@ -123,12 +128,17 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64) -> MemoryEstimat
         texels,
         hdr_texels,
         sampled_texels,
+        threads,
     }
 }
 
 /// Refuses a render whose estimated memory exceeds what the machine has.
-pub fn check_memory(desc: &SceneDesc, bytes_per_triangle: u64) -> Result<(), LimitError> {
-    let estimate = memory_needed(desc, bytes_per_triangle);
+pub fn check_memory(
+    desc: &SceneDesc,
+    bytes_per_triangle: u64,
+    threads: usize,
+) -> Result<(), LimitError> {
+    let estimate = memory_needed(desc, bytes_per_triangle, threads);
     match memory_available() {
         Some(available) if estimate.bytes > available => {
             Err(LimitError::Memory { file: desc.source.clone(), estimate, available })
@@ -251,7 +261,7 @@ mod tests {
         for space in [RenderSpace::World, RenderSpace::Cameraworld, RenderSpace::Camera] {
             check_coordinates(&scene, space).unwrap();
         }
-        check_memory(&scene, crate::limits::BYTES_PER_TRIANGLE_OBVHS).unwrap();
+        check_memory(&scene, crate::limits::BYTES_PER_TRIANGLE_OBVHS, 2).unwrap();
         scene.translate(DVec3::new(1e9, 0.0, 0.0));
         // Far out, the camera-relative spaces still hold it; f32 world space cannot.
         check_coordinates(&scene, RenderSpace::Cameraworld).unwrap();
@@ -268,7 +278,16 @@ mod tests {
     fn the_largest_resolution_needs_more_than_this_machine_has() {
         let mut scene = crate::scene::load(&crate::bundled::default_scene()).unwrap();
         (scene.camera.width, scene.camera.height) = (16384, 16384);
-        let needed = memory_needed(&scene, crate::limits::BYTES_PER_TRIANGLE_EMBREE).bytes;
+        let needed = memory_needed(&scene, crate::limits::BYTES_PER_TRIANGLE_EMBREE, 2).bytes;
         assert!(needed > 24 << 30, "{needed}");
+    }
+
+    #[test]
+    fn each_thread_past_the_first_adds_its_cost() {
+        let scene = crate::scene::load(&crate::bundled::default_scene()).unwrap();
+        let needed = |threads| memory_needed(&scene, 0, threads).bytes;
+        assert_eq!(needed(0), needed(1), "the render has one thread at least");
+        let thousand = crate::limits::BYTES_PER_THREAD * 1023;
+        assert_eq!(needed(crate::limits::MAX_THREADS), needed(1) + thousand);
     }
 }

@@ -112,8 +112,9 @@ fn texture_texels_count_in_the_memory_estimate() {
     );
     scratch.write("s.toml", textured);
     let before = scratch.snapshot();
-    // 24 MiB fixed, 20 MiB of texels: refused under a 40 MiB budget.
-    let mut command = scratch.command(&["render", "s.toml"]);
+    // 24 MiB fixed, 20 MiB of texels: refused under a 40 MiB budget (one thread, which
+    // adds nothing, on any machine).
+    let mut command = scratch.command(&["render", "s.toml", "--threads", "1"]);
     let run =
         crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "41943040").output().unwrap());
     run.assert_no_panic();
@@ -126,4 +127,31 @@ fn texture_texels_count_in_the_memory_estimate() {
         "size of the textures",
     ]);
     assert_eq!(scratch.snapshot(), before);
+}
+
+/// Worker threads count in the estimate (they did not: each holds its stack and its batch of
+/// paths, 300 KiB on the Cornell box, so a thousand threads hold 300 MiB more than one).
+#[test]
+fn worker_threads_count_in_the_memory_estimate() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    let before = scratch.snapshot();
+    let render = |threads: &str| {
+        let mut command = scratch.command(&["render", "s.toml", "--threads", threads, "-q"]);
+        // 100 MiB: 24 MiB and the pixels for one thread, and 320 MiB more for 1024.
+        crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "104857600").output().unwrap())
+    };
+    let run = render("1024");
+    run.assert_no_panic();
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    run.assert_says(&[
+        "s.toml",
+        "needs about 343.7 MiB",
+        "1024 threads",
+        "only 100.0 MiB",
+        "--threads",
+    ]);
+    assert_eq!(scratch.snapshot(), before);
+    let run = render("1");
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
 }
