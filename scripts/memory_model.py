@@ -138,9 +138,7 @@ def main():
             for n in (16, 256)
         ],
     }
-    # Extra render arguments per series, from its count. (The threads render 1024 tiles,
-    # so that each of them works and holds its buffers.)
-    render_args = {"threads": lambda n: ["--threads", str(n)]}
+    # (The threads' scene has 1024 tiles, so that each thread works and holds its buffers.)
     for t in (int(1e6 * scale), int(4e6 * scale)):
         count = ply_grid(os.path.join(work, "grid%d.ply" % t), t)
         obj = '\n[[objects]]\ntype = "mesh"\nmaterial = "white"\nfile = "grid%d.ply"\n' % t
@@ -178,7 +176,7 @@ def main():
                 points = []
                 for count, make in runs:
                     name = make(i=line)
-                    extra = render_args.get(quantity, lambda _: [])(count)
+                    extra = ["--threads", str(count)] if quantity == "threads" else []
                     peak = peak_kib(embray, name, backend, work, extra) * 1024
                     est = None if extra else estimate_bytes(embray, name, backend, work)
                     ratio = "%.2f" % (est / peak) if est else "-"

@@ -26,7 +26,7 @@ pub enum DenoiseError {
     Oidn(String),
     #[error(
         "rendering and denoising {estimate} needs about {} MiB, more than the {} MiB \
-         available (the denoiser adds {} bytes a pixel; render smaller or without --denoise)",
+         available (the denoiser adds {} bytes a pixel; render smaller, on fewer --threads, or without --denoise)",
         .needed >> 20, .available >> 20, crate::limits::DENOISE_BYTES_PER_PIXEL
     )]
     Memory { estimate: crate::scene::budget::MemoryEstimate, needed: u64, available: u64 },

@@ -52,9 +52,10 @@ pub const BASE_BYTES: u64 = 24 << 20;
 /// share of the top-level BVH (measured: 1047 on Embree, 957 on obvhs).
 pub const BYTES_PER_OBJECT: u64 = 1100;
 /// Bytes per worker thread beyond the first: its stack as touched, its batch of paths and
-/// their queues (`Wavefront`), and the thread pool's own (measured: 296 KiB a thread on the
-/// peers' Cornell box with 1 to 256 threads, 150-200 KiB on `scripts/memory_model.py`'s
-/// lit floor, 40-60 KiB for Whitted renders).
+/// their queues (`Wavefront`), and the thread pool's own. Measured as peak RSS over 1 to 256
+/// threads: 296 KiB a thread on the Cornell box of `../shared/peers` (an area light, 256²,
+/// a tile per thread), 150-200 KiB on `scripts/memory_model.py`'s floor under a point light
+/// and 40-60 KiB for its Whitted renders; the largest, with a margin.
 pub const BYTES_PER_THREAD: u64 = 320 << 10;
 /// Bytes per mesh triangle on Embree: f64 positions and indices, the render-space copy,
 /// Embree's BVH and its build (measured: 161).

@@ -112,9 +112,10 @@ impl RenderOptions {
 }
 
 impl RenderOptions {
-    /// The worker threads the render runs on: as asked, else one per core.
+    /// The worker threads the render runs on: as asked, else (as rayon takes 0 too) one
+    /// per core.
     pub fn worker_threads(&self) -> usize {
-        self.threads.unwrap_or_else(rayon::current_num_threads)
+        self.threads.filter(|&n| n > 0).unwrap_or_else(rayon::current_num_threads)
     }
 
     /// Whether sample positions are jittered: as asked, except that a Whitted render at one

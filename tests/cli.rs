@@ -38,7 +38,6 @@ fn assert_rejected(
         .filter(|n| n.contains("out"))
         .collect();
     assert!(leftovers.is_empty(), "{name}: output written despite the error: {leftovers:?}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -54,7 +53,6 @@ fn render_writes_exr_and_png() {
     assert!(stdout.contains("camera") && stdout.contains("shadow"), "stats table: {stdout}");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("Mrays/s"), "summary line: {stderr}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -91,7 +89,6 @@ fn build_options_are_reported_and_keep_the_image() {
     let out = embray(&["render", "scene.toml", "--build-quality", "best"], &dir);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && stderr.contains("low, medium, high"), "{stderr}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The files in `dir`, sorted, leaving out the scene.
@@ -145,7 +142,6 @@ fn outputs_follow_their_extensions_and_the_scene_name() {
             / (16.0 * 12.0);
     assert!(mean_difference < 4.0, "{mean_difference}");
     assert_eq!(written(&dir), ["view.JPG", "view.png"]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -165,7 +161,6 @@ fn an_output_extension_that_names_no_format_is_refused() {
     refuse(&["-o", "out"], &["-o 'out' has no extension"]);
     refuse(&["-o", "out.png", "--png", "out2.png"], &["-o 'out.png' is the display image already"]);
     refuse(&["--png", "out.exr"], &["--png 'out.exr' names an EXR"]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -182,7 +177,6 @@ fn render_without_a_scene_draws_the_default_cornell_box() {
         left[0] > 2 * left[1] && right[1] as u32 * 2 > right[0] as u32 * 3,
         "{left:?} {right:?}"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -253,7 +247,6 @@ fn unwritable_output_is_an_error_not_a_panic() {
         !out.status.success() && stderr.contains("x.exr") && !stderr.contains("panicked"),
         "{stderr}"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// A full disk or a closed pipe on standard output is an error with a message, not a panic;
@@ -292,7 +285,6 @@ fn unwritable_terminal_streams_are_errors_not_panics() {
         .unwrap();
     assert_eq!(out.status.code(), Some(0));
     assert!(dir.join("x.exr").exists() && dir.join("x.png").exists());
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// `embray tonemap` maps a render's EXR to a PNG with the photographic operator; `render
@@ -323,7 +315,6 @@ fn tonemap_maps_an_exr_like_render_does() {
         assert!(!dir.join("c.png").exists(), "{args:?} wrote c.png");
     }
     assert!(std::fs::metadata(dir.join("a.exr")).unwrap().len() > 0, "a.exr destroyed");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// `embray compare` on two EXRs gives the linear figures: identical renders agree exactly,
@@ -369,7 +360,6 @@ fn compare_reads_two_exrs_linearly() {
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
     assert!(!dir.join("h.png").exists());
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -393,5 +383,4 @@ fn a_black_image_is_said_not_silently_written() {
     std::fs::write(dir.join("lit.toml"), lit).unwrap();
     let out = embray(&["render", "lit.toml", "--spp", "2"], &dir);
     assert!(!String::from_utf8_lossy(&out.stderr).contains("black"));
-    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -69,7 +69,6 @@ fn merged_parts_are_the_whole_render_byte_for_byte() {
     }
     ok(&["merge", "s0.exr", "s1.exr", "-o", "merged-s.exr"], &dir);
     assert_eq!(std::fs::read(dir.join("merged-s.exr")).unwrap(), whole);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -120,7 +119,6 @@ fn parts_that_do_not_make_one_render_are_refused() {
     }
     ok(&["merge", "p0.exr", "p1.exr", "p2.exr", "-o", "m.exr", "--png", "m.jpg"], &dir);
     assert_eq!(std::fs::read(dir.join("m.jpg")).unwrap()[..3], [0xFF, 0xD8, 0xFF]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -143,7 +141,6 @@ fn bad_part_options_are_refused_before_rendering() {
     }
     let files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(files.len(), 1, "nothing but the scene: {files:?}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The RGB pixels of an EXR.
@@ -194,5 +191,4 @@ fn a_partial_merge_previews_the_parts_there_are() {
     );
     // Without --partial, still refused.
     assert_refused(&dir, &["s3.exr", "s1.exr"], &["2 of the 4 parts are missing", "--partial"]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }

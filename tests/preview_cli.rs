@@ -57,7 +57,6 @@ fn a_crop_is_the_whole_renders_pixels_bit_for_bit() {
             }
         }
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The columns of `film` where the sphere is (lit).
@@ -82,7 +81,6 @@ fn another_resolution_keeps_the_view() {
     assert_eq!((b.width, b.height), (128, 48));
     let (wa, wb) = (lit_columns(&a), lit_columns(&b));
     assert!(wa > 10 && (wb as i64 - 2 * wa as i64).abs() <= 2, "{wa} columns, then {wb}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 const TWO_CAMERAS: &str = r#"<Scene>
@@ -147,7 +145,6 @@ fn one_camera_of_several_is_chosen_by_name_or_position() {
         stderr.contains("--camera 'top'") && stderr.contains("front.png, side.png"),
         "{stderr}"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -164,7 +161,6 @@ fn bad_previews_are_refused() {
         (&["--camera", "2"], "--camera chooses among the cameras of a CENG795 .xml file"),
     ];
     common::command::assert_render_refusals(&dir, &cases);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// A crop the scene asks for (TOML `[render] crop`, Mitsuba's film crop) is rendered as
@@ -188,5 +184,4 @@ fn a_scenes_own_crop_is_rendered_unless_the_command_line_says_otherwise() {
     let out = embray(&["render", "bad.toml", "--spp", "1", "-q", "-o", "d.exr"], &dir);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && stderr.contains("render.crop"), "{stderr}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -67,7 +67,6 @@ fn ctrl_c_and_sigterm_write_the_passes_done() {
         ] {
             assert!(said.contains(&line), "{line:?} not in {said}");
         }
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
 
@@ -94,7 +93,6 @@ fn a_time_limit_writes_the_passes_done_and_succeeds() {
     assert!(stderr.contains("checkpoint: "), "checkpoints while rendering: {stderr}");
     assert!(spp_done(&stderr) >= 2, "{stderr}");
     embray::bench::convergence::read_reference(&dir.join("out.exr")).unwrap();
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// Passes add exact sums: a render that runs to the end is the image it was before passes,
@@ -123,7 +121,6 @@ fn a_render_that_ends_is_the_same_with_a_limit_and_checkpoints() {
         std::fs::read(dir.join("a.exr")).unwrap(),
         std::fs::read(dir.join("b.exr")).unwrap()
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -142,7 +139,6 @@ fn progress_lines_go_into_a_pipe() {
     for part in [" % (about ", " of 64 spp), ", " M rays/s, ", " s left"] {
         assert!(line.contains(part), "{line}");
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -155,5 +151,4 @@ fn limits_and_checkpoints_are_refused_for_parts_and_bad_values() {
         (&["--checkpoint-every", "nan"], "--checkpoint-every is NaN"),
     ];
     common::command::assert_render_refusals(&dir, &cases);
-    std::fs::remove_dir_all(&dir).unwrap();
 }

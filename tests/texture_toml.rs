@@ -110,7 +110,6 @@ fn an_image_texture_shows_on_its_quad_and_normal_maps_bend_the_shading() {
         let ratio = luminance(&bump("ramp.png")) / luminance(&textured);
         assert!(ratio < 0.95 && ratio > 0.3, "{}: ramp / flat = {ratio}", backend.name());
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// An empty scene of `resolution` whose `[render]` table holds `render`.
@@ -259,7 +258,6 @@ fn a_specular_texture_drives_the_path_tracers_course_lobe() {
         let ratio = sum(&given) / sum(&matte);
         assert!(ratio > 1.05, "{}: the lobe adds only {ratio}", backend.name());
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// A unit quad in an OBJ whose MTL material paints it with `map_Kd`, OBJ texture coordinates
@@ -322,7 +320,6 @@ fn an_mtl_map_kd_paints_its_mesh_the_right_way_up() {
     for part in ["gone.png", "quad.mtl", "line 3", "map_Kd of material 'painted'"] {
         assert!(err.contains(part), "'{part}' not in: {err}");
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// A `mesh_attribute` texture shows a PLY file's face colours (each triangle of a polygon

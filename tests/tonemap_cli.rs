@@ -24,7 +24,6 @@ fn a_renders_png_is_remade_from_its_exr_with_the_same_curve() {
             "{curve}"
         );
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -42,5 +41,4 @@ fn photographic_options_under_another_curve_are_refused() {
     let out = embray(&args, &dir);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--gamma sets the photographic"));
-    std::fs::remove_dir_all(&dir).unwrap();
 }

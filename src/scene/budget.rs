@@ -66,8 +66,14 @@ impl std::fmt::Display for MemoryEstimate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{}x{} pixels, {} object placements, {} mesh triangles, {} texture texels, {} threads",
-            self.width, self.height, self.objects, self.triangles, self.texels, self.threads
+            "{}x{} pixels, {} object placements, {} mesh triangles, {} texture texels, {} thread{}",
+            self.width,
+            self.height,
+            self.objects,
+            self.triangles,
+            self.texels,
+            self.threads,
+            if self.threads == 1 { "" } else { "s" }
         )
     }
 }
@@ -104,7 +110,8 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
     background.into_iter().for_each(|i| count(i, false));
     desc.lights.iter().filter_map(|l| l.image()).for_each(|(i, sampled)| count(i, sampled));
     let objects = desc.objects.len() as u64;
-    let threads = threads as u64;
+    // A render has one thread at least.
+    let threads = threads.max(1) as u64;
     // Saturating: counts from a file may be absurd, and an estimate that wrapped would pass.
     let bytes = [
         (pixels, BYTES_PER_PIXEL),
@@ -113,7 +120,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         (texels - hdr_texels, BYTES_PER_TEXEL),
         (hdr_texels, BYTES_PER_HDR_TEXEL),
         (sampled_texels, BYTES_PER_SAMPLED_TEXEL),
-        (threads.saturating_sub(1), BYTES_PER_THREAD),
+        (threads - 1, BYTES_PER_THREAD),
     ]
     .iter()
     .fold(BASE_BYTES, |sum, (count, each)| sum.saturating_add(count.saturating_mul(*each)));
@@ -287,7 +294,7 @@ mod tests {
         let scene = crate::scene::load(&crate::bundled::default_scene()).unwrap();
         let needed = |threads| memory_needed(&scene, 0, threads).bytes;
         assert_eq!(needed(0), needed(1), "the render has one thread at least");
-        let thousand = crate::limits::BYTES_PER_THREAD * 1023;
-        assert_eq!(needed(crate::limits::MAX_THREADS), needed(1) + thousand);
+        let all_but_one = (crate::limits::MAX_THREADS as u64 - 1) * crate::limits::BYTES_PER_THREAD;
+        assert_eq!(needed(crate::limits::MAX_THREADS), needed(1) + all_but_one);
     }
 }

@@ -207,7 +207,6 @@ fn texture_images_that_cannot_be_read_name_the_file_and_the_field() {
             ],
         );
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

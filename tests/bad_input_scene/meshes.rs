@@ -58,7 +58,6 @@ fn mtl_statements_tobj_cannot_parse_name_the_mtl_and_the_line() {
         let err = embray::scene::load_str(&scene, &dir.join("s.toml")).unwrap_err().to_string();
         assert_contains(&err, &[&format!("m.mtl: {expected}"), "(line 3)"]);
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 fn ply_object(file: &str) -> String {
@@ -129,7 +128,6 @@ fn truncated_binary_ply_is_reported() {
         &scene_with("[[objects]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"cut.ply\"\n"),
         &dir.join("scene.toml"),
     );
-    std::fs::remove_dir_all(&dir).unwrap();
     let err = result.unwrap_err().to_string();
     assert_contains(
         &err,

@@ -171,7 +171,6 @@ fn hw5_directional_and_spot_lights_import_and_convert() {
     writer.write(&s, &toml, "round trip").unwrap();
     let back = embray::scene::load(&toml).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(back.lights, s.lights);
-    std::fs::remove_dir_all(&dir).unwrap();
     let wider = lights.replace("<FalloffAngle>8", "<FalloffAngle>12");
     let message = load_text(&with_lights(scene_xml(TRIANGLE), &wider)).unwrap_err().to_string();
     assert!(message.contains("FalloffAngle") && message.contains("12"), "{message}");

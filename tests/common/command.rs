@@ -24,7 +24,7 @@ pub fn assert_render_refusals(dir: &Path, cases: &[(&[&str], &str)]) {
 }
 
 /// A scratch folder of its own for a test, emptied first, and removed with all it holds when
-/// the test is done with it (dropped, on success or on a failed assertion alike).
+/// the test is done with it (dropped), unless the test failed.
 pub struct TempDir(PathBuf);
 
 impl std::ops::Deref for TempDir {
@@ -42,8 +42,11 @@ impl AsRef<Path> for TempDir {
 }
 
 impl Drop for TempDir {
+    /// Kept where the test failed, to be looked at.
     fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
+        if !std::thread::panicking() {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
     }
 }
 

@@ -27,7 +27,7 @@ fn a_render_needing_more_memory_than_there_is_is_refused() {
     let scratch = Scratch::new();
     scratch.write("s.toml", scene("").replace("[8, 8]", "[8192, 8192]"));
     let before = scratch.snapshot();
-    let mut command = scratch.command(&["render", "s.toml"]);
+    let mut command = scratch.command(&["render", "s.toml", "--threads", "1"]);
     let run =
         crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "1073741824").output().unwrap());
     run.assert_no_panic();
@@ -130,7 +130,7 @@ fn texture_texels_count_in_the_memory_estimate() {
 }
 
 /// Worker threads count in the estimate (they did not: each holds its stack and its batch of
-/// paths, 300 KiB on the Cornell box, so a thousand threads hold 300 MiB more than one).
+/// paths, `limits::BYTES_PER_THREAD`, so a thousand threads hold 300 MiB more than one).
 #[test]
 fn worker_threads_count_in_the_memory_estimate() {
     let scratch = Scratch::new();
@@ -138,7 +138,7 @@ fn worker_threads_count_in_the_memory_estimate() {
     let before = scratch.snapshot();
     let render = |threads: &str| {
         let mut command = scratch.command(&["render", "s.toml", "--threads", threads, "-q"]);
-        // 100 MiB: 24 MiB and the pixels for one thread, and 320 MiB more for 1024.
+        // 100 MiB: 24 MiB and 64 pixels fit; 1023 more threads add 320 MiB.
         crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "104857600").output().unwrap())
     };
     let run = render("1024");

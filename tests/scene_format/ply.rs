@@ -91,7 +91,6 @@ fn ply_ascii_and_binary_give_the_same_mesh() {
     ];
     let objects: String = files.iter().map(|f| ply_scene(&f.display().to_string(), None)).collect();
     let result = scene::load_str(&scene_with(&objects), &source());
-    std::fs::remove_dir_all(&dir).unwrap();
     let scene = result.unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.objects.len(), 6);
     let cube = mesh_of(&scene, 0);
