@@ -34,12 +34,8 @@ fn child_peak_bytes(args: &[&str], dir: &std::path::Path) -> u64 {
 
 /// The memory estimate `embray info s.toml` prints for `backend`, in bytes.
 fn info_estimate(dir: &std::path::Path, backend: &str) -> u64 {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_embray"))
-        .args(["info", "s.toml"])
-        .current_dir(dir)
-        .env("RAYON_NUM_THREADS", THREADS)
-        .output()
-        .expect("embray runs");
+    let threads = [("RAYON_NUM_THREADS", THREADS)];
+    let out = common::command::embray_with_env(&["info", "s.toml"], dir, &threads);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8(out.stdout).unwrap();
     let line = text.lines().find(|l| l.starts_with("memory estimate:")).expect("an estimate");

@@ -4,9 +4,15 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 pub fn embray(args: &[&str], dir: &Path) -> Output {
+    embray_with_env(args, dir, &[])
+}
+
+/// `embray`, with the environment variables `env` set.
+pub fn embray_with_env(args: &[&str], dir: &Path, env: &[(&str, &str)]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_embray"))
         .args(args)
         .current_dir(dir)
+        .envs(env.iter().copied())
         .output()
         .expect("embray runs")
 }

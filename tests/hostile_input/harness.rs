@@ -1,15 +1,16 @@
 //! Running the binary in a scratch folder and checking what a hostile case must never do:
 //! panic, exit 0 on bad input, change a file that existed before, or leave a temporary file.
 
+use crate::common::command::{TempDir, temp_dir};
 use std::collections::BTreeMap;
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// A fresh folder removed when the case ends.
+/// A fresh folder removed when the case ends (kept if it failed).
 pub struct Scratch {
-    pub dir: PathBuf,
+    dir: TempDir,
 }
 
 static NEXT: AtomicUsize = AtomicUsize::new(0);
@@ -17,10 +18,7 @@ static NEXT: AtomicUsize = AtomicUsize::new(0);
 impl Scratch {
     pub fn new() -> Self {
         let n = NEXT.fetch_add(1, Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!("embray-hostile-{}-{n}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Scratch { dir }
+        Scratch { dir: temp_dir(&format!("hostile-{n}")) }
     }
 
     pub fn path(&self, name: &str) -> PathBuf {
@@ -49,12 +47,6 @@ impl Scratch {
         let mut files = BTreeMap::new();
         walk(&self.dir, &self.dir, &mut files);
         files
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.dir);
     }
 }
 

@@ -8,6 +8,8 @@
 
 mod ceng795;
 mod collisions;
+#[path = "../common/mod.rs"]
+mod common;
 mod harness;
 mod limits;
 mod meshes;
