@@ -16,6 +16,16 @@ pub const MAX_LIGHT_SAMPLES: u32 = 65_536;
 pub const MAX_DEPTH: u32 = 100_000;
 /// Worker threads.
 pub const MAX_THREADS: usize = 1024;
+/// Materials in one blend, counting itself, the blends inside it and each material as
+/// often as it is named (a chain of blends that each name one material twice doubles at
+/// every link: 2⁶⁰ descriptions from 60 lines).
+pub const MAX_BLEND_MATERIALS: usize = 64;
+/// Elements of a Mitsuba scene, its `<include>`d files' included (one file's own bound is
+/// the XML reader's: each `<include>` may splice in as many again).
+pub const MAX_XML_ELEMENTS: usize = 4_000_000;
+/// `<include>`s read for one Mitsuba scene (a file that includes the next four times, 16
+/// deep, would read 4¹⁶).
+pub const MAX_XML_INCLUDES: usize = 10_000;
 /// Repetitions of a measurement (`bench --runs`).
 pub const MAX_RUNS: u32 = 1000;
 /// The largest coordinate a scene may reach in render space (f32): measured from the

@@ -13,6 +13,7 @@ mod common;
 mod harness;
 mod limits;
 mod meshes;
+mod nesting;
 mod numbers;
 mod outputs;
 mod process;

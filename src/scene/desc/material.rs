@@ -104,6 +104,15 @@ impl MaterialDesc {
         names
     }
 
+    /// The materials of its blend: itself, and each of the blend's parts as often as it is
+    /// named (1 for a material that is not a blend). What `limits::MAX_BLEND_MATERIALS`
+    /// bounds: a reader checks each blend as it builds it, so its parts are in bounds and
+    /// this costs at most the limit.
+    pub fn blend_materials(&self) -> usize {
+        let parts = self.blend.iter().flat_map(|b| b.materials.iter());
+        1 + parts.map(MaterialDesc::blend_materials).sum::<usize>()
+    }
+
     /// The images a blend's weight and materials look up.
     fn blend_images(
         &self,

@@ -22,6 +22,7 @@ mod values;
 use crate::scene::desc::{LightDesc, MaterialDesc, ObjectDesc, RenderSettings, SceneDesc};
 use crate::scene::error::SceneError;
 use crate::scene::mesh_file::MeshCache;
+use std::cell::Cell;
 use std::collections::HashMap;
 use std::path::Path;
 use tree::{Element, FileResolver};
@@ -55,9 +56,35 @@ pub fn is_mitsuba(text: &str) -> bool {
 /// Objects with an `id`, for `<ref>`.
 pub(super) struct Ids {
     by_id: HashMap<String, Element>,
+    /// BSDFs being read inside one another (`nested`).
+    nesting: Cell<usize>,
 }
 
+/// BSDFs nested deeper than this, through `<ref>`s, are refused: each level is a call of the
+/// reader, and a `<ref>` that leads back to its own BSDF would never end.
+const MAX_BSDF_NESTING: usize = 64;
+
 impl Ids {
+    /// `read` (the BSDFs inside `element`) one level deeper: refused past
+    /// `MAX_BSDF_NESTING`.
+    fn nested<T>(
+        &self,
+        element: &Element,
+        read: impl FnOnce() -> Result<T, SceneError>,
+    ) -> Result<T, SceneError> {
+        let level = self.nesting.get();
+        if level >= MAX_BSDF_NESTING {
+            return Err(element.error(format!(
+                "BSDFs nest deeper than {MAX_BSDF_NESTING} (does a <ref> lead back to a BSDF \
+                 that holds it?)"
+            )));
+        }
+        self.nesting.set(level + 1);
+        let read = read();
+        self.nesting.set(level);
+        read
+    }
+
     /// The BSDF `element` is or refers to.
     fn bsdf<'a>(&'a self, element: &'a Element) -> Result<&'a Element, SceneError> {
         let found = self.resolve(element)?;
@@ -123,7 +150,7 @@ pub fn load(
     let mut sensor = None;
     let mut builder = Builder {
         files: &files,
-        ids: Ids { by_id },
+        ids: Ids { by_id, nesting: Cell::new(0) },
         meshes: MeshCache::default(),
         warnings: &mut warnings,
         materials: Vec::new(),

@@ -4,13 +4,18 @@
 //! Every element keeps its file and line for messages.
 
 use crate::excerpt::excerpt;
+use crate::limits::{MAX_XML_ELEMENTS, MAX_XML_INCLUDES};
 use crate::scene::error::{Line, SceneError};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// Includes deeper than this are refused (a file that includes itself would never end).
 const MAX_INCLUDE_DEPTH: usize = 16;
+/// Elements nested deeper than this are refused: each level is a call of the reader (and of
+/// the plugins that read it, and of dropping it), so a file of 200,000 nested tags would
+/// overflow the stack. Mitsuba's own scenes nest fewer than 10 deep.
+const MAX_NESTING: usize = 100;
 
 #[derive(Clone, Debug)]
 pub(super) struct Element {
@@ -83,6 +88,8 @@ pub(super) fn read(
         params: defines.iter().cloned().collect(),
         given: defines.iter().map(|(name, _)| name.clone()).collect(),
         resolver: FileResolver { folders: vec![folder] },
+        elements: 0,
+        includes: 0,
     };
     let root = reader.file(path, text, 0)?;
     Ok((root, reader.resolver))
@@ -94,6 +101,10 @@ struct Reader {
     /// Names given with `-D` (a `<default>` does not override them).
     given: Vec<String>,
     resolver: FileResolver,
+    /// Elements read so far, every file's (`limits::MAX_XML_ELEMENTS`).
+    elements: usize,
+    /// `<include>`s read so far (`limits::MAX_XML_INCLUDES`).
+    includes: usize,
 }
 
 impl Reader {
@@ -113,7 +124,7 @@ impl Reader {
         })?;
         let file = Arc::new(path.to_path_buf());
         let root = doc.root_element();
-        let mut element = self.element(root, &file, &doc, depth)?;
+        let mut element = self.element(root, &file, &doc, (depth, 0))?;
         if element.tag != "scene" {
             return Err(element.error("the root element of a Mitsuba 3 file must be <scene>"));
         }
@@ -129,7 +140,7 @@ impl Reader {
         node: roxmltree::Node,
         file: &Arc<PathBuf>,
         doc: &roxmltree::Document,
-        depth: usize,
+        (depth, level): (usize, usize),
     ) -> Result<Element, SceneError> {
         let line = doc.text_pos_at(node.range().start).row as usize;
         let raw = Element {
@@ -145,11 +156,29 @@ impl Reader {
             .map(|(name, value)| Ok((name.clone(), self.substitute(&raw, value)?)))
             .collect::<Result<Vec<_>, SceneError>>()?;
         let mut element = Element { attrs, ..raw };
+        self.elements += 1;
+        if self.elements > MAX_XML_ELEMENTS {
+            let limit = format!(
+                "the scene has more than {MAX_XML_ELEMENTS} elements, its included files' counted"
+            );
+            return Err(element.error(limit));
+        }
         if element.tag == "spectrum" {
             self.read_spectrum_file(&mut element)?;
         }
+        let mut names = HashSet::new();
         for child in node.children().filter(roxmltree::Node::is_element) {
-            let child = self.element(child, file, doc, depth)?;
+            if level + 1 > MAX_NESTING {
+                return Err(element.error(format!("elements nest deeper than {MAX_NESTING}")));
+            }
+            let child = self.element(child, file, doc, (depth, level + 1))?;
+            // Each named child is a property of its plugin, given once (as Mitsuba has it).
+            if let Some(name) = child.attr("name")
+                && !matches!(child.tag.as_str(), "default" | "include" | "path")
+                && !names.insert(name.to_owned())
+            {
+                return Err(child.error(format!("the property `{name}` is given twice")));
+            }
             match child.tag.as_str() {
                 "default" => {
                     let name = child.required("name")?.to_owned();
@@ -165,6 +194,12 @@ impl Reader {
                 "include" => {
                     if depth + 1 > MAX_INCLUDE_DEPTH {
                         let limit = format!("includes nest deeper than {MAX_INCLUDE_DEPTH}");
+                        return Err(child.error(limit));
+                    }
+                    self.includes += 1;
+                    if self.includes > MAX_XML_INCLUDES {
+                        let limit =
+                            format!("the scene reads more than {MAX_XML_INCLUDES} includes");
                         return Err(child.error(limit));
                     }
                     let name = child.required("filename")?;

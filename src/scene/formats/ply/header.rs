@@ -137,6 +137,10 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header, PlyProblem> {
                 let count = count.parse::<usize>().map_err(|_| {
                     problem(at, format!("element '{name}' has an invalid count '{count}'"))
                 })?;
+                // Readers find an element by its name: a second one would be skipped unread.
+                if elements.iter().any(|e| e.name == *name) {
+                    return Err(problem(at, format!("element '{name}' is declared twice")));
+                }
                 elements.push(Element {
                     name: (*name).to_owned(),
                     count,
@@ -166,6 +170,11 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header, PlyProblem> {
                     [ty, name] => (Kind::Scalar(scalar(ty)?), name),
                     _ => return Err(problem(at, format!("malformed property line '{text}'"))),
                 };
+                if element.find(name).is_some() {
+                    let twice =
+                        format!("property '{name}' of '{}' is declared twice", element.name);
+                    return Err(problem(at, twice));
+                }
                 element.properties.push(Property { name: (*name).to_owned(), kind });
             }
             ["end_header"] => break,

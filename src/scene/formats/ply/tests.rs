@@ -116,3 +116,17 @@ fn a_non_finite_attribute_is_named() {
     let err = parse(text.as_bytes()).unwrap_err();
     assert_eq!((err.line, err.message.as_str()), (Some(12), "vertex 1 has a non-finite w_0"));
 }
+
+/// A property or element declared twice would leave one of its columns unread: refused at
+/// the second declaration's line.
+#[test]
+fn a_property_or_element_declared_twice_is_an_error() {
+    let text = cube().replace("property float z\n", "property float z\nproperty float x\n");
+    let err = parse(text.as_bytes()).unwrap_err();
+    assert_eq!(err.line, Some(8));
+    assert_eq!(err.message, "property 'x' of 'vertex' is declared twice");
+
+    let second = "element vertex 0\nproperty float x\nend_header\n";
+    let err = parse(cube().replace("end_header\n", second).as_bytes()).unwrap_err();
+    assert_eq!((err.line, err.message.as_str()), (Some(10), "element 'vertex' is declared twice"));
+}

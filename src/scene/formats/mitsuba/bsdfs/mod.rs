@@ -11,6 +11,7 @@ mod texture;
 
 use super::tree::{Element, FileResolver};
 use super::values::{ColorUse, color, float, property};
+use crate::limits::MAX_BLEND_MATERIALS;
 use crate::scene::desc::{
     BumpMapDesc, BumpScale, Distribution, MaterialDesc, Opacity, TextureDesc,
 };
@@ -61,7 +62,17 @@ pub(super) fn bsdf(
                 );
             }
             let blend = crate::scene::desc::BlendDesc { weight, materials: [first, second] };
-            Ok(MaterialDesc { blend: Some(Box::new(blend)), ..none })
+            let material = MaterialDesc { blend: Some(Box::new(blend)), ..none };
+            // Checked at every blend, so that its parts are in bounds and a chain whose
+            // links name one `id` twice stops doubling at the limit.
+            let count = material.blend_materials();
+            if count > MAX_BLEND_MATERIALS {
+                return Err(element.error(format!(
+                    "{count} materials in one blendbsdf, counting each as often as it is \
+                     named (at most {MAX_BLEND_MATERIALS})"
+                )));
+            }
+            Ok(material)
         }
         "mask" => {
             check_properties(element, &["opacity"])?;
@@ -152,12 +163,14 @@ fn nested_bsdfs(
     ids: &super::Ids,
     files: &FileResolver,
 ) -> Result<Vec<MaterialDesc>, SceneError> {
-    element
-        .children
-        .iter()
-        .filter(|c| c.tag == "bsdf" || (c.tag == "ref" && c.attr("name").is_none()))
-        .map(|one| bsdf(ids.bsdf(one)?, ids, files))
-        .collect()
+    ids.nested(element, || {
+        element
+            .children
+            .iter()
+            .filter(|c| c.tag == "bsdf" || (c.tag == "ref" && c.attr("name").is_none()))
+            .map(|one| bsdf(ids.bsdf(one)?, ids, files))
+            .collect()
+    })
 }
 
 /// `material` scattering on both sides (`twosided`), a blend's materials too.

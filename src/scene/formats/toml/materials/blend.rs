@@ -3,6 +3,7 @@
 //! every material is read (`resolve_blends`), so that it may name any of them.
 
 use super::textures::number_or_texture;
+use crate::limits::MAX_BLEND_MATERIALS;
 use crate::scene::desc::{BlendDesc, MaterialDesc, Opacity};
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::builder::Builder;
@@ -70,6 +71,15 @@ fn resolve(
         let chain = format!("{} → {name}", enclosing.join(" → "));
         return Err(builder.ctx.out_of_range(&path, chain, "a blend that does not contain itself"));
     }
+    // A blend this deep holds more than the limit's materials (two a level): refused before
+    // the recursion goes deeper.
+    if enclosing.len() >= MAX_BLEND_MATERIALS {
+        return Err(too_many_materials(
+            builder,
+            &path,
+            format!("blends nested {} deep", enclosing.len()),
+        ));
+    }
     enclosing.push(name.to_owned());
     let mut resolved = Vec::with_capacity(2);
     for (i, part) in parts.iter().enumerate() {
@@ -84,5 +94,19 @@ fn resolve(
         None => Opacity::Constant(0.0),
     };
     material.blend = Some(Box::new(BlendDesc { weight, materials: [first, second] }));
+    // Checked at every blend, so that its parts are in bounds and a chain that names one
+    // material twice a link stops doubling at the limit.
+    let count = material.blend_materials();
+    if count > MAX_BLEND_MATERIALS {
+        return Err(too_many_materials(builder, &path, format!("{count} materials")));
+    }
     Ok(material.clone())
+}
+
+/// The error for a blend with more than `MAX_BLEND_MATERIALS` materials in it.
+fn too_many_materials(builder: &Builder, path: &FieldPath, found: String) -> SceneError {
+    let requirement = format!(
+        "at most {MAX_BLEND_MATERIALS} materials in a blend, counting each as often as it is named"
+    );
+    builder.ctx.out_of_range(path, found, &requirement)
 }
