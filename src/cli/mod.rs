@@ -98,6 +98,13 @@ pub fn load_scene(path: Option<&Path>, defines: &[(String, String)]) -> Result<S
         Some(path) if embray::scene::ceng795::is_ceng795_path(path) => {
             embray::scene::xml::load(path, defines)?.swap_remove(0).scene
         }
+        _ if !defines.is_empty() => {
+            let (path, kind) = match path {
+                Some(path) => (path, "a TOML scene"),
+                None => (Path::new("the built-in scene"), "the built-in Cornell box"),
+            };
+            return Err(embray::scene::xml::not_a_parameter(path, &defines[0], kind).into());
+        }
         Some(path) => embray::scene::load(path)?,
         None => embray::scene::load(&embray::bundled::default_scene())
             .context("the built-in default scene failed to load")?,

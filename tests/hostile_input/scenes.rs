@@ -90,6 +90,12 @@ fn whitted_depth_2000_between_mirrors_renders_64x64() {
 }
 
 refused_cases! {
+    define_with_a_toml_scene: ["s.toml" => scene("")], ["render", "s.toml", "-D", "spp=64"]
+        => ["s.toml", "-D spp=64", "parameters are for Mitsuba 3 scenes", "a TOML scene"];
+    define_with_the_built_in_scene: [], ["info", "-D", "spp=64"]
+        => ["-D spp=64", "the built-in Cornell box"];
+    define_the_mitsuba_scene_does_not_name: ["s.xml" => MITSUBA_WITH_SPP.to_owned()], ["render", "s.xml", "-D", "sp=64"]
+        => ["s.xml", "-D sp=64", "the scene has no parameter `sp`", "its parameters: spp"];
     fifty_megabyte_string_under_an_unknown_key: ["s.toml" => scene(&format!("junk = \"{}\"\n", "x".repeat(5_000_000)))], ["render", "s.toml"]
         => ["s.toml", "does not take the field `junk`", "line 24"];
     huge_material_name: ["s.toml" => scene("").replace("material = \"grey\"", &format!("material = \"{}\"", "m".repeat(1_000_000)))], ["render", "s.toml"]
@@ -136,4 +142,25 @@ fn a_scene_that_is_a_folder_is_refused() {
     let scratch = Scratch::new();
     std::fs::create_dir(scratch.path("d.toml")).unwrap();
     refused_in(&scratch, &["render", "d.toml"], &["d.toml", "a directory, not a regular file"]);
+}
+
+/// A Mitsuba scene whose one parameter is `spp`.
+const MITSUBA_WITH_SPP: &str = r#"<scene version="3.0.0">
+    <default name="spp" value="1"/>
+    <sensor type="perspective">
+        <sampler type="independent"><integer name="sample_count" value="$spp"/></sampler>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+    </sensor>
+    <shape type="sphere"/>
+    <emitter type="constant"/>
+</scene>
+"#;
+
+/// A parameter the scene names renders.
+#[test]
+fn a_define_the_mitsuba_scene_names_is_used() {
+    let scratch = Scratch::new();
+    scratch.write("s.xml", MITSUBA_WITH_SPP);
+    let run = accepted_in(&scratch, &["info", "s.xml", "-D", "spp=3"]);
+    assert!(run.stdout.contains("render: 3 spp"), "{}", run.stdout);
 }

@@ -28,12 +28,20 @@ pub fn load_with_warnings(
         let stem = path.file_stem().map_or("render".into(), |s| s.to_string_lossy());
         return Ok((vec![CameraScene { image_name: format!("{stem}.png"), scene }], warnings));
     }
-    let (scenes, mut warnings) = ceng795::load_str_with_warnings(&text, path)?;
-    if let Some((name, _)) = defines.first() {
-        warnings.push(format!(
-            "-D {name}=…: parameters are for Mitsuba 3 scenes; '{}' is a CENG795 scene",
-            path.display()
-        ));
+    if let Some(define) = defines.first() {
+        return Err(not_a_parameter(path, define, "a CENG795 scene"));
     }
-    Ok((scenes, warnings))
+    ceng795::load_str_with_warnings(&text, path)
+}
+
+/// The error for `-D` given with a scene that has no parameters (of the format `kind`): it
+/// would change nothing, though it was meant to.
+pub fn not_a_parameter(path: &Path, (name, value): &(String, String), kind: &str) -> SceneError {
+    use crate::excerpt::excerpt;
+    SceneError::Xml {
+        file: path.to_path_buf(),
+        element: format!("-D {}={}", excerpt(name), excerpt(value)),
+        problem: format!("parameters are for Mitsuba 3 scenes, and this is {kind}"),
+        line: crate::scene::error::Line(None),
+    }
 }

@@ -90,8 +90,28 @@ pub(super) fn read(
         resolver: FileResolver { folders: vec![folder] },
         elements: 0,
         includes: 0,
+        named: HashSet::new(),
     };
     let root = reader.file(path, text, 0)?;
+    // As Mitsuba has it: a parameter the scene never names is a mistake (a misspelt name,
+    // or a value meant for another scene), not something to drop without a word.
+    if let Some((name, value)) = defines.iter().find(|(name, _)| !reader.named.contains(name)) {
+        let mut known: Vec<&str> = reader.named.iter().map(String::as_str).collect();
+        known.sort_unstable();
+        return Err(SceneError::Xml {
+            file: path.to_path_buf(),
+            element: format!("-D {}={}", excerpt(name), excerpt(value)),
+            problem: format!(
+                "the scene has no parameter `{}` (no ${} and no <default name=\"{}\">; its \
+                 parameters: {})",
+                excerpt(name),
+                excerpt(name),
+                excerpt(name),
+                if known.is_empty() { "none".to_owned() } else { known.join(", ") }
+            ),
+            line: Line(None),
+        });
+    }
     Ok((root, reader.resolver))
 }
 
@@ -105,6 +125,8 @@ struct Reader {
     elements: usize,
     /// `<include>`s read so far (`limits::MAX_XML_INCLUDES`).
     includes: usize,
+    /// The parameters the scene names: in a `$name` or a `<default>`.
+    named: HashSet<String>,
 }
 
 impl Reader {
@@ -183,6 +205,7 @@ impl Reader {
                 "default" => {
                     let name = child.required("name")?.to_owned();
                     let value = child.required("value")?.to_owned();
+                    self.named.insert(name.clone());
                     if !self.given.contains(&name) {
                         self.params.insert(name, value);
                     }
@@ -231,7 +254,7 @@ impl Reader {
     }
 
     /// `value` with every `$name` replaced by its parameter.
-    fn substitute(&self, element: &Element, value: &str) -> Result<String, SceneError> {
+    fn substitute(&mut self, element: &Element, value: &str) -> Result<String, SceneError> {
         if !value.contains('$') {
             return Ok(value.to_owned());
         }
@@ -254,6 +277,7 @@ impl Reader {
             };
             out += replacement;
             rest = &rest[at + 1 + name.len()..];
+            self.named.insert(name);
         }
         Ok(out + rest)
     }
