@@ -1,7 +1,7 @@
 //! f64 affine transforms (glam `DAffine3`, pbrt-style `x_from_y` naming) and the few
 //! operations on them that the renderer needs beyond glam.
 
-use glam::{DAffine3, DMat3, DVec3};
+use glam::{DAffine3, DMat3, DQuat, DVec3};
 
 /// Matrix that maps object-space normals: the inverse transpose of the linear part.
 /// `None` when the transform is singular.
@@ -12,6 +12,48 @@ pub fn normal_matrix(transform: &DAffine3) -> Option<DMat3> {
         return None;
     }
     Some(linear.inverse().transpose())
+}
+
+/// Whether the linear part of `transform` is invertible once in f32, as render space and
+/// both backends hold it: a scale of 1e-200 along one axis is invertible in f64 but rounds to
+/// 0 in f32, and its f32 inverse would send NaN rays (Embree inverts without checking).
+pub fn invertible_in_f32(transform: &DAffine3) -> bool {
+    let linear = transform.matrix3.as_mat3();
+    let det = linear.determinant();
+    linear.is_finite() && det.is_normal() && linear.inverse().is_finite()
+}
+
+/// Scale, rotation and translation of `transform`, or `None` if it shears (or does not
+/// decompose into finite parts): what an object moving from one transform to another
+/// interpolates. The scale's signs say which axes it mirrors (glam puts a negative
+/// determinant's sign on x).
+pub fn scale_rotation_translation(transform: &DAffine3) -> Option<(DVec3, DQuat, DVec3)> {
+    let (scale, rotation, translation) = transform.to_scale_rotation_translation();
+    let back = DAffine3::from_scale_rotation_translation(scale, rotation, translation);
+    let largest = transform.matrix3.abs().to_cols_array().iter().fold(1.0f64, |a, &b| a.max(b));
+    let sheared = !back.matrix3.abs_diff_eq(transform.matrix3, 1e-9 * largest);
+    (!sheared && scale.is_finite()).then_some((scale, rotation, translation))
+}
+
+/// Why an object cannot move from `start` to `end` (each placed by translation · rotation ·
+/// scale, interpolated part by part), if it cannot: an end that shears, or a scale that
+/// is zero or changes sign on the way (the transform would be singular in between).
+pub fn motion_problem(start: &DAffine3, end: &DAffine3) -> Option<String> {
+    let (Some((from, ..)), Some((to, ..))) =
+        (scale_rotation_translation(start), scale_rotation_translation(end))
+    else {
+        return Some(
+            "a moving object's transform must be translation · rotation · scale (no shear) \
+             at both ends of the shutter interval"
+                .to_owned(),
+        );
+    };
+    (from * to).cmple(DVec3::ZERO).any().then(|| {
+        format!(
+            "the scale is zero or changes sign on the way (from {from} to {to}): the transform \
+             would be singular in between"
+        )
+    })
 }
 
 /// The uniform scale factor of a similarity transform (rotation × uniform scale ×

@@ -23,11 +23,9 @@ pub enum CompileError {
     SingularTransform(String),
     #[error("{0}: geometry does not fit in f32 render space (a coordinate overflows or is NaN)")]
     NotRepresentable(String),
-    #[error(
-        "{0}: a moving object's transform must be translation · rotation · scale (no shear) \
-         at both ends of the shutter interval"
-    )]
-    MotionShear(String),
+    /// An object that cannot move as asked (`transform::motion_problem`).
+    #[error("{0}: {1}")]
+    Motion(String, String),
 }
 
 /// Whether effects are decided by the scene or all forced on.

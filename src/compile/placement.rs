@@ -6,7 +6,9 @@
 use super::CompileError;
 use crate::render_scene::{Geometry, Instance, Placement, Prototype, Sphere, TriangleMesh, Trs};
 use crate::scene::{MeshData, ObjectDesc, ShapeDesc};
-use crate::transform::{normal_matrix, uniform_scale};
+use crate::transform::{
+    invertible_in_f32, motion_problem, normal_matrix, scale_rotation_translation, uniform_scale,
+};
 use glam::{Affine3A, DAffine3, DMat4, Vec3};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -53,12 +55,7 @@ fn place_mesh(
 
 /// Translation · rotation · scale of `m`, or `None` if `m` shears.
 fn decompose(m: &DAffine3) -> Option<Trs> {
-    let (scale, rotation, translation) = m.to_scale_rotation_translation();
-    let back = DAffine3::from_scale_rotation_translation(scale, rotation, translation);
-    let tolerance = 1e-9 * m.matrix3.abs().to_cols_array().iter().fold(1.0f64, |a, &b| a.max(b));
-    if !back.matrix3.abs_diff_eq(m.matrix3, tolerance) || !scale.is_finite() {
-        return None;
-    }
+    let (scale, rotation, translation) = scale_rotation_translation(m)?;
     Some(Trs {
         translation: translation.as_vec3(),
         rotation: rotation.as_quat().normalize(),
@@ -110,7 +107,8 @@ impl Placer {
     pub(super) fn place(&mut self, object: &ObjectDesc) -> Result<(), CompileError> {
         let name = &object.name;
         let render_from_object = self.render_from_world * object.world_from_object;
-        if !render_from_object.is_finite() || render_from_object.matrix3.determinant() == 0.0 {
+        // Refused here for both backends, in the precision they hold it in.
+        if !render_from_object.is_finite() || !invertible_in_f32(&render_from_object) {
             return Err(CompileError::SingularTransform(name.clone()));
         }
         let moving = object.is_moving() || self.force_motion;
@@ -119,10 +117,15 @@ impl Placer {
             if moving {
                 let end = render_from_world
                     * object.world_from_object_end.unwrap_or(object.world_from_object);
-                let start = decompose(&render_from_object)
-                    .ok_or_else(|| CompileError::MotionShear(name.clone()))?;
-                let end = decompose(&end).ok_or_else(|| CompileError::MotionShear(name.clone()))?;
-                Ok(Placement::Moving { start, end })
+                // Refused here for both backends (Embree would refuse a change of sign too).
+                let problem = motion_problem(&render_from_object, &end);
+                match (problem, decompose(&render_from_object), decompose(&end)) {
+                    (None, Some(start), Some(end)) => Ok(Placement::Moving { start, end }),
+                    (problem, ..) => {
+                        let problem = problem.unwrap_or_else(|| "does not decompose".to_owned());
+                        Err(CompileError::Motion(name.clone(), problem))
+                    }
+                }
             } else {
                 Ok(Placement::Static {
                     render_from_object: to_affine_f32(&render_from_object),

@@ -45,7 +45,10 @@ fn sphere_light_needs_a_positive_radius() {
         &["scene.toml: lights[0] (sphere light) is missing the field `radius` (line 6)"],
     );
     let err = load_err(&format!("{light}radius = 0\n"));
-    assert_contains(&err, &["lights[0].radius is 0, but must be > 0 (line 10)"]);
+    assert_contains(
+        &err,
+        &["lights[0].radius is 0, but must be > 0 and at least 1.1754944e-38", "(line 10)"],
+    );
     let err = load_err(&format!("{light}radius = 0.5\ntransform = [{{ scale = 0 }}]\n"));
     assert_contains(&err, &["lights[0].transform[0]: scale [0, 0, 0] is singular"]);
 }

@@ -88,6 +88,34 @@ fn non_uniformly_scaled_sphere_is_an_ellipsoid_but_singular_is_rejected() {
     );
 }
 
+/// Invertible in f64 but not in f32, which render space and both backends hold it in: a
+/// scale of 1e-200 along one axis (Embree used to refuse it with no file or line, and obvhs
+/// rendered it).
+#[test]
+fn a_transform_singular_in_f32_is_named() {
+    let err = load_err(&scene_with(&format!("{BOX}transform = [{{ scale = [1e-200, 1, 1] }}]\n")));
+    assert_contains(
+        &err,
+        &["objects[0].transform: the composed transform is singular in f32", "(line 13)"],
+    );
+}
+
+/// A motion whose scale changes sign (a mirror at one end only) would pass through a
+/// singular transform: refused at the line of `transform_end`, for both backends.
+#[test]
+fn a_motion_that_mirrors_on_the_way_is_named() {
+    let err = load_err(&scene_with(&format!(
+        "{BOX}transform = [{{ translate = [0, 0, 0] }}]\ntransform_end = [{{ scale = [-1, 1, 1] }}]\n"
+    )));
+    assert_contains(
+        &err,
+        &["objects[0].transform_end: the scale is zero or changes sign", "(line 14)"],
+    );
+    // Mirrored at both ends, it does not change sign.
+    let both = "transform = [{ scale = [-1, 1, 1] }]\ntransform_end = [{ scale = [-2, 1, 1] }]\n";
+    scene::load_str(&scene_with(&format!("{BOX}{both}")), &source()).expect("mirrored throughout");
+}
+
 #[test]
 fn singular_transform_end_is_named() {
     let err = load_err(&scene_with(&format!("{BOX}transform_end = [{{ scale = [1, 0, 1] }}]\n")));

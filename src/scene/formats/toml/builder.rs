@@ -138,6 +138,15 @@ impl Builder<'_> {
             Some(entries) => Some(self.transform(path, "transform_end", Some(entries))?),
             None => None,
         };
+        if let Some(problem) = end.and_then(|end| crate::transform::motion_problem(&start, &end)) {
+            let field = path.key("transform_end");
+            return Err(SceneError::Transform {
+                file: self.ctx.file.to_path_buf(),
+                field: field.to_string(),
+                problem,
+                line: self.ctx.line(&field),
+            });
+        }
         Ok(Placement { start, end })
     }
 

@@ -30,6 +30,14 @@ pub(crate) fn world_from_object(ops: &[TransformOp]) -> Result<DAffine3, Transfo
             message: "the composed transform is singular or overflows".to_owned(),
         });
     }
+    if !crate::transform::invertible_in_f32(&world_from_object) {
+        return Err(TransformProblem {
+            entry: None,
+            message: "the composed transform is singular in f32, which render space holds it \
+                      in (a scale too small, or too small against the others)"
+                .to_owned(),
+        });
+    }
     Ok(world_from_object)
 }
 

@@ -26,7 +26,7 @@ impl Ctx<'_> {
         SceneError::OutOfRange {
             file: self.file.to_path_buf(),
             field: path.to_string(),
-            value: value.to_string(),
+            value: short_number(value.to_string()),
             requirement: requirement.to_owned(),
             line: self.line(path),
         }
@@ -45,6 +45,15 @@ impl Ctx<'_> {
 
     pub(crate) fn positive(&self, path: &FieldPath, value: f64) -> Result<f64, SceneError> {
         self.require(value > 0.0, path, value, "> 0")?;
+        Ok(value)
+    }
+
+    /// A length that render space holds in f32: > 0 there too (1e-300 rounds to 0).
+    pub(crate) fn positive_length(&self, path: &FieldPath, value: f64) -> Result<f64, SceneError> {
+        let requirement =
+            format!("> 0 and at least {:e} (f32's smallest normal number)", f32::MIN_POSITIVE);
+        // (Too large a length is the coordinate limit's to refuse, with its own message.)
+        self.require(value >= f64::from(f32::MIN_POSITIVE), path, value, &requirement)?;
         Ok(value)
     }
 
@@ -136,5 +145,14 @@ impl Ctx<'_> {
             second: second.to_owned(),
             line: self.line(&path.key(second)),
         }
+    }
+}
+
+/// `value` as written, but a number whose decimal form is long (1e300 prints 301 digits)
+/// in scientific notation.
+fn short_number(value: String) -> String {
+    match value.parse::<f64>() {
+        Ok(number) if value.len() > 24 => format!("{number:e}"),
+        _ => value,
     }
 }
