@@ -16,8 +16,11 @@ pub struct LinearComparison {
     pub mean_b: DVec3,
     /// √(mean over channels and pixels of (a − b)²), over pixels finite in both.
     pub rmse: f64,
-    /// Relative MSE, largest difference and the fraction of pixels off by 1 % of `b`'s mean.
+    /// Relative MSE, largest difference and the fraction of pixels off by 1 % of `b`'s mean
+    /// (its `non_finite`: `a`'s pixels that are NaN or infinite).
     pub error: ImageError,
+    /// `b`'s pixels that are NaN or infinite (left out of every figure, as `a`'s are).
+    pub non_finite_b: usize,
 }
 
 impl LinearComparison {
@@ -52,8 +55,8 @@ pub fn compare_films(a: &Film, b: &Film) -> Result<LinearComparison, CompareErro
         }
     }
     // An RMSE of 0 over no pixel would read as a perfect match.
+    let count = |f: &Film| f.non_finite().map_or(0, |nf| nf.count);
     if n == 0 {
-        let count = |f: &Film| f.non_finite().map_or(0, |nf| nf.count);
         return Err(CompareError::NothingFinite { a: count(a), b: count(b) });
     }
     Ok(LinearComparison {
@@ -63,6 +66,7 @@ pub fn compare_films(a: &Film, b: &Film) -> Result<LinearComparison, CompareErro
         mean_b: mean(b),
         rmse: (sum2 / n.max(1) as f64).sqrt(),
         error: image_error(a, b),
+        non_finite_b: count(b),
     })
 }
 
@@ -70,6 +74,22 @@ pub fn compare_films(a: &Film, b: &Film) -> Result<LinearComparison, CompareErro
 mod tests {
     use super::*;
     use glam::Vec3;
+
+    /// A reference pixel that is NaN is counted and left out, as the first image's are: the
+    /// figures stay those of the finite pixels, not NaN (nor a perfect 0 with no word).
+    #[test]
+    fn a_non_finite_reference_pixel_is_counted_and_left_out() {
+        let mut a = Film::new(3, 1);
+        let mut b = Film::new(3, 1);
+        a.color = vec![Vec3::splat(1.0), Vec3::splat(2.0), Vec3::splat(5.0)];
+        b.color = vec![Vec3::splat(1.0), Vec3::splat(1.0), Vec3::splat(f32::NAN)];
+        let c = compare_films(&a, &b).unwrap();
+        assert_eq!((c.non_finite_b, c.error.non_finite), (1, 0));
+        assert_eq!(c.mean_b, DVec3::splat(1.0));
+        // Over the two finite pixels: errors 0 and 1 a channel, against references of 1.
+        assert_eq!(c.error.relative_mse, 3.0 / 6.0);
+        assert_eq!(c.error.max_abs, 1.0);
+    }
 
     #[test]
     fn figures_of_a_known_difference() {

@@ -106,11 +106,11 @@ fn compare_linear(a: &Path, b: &Path) -> Result<()> {
         c.error.pixel_relative_mse,
         c.error.max_abs,
         100.0 * c.error.fraction_off,
-        if c.error.non_finite > 0 {
-            format!("; {} non-finite pixels in the first", c.error.non_finite)
-        } else {
-            String::new()
-        }
+        [(c.error.non_finite, "first"), (c.non_finite_b, "second")]
+            .iter()
+            .filter(|(count, _)| *count > 0)
+            .map(|(count, which)| format!("; {count} non-finite pixels in the {which} (left out)"))
+            .collect::<String>()
     ))?;
     Ok(())
 }
