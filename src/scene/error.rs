@@ -96,10 +96,18 @@ pub enum SceneError {
     /// data, out-of-range index, non-finite number, no faces. `ply_line` is the line in an
     /// ASCII PLY file (or its header).
     #[error(
-        "PLY file '{}'{ply_line}: {}; named by {item}.file in '{}'",
+        "PLY file '{}'{ply_line}: {}; named by {item}.file in '{}'{line}",
         .ply.display(), brief(.problem), .scene.display()
     )]
-    PlyData { ply: PathBuf, ply_line: Line, scene: PathBuf, item: String, problem: String },
+    PlyData {
+        ply: PathBuf,
+        ply_line: Line,
+        scene: PathBuf,
+        item: String,
+        problem: String,
+        /// The line of the scene that names the file.
+        line: Line,
+    },
 
     /// An image a texture names is missing, unreadable, not a PNG, JPEG or BMP, corrupt or too
     /// large.

@@ -126,6 +126,7 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
                 scene: mesh_ref.scene.to_path_buf(),
                 item: mesh_ref.item.clone(),
                 problem: problem.message,
+                line: mesh_ref.line,
             })?;
             let model =
                 CachedModel { name: None, material: None, mesh: Arc::new(mesh), toggled: None };

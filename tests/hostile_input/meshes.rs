@@ -43,7 +43,7 @@ refused_cases! {
     ply_header_counts_fewer_faces: ["s.toml" => with_mesh("m.ply"), "m.ply" => ply(4, 1, PLY_BODY)], ["render", "s.toml"]
         => ["m.ply", "goes on after the last element", "line 15"];
     ply_truncated: ["s.toml" => with_mesh("m.ply"), "m.ply" => ply(4, 3, PLY_BODY)], ["render", "s.toml"]
-        => ["m.ply", "ends in face 2 of 3"];
+        => ["m.ply", "ends in face 2 of 3", "named by objects[1].file in 's.toml' (line 26)"];
     ply_huge_token: ["s.toml" => with_mesh("m.ply"), "m.ply" => ply(4, 2, &PLY_BODY.replacen("0 0 0", &format!("0 {} 0", "x".repeat(1_000_000)), 1))], ["render", "s.toml"]
         => ["m.ply", "characters)", "line 10"];
     ply_not_a_ply: ["s.toml" => with_mesh("m.ply"), "m.ply" => "solid stl\n"], ["render", "s.toml"]
