@@ -9,7 +9,7 @@ fn brief(text: &str) -> String {
     shorten_message(text, 300)
 }
 use std::fmt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// A line number in the scene (or OBJ/MTL) file, when known. Displays as ` (line N)` or as
 /// nothing, so that messages read the same either way.
@@ -100,9 +100,10 @@ pub enum SceneError {
         .ply.display(), brief(.problem), .scene.display()
     )]
     PlyData {
-        ply: PathBuf,
+        /// Boxed paths, so that this variant, the largest, keeps `SceneError` small.
+        ply: Box<Path>,
         ply_line: Line,
-        scene: PathBuf,
+        scene: Box<Path>,
         item: String,
         problem: String,
         /// The line of the scene that names the file.

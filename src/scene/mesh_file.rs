@@ -121,9 +121,9 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
                     line: mesh_ref.line,
                 })?;
             let mesh = ply::parse(&bytes).map_err(|problem| SceneError::PlyData {
-                ply: path.clone(),
+                ply: path.clone().into_boxed_path(),
                 ply_line: crate::scene::error::Line(problem.line),
-                scene: mesh_ref.scene.to_path_buf(),
+                scene: mesh_ref.scene.to_path_buf().into_boxed_path(),
                 item: mesh_ref.item.clone(),
                 problem: problem.message,
                 line: mesh_ref.line,

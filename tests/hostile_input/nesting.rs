@@ -121,22 +121,17 @@ fn mitsuba_includes_that_fan_out_are_refused_at_the_limit() {
 
 #[test]
 fn a_mitsuba_property_given_twice_is_refused_as_mitsuba_refuses_it() {
-    let scratch = Scratch::new();
     let sensor = "<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\
                   <float name=\"fov\" value=\"90\"/></sensor>\n<bsdf type=\"diffuse\" id=\"d\"/>";
-    scratch.write("fov.xml", xml_with(sensor, "d"));
-    refused_in(
-        &scratch,
-        &["info", "fov.xml"],
-        &["fov.xml", "the property `fov` is given twice", "line 2"],
-    );
     let shape = "<bsdf type=\"diffuse\" id=\"d\"/>\n<shape type=\"rectangle\">\
                  <transform name=\"to_world\"><scale value=\"2\"/></transform>\n\
                  <transform name=\"to_world\"><translate x=\"1\"/></transform><ref id=\"d\"/></shape>";
-    scratch.write("to_world.xml", xml_with(shape, "d"));
-    refused_in(
-        &scratch,
-        &["info", "to_world.xml"],
-        &["to_world.xml", "`to_world` is given twice", "line 4"],
-    );
+    let scratch = Scratch::new();
+    for (file, before, property, line) in
+        [("fov.xml", sensor, "fov", "line 2"), ("to_world.xml", shape, "to_world", "line 4")]
+    {
+        scratch.write(file, xml_with(before, "d"));
+        let twice = format!("the property `{property}` is given twice");
+        refused_in(&scratch, &["info", file], &[file, &twice, line]);
+    }
 }
