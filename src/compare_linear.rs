@@ -16,11 +16,9 @@ pub struct LinearComparison {
     pub mean_b: DVec3,
     /// √(mean over channels and pixels of (a − b)²), over pixels finite in both.
     pub rmse: f64,
-    /// Relative MSE, largest difference and the fraction of pixels off by 1 % of `b`'s mean
-    /// (its `non_finite`: `a`'s pixels that are NaN or infinite).
+    /// Relative MSE, largest difference and the fraction of pixels off by 1 % of `b`'s
+    /// mean, and the pixels left out of them (NaN or infinite in either).
     pub error: ImageError,
-    /// `b`'s pixels that are NaN or infinite (left out of every figure, as `a`'s are).
-    pub non_finite_b: usize,
 }
 
 impl LinearComparison {
@@ -55,8 +53,8 @@ pub fn compare_films(a: &Film, b: &Film) -> Result<LinearComparison, CompareErro
         }
     }
     // An RMSE of 0 over no pixel would read as a perfect match.
-    let count = |f: &Film| f.non_finite().map_or(0, |nf| nf.count);
     if n == 0 {
+        let count = |f: &Film| f.non_finite().map_or(0, |nf| nf.count);
         return Err(CompareError::NothingFinite { a: count(a), b: count(b) });
     }
     Ok(LinearComparison {
@@ -66,7 +64,6 @@ pub fn compare_films(a: &Film, b: &Film) -> Result<LinearComparison, CompareErro
         mean_b: mean(b),
         rmse: (sum2 / n.max(1) as f64).sqrt(),
         error: image_error(a, b),
-        non_finite_b: count(b),
     })
 }
 
@@ -84,11 +81,13 @@ mod tests {
         a.color = vec![Vec3::splat(1.0), Vec3::splat(2.0), Vec3::splat(5.0)];
         b.color = vec![Vec3::splat(1.0), Vec3::splat(1.0), Vec3::splat(f32::NAN)];
         let c = compare_films(&a, &b).unwrap();
-        assert_eq!((c.non_finite_b, c.error.non_finite), (1, 0));
+        assert_eq!((c.error.non_finite_reference, c.error.non_finite), (1, 0));
         assert_eq!(c.mean_b, DVec3::splat(1.0));
         // Over the two finite pixels: errors 0 and 1 a channel, against references of 1.
         assert_eq!(c.error.relative_mse, 3.0 / 6.0);
         assert_eq!(c.error.max_abs, 1.0);
+        assert_eq!(c.error.pixel_relative_mse, 3.0 / 1.01 / 6.0);
+        assert_eq!(c.error.fraction_off, 0.5);
     }
 
     #[test]

@@ -12,10 +12,14 @@ pub struct ImageError {
     pub pixel_relative_mse: f64,
     /// Largest absolute difference of any channel.
     pub max_abs: f64,
-    /// Fraction of pixels with a channel off by more than 1 % of the reference's mean value.
+    /// Fraction of the pixels compared (finite in both) with a channel off by more than 1 %
+    /// of the reference's mean value.
     pub fraction_off: f64,
-    /// Pixels of the test image that are NaN or infinite (excluded from the other numbers).
+    /// Pixels of the test image that are NaN or infinite, and of the reference where the
+    /// test's are finite: both excluded from every other number (a NaN in either must be
+    /// seen here, not hidden or spread into a NaN figure).
     pub non_finite: usize,
+    pub non_finite_reference: usize,
 }
 
 /// Compares `test` with `reference` (same size).
@@ -25,12 +29,11 @@ pub fn image_error(test: &Film, reference: &Film) -> ImageError {
         (reference.width, reference.height),
         "image sizes differ"
     );
-    // A reference pixel that is not finite is left out of every figure (a reference read by
-    // `embray compare` may have one; the benches' are checked finite): counted by the caller.
     let finite_reference = reference.color.iter().filter(|c| c.is_finite());
     let mean = finite_reference.clone().map(|c| c.element_sum() as f64).sum::<f64>()
         / (3.0 * finite_reference.count().max(1) as f64);
-    let (mut err2, mut ref2, mut max_abs, mut off, mut non_finite) = (0.0, 0.0, 0.0f64, 0, 0);
+    let (mut err2, mut ref2, mut max_abs, mut off) = (0.0, 0.0, 0.0f64, 0);
+    let (mut non_finite, mut non_finite_reference) = (0, 0);
     let mut pixel_relative = 0.0;
     for (a, b) in test.color.iter().zip(&reference.color) {
         if !a.is_finite() {
@@ -38,6 +41,7 @@ pub fn image_error(test: &Film, reference: &Film) -> ImageError {
             continue;
         }
         if !b.is_finite() {
+            non_finite_reference += 1;
             continue;
         }
         let d = (*a - *b).as_dvec3();
@@ -50,12 +54,14 @@ pub fn image_error(test: &Film, reference: &Film) -> ImageError {
             off += 1;
         }
     }
+    let compared = (test.color.len() - non_finite - non_finite_reference).max(1);
     ImageError {
         relative_mse: if ref2 > 0.0 { err2 / ref2 } else { err2 },
-        pixel_relative_mse: pixel_relative / (3 * (test.color.len() - non_finite).max(1)) as f64,
+        pixel_relative_mse: pixel_relative / (3 * compared) as f64,
         max_abs,
-        fraction_off: off as f64 / test.color.len().max(1) as f64,
+        fraction_off: off as f64 / compared as f64,
         non_finite,
+        non_finite_reference,
     }
 }
 
@@ -74,7 +80,8 @@ mod tests {
         b.color[1] = Vec3::splat(3.0);
         let e = image_error(&b, &a);
         assert_eq!(e.non_finite, 1);
-        assert!((e.max_abs - 1.0).abs() < 1e-12 && e.fraction_off == 0.5);
+        // Of the pixels compared (finite in both), the one is off.
+        assert!((e.max_abs - 1.0).abs() < 1e-12 && e.fraction_off == 1.0);
         // Only the finite pixel counts: 1² / (2² + 0.01) per channel.
         assert!((e.pixel_relative_mse - 1.0 / 4.01).abs() < 1e-9, "{}", e.pixel_relative_mse);
         // Energy-weighted against per pixel: the bright pixel's error swamps the first, not

@@ -26,6 +26,19 @@ pub const MAX_XML_ELEMENTS: usize = 4_000_000;
 /// `<include>`s read for one Mitsuba scene (a file that includes the next four times, 16
 /// deep, would read 4¹⁶).
 pub const MAX_XML_INCLUDES: usize = 10_000;
+/// Bytes of a Mitsuba scene's files read, an include counted each time it is read: the
+/// input-file cap, for the whole scene.
+pub const MAX_XML_BYTES: u64 = 2 << 30;
+/// How deep a Mitsuba scene's elements may nest, through includes too: each level is a
+/// call of the reader (and of the plugins that read it, and of dropping it), so a file of
+/// 200,000 nested tags would overflow the stack. Mitsuba's own scenes nest fewer than 10.
+pub const MAX_XML_NESTING: usize = 100;
+/// How deep BSDFs may nest inside one another, through `<ref>`s too (a `<ref>` that leads
+/// back to its own BSDF would never end).
+pub const MAX_BSDF_NESTING: usize = 64;
+/// Bytes of one attribute value after its `$name`s are replaced (defaults made of defaults
+/// double at each).
+pub const MAX_XML_VALUE: usize = 1 << 20;
 /// Repetitions of a measurement (`bench --runs`).
 pub const MAX_RUNS: u32 = 1000;
 /// The largest coordinate a scene may reach in render space (f32): measured from the

@@ -28,7 +28,7 @@ pub fn markdown(rows: &[Measurement]) -> String {
             r.error.relative_mse,
             r.error.max_abs,
             r.error.fraction_off * 100.0,
-            r.error.non_finite,
+            r.error.non_finite + r.error.non_finite_reference,
         );
     }
     out
@@ -60,7 +60,7 @@ pub fn csv(rows: &[Measurement]) -> String {
             r.error.relative_mse,
             r.error.max_abs,
             r.error.fraction_off,
-            r.error.non_finite,
+            r.error.non_finite + r.error.non_finite_reference,
         );
     }
     out

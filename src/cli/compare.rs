@@ -106,7 +106,7 @@ fn compare_linear(a: &Path, b: &Path) -> Result<()> {
         c.error.pixel_relative_mse,
         c.error.max_abs,
         100.0 * c.error.fraction_off,
-        [(c.error.non_finite, "first"), (c.non_finite_b, "second")]
+        [(c.error.non_finite, "first"), (c.error.non_finite_reference, "second")]
             .iter()
             .filter(|(count, _)| *count > 0)
             .map(|(count, which)| format!("; {count} non-finite pixels in the {which} (left out)"))

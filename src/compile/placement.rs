@@ -117,6 +117,9 @@ impl Placer {
             if moving {
                 let end = render_from_world
                     * object.world_from_object_end.unwrap_or(object.world_from_object);
+                if !end.is_finite() || !invertible_in_f32(&end) {
+                    return Err(CompileError::SingularTransform(name.clone()));
+                }
                 // Refused here for both backends (Embree would refuse a change of sign too).
                 let problem = motion_problem(&render_from_object, &end);
                 match (problem, decompose(&render_from_object), decompose(&end)) {

@@ -123,9 +123,10 @@ pub enum SceneError {
     #[error("{}: {item} takes `{first}` or `{second}`, not both{line}", .file.display())]
     Conflict { file: PathBuf, item: String, first: String, second: String, line: Line },
 
-    /// A CENG795 XML scene: malformed XML, an unsupported element, a value that cannot be
-    /// read or a reference to something undefined. `element` is the element's path below
-    /// `<Scene>` (`<Objects > Mesh id="3" > Faces>`).
+    /// An XML scene (CENG795 or Mitsuba 3): malformed XML, an unsupported element, a value
+    /// that cannot be read or a reference to something undefined; also a `-D` parameter no
+    /// scene can use (`element` is then the `-D`). `element` is the element's path below the
+    /// root (`<Objects > Mesh id="3" > Faces>`) or its tag.
     #[error("{}: {}: {}{line}", .file.display(), brief(.element), brief(.problem))]
     Xml { file: PathBuf, element: String, problem: String, line: Line },
 

@@ -135,3 +135,48 @@ fn a_mitsuba_property_given_twice_is_refused_as_mitsuba_refuses_it() {
         refused_in(&scratch, &["info", file], &[file, &twice, line]);
     }
 }
+
+/// A property in an included file and beside the `<include>` is given twice too: Mitsuba
+/// reads both into one plugin's properties.
+#[test]
+fn a_property_given_again_by_an_include_is_refused() {
+    let scratch = Scratch::new();
+    scratch.write(
+        "radius.xml",
+        "<scene version=\"3.0.0\"><float name=\"radius\" value=\"2\"/></scene>\n",
+    );
+    let shape = "<bsdf type=\"diffuse\" id=\"d\"/>\n<shape type=\"sphere\" id=\"s\">\
+                 <float name=\"radius\" value=\"1\"/>\n<include filename=\"radius.xml\"/><ref id=\"d\"/></shape>";
+    scratch.write("s.xml", format!("<scene version=\"3.0.0\">\n{shape}\n</scene>\n"));
+    refused_in(
+        &scratch,
+        &["info", "s.xml"],
+        &["radius.xml", "the property `radius` is given twice", "line 1"],
+    );
+}
+
+/// Defaults made of defaults double at each: 2^40 bytes from 40 lines, refused at 1 MiB.
+#[test]
+fn defaults_that_double_at_each_are_refused() {
+    let mut defaults = String::from("<default name=\"a0\" value=\"xx\"/>\n");
+    for k in 1..40 {
+        defaults += &format!("<default name=\"a{k}\" value=\"$a{}$a{}\"/>\n", k - 1, k - 1);
+    }
+    let scratch = Scratch::new();
+    scratch.write("s.xml", xml_with(&defaults, "a"));
+    let expected = ["s.xml", "a value grows past 1048576 bytes as $names are replaced"];
+    refused_quickly(&scratch, &["info", "s.xml"], &expected);
+}
+
+/// The nesting bound is the whole scene's: includes do not start it again.
+#[test]
+fn nesting_through_includes_is_bounded_too() {
+    let scratch = Scratch::new();
+    let (open, close) = ("<bsdf type=\"twosided\">".repeat(60), "</bsdf>".repeat(60));
+    for k in 0..3 {
+        let inner = format!("{open}<include filename=\"n{}.xml\"/>{close}", k + 1);
+        scratch.write(&format!("n{k}.xml"), format!("<scene version=\"3.0.0\">{inner}</scene>\n"));
+    }
+    scratch.write("n3.xml", "<scene version=\"3.0.0\"><bsdf type=\"diffuse\"/></scene>\n");
+    refused_quickly(&scratch, &["info", "n0.xml"], &["n1.xml", "elements nest deeper than 100"]);
+}

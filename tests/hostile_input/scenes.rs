@@ -92,6 +92,8 @@ fn whitted_depth_2000_between_mirrors_renders_64x64() {
 refused_cases! {
     define_with_a_toml_scene: ["s.toml" => scene("")], ["render", "s.toml", "-D", "spp=64"]
         => ["s.toml", "-D spp=64", "parameters are for Mitsuba 3 scenes", "a TOML scene"];
+    define_with_a_ceng795_scene: ["s.xml" => crate::harness::xml_scene(&["s.png"], "")], ["render", "s.xml", "-D", "spp=64"]
+        => ["s.xml", "-D spp=64", "a CENG795 scene"];
     define_with_the_built_in_scene: [], ["info", "-D", "spp=64"]
         => ["-D spp=64", "the built-in Cornell box"];
     define_the_mitsuba_scene_does_not_name: ["s.xml" => MITSUBA_WITH_SPP.to_owned()], ["render", "s.xml", "-D", "sp=64"]

@@ -60,10 +60,6 @@ pub(super) struct Ids {
     nesting: Cell<usize>,
 }
 
-/// BSDFs nested deeper than this, through `<ref>`s, are refused: each level is a call of the
-/// reader, and a `<ref>` that leads back to its own BSDF would never end.
-const MAX_BSDF_NESTING: usize = 64;
-
 impl Ids {
     /// `read` (the BSDFs inside `element`) one level deeper: refused past
     /// `MAX_BSDF_NESTING`.
@@ -73,10 +69,10 @@ impl Ids {
         read: impl FnOnce() -> Result<T, SceneError>,
     ) -> Result<T, SceneError> {
         let level = self.nesting.get();
-        if level >= MAX_BSDF_NESTING {
+        if level >= crate::limits::MAX_BSDF_NESTING {
             return Err(element.error(format!(
-                "BSDFs nest deeper than {MAX_BSDF_NESTING} (does a <ref> lead back to a BSDF \
-                 that holds it?)"
+                "BSDFs nest deeper than {} (does a <ref> lead back to a BSDF that holds it?)",
+                crate::limits::MAX_BSDF_NESTING
             )));
         }
         self.nesting.set(level + 1);

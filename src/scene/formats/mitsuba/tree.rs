@@ -4,7 +4,9 @@
 //! Every element keeps its file and line for messages.
 
 use crate::excerpt::excerpt;
-use crate::limits::{MAX_XML_ELEMENTS, MAX_XML_INCLUDES};
+use crate::limits::{
+    MAX_XML_BYTES, MAX_XML_ELEMENTS, MAX_XML_INCLUDES, MAX_XML_NESTING, MAX_XML_VALUE,
+};
 use crate::scene::error::{Line, SceneError};
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -12,10 +14,6 @@ use std::sync::Arc;
 
 /// Includes deeper than this are refused (a file that includes itself would never end).
 const MAX_INCLUDE_DEPTH: usize = 16;
-/// Elements nested deeper than this are refused: each level is a call of the reader (and of
-/// the plugins that read it, and of dropping it), so a file of 200,000 nested tags would
-/// overflow the stack. Mitsuba's own scenes nest fewer than 10 deep.
-const MAX_NESTING: usize = 100;
 
 #[derive(Clone, Debug)]
 pub(super) struct Element {
@@ -90,9 +88,10 @@ pub(super) fn read(
         resolver: FileResolver { folders: vec![folder] },
         elements: 0,
         includes: 0,
+        bytes: 0,
         named: HashSet::new(),
     };
-    let root = reader.file(path, text, 0)?;
+    let root = reader.file(path, text, (0, 0))?;
     // As Mitsuba has it: a parameter the scene never names is a mistake (a misspelt name,
     // or a value meant for another scene), not something to drop without a word.
     if let Some((name, value)) = defines.iter().find(|(name, _)| !reader.named.contains(name)) {
@@ -125,12 +124,34 @@ struct Reader {
     elements: usize,
     /// `<include>`s read so far (`limits::MAX_XML_INCLUDES`).
     includes: usize,
+    /// Bytes of the scene's files read so far, each include each time (`limits::MAX_XML_BYTES`).
+    bytes: u64,
     /// The parameters the scene names: in a `$name` or a `<default>`.
     named: HashSet<String>,
 }
 
 impl Reader {
-    fn file(&mut self, path: &Path, text: &str, depth: usize) -> Result<Element, SceneError> {
+    /// The file at `path`, `depth` includes deep, its root at nesting `level` (where the
+    /// `<include>` that reads it is: the bound on nesting is the whole scene's).
+    fn file(
+        &mut self,
+        path: &Path,
+        text: &str,
+        (depth, level): (usize, usize),
+    ) -> Result<Element, SceneError> {
+        self.bytes += text.len() as u64;
+        if self.bytes > MAX_XML_BYTES {
+            return Err(SceneError::Xml {
+                file: path.to_path_buf(),
+                element: "the document".to_owned(),
+                problem: format!(
+                    "the scene's files, its includes counted each time they are read, exceed \
+                     {} bytes",
+                    MAX_XML_BYTES
+                ),
+                line: Line(None),
+            });
+        }
         let options = roxmltree::ParsingOptions {
             allow_dtd: false,
             nodes_limit: 4_000_000,
@@ -146,7 +167,7 @@ impl Reader {
         })?;
         let file = Arc::new(path.to_path_buf());
         let root = doc.root_element();
-        let mut element = self.element(root, &file, &doc, (depth, 0))?;
+        let mut element = self.element(root, &file, &doc, (depth, level))?;
         if element.tag != "scene" {
             return Err(element.error("the root element of a Mitsuba 3 file must be <scene>"));
         }
@@ -188,19 +209,11 @@ impl Reader {
         if element.tag == "spectrum" {
             self.read_spectrum_file(&mut element)?;
         }
-        let mut names = HashSet::new();
         for child in node.children().filter(roxmltree::Node::is_element) {
-            if level + 1 > MAX_NESTING {
-                return Err(element.error(format!("elements nest deeper than {MAX_NESTING}")));
+            if level + 1 > MAX_XML_NESTING {
+                return Err(element.error(format!("elements nest deeper than {MAX_XML_NESTING}")));
             }
             let child = self.element(child, file, doc, (depth, level + 1))?;
-            // Each named child is a property of its plugin, given once (as Mitsuba has it).
-            if let Some(name) = child.attr("name")
-                && !matches!(child.tag.as_str(), "default" | "include" | "path")
-                && !names.insert(name.to_owned())
-            {
-                return Err(child.error(format!("the property `{name}` is given twice")));
-            }
             match child.tag.as_str() {
                 "default" => {
                     let name = child.required("name")?.to_owned();
@@ -230,10 +243,20 @@ impl Reader {
                     let text = crate::input_file::read_text(&path).map_err(|e| {
                         child.error(format!("cannot read '{}': {e}", path.display()))
                     })?;
-                    let included = self.file(&path, &text, depth + 1)?;
+                    let included = self.file(&path, &text, (depth + 1, level))?;
                     element.children.extend(included.children);
                 }
                 _ => element.children.push(child),
+            }
+        }
+        // Each named child is a property of its plugin, given once (as Mitsuba has it),
+        // those an `<include>` spliced in too.
+        let mut names = HashSet::new();
+        for child in &element.children {
+            if let Some(name) = child.attr("name")
+                && !names.insert(name)
+            {
+                return Err(child.error(format!("the property `{name}` is given twice")));
             }
         }
         Ok(element)
@@ -276,6 +299,12 @@ impl Reader {
                 )));
             };
             out += replacement;
+            if out.len() > MAX_XML_VALUE {
+                // Defaults made of defaults double at each: 2^n bytes from n lines.
+                let limit =
+                    format!("a value grows past {MAX_XML_VALUE} bytes as $names are replaced");
+                return Err(element.error(limit));
+            }
             rest = &rest[at + 1 + name.len()..];
             self.named.insert(name);
         }

@@ -1,6 +1,7 @@
 //! The PLY header: the encoding and the elements with their typed properties.
 
 use super::{PlyProblem, problem};
+use std::collections::HashSet;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Encoding {
@@ -95,6 +96,8 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header, PlyProblem> {
     let mut line_number = 0;
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
+    // Names seen, in sets: a header may declare millions of properties.
+    let (mut element_names, mut property_names) = (HashSet::new(), HashSet::new());
     loop {
         let Some(length) = bytes[offset..].iter().position(|&b| b == b'\n') else {
             let message = if line_number == 0 {
@@ -138,7 +141,7 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header, PlyProblem> {
                     problem(at, format!("element '{name}' has an invalid count '{count}'"))
                 })?;
                 // Readers find an element by its name: a second one would be skipped unread.
-                if elements.iter().any(|e| e.name == *name) {
+                if !element_names.insert(*name) {
                     return Err(problem(at, format!("element '{name}' is declared twice")));
                 }
                 elements.push(Element {
@@ -149,6 +152,7 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header, PlyProblem> {
                 });
             }
             ["property", rest @ ..] => {
+                let element_index = elements.len();
                 let Some(element) = elements.last_mut() else {
                     return Err(problem(at, "a property comes before any element"));
                 };
@@ -170,7 +174,7 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header, PlyProblem> {
                     [ty, name] => (Kind::Scalar(scalar(ty)?), name),
                     _ => return Err(problem(at, format!("malformed property line '{text}'"))),
                 };
-                if element.find(name).is_some() {
+                if !property_names.insert((element_index, *name)) {
                     let twice =
                         format!("property '{name}' of '{}' is declared twice", element.name);
                     return Err(problem(at, twice));
