@@ -35,25 +35,29 @@ pub fn scale_rotation_translation(transform: &DAffine3) -> Option<(DVec3, DQuat,
     (!sheared && scale.is_finite()).then_some((scale, rotation, translation))
 }
 
-/// Why an object cannot move from `start` to `end` (each placed by translation · rotation ·
-/// scale, interpolated part by part), if it cannot: an end that shears, or a scale that
-/// is zero or changes sign on the way (the transform would be singular in between).
-pub fn motion_problem(start: &DAffine3, end: &DAffine3) -> Option<String> {
-    let (Some((from, ..)), Some((to, ..))) =
+/// The scale, rotation and translation of `start` and `end` that an object moving from one
+/// to the other interpolates part by part, or why it cannot move so: an end that shears, or
+/// a scale that is zero or changes sign on the way (the transform would be singular in
+/// between).
+pub fn motion_parts(
+    start: &DAffine3,
+    end: &DAffine3,
+) -> Result<[(DVec3, DQuat, DVec3); 2], String> {
+    let (Some(from), Some(to)) =
         (scale_rotation_translation(start), scale_rotation_translation(end))
     else {
-        return Some(
-            "a moving object's transform must be translation · rotation · scale (no shear) \
-             at both ends of the shutter interval"
-                .to_owned(),
-        );
+        return Err("a moving object's transform must be translation · rotation · scale (no \
+                    shear) at both ends of the shutter interval"
+            .to_owned());
     };
-    (from * to).cmple(DVec3::ZERO).any().then(|| {
-        format!(
-            "the scale is zero or changes sign on the way (from {from} to {to}): the transform \
-             would be singular in between"
-        )
-    })
+    if (from.0 * to.0).cmple(DVec3::ZERO).any() {
+        return Err(format!(
+            "the scale is zero or changes sign on the way (from {} to {}): the transform would \
+             be singular in between",
+            from.0, to.0
+        ));
+    }
+    Ok([from, to])
 }
 
 /// The uniform scale factor of a similarity transform (rotation × uniform scale ×

@@ -6,10 +6,8 @@
 use super::CompileError;
 use crate::render_scene::{Geometry, Instance, Placement, Prototype, Sphere, TriangleMesh, Trs};
 use crate::scene::{MeshData, ObjectDesc, ShapeDesc};
-use crate::transform::{
-    invertible_in_f32, motion_problem, normal_matrix, scale_rotation_translation, uniform_scale,
-};
-use glam::{Affine3A, DAffine3, DMat4, Vec3};
+use crate::transform::{invertible_in_f32, motion_parts, normal_matrix, uniform_scale};
+use glam::{Affine3A, DAffine3, DMat4, DQuat, DVec3, Vec3};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -53,14 +51,13 @@ fn place_mesh(
     Ok(baked.with_attributes(mesh.attributes.clone()))
 }
 
-/// Translation · rotation · scale of `m`, or `None` if `m` shears.
-fn decompose(m: &DAffine3) -> Option<Trs> {
-    let (scale, rotation, translation) = scale_rotation_translation(m)?;
-    Some(Trs {
+/// The interpolated form of a transform's scale, rotation and translation.
+fn trs((scale, rotation, translation): (DVec3, DQuat, DVec3)) -> Trs {
+    Trs {
         translation: translation.as_vec3(),
         rotation: rotation.as_quat().normalize(),
         scale: scale.as_vec3(),
-    })
+    }
 }
 
 /// Builds prototypes and instances object by object.
@@ -121,14 +118,9 @@ impl Placer {
                     return Err(CompileError::SingularTransform(name.clone()));
                 }
                 // Refused here for both backends (Embree would refuse a change of sign too).
-                let problem = motion_problem(&render_from_object, &end);
-                match (problem, decompose(&render_from_object), decompose(&end)) {
-                    (None, Some(start), Some(end)) => Ok(Placement::Moving { start, end }),
-                    (problem, ..) => {
-                        let problem = problem.unwrap_or_else(|| "does not decompose".to_owned());
-                        Err(CompileError::Motion(name.clone(), problem))
-                    }
-                }
+                let [start, end] = motion_parts(&render_from_object, &end)
+                    .map_err(|problem| CompileError::Motion(name.clone(), problem))?;
+                Ok(Placement::Moving { start: trs(start), end: trs(end) })
             } else {
                 Ok(Placement::Static {
                     render_from_object: to_affine_f32(&render_from_object),

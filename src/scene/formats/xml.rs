@@ -36,12 +36,10 @@ pub fn load_with_warnings(
 
 /// The error for `-D` given with a scene that has no parameters (of the format `kind`): it
 /// would change nothing, though it was meant to.
-pub fn not_a_parameter(path: &Path, (name, value): &(String, String), kind: &str) -> SceneError {
-    use crate::excerpt::excerpt;
-    SceneError::Xml {
-        file: path.to_path_buf(),
-        element: format!("-D {}={}", excerpt(name), excerpt(value)),
-        problem: format!("parameters are for Mitsuba 3 scenes, and this is {kind}"),
-        line: crate::scene::error::Line(None),
-    }
+pub fn not_a_parameter(path: &Path, define: &(String, String), kind: &str) -> SceneError {
+    mitsuba::define_error(
+        path,
+        define,
+        format!("parameters are for Mitsuba 3 scenes, and this is {kind}"),
+    )
 }

@@ -25,6 +25,7 @@ use crate::scene::mesh_file::MeshCache;
 use std::cell::Cell;
 use std::collections::HashMap;
 use std::path::Path;
+pub(super) use tree::define_error;
 use tree::{Element, FileResolver};
 
 /// Whether `text` is a Mitsuba scene: its root element is `<scene>` (lower case; the

@@ -94,22 +94,16 @@ pub(super) fn read(
     let root = reader.file(path, text, (0, 0))?;
     // As Mitsuba has it: a parameter the scene never names is a mistake (a misspelt name,
     // or a value meant for another scene), not something to drop without a word.
-    if let Some((name, value)) = defines.iter().find(|(name, _)| !reader.named.contains(name)) {
+    if let Some(define) = defines.iter().find(|(name, _)| !reader.named.contains(name)) {
         let mut known: Vec<&str> = reader.named.iter().map(String::as_str).collect();
         known.sort_unstable();
-        return Err(SceneError::Xml {
-            file: path.to_path_buf(),
-            element: format!("-D {}={}", excerpt(name), excerpt(value)),
-            problem: format!(
-                "the scene has no parameter `{}` (no ${} and no <default name=\"{}\">; its \
-                 parameters: {})",
-                excerpt(name),
-                excerpt(name),
-                excerpt(name),
-                if known.is_empty() { "none".to_owned() } else { known.join(", ") }
-            ),
-            line: Line(None),
-        });
+        let name = excerpt(&define.0);
+        let problem = format!(
+            "the scene has no parameter `{name}` (no ${name} and no <default name=\"{name}\">; \
+             its parameters: {})",
+            if known.is_empty() { "none".to_owned() } else { known.join(", ") }
+        );
+        return Err(define_error(path, define, problem));
     }
     Ok((root, reader.resolver))
 }
@@ -154,7 +148,7 @@ impl Reader {
         }
         let options = roxmltree::ParsingOptions {
             allow_dtd: false,
-            nodes_limit: 4_000_000,
+            nodes_limit: MAX_XML_ELEMENTS as u32,
             ..Default::default()
         };
         let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| {
@@ -315,5 +309,20 @@ impl Reader {
     fn relative_to(&self, element: &Element, value: &str) -> PathBuf {
         let base = element.file.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
         base.join(value)
+    }
+}
+
+/// The error `problem` with the `-D` parameter `define` of the scene at `path`.
+pub(in crate::scene::formats) fn define_error(
+    path: &Path,
+    (name, value): &(String, String),
+    problem: String,
+) -> SceneError {
+    use crate::excerpt::excerpt;
+    SceneError::Xml {
+        file: path.to_path_buf(),
+        element: format!("-D {}={}", excerpt(name), excerpt(value)),
+        problem,
+        line: crate::scene::error::Line(None),
     }
 }

@@ -138,7 +138,7 @@ impl Builder<'_> {
             Some(entries) => Some(self.transform(path, "transform_end", Some(entries))?),
             None => None,
         };
-        if let Some(problem) = end.and_then(|end| crate::transform::motion_problem(&start, &end)) {
+        if let Some(Err(problem)) = end.map(|end| crate::transform::motion_parts(&start, &end)) {
             let field = path.key("transform_end");
             return Err(SceneError::Transform {
                 file: self.ctx.file.to_path_buf(),
