@@ -45,6 +45,11 @@ impl TriangleMesh {
         normals: Option<Vec<Vec3>>,
         uvs: Option<Vec<Vec2>>,
     ) -> Self {
+        // Normals that only repeat each face's own add nothing but work to every hit, and
+        // keep the mesh off the integrator's short way for flat surfaces (`plain_hit`).
+        // Tools write them (Blender's OBJ export, Mitsuba's loaders computing a planar
+        // wall's vertex normals), so such a mesh is shaded flat, as it would be.
+        let normals = normals.filter(|normals| !normals_are_flat(&positions, &indices, normals));
         let mut mesh = TriangleMesh {
             positions,
             indices,
@@ -94,6 +99,32 @@ impl TriangleMesh {
             None => TrianglePlane::new(triangle),
         }
     }
+}
+
+/// How far (the sine of the angle) a vertex normal may lean from its face's normal and
+/// still be that normal: 1e-4 rad, a few times the rounding of a normal computed in f64 and
+/// stored in f32, or of a face normal from f32 vertices, and a ten-thousandth of a shading
+/// cosine at most.
+const FLAT_NORMAL_SINE: f32 = 1e-4;
+
+/// Whether every triangle's vertex normals are its face normal, all three on the same side
+/// of it (then the interpolated normal is the face normal up to rounding, and the shading
+/// normal, turned to the geometric side, is the geometric normal). A degenerate triangle, a
+/// zero normal or an index out of range keeps the normals.
+fn normals_are_flat(positions: &[Vec3], indices: &[[u32; 3]], normals: &[Vec3]) -> bool {
+    indices.iter().all(|&[a, b, c]| {
+        let corners = [a, b, c].map(|i| positions.get(i as usize).zip(normals.get(i as usize)));
+        let [Some((&p0, &n0)), Some((&p1, &n1)), Some((&p2, &n2))] = corners else {
+            return false;
+        };
+        let face = TrianglePlane::new(&[p0, p1, p2]).normal;
+        let along = |n: Vec3| {
+            let n = n.normalize_or_zero();
+            (n.cross(face).length() <= FLAT_NORMAL_SINE).then(|| n.dot(face) > 0.0)
+        };
+        let sides = [n0, n1, n2].map(along);
+        face != Vec3::ZERO && sides[0].is_some() && sides.iter().all(|side| *side == sides[0])
+    })
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -267,6 +298,34 @@ impl RenderScene {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Vertex normals that repeat their faces' are dropped, on either side; any that bends
+    /// (a smooth box's shared corners) or that is not a normal keeps them all.
+    #[test]
+    fn normals_of_flat_faces_are_dropped() {
+        let square = vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+        let faces = vec![[0, 1, 2], [0, 2, 3]];
+        let with = |normals: Vec<Vec3>| {
+            TriangleMesh::new(square.clone(), faces.clone(), Some(normals), None).normals
+        };
+        assert_eq!(with(vec![Vec3::Z; 4]), None);
+        assert_eq!(with(vec![Vec3::NEG_Z * 3.0; 4]), None, "one side, any length");
+        // Off by 1e-5 rad (rounding) is flat; 1e-3 rad (a slight bevel) is not.
+        let lean = |angle: f32| Vec3::new(angle.sin(), 0.0, angle.cos());
+        assert_eq!(with(vec![Vec3::Z, Vec3::Z, lean(1e-5), Vec3::Z]), None);
+        for normals in [
+            vec![Vec3::Z, Vec3::Z, lean(1e-3), Vec3::Z],
+            vec![Vec3::Z, Vec3::Z, Vec3::NEG_Z, Vec3::Z],
+            vec![Vec3::Z, Vec3::Z, Vec3::ZERO, Vec3::Z],
+            vec![Vec3::Z; 3],
+        ] {
+            assert_eq!(with(normals.clone()), Some(normals));
+        }
+        // A degenerate triangle has no face normal to repeat.
+        let line = vec![Vec3::ZERO, Vec3::X, Vec3::X * 2.0];
+        let mesh = TriangleMesh::new(line, vec![[0, 1, 2]], Some(vec![Vec3::Z; 3]), None);
+        assert!(mesh.normals.is_some());
+    }
 
     #[test]
     fn kept_planes_are_the_triangles_planes() {

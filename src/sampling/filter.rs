@@ -41,16 +41,28 @@ impl PixelFilter {
 
     /// The filter's value at offset `x` along one axis.
     pub fn eval(&self, x: f32) -> f32 {
+        self.eval_lowered(x, self.floor())
+    }
+
+    /// What the Gaussian is lowered by, its bell's value at the radius (so that it ends at
+    /// 0 there); 0 for the others. Computed once by a sampler: an exponential a sample.
+    fn floor(&self) -> f32 {
+        match *self {
+            PixelFilter::Gaussian { stddev } => bell(stddev, self.radius()),
+            _ => 0.0,
+        }
+    }
+
+    /// `eval`, given `floor()`.
+    #[inline]
+    fn eval_lowered(&self, x: f32, floor: f32) -> f32 {
         let r = self.radius();
         if !(x.abs() < r) {
             return 0.0;
         }
         match *self {
             PixelFilter::Box => 1.0,
-            PixelFilter::Gaussian { stddev } => {
-                let g = |x: f32| (-x * x / (2.0 * stddev * stddev)).exp();
-                (g(x) - g(r)).max(0.0)
-            }
+            PixelFilter::Gaussian { stddev } => (bell(stddev, x) - floor).max(0.0),
             PixelFilter::Tent { radius } => 1.0 - x.abs() / radius,
             PixelFilter::Mitchell { b, c } => {
                 let x = x.abs();
@@ -77,6 +89,12 @@ impl PixelFilter {
     }
 }
 
+/// The Gaussian bell of standard deviation `stddev` at `x`, 1 at 0.
+#[inline]
+fn bell(stddev: f32, x: f32) -> f32 {
+    (-x * x / (2.0 * stddev * stddev)).exp()
+}
+
 /// Cells of the tabulated density per axis.
 const CELLS: usize = 256;
 
@@ -88,6 +106,8 @@ struct Window {
     table: Piecewise1D,
     /// ∫ f over [lo, hi].
     integral: f64,
+    /// `PixelFilter::floor`.
+    floor: f32,
 }
 
 impl Window {
@@ -120,7 +140,9 @@ impl Window {
             })
             .sum();
         let table = Piecewise1D::new(&weights).expect("a filter is positive at its centre");
-        Window { lo, hi, table, integral: sum * h / 3.0 * width }
+        // Drawn from at every sample of the image.
+        let table = table.guided();
+        Window { lo, hi, table, integral: sum * h / 3.0 * width, floor: filter.floor() }
     }
 
     /// An offset from the pixel centre and its weight f / (p · ∫f).
@@ -128,7 +150,7 @@ impl Window {
         let (t, density, _) = self.table.sample(u);
         let x = self.lo + (self.hi - self.lo) * t;
         let per_offset = f64::from(density) / f64::from(self.hi - self.lo);
-        (x, f64::from(filter.eval(x)) / (per_offset * self.integral))
+        (x, f64::from(filter.eval_lowered(x, self.floor)) / (per_offset * self.integral))
     }
 }
 
