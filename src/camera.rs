@@ -103,14 +103,19 @@ impl Camera {
         };
         let dir = self.render_direction(dir_camera);
         let origin = self.position + self.render_from_camera_rotation * origin_camera;
-        self.clipped(Ray::new(origin, dir, f32::INFINITY), || -dir_camera.z / dir_camera.length())
+        self.clipped(Ray::new(origin, dir, f32::INFINITY), || along_axis(dir_camera))
     }
 
-    /// Whether `generate_ray` is a pinhole's: perspective, no lens (its sample is ignored)
-    /// and no clipping.
+    /// Whether `generate_ray` is a pinhole's: perspective and no lens (its sample is
+    /// ignored); clipped or not.
     pub fn is_pinhole(&self) -> bool {
+        self.ortho_half_height.is_none() && !self.has_lens()
+    }
+
+    /// Whether `clipped` limits rays.
+    fn clips(&self) -> bool {
         let (near, far) = self.clip;
-        self.ortho_half_height.is_none() && !self.has_lens() && !(near > 0.0) && !far.is_finite()
+        near > 0.0 || far.is_finite()
     }
 
     /// `generate_ray(raster, None)` of each of `rasters`, bit for bit, appended to `rays`, for
@@ -137,6 +142,13 @@ impl Camera {
     }
 }
 
+/// The component along the view axis of the unit direction of the camera-space
+/// `dir_camera`: what a clip distance is divided by.
+#[inline(always)]
+fn along_axis(dir_camera: Vec3) -> f32 {
+    -dir_camera.z / dir_camera.length()
+}
+
 /// Camera rays computed together: AVX-512's width (two AVX2 registers).
 const RAY_LANES: usize = 16;
 
@@ -156,19 +168,29 @@ impl pulp::WithSimd for PinholeRays<'_> {
         // `generate_ray`'s origin for a pinhole: the same sum, once.
         let origin = camera.position + camera.render_from_camera_rotation * Vec3::ZERO;
         self.rays.reserve(self.rasters.len());
+        let clips = camera.clips();
         for block in self.rasters.chunks(RAY_LANES) {
             let mut dirs = [[0.0f32; RAY_LANES]; 3];
+            // Each lane's `along_axis`, for a clipping camera's ray limits.
+            let mut along = [1.0f32; RAY_LANES];
             // A full block of lanes (the spare ones from the block's first raster), so that
-            // the loop has a fixed length and vectorises.
+            // the loops have a fixed length and vectorise.
             for j in 0..RAY_LANES {
                 let raster = block[if j < block.len() { j } else { 0 }];
                 let dir = camera.render_direction(camera.camera_direction(raster));
                 (dirs[0][j], dirs[1][j], dirs[2][j]) = (dir.x, dir.y, dir.z);
             }
+            if clips {
+                for (j, along) in along.iter_mut().enumerate() {
+                    let raster = block[if j < block.len() { j } else { 0 }];
+                    *along = along_axis(camera.camera_direction(raster));
+                }
+            }
             let [xs, ys, zs] = &dirs;
-            let lanes = xs.iter().zip(ys).zip(zs).take(block.len());
-            for ((&x, &y), &z) in lanes {
-                self.rays.push(Ray::new(origin, Vec3::new(x, y, z), f32::INFINITY));
+            let lanes = xs.iter().zip(ys).zip(zs).zip(&along).take(block.len());
+            for (((&x, &y), &z), &along) in lanes {
+                let ray = Ray::new(origin, Vec3::new(x, y, z), f32::INFINITY);
+                self.rays.push(if clips { camera.clipped(ray, || along) } else { ray });
             }
         }
     }
@@ -222,6 +244,9 @@ mod tests {
                 pixel_aspect: 1.25,
                 ..Default::default()
             },
+            // Mitsuba's near and far clip planes.
+            Camera { width: 48, height: 32, clip: (10.0, 2800.0), ..Default::default() },
+            Camera { width: 48, height: 32, clip: (0.25, f32::INFINITY), ..Default::default() },
         ];
         let mut state = 0x9e37_79b9_u32;
         let mut unit = || {
@@ -248,19 +273,21 @@ mod tests {
         }
     }
 
-    /// Only a perspective camera without a lens or clipping is a pinhole.
+    /// Only a perspective camera without a lens is a pinhole, clipped or not.
     #[test]
-    fn pinholes_have_no_lens_projection_or_clipping() {
+    fn pinholes_have_no_lens_or_projection() {
         let pinhole = Camera { width: 4, height: 4, ..Default::default() };
-        assert!(pinhole.is_pinhole());
+        assert!(pinhole.is_pinhole() && !pinhole.clips());
         assert!(!Camera { lens_radius: 0.1, ..pinhole.clone() }.is_pinhole());
         assert!(!Camera { ortho_half_height: Some(2.0), ..pinhole.clone() }.is_pinhole());
-        assert!(!Camera { clip: (0.5, f32::INFINITY), ..pinhole.clone() }.is_pinhole());
-        assert!(!Camera { clip: (0.0, 100.0), ..pinhole.clone() }.is_pinhole());
-        // Clip distances `generate_ray` does not apply leave a pinhole a pinhole.
+        for clip in [(0.5, f32::INFINITY), (0.0, 100.0)] {
+            let camera = Camera { clip, ..pinhole.clone() };
+            assert!(camera.is_pinhole() && camera.clips(), "{clip:?}");
+        }
+        // Clip distances `generate_ray` does not apply clip nothing.
         for clip in [(-1.0, f32::INFINITY), (f32::NAN, f32::NAN), (0.0, f32::NEG_INFINITY)] {
             let camera = Camera { clip, ..pinhole.clone() };
-            assert!(camera.is_pinhole(), "{clip:?}");
+            assert!(camera.is_pinhole() && !camera.clips(), "{clip:?}");
             let ray = camera.generate_ray(Vec2::new(1.0, 3.0), None);
             assert_eq!((ray.tmin, ray.tmax), (0.0, f32::INFINITY), "{clip:?}: unclipped");
         }

@@ -25,8 +25,9 @@ pub type OnPass<'a> = dyn FnMut(&FilmSums, u32) + Send + 'a;
 
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
-    #[error(transparent)]
-    Compile(#[from] CompileError),
+    /// `file` names the scene (empty for one built in code, which names none).
+    #[error("{}{source}", in_file(file))]
+    Compile { file: std::path::PathBuf, source: CompileError },
     #[error(transparent)]
     Accel(#[from] AccelError),
     #[error(transparent)]
@@ -66,7 +67,16 @@ pub fn prepare_scene(
     }
     // Checked here, before either backend sees the scene, so both refuse the same scenes.
     crate::scene::budget::check_coordinates(&desc, options.render_space)?;
-    Ok(to_render_scene(&desc, options.render_space, options.effects_mode)?)
+    to_render_scene(&desc, options.render_space, options.effects_mode)
+        .map_err(|source| RenderError::Compile { file: desc.source.clone(), source })
+}
+
+/// "FILE: ", the prefix of an error in the scene file `file`, if it has a name.
+fn in_file(file: &std::path::Path) -> String {
+    match file.as_os_str().is_empty() {
+        true => String::new(),
+        false => format!("{}: ", file.display()),
+    }
 }
 
 /// Renders `desc` from start to finish (or until `options.stop`).

@@ -57,6 +57,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
     };
     let mut jobs = jobs;
+    if args.aovs.is_some() && jobs.iter().all(|job| job.exr.is_none()) {
+        note(
+            "warning: --aovs chooses the EXR's channels, and no EXR is written (-o names a display image)",
+        );
+    }
     if args.denoise {
         if !embray::denoise::BUILT_IN {
             bail!(embray::denoise::DenoiseError::NotBuiltIn);

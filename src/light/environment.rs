@@ -7,8 +7,12 @@ use super::env_mapping;
 use super::env_mapping::EnvironmentMapping;
 use crate::color::luminance;
 use crate::sampling::piecewise::Piecewise2D;
+use crate::sampling::uniform_sphere;
 use glam::{Mat3, Vec2, Vec3};
 use std::sync::Arc;
+
+/// The density of directions uniform over the sphere.
+const UNIFORM_PDF: f32 = 1.0 / (4.0 * std::f32::consts::PI);
 
 /// Sampling grids have at least this many cells across (and half as many down).
 const MIN_CELLS_ACROSS: usize = 64;
@@ -26,6 +30,10 @@ pub struct EnvironmentLight {
     /// Over the image, in proportion to luminance × solid angle per cell; `None` for a black map.
     distribution: Option<Piecewise2D>,
     lookup: TexelLookup,
+    /// The radiance of a map that is one radiance everywhere (a constant sky, Mitsuba's
+    /// `constant` emitter), if it is lit: sampled uniformly over the sphere, the density it
+    /// is in proportion to, without the map's tables or its mapping's trigonometry.
+    uniform: Option<Vec3>,
 }
 
 /// How a direction's radiance is read from the map.
@@ -85,8 +93,19 @@ impl EnvironmentLight {
             })
             .collect();
         let distribution = Piecewise2D::new(&weights, across, down);
-        let lookup = TexelLookup::Nearest;
-        EnvironmentLight { width, height, texels, mapping, world_from_render, distribution, lookup }
+        let first = texels[0];
+        let uniform =
+            (distribution.is_some() && texels.iter().all(|t| *t == first)).then_some(first);
+        EnvironmentLight {
+            width,
+            height,
+            texels,
+            mapping,
+            world_from_render,
+            distribution,
+            lookup: TexelLookup::Nearest,
+            uniform,
+        }
     }
 
     /// The same map read with `lookup` (sampling stays in proportion to the texels).
@@ -127,6 +146,9 @@ impl EnvironmentLight {
         if !d.is_finite() {
             return Vec3::ZERO;
         }
+        if let Some(radiance) = self.uniform {
+            return radiance;
+        }
         self.texel(env_mapping::uv_of(self.mapping, d).0)
     }
 
@@ -134,6 +156,9 @@ impl EnvironmentLight {
     /// `dir`.
     pub fn pdf(&self, dir: Vec3) -> f32 {
         let Some(distribution) = &self.distribution else { return 0.0 };
+        if self.uniform.is_some() {
+            return UNIFORM_PDF;
+        }
         let d = (self.world_from_render * dir).normalize();
         let (uv, solid_angle) = env_mapping::uv_of(self.mapping, d);
         if !(solid_angle > 0.0) {
@@ -146,6 +171,10 @@ impl EnvironmentLight {
     /// A direction drawn in proportion to luminance with `u`; `None` for a black map.
     pub fn sample(&self, u: Vec2) -> Option<EnvironmentSample> {
         let distribution = self.distribution.as_ref()?;
+        if let Some(radiance) = self.uniform {
+            let wi: Vec3 = self.world_from_render.transpose() * uniform_sphere(u);
+            return Some(EnvironmentSample { wi, radiance, pdf: UNIFORM_PDF });
+        }
         let (uv, pdf_uv) = distribution.sample(u);
         let (d, solid_angle) = env_mapping::direction_of(self.mapping, uv)?;
         if !(solid_angle > 0.0) || !(pdf_uv > 0.0) {
@@ -201,16 +230,27 @@ mod tests {
         }
     }
 
+    /// A sun's map by its luminance; a constant sky's (one texel, or several all alike)
+    /// uniformly.
     #[test]
     fn sampling_density_matches_pdf_by_chi_square() {
         for mapping in [EnvironmentMapping::LatLong, EnvironmentMapping::Probe] {
-            sampling_matches_pdf(mapping);
+            let (w, h) = (16, 8);
+            let sun = EnvironmentLight::new(w, h, &sun_map(w, h), Vec3::ONE, mapping, rotation());
+            assert!(sun.uniform.is_none());
+            sampling_matches_pdf(&sun, mapping);
+            let sky = Vec3::new(0.25, 0.5, 1.0);
+            for (w, h) in [(1, 1), (4, 2)] {
+                let constant =
+                    EnvironmentLight::new(w, h, &vec![sky; w * h], Vec3::ONE, mapping, rotation());
+                assert_eq!(constant.uniform, Some(sky));
+                assert_eq!(constant.pdf(Vec3::new(0.3, -2.0, 0.1)), UNIFORM_PDF);
+                sampling_matches_pdf(&constant, mapping);
+            }
         }
     }
 
-    fn sampling_matches_pdf(mapping: EnvironmentMapping) {
-        let (w, h) = (16, 8);
-        let light = EnvironmentLight::new(w, h, &sun_map(w, h), Vec3::ONE, mapping, rotation());
+    fn sampling_matches_pdf(light: &EnvironmentLight, mapping: EnvironmentMapping) {
         // Cells: 12 bands of cos θ × 24 of φ, in world space, each of equal solid angle.
         let (bands, sectors) = (12usize, 24usize);
         let cell_of = |d: Vec3| {

@@ -22,7 +22,7 @@ use glam::Vec2;
 pub use pixel::pixel_sample;
 pub use warps::{
     concentric_disk, cosine_hemisphere, cosine_power_hemisphere, cosine_power_pdf,
-    frame_from_normal, uniform_triangle,
+    frame_from_normal, uniform_sphere, uniform_triangle,
 };
 
 /// Hash of the four counters.

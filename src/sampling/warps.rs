@@ -11,6 +11,14 @@ pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
     Vec3::new(d.x, d.y, z)
 }
 
+/// A direction uniform over the unit sphere; pdf = 1 / 4π.
+pub fn uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let (sin_phi, cos_phi) = (2.0 * std::f32::consts::PI * u.y).sin_cos();
+    Vec3::new(r * cos_phi, r * sin_phi, z)
+}
+
 /// Direction about +Z with density ∝ cos^p θ over the hemisphere (Phong lobes): pdf =
 /// (p + 1)/(2π) cos^p θ (`cosine_power_pdf`).
 pub fn cosine_power_hemisphere(u: Vec2, exponent: f32) -> Vec3 {

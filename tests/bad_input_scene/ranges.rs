@@ -120,10 +120,11 @@ fn lookfrom_equal_to_lookat_is_a_degenerate_camera() {
 #[test]
 fn zero_up_vector_is_a_degenerate_camera() {
     let err = load_err(&format!("{CAMERA}up = [0, 0, 0]\n"));
-    assert_contains(
-        &err,
-        &["scene.toml: degenerate camera", "camera.up [0, 0, 0] is the zero vector", "(line 6)"],
-    );
+    let says = "camera.up [0, 0, 0] has no direction";
+    assert_contains(&err, &["scene.toml: degenerate camera", says, "(line 6)"]);
+    // Too short to normalise is no direction either, and its number is shown short.
+    let err = load_err(&format!("{CAMERA}up = [1e-300, 0, 0]\n"));
+    assert_contains(&err, &["camera.up [1e-300, 0, 0] has no direction", "(line 6)"]);
 }
 
 #[test]

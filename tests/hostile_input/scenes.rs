@@ -140,6 +140,17 @@ fn out_dir_with_a_toml_scene_is_warned_about() {
 }
 
 #[test]
+fn aovs_without_an_exr_are_warned_about() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    let run = accepted_in(&scratch, &["render", "s.toml", "-o", "s.png", "--aovs", "albedo", "-q"]);
+    run.assert_says(&["--aovs chooses the EXR's channels, and no EXR is written"]);
+    assert!(scratch.path("s.png").is_file() && !scratch.path("s.exr").exists());
+    let run = accepted_in(&scratch, &["render", "s.toml", "-o", "s.exr", "--aovs", "albedo", "-q"]);
+    assert!(!run.stderr.contains("--aovs"), "{}", run.stderr);
+}
+
+#[test]
 fn a_scene_that_is_a_folder_is_refused() {
     let scratch = Scratch::new();
     std::fs::create_dir(scratch.path("d.toml")).unwrap();
@@ -163,6 +174,20 @@ const MITSUBA_WITH_SPP: &str = r#"<scene version="3.0.0">
 fn a_define_the_mitsuba_scene_names_is_used() {
     let scratch = Scratch::new();
     scratch.write("s.xml", MITSUBA_WITH_SPP);
+    let run = accepted_in(&scratch, &["info", "s.xml", "-D", "spp=3"]);
+    assert!(run.stdout.contains("render: 3 spp"), "{}", run.stdout);
+}
+
+/// A parameter defaulted twice keeps its first value, as Mitsuba 3 keeps it; `-D` is
+/// above both.
+#[test]
+fn a_parameter_defaulted_twice_keeps_its_first_value() {
+    let scratch = Scratch::new();
+    let twice = r#"<default name="spp" value="1"/>
+    <default name="spp" value="5"/>"#;
+    scratch.write("s.xml", MITSUBA_WITH_SPP.replace(r#"<default name="spp" value="1"/>"#, twice));
+    let run = accepted_in(&scratch, &["info", "s.xml"]);
+    assert!(run.stdout.contains("render: 1 spp"), "{}", run.stdout);
     let run = accepted_in(&scratch, &["info", "s.xml", "-D", "spp=3"]);
     assert!(run.stdout.contains("render: 3 spp"), "{}", run.stdout);
 }

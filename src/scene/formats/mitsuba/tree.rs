@@ -84,7 +84,6 @@ pub(super) fn read(
     let folder = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     let mut reader = Reader {
         params: defines.iter().cloned().collect(),
-        given: defines.iter().map(|(name, _)| name.clone()).collect(),
         resolver: FileResolver { folders: vec![folder] },
         elements: 0,
         includes: 0,
@@ -108,11 +107,17 @@ pub(super) fn read(
     Ok((root, reader.resolver))
 }
 
+/// Why a scene whose files exceed `MAX_XML_BYTES` is refused.
+fn bytes_exceeded() -> String {
+    format!(
+        "the scene's files, its includes and spectrum files counted each time they are read, \
+         exceed {MAX_XML_BYTES} bytes"
+    )
+}
+
 struct Reader {
     /// `$name` values: `-D` first, then `<default>`s.
     params: HashMap<String, String>,
-    /// Names given with `-D` (a `<default>` does not override them).
-    given: Vec<String>,
     resolver: FileResolver,
     /// Elements read so far, every file's (`limits::MAX_XML_ELEMENTS`).
     elements: usize,
@@ -133,16 +138,11 @@ impl Reader {
         text: &str,
         (depth, level): (usize, usize),
     ) -> Result<Element, SceneError> {
-        self.bytes += text.len() as u64;
-        if self.bytes > MAX_XML_BYTES {
+        if !self.count_bytes(text.len()) {
             return Err(SceneError::Xml {
                 file: path.to_path_buf(),
                 element: "the document".to_owned(),
-                problem: format!(
-                    "the scene's files, its includes counted each time they are read, exceed \
-                     {} bytes",
-                    MAX_XML_BYTES
-                ),
+                problem: bytes_exceeded(),
                 line: Line(None),
             });
         }
@@ -213,9 +213,8 @@ impl Reader {
                     let name = child.required("name")?.to_owned();
                     let value = child.required("value")?.to_owned();
                     self.named.insert(name.clone());
-                    if !self.given.contains(&name) {
-                        self.params.insert(name, value);
-                    }
+                    // A `-D` value stays, and so does the first `<default>`, as in Mitsuba.
+                    self.params.entry(name).or_insert(value);
                 }
                 "path" => {
                     let folder = self.relative_to(&child, child.required("value")?);
@@ -258,13 +257,23 @@ impl Reader {
 
     /// A `<spectrum filename="…">` given its file's pairs as its `value` (the file found
     /// as Mitsuba finds it, through the `<path>` folders).
-    fn read_spectrum_file(&self, element: &mut Element) -> Result<(), SceneError> {
+    /// Counts `bytes` more read: whether the scene's total is still within
+    /// `MAX_XML_BYTES`.
+    fn count_bytes(&mut self, bytes: usize) -> bool {
+        self.bytes += bytes as u64;
+        self.bytes <= MAX_XML_BYTES
+    }
+
+    fn read_spectrum_file(&mut self, element: &mut Element) -> Result<(), SceneError> {
         let Some(name) = element.attr("filename").map(str::to_owned) else { return Ok(()) };
         if element.attr("value").is_some() {
             return Err(element.error("a <spectrum> takes a value or a filename, not both"));
         }
         let list = super::spd::spectrum_file_as_list(&self.resolver.resolve(&name))
             .map_err(|problem| element.error(problem))?;
+        if !self.count_bytes(list.len()) {
+            return Err(element.error(bytes_exceeded()));
+        }
         element.attrs.retain(|(attr, _)| attr != "filename");
         element.attrs.push(("value".to_owned(), list));
         Ok(())

@@ -36,7 +36,8 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
     }
     let up = cam.up.unwrap_or([0.0, 1.0, 0.0]);
     if DVec3::from_array(up).try_normalize().is_none() {
-        return Err(degenerate("up", format!("camera.up {} is the zero vector", fmt_vec(&up))));
+        let reason = format!("camera.up {} has no direction (zero, or too short)", fmt_vec(&up));
+        return Err(degenerate("up", reason));
     }
     let vfov = path.key("vfov");
     ctx.require(

@@ -3,6 +3,7 @@
 //! f64.
 
 use crate::scene::formats::toml::format::{Rotate, TransformOp};
+use crate::scene::formats::toml::validate::short_number;
 use glam::{DAffine3, DMat3, DVec3};
 
 /// Why a transform list was rejected; `entry` is the index of the offending entry, or
@@ -90,7 +91,7 @@ fn matrix_transform(rows: &[[f64; 4]; 4]) -> Result<DAffine3, String> {
 
 /// `[1, 0.5, -2]`.
 pub(crate) fn fmt_vec(values: &[f64]) -> String {
-    let parts: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+    let parts: Vec<String> = values.iter().map(|v| short_number(v.to_string())).collect();
     format!("[{}]", parts.join(", "))
 }
 

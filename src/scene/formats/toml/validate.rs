@@ -150,7 +150,7 @@ impl Ctx<'_> {
 
 /// `value` as written, but a number whose decimal form is long (1e300 prints 301 digits)
 /// in scientific notation.
-fn short_number(value: String) -> String {
+pub(crate) fn short_number(value: String) -> String {
     match value.parse::<f64>() {
         Ok(number) if value.len() > 24 => format!("{number:e}"),
         _ => value,
