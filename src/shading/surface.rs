@@ -60,10 +60,11 @@ fn local_hit(
             let geometric = plane.normal;
             let (point, error) =
                 triangle_hit_point(&tri, &plane, (hit.u, hit.v), (origin, dir, hit.t));
-            let [i0, i1, i2] = mesh.indices[hit.prim_id as usize].map(|i| i as usize);
+            let corners = mesh.indices[hit.prim_id as usize];
+            let [i0, i1, i2] = corners.map(|i| i as usize);
             let b0 = 1.0 - hit.u - hit.v;
             let shading = match &mesh.normals {
-                Some(n) => (n[i0] * b0 + n[i1] * hit.u + n[i2] * hit.v).normalize_or_zero(),
+                Some(normals) => interpolated_normal(normals, corners, hit),
                 None => Vec3::ZERO,
             };
             let uv = match &mesh.uvs {
@@ -81,6 +82,28 @@ fn local_hit(
             };
             LocalHit { point, error, geometric: n, shading: n, uv }
         }
+    }
+}
+
+/// The unit vertex normal of triangle `corners` at `hit`'s barycentrics (zero where they
+/// cancel).
+#[inline]
+pub fn interpolated_normal(normals: &[Vec3], [i0, i1, i2]: [u32; 3], hit: &Hit) -> Vec3 {
+    let b0 = 1.0 - hit.u - hit.v;
+    let n = |i: u32| normals[i as usize];
+    (n(i0) * b0 + n(i1) * hit.u + n(i2) * hit.v).normalize_or_zero()
+}
+
+/// The shading normal `shading` (zero: none) turned to the side of `geometric`, the
+/// geometric normal already facing the ray; `geometric` where there is none.
+#[inline]
+pub fn shading_facing(shading: Vec3, geometric: Vec3) -> Vec3 {
+    if shading == Vec3::ZERO {
+        geometric
+    } else if shading.dot(geometric) < 0.0 {
+        -shading
+    } else {
+        shading
     }
 }
 
@@ -119,13 +142,7 @@ pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteract
     if !front_face {
         local.geometric = -local.geometric;
     }
-    let shading = if local.shading == Vec3::ZERO {
-        local.geometric
-    } else if local.shading.dot(local.geometric) < 0.0 {
-        -local.shading
-    } else {
-        local.shading
-    };
+    let shading = shading_facing(local.shading, local.geometric);
     SurfaceInteraction {
         surface: SurfacePoint { point: local.point, error: local.error, normal: local.geometric },
         shading_normal: shading,

@@ -1,9 +1,9 @@
 //! The short way from a hit to its Lambertian lane, for the commonest surface: a triangle
-//! mesh already in render space, without vertex normals, whose material is plain
-//! Lambertian with a constant reflectance and no emission or normal perturbation. Such a
-//! hit needs only its point, its error bound and its plane's normal: not the texture
-//! coordinates, the material's lookups or the general `SurfaceInteraction` that `scatter`
-//! builds for every other hit. The lane it gives is the one `scatter` would give, bit for
+//! mesh already in render space, whose material is plain Lambertian with a constant
+//! reflectance and no emission or normal perturbation. Such a hit needs only its point, its
+//! error bound, its plane's normal and (with vertex normals) its interpolated normal: not
+//! the texture coordinates, the material's lookups or the general `SurfaceInteraction` that
+//! `scatter` builds for every other hit. The lane it gives is the one `scatter` would give, bit for
 //! bit (the same functions on the same numbers), which `tests/path_batching.rs` checks
 //! against the reference paths, which never take this way.
 
@@ -15,6 +15,7 @@ use crate::ray::Hit;
 use crate::render_scene::{Geometry, Placement, RenderScene, TriangleMesh};
 use crate::sampling::SampleStream;
 use crate::shading::bsdf::Energy;
+use crate::shading::surface::{interpolated_normal, shading_facing};
 use crate::stats::RenderStats;
 use glam::Vec3;
 
@@ -43,7 +44,7 @@ impl<'a> PlainSurfaces<'a> {
             let material = scene.materials.get(instance.material as usize)?;
             let prototype = scene.prototypes.get(instance.prototype as usize)?;
             let mesh = match &prototype.geometry {
-                Geometry::Triangles(mesh) if mesh.normals.is_none() => mesh,
+                Geometry::Triangles(mesh) => mesh,
                 _ => return None,
             };
             let in_render_space = matches!(instance.placement, Placement::Baked { .. });
@@ -96,15 +97,23 @@ impl PathTracer<'_> {
         }
         let at = TriangleHit::new(tri, &plane, ray.origin, hit);
         let normal = if front_face { plane.normal } else { -plane.normal };
+        // As `interaction` shades it.
+        let shading = match &mesh.normals {
+            Some(normals) => {
+                let corners = mesh.indices[hit.prim_id as usize];
+                shading_facing(interpolated_normal(normals, corners, hit), normal)
+            }
+            None => normal,
+        };
         if state.depth == 0 {
-            self.record_first_hit(&mut state.result, hit.t, normal);
+            self.record_first_hit(&mut state.result, hit.t, shading);
         }
         if self.ends_at(state.depth) {
             return Some(Scattered::End);
         }
         stats.bounces.lanes += 1;
         let at = OnTriangle { hit: at, normal, front_face };
-        self.lambert_lane(state, plain.diffuse, (at, normal), stream, lane);
+        self.lambert_lane(state, plain.diffuse, (at, shading), stream, lane);
         Some(Scattered::Lambert)
     }
 }
@@ -114,10 +123,10 @@ mod tests {
     use super::*;
     use crate::render::{RenderOptions, prepare_scene};
 
-    /// Only the flat, constant, unlit Lambertian meshes in render space are plain; their
+    /// Only the constant, unlit Lambertian meshes in render space are plain; their
     /// reflectance is the energy model's.
     #[test]
-    fn plain_surfaces_are_the_flat_constant_lambertian_meshes() {
+    fn plain_surfaces_are_the_constant_lambertian_meshes() {
         let mut text = String::from(
             r#"
             [camera]
