@@ -20,6 +20,15 @@ pub fn excerpt(text: &str) -> String {
     out
 }
 
+/// `value` as written, but a number whose decimal form is long (1e300 prints 301 digits)
+/// in scientific notation.
+pub fn short_number(value: String) -> String {
+    match value.parse::<f64>() {
+        Ok(number) if value.len() > 24 => format!("{number:e}"),
+        _ => value,
+    }
+}
+
 /// `message` with every line longer than `max_line` characters cut to an excerpt: for
 /// messages that another library wrote and that may quote the input (toml, tobj, roxmltree).
 pub fn shorten_message(message: &str, max_line: usize) -> String {

@@ -27,7 +27,21 @@ pub enum PixelFilter {
     Lanczos { lobes: f32 },
 }
 
+/// The sizes a filter may take (a Gaussian's σ, a tent's radius, Lanczos' lobes), in
+/// pixels: below a thousandth of a pixel a filter is the pixel's centre alone (and its
+/// tabulated density underflows in f32), above 16 it blurs the image away.
+pub const FILTER_SIZES: std::ops::RangeInclusive<f64> = 1e-3..=16.0;
+
 impl PixelFilter {
+    /// Why this filter cannot reconstruct an image, if it cannot: one not positive at its
+    /// centre (a Mitchell–Netravali cubic with B ≥ 3) would weigh every sample by its sign.
+    pub fn problem(&self) -> Option<String> {
+        match self.eval(0.0) > 0.0 {
+            true => None,
+            false => Some(format!("{self:?} is not positive at its centre (B must be below 3)")),
+        }
+    }
+
     /// How far from the pixel centre it reaches.
     pub fn radius(&self) -> f32 {
         match *self {

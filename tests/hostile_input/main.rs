@@ -18,4 +18,5 @@ mod numbers;
 mod outputs;
 mod process;
 mod scenes;
+mod unread;
 mod wrong_images;

@@ -68,3 +68,14 @@ fn an_undefined_usemtl_is_warned_about() {
     let run = accepted_in(&scratch, &["render", "s.toml", "-q"]);
     run.assert_says(&["warning", "m.obj", "usemtl 'nothing' names no material", "(line 5)"]);
 }
+
+/// tobj drops a model's normals (or texture coordinates) when one face lacks them: the
+/// others' are not used, which is said.
+#[test]
+fn normals_on_some_faces_only_are_warned_about() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", with_mesh("m.obj"));
+    scratch.write("m.obj", format!("{TRIANGLE}v 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2 4 3\n"));
+    let run = accepted_in(&scratch, &["render", "s.toml", "-q"]);
+    run.assert_says(&["warning", "m.obj", "some faces give normals and some do not"]);
+}

@@ -69,6 +69,15 @@ impl LightKind for Environment {
             }
         };
         let scale = p.opt_color("scale")?.unwrap_or(Vec3::ONE);
+        // Scaled past f32's range, a radiance would be dropped as non-finite: the light
+        // would vanish without a word.
+        let brightest = match &map {
+            EnvironmentMap::Constant(radiance) => *radiance,
+            EnvironmentMap::Image(image) => image.texels.iter().fold(Vec3::ZERO, |a, t| a.max(*t)),
+        };
+        let finite = (brightest * scale).is_finite();
+        let requirement = "small enough that scale × radiance stays within f32's range";
+        p.require(finite, "scale", format!("{scale}"), requirement)?;
         let mapping = p.opt_choice("mapping", &MAPPINGS)?;
         p.require(mapping.is_none() || p.has("file"), "mapping", "given", "given only with file")?;
         let world_from_map = match p.numbers::<9>("to_world")? {

@@ -3,7 +3,7 @@
 use super::tree::Element;
 use super::values::{float, integer};
 use crate::film::Tile;
-use crate::sampling::filter::PixelFilter;
+use crate::sampling::filter::{FILTER_SIZES, PixelFilter};
 use crate::scene::error::SceneError;
 
 pub(super) struct Film {
@@ -19,7 +19,8 @@ pub(super) struct Film {
 fn film_crop(film: &Element, width: u32, height: u32) -> Result<Option<Tile>, SceneError> {
     let read = |name: &str, default: u32| -> Result<u32, SceneError> {
         let value = integer(film, name)?.unwrap_or(i64::from(default));
-        u32::try_from(value).map_err(|_| film.error(format!("{name} is {value}, but must be >= 0")))
+        let range = format!("{name} is {value}, but must be 0 to {}", u32::MAX);
+        u32::try_from(value).map_err(|_| film.error(range))
     };
     let (x0, y0) = (read("crop_offset_x", 0)?, read("crop_offset_y", 0)?);
     let (w, h) = (read("crop_width", width)?, read("crop_height", height)?);
@@ -49,9 +50,10 @@ pub(super) fn film(film: &Element, warnings: &mut Vec<String>) -> Result<Film, S
     let filter_type = filter.map_or(Ok("gaussian"), |f| f.required("type"))?;
     let parameter = |name: &str, default: f64| -> Result<f32, SceneError> {
         let value = filter.map_or(Ok(None), |f| float(f, name))?.unwrap_or(default);
-        if !(value > 0.0 && value <= 16.0) {
+        if !FILTER_SIZES.contains(&value) {
             let at = filter.unwrap_or(film);
-            return Err(at.error(format!("{name} is {value}, but must be in (0, 16] pixels")));
+            let value = crate::excerpt::short_number(value.to_string());
+            return Err(at.error(format!("{name} is {value}, but must be in [0.001, 16] pixels")));
         }
         Ok(value as f32)
     };
@@ -64,6 +66,26 @@ pub(super) fn film(film: &Element, warnings: &mut Vec<String>) -> Result<Film, S
         }
         Ok(value as f32)
     };
+    // Each filter's own parameters, and no other (Mitsuba refuses what it does not read).
+    // (An unsupported filter is warned about below, its parameters unread.)
+    let takes: &[&str] = match filter_type {
+        "gaussian" => &["stddev"],
+        "tent" => &["radius"],
+        "mitchell" => &["B", "C"],
+        "lanczos" => &["lobes"],
+        "box" | "catmullrom" => &[],
+        _ => &["*"],
+    };
+    let children = match takes {
+        ["*"] => &[][..],
+        _ => filter.map_or(&[][..], |f| &f.children[..]),
+    };
+    if let Some(other) = children.iter().find(|c| !takes.contains(&c.attr("name").unwrap_or(""))) {
+        let known = if takes.is_empty() { "none".to_owned() } else { takes.join(", ") };
+        return Err(other.error(format!(
+            "the {filter_type} filter does not take it (its parameters: {known})"
+        )));
+    }
     let pixel_filter = match filter_type {
         "box" => PixelFilter::Box,
         "gaussian" => PixelFilter::Gaussian { stddev: parameter("stddev", 0.5)? },
@@ -84,5 +106,8 @@ pub(super) fn film(film: &Element, warnings: &mut Vec<String>) -> Result<Film, S
             PixelFilter::Box
         }
     };
+    if let Some(problem) = pixel_filter.problem() {
+        return Err(filter.unwrap_or(film).error(problem));
+    }
     Ok(Film { width, height, filter: pixel_filter, crop })
 }

@@ -333,6 +333,16 @@ impl Builder<'_> {
             if emitter.required("type")? != "area" {
                 return Err(emitter.error("a shape's emitter must be of type area"));
             }
+            // A textured radiance (or anything else) would otherwise be dropped unseen.
+            let constant_radiance = |c: &&Element| {
+                matches!(c.tag.as_str(), "rgb" | "spectrum") && c.attr("name") == Some("radiance")
+            };
+            if let Some(other) = emitter.children.iter().find(|c| !constant_radiance(c)) {
+                return Err(other.error(
+                    "an area emitter takes only a constant radiance (an <rgb> or <spectrum> \
+                     named radiance)",
+                ));
+            }
             let radiance = property(emitter, "rgb", "radiance")
                 .or_else(|| property(emitter, "spectrum", "radiance"));
             let radiance = radiance.map_or(Ok(DVec3::ONE), |r| color(r, ColorUse::Emission))?;

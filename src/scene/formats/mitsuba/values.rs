@@ -108,5 +108,21 @@ pub(super) fn params(
             indexed: false,
         });
     }
+    // Any other child is one the plugin reads itself (named in `skip`) or its placement;
+    // else it would be dropped unseen (a textured radiance, say).
+    for child in plugin.children.iter().filter(|c| !PROPERTY_TAGS.contains(&c.tag.as_str())) {
+        let name = child.attr("name");
+        let read = match child.tag.as_str() {
+            "transform" => name == Some("to_world"),
+            _ => name.is_some_and(|name| skip.contains(&name)),
+        };
+        if !read {
+            let named = name.map_or(String::new(), |name| format!(" named `{name}`"));
+            let tag = &child.tag;
+            return Err(
+                child.error(format!("{} does not take a <{tag}>{named}", plugin.describe()))
+            );
+        }
+    }
     Ok(Params::new(plugin.describe(), Some(plugin.line), entries))
 }

@@ -189,6 +189,22 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     let mut loaded = LoadedObj { models: Vec::new(), materials: Vec::new() };
     for model in models {
         let name = model.name.clone();
+        // tobj gives a model's normals or texture coordinates only when every face has
+        // them: where some lack them, the others' are dropped, which is said.
+        let vertices = model.mesh.positions.len() / 3;
+        let partial = [
+            ("normals", model.mesh.normals.len(), 3),
+            ("texture coordinates", model.mesh.texcoords.len(), 2),
+        ];
+        for (what, given, per_vertex) in partial {
+            if given > 0 && given != per_vertex * vertices {
+                warnings.push(format!(
+                    "{}: model '{}': some faces give {what} and some do not, so none are used",
+                    obj.display(),
+                    crate::excerpt::excerpt(&name)
+                ));
+            }
+        }
         let Some(mesh) = mesh_data(&model.mesh)
             .map_err(|p| obj_ref.error(obj, format!("model '{name}': {p}"), Line(None)))?
         else {

@@ -58,9 +58,13 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
     let aperture = aperture(cam, ctx)?;
     let focus_distance =
         cam.focus_distance.map(|d| ctx.positive(&path.key("focus_distance"), d)).transpose()?;
+    let clip = cam.clip.unwrap_or([0.0, f64::INFINITY]);
+    let [near, far] = clip;
+    let clip_ok = near >= 0.0 && near.is_finite() && far > near;
+    ctx.require(clip_ok, &path.key("clip"), fmt_vec(&clip), "[near, far] with 0 <= near < far")?;
     Ok(CameraDesc {
         ortho_half_height: None,
-        clip: (0.0, f64::INFINITY),
+        clip: (near, far),
         lookfrom,
         lookat,
         up: DVec3::from_array(up),
@@ -209,13 +213,13 @@ fn pixel_filter(
     path: &FieldPath,
     filter: &crate::scene::formats::toml::format::FilterToml,
 ) -> Result<crate::sampling::filter::PixelFilter, SceneError> {
-    use crate::sampling::filter::PixelFilter;
+    use crate::sampling::filter::{FILTER_SIZES, PixelFilter};
     use crate::scene::formats::toml::format::FilterKindToml;
     let item = format!("{path} ({:?} filter)", filter.kind).to_lowercase();
     let size = |name: &str, value: Option<f64>, default: f64| -> Result<f32, SceneError> {
         let value = value.unwrap_or(default);
-        let ok = value > 0.0 && value <= 16.0;
-        ctx.require(ok, &path.key(name), value, "in (0, 16] pixels")?;
+        let ok = FILTER_SIZES.contains(&value);
+        ctx.require(ok, &path.key(name), value, "in [0.001, 16] pixels")?;
         Ok(value as f32)
     };
     let present = [
@@ -230,7 +234,7 @@ fn pixel_filter(
         ctx.require(value.abs() <= 16.0, &path.key(name), value, "in [-16, 16]")?;
         Ok(value as f32)
     };
-    Ok(match filter.kind {
+    let built = match filter.kind {
         FilterKindToml::Box => {
             ctx.check_fields(path, &item, &present, &["type"])?;
             PixelFilter::Box
@@ -258,5 +262,7 @@ fn pixel_filter(
             ctx.check_fields(path, &item, &present, &["type", "lobes"])?;
             PixelFilter::Lanczos { lobes: size("lobes", filter.lobes, 3.0)? }
         }
-    })
+    };
+    ctx.require(built.problem().is_none(), &path.key("b"), filter.b.unwrap_or(0.0), "below 3")?;
+    Ok(built)
 }

@@ -2,8 +2,8 @@
 //! Entries apply in the listed order, so for [A, B, C] the result is C * B * A, composed in
 //! f64.
 
+use crate::excerpt::short_number;
 use crate::scene::formats::toml::format::{Rotate, TransformOp};
-use crate::scene::formats::toml::validate::short_number;
 use glam::{DAffine3, DMat3, DVec3};
 
 /// Why a transform list was rejected; `entry` is the index of the offending entry, or

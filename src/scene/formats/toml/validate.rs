@@ -1,5 +1,6 @@
 //! Range checks shared by the converters; each failure names the field, value and line.
 
+use crate::excerpt::short_number;
 use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::toml::source_map::{FieldPath, SourceMap};
 use glam::{DVec3, Vec3};
@@ -145,14 +146,5 @@ impl Ctx<'_> {
             second: second.to_owned(),
             line: self.line(&path.key(second)),
         }
-    }
-}
-
-/// `value` as written, but a number whose decimal form is long (1e300 prints 301 digits)
-/// in scientific notation.
-pub(crate) fn short_number(value: String) -> String {
-    match value.parse::<f64>() {
-        Ok(number) if value.len() > 24 => format!("{number:e}"),
-        _ => value,
     }
 }

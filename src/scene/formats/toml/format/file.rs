@@ -40,6 +40,8 @@ pub(crate) struct CameraToml {
     pub shift: Option<[f64; 2]>,
     /// A pixel's width over its height (default 1, square pixels).
     pub pixel_aspect: Option<f64>,
+    /// Near and far clip distances along the view axis (Mitsuba's `near_clip`, `far_clip`).
+    pub clip: Option<[f64; 2]>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]

@@ -1,0 +1,64 @@
+//! What a second probe of the binary found: input that panicked, or that was dropped
+//! without a word (a textured radiance read as none, a light scaled out of f32's range, a
+//! thin lens focused nowhere), now refused with the file, line and field.
+
+use crate::harness::{Scratch, accepted_in, refused_cases, refused_in, scene};
+
+/// A Mitsuba scene: 8×8, a sphere, a constant sky, `sensor` as its sensor's opening tag
+/// (closed by `</sensor>`), `film` inside its film and `extra` in the scene.
+fn mitsuba(sensor: &str, film: &str, extra: &str) -> String {
+    format!(
+        r#"<scene version="3.0.0">
+    {sensor}
+        <film type="hdrfilm">
+            <integer name="width" value="8"/><integer name="height" value="8"/>
+            {film}
+        </film>
+    </sensor>
+    <shape type="sphere"/>
+    <emitter type="constant"/>
+    {extra}
+</scene>
+"#
+    )
+}
+
+const PERSPECTIVE: &str = r#"<sensor type="perspective">"#;
+
+refused_cases! {
+    gaussian_narrower_than_f32_holds: ["s.toml" => scene("").replace("spp = 1", "spp = 1\nfilter = { type = \"gaussian\", stddev = 1e-30 }")], ["render", "s.toml"]
+        => ["s.toml", "render.filter.stddev", "[0.001, 16] pixels", "(line 9)"];
+    mitsuba_gaussian_narrower_than_f32_holds: ["s.xml" => mitsuba(PERSPECTIVE, r#"<rfilter type="gaussian"><float name="stddev" value="1e-30"/></rfilter>"#, "")], ["render", "s.xml"]
+        => ["s.xml", "stddev is 1e-30", "[0.001, 16] pixels", "line 5"];
+    mitchell_negative_at_its_centre: ["s.xml" => mitsuba(PERSPECTIVE, r#"<rfilter type="mitchell"><float name="B" value="16"/><float name="C" value="-16"/></rfilter>"#, "")], ["render", "s.xml"]
+        => ["s.xml", "not positive at its centre", "line 5"];
+    thin_lens_without_a_focus_distance: ["s.xml" => mitsuba(r#"<sensor type="thinlens"><float name="aperture_radius" value="0.1"/>"#, "", "")], ["render", "s.xml"]
+        => ["s.xml", "focus_distance is missing", "line 2"];
+    thin_lens_focused_behind_it: ["s.xml" => mitsuba(r#"<sensor type="thinlens"><float name="aperture_radius" value="0.1"/><float name="focus_distance" value="-5"/>"#, "", "")], ["render", "s.xml"]
+        => ["s.xml", "focus_distance is -5", "line 2"];
+    box_filter_given_a_radius: ["s.xml" => mitsuba(PERSPECTIVE, r#"<rfilter type="box"><float name="radius" value="3"/></rfilter>"#, "")], ["render", "s.xml"]
+        => ["s.xml", "the box filter does not take it", "its parameters: none", "line 5"];
+    film_crop_past_u32: ["s.xml" => mitsuba(PERSPECTIVE, r#"<integer name="crop_width" value="99999999999"/>"#, "")], ["render", "s.xml"]
+        => ["s.xml", "crop_width is 99999999999, but must be 0 to 4294967295"];
+    textured_area_radiance: ["s.xml" => mitsuba(PERSPECTIVE, "", r#"<shape type="sphere"><emitter type="area"><texture type="checkerboard" name="radiance"/></emitter></shape>"#)], ["render", "s.xml"]
+        => ["s.xml", "only a constant radiance", "<texture", "line 10"];
+    textured_constant_sky: ["s.xml" => mitsuba(PERSPECTIVE, "", "").replace(r#"<emitter type="constant"/>"#, r#"<emitter type="constant"><texture type="checkerboard" name="radiance"/></emitter>"#)], ["render", "s.xml"]
+        => ["s.xml", "does not take a <texture> named `radiance`", "line 9"];
+    environment_scaled_past_f32: ["s.toml" => scene("[[lights]]\ntype = \"environment\"\nradiance = [1e38, 1e38, 1e38]\nscale = [10.0, 10.0, 10.0]\n")], ["render", "s.toml"]
+        => ["s.toml", "scale", "within f32's range"];
+}
+
+/// A clipping camera's planes survive `convert` (they were dropped) and load back.
+#[test]
+fn converting_keeps_the_clip_planes() {
+    let scratch = Scratch::new();
+    let clipped = r#"<sensor type="perspective"><float name="near_clip" value="5.2"/>"#;
+    scratch.write("s.xml", mitsuba(clipped, "", ""));
+    accepted_in(&scratch, &["convert", "s.xml", "-o", "s.toml"]);
+    let toml = std::fs::read_to_string(scratch.path("s.toml")).unwrap();
+    assert!(toml.contains("clip = [5.2, 10000.0]"), "{toml}");
+    accepted_in(&scratch, &["info", "s.toml"]);
+    let reversed = toml.replace("clip = [5.2, 10000.0]", "clip = [5.2, 1.0]");
+    scratch.write("r.toml", reversed);
+    refused_in(&scratch, &["info", "r.toml"], &["r.toml", "camera.clip", "0 <= near < far"]);
+}
