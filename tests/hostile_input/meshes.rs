@@ -50,13 +50,19 @@ refused_cases! {
         => ["m.ply", "not a PLY file"];
 }
 
-#[test]
-fn a_two_vertex_face_is_warned_about() {
+/// The scene renders `obj` as m.obj, warning with `says`.
+fn assert_obj_warns(obj: &str, says: &[&str]) {
     let scratch = Scratch::new();
     scratch.write("s.toml", with_mesh("m.obj"));
-    scratch.write("m.obj", format!("{TRIANGLE}f 1 2 3\nf 1 2\n"));
+    scratch.write("m.obj", obj);
     let run = accepted_in(&scratch, &["render", "s.toml", "-q"]);
-    run.assert_says(&["warning", "m.obj", "a face with 2 vertices is ignored", "(line 5)"]);
+    run.assert_says(&[&["warning", "m.obj"], says].concat());
+}
+
+#[test]
+fn a_two_vertex_face_is_warned_about() {
+    let obj = format!("{TRIANGLE}f 1 2 3\nf 1 2\n");
+    assert_obj_warns(&obj, &["a face with 2 vertices is ignored", "(line 5)"]);
 }
 
 #[test]
@@ -73,9 +79,6 @@ fn an_undefined_usemtl_is_warned_about() {
 /// others' are not used, which is said.
 #[test]
 fn normals_on_some_faces_only_are_warned_about() {
-    let scratch = Scratch::new();
-    scratch.write("s.toml", with_mesh("m.obj"));
-    scratch.write("m.obj", format!("{TRIANGLE}v 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2 4 3\n"));
-    let run = accepted_in(&scratch, &["render", "s.toml", "-q"]);
-    run.assert_says(&["warning", "m.obj", "some faces give normals and some do not"]);
+    let obj = format!("{TRIANGLE}v 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2 4 3\n");
+    assert_obj_warns(&obj, &["some faces give normals and some do not"]);
 }
