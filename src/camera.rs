@@ -171,19 +171,21 @@ impl pulp::WithSimd for PinholeRays<'_> {
         let clips = camera.clips();
         for block in self.rasters.chunks(RAY_LANES) {
             let mut dirs = [[0.0f32; RAY_LANES]; 3];
-            // Each lane's `along_axis`, for a clipping camera's ray limits.
+            // Each lane's camera-space direction and its `along_axis`, for a clipping
+            // camera's ray limits.
+            let mut dirs_camera = [Vec3::ZERO; RAY_LANES];
             let mut along = [1.0f32; RAY_LANES];
             // A full block of lanes (the spare ones from the block's first raster), so that
             // the loops have a fixed length and vectorise.
             for j in 0..RAY_LANES {
                 let raster = block[if j < block.len() { j } else { 0 }];
-                let dir = camera.render_direction(camera.camera_direction(raster));
+                dirs_camera[j] = camera.camera_direction(raster);
+                let dir = camera.render_direction(dirs_camera[j]);
                 (dirs[0][j], dirs[1][j], dirs[2][j]) = (dir.x, dir.y, dir.z);
             }
             if clips {
-                for (j, along) in along.iter_mut().enumerate() {
-                    let raster = block[if j < block.len() { j } else { 0 }];
-                    *along = along_axis(camera.camera_direction(raster));
+                for (along, &dir_camera) in along.iter_mut().zip(&dirs_camera) {
+                    *along = along_axis(dir_camera);
                 }
             }
             let [xs, ys, zs] = &dirs;

@@ -26,8 +26,8 @@ pub type OnPass<'a> = dyn FnMut(&FilmSums, u32) + Send + 'a;
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
     /// `file` names the scene (empty for one built in code, which names none).
-    #[error("{}{source}", in_file(file))]
-    Compile { file: std::path::PathBuf, source: CompileError },
+    #[error("{}{error}", in_file(file))]
+    Compile { file: std::path::PathBuf, error: CompileError },
     #[error(transparent)]
     Accel(#[from] AccelError),
     #[error(transparent)]
@@ -36,8 +36,8 @@ pub enum RenderError {
     Option { what: &'static str, value: u64, max: u64 },
     #[error(transparent)]
     Part(#[from] PartError),
-    #[error("could not start {threads} worker threads: {source}")]
-    Threads { threads: usize, source: rayon::ThreadPoolBuildError },
+    #[error("could not start {threads} worker threads: {error}")]
+    Threads { threads: usize, error: rayon::ThreadPoolBuildError },
 }
 
 #[derive(Debug)]
@@ -68,7 +68,7 @@ pub fn prepare_scene(
     // Checked here, before either backend sees the scene, so both refuse the same scenes.
     crate::scene::budget::check_coordinates(&desc, options.render_space)?;
     to_render_scene(&desc, options.render_space, options.effects_mode)
-        .map_err(|source| RenderError::Compile { file: desc.source.clone(), source })
+        .map_err(|error| RenderError::Compile { file: desc.source.clone(), error })
 }
 
 /// "FILE: ", the prefix of an error in the scene file `file`, if it has a name.
@@ -175,7 +175,7 @@ pub fn render_part_with(
         Some(threads) => rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
-            .map_err(|source| RenderError::Threads { threads, source })?
+            .map_err(|error| RenderError::Threads { threads, error })?
             .install(run),
         None => run(),
     }

@@ -120,7 +120,8 @@ fn normals_are_flat(positions: &[Vec3], indices: &[[u32; 3]], normals: &[Vec3]) 
         let face = TrianglePlane::new(&[p0, p1, p2]).normal;
         let along = |n: Vec3| {
             let n = n.normalize_or_zero();
-            (n.cross(face).length() <= FLAT_NORMAL_SINE).then(|| n.dot(face) > 0.0)
+            let parallel = n != Vec3::ZERO && n.cross(face).length() <= FLAT_NORMAL_SINE;
+            parallel.then(|| n.dot(face) > 0.0)
         };
         let sides = [n0, n1, n2].map(along);
         face != Vec3::ZERO && sides[0].is_some() && sides.iter().all(|side| *side == sides[0])

@@ -99,6 +99,43 @@ fn bundled_scenes_render_the_same_batched_and_scalar() {
     }
 }
 
+/// A plain Lambertian mesh with vertex normals takes the lanes' short way with its
+/// interpolated normal (no bundled scene has one): a band of a sphere, its vertices shared
+/// so that its computed normals bend, in the Cornell box.
+#[test]
+fn smooth_plain_meshes_render_the_same_batched_and_scalar() {
+    let dir = std::env::temp_dir().join(format!("embray-smooth-band-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (rings, segments) = (6u32, 12u32);
+    let mut obj = String::new();
+    for ring in 1..rings {
+        let theta = std::f64::consts::PI * f64::from(ring) / f64::from(rings);
+        for segment in 0..segments {
+            let phi = std::f64::consts::TAU * f64::from(segment) / f64::from(segments);
+            let (x, y, z) = (theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+            obj +=
+                &format!("v {} {} {}\n", 278.0 + 120.0 * x, 200.0 + 120.0 * y, 280.0 + 120.0 * z);
+        }
+    }
+    for ring in 0..rings - 2 {
+        for segment in 0..segments {
+            let at = |r: u32, s: u32| r * segments + s % segments + 1;
+            let (a, b) = (at(ring, segment), at(ring, segment + 1));
+            let (c, d) = (at(ring + 1, segment), at(ring + 1, segment + 1));
+            obj += &format!("f {a} {b} {c}\nf {b} {d} {c}\n");
+        }
+    }
+    std::fs::write(dir.join("band.obj"), obj).unwrap();
+    let cornell = std::fs::read_to_string(repo_path("scenes/cornell.toml")).unwrap();
+    let band =
+        "[[objects]]\ntype = \"mesh\"\nfile = \"band.obj\"\nmaterial = \"white\"\nsmooth = true\n";
+    std::fs::write(dir.join("s.toml"), format!("{cornell}\n{band}")).unwrap();
+    let scene = embray::scene::load(&dir.join("s.toml")).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let counted = assert_batched_is_scalar("a smooth band in the Cornell box", &scene, 24, 24, 2);
+    assert!(counted.lanes > 500, "bounces in lanes: {counted:?}");
+}
+
 /// The scenes of every `.xml` file under `dir` (each camera's, for a course file).
 fn xml_scenes(dir: &Path) -> Vec<(String, SceneDesc)> {
     let mut files = Vec::new();

@@ -32,6 +32,11 @@ pub enum PixelFilter {
 /// tabulated density underflows in f32), above 16 it blurs the image away.
 pub const FILTER_SIZES: std::ops::RangeInclusive<f64> = 1e-3..=16.0;
 
+/// `FILTER_SIZES` in words, for messages.
+pub fn filter_sizes_text() -> String {
+    format!("in [{}, {}] pixels", FILTER_SIZES.start(), FILTER_SIZES.end())
+}
+
 impl PixelFilter {
     /// Why this filter cannot reconstruct an image, if it cannot: one not positive at its
     /// centre (a Mitchell–Netravali cubic with B ≥ 3) would weigh every sample by its sign.

@@ -75,8 +75,8 @@ fn an_undefined_usemtl_is_warned_about() {
     run.assert_says(&["warning", "m.obj", "usemtl 'nothing' names no material", "(line 5)"]);
 }
 
-/// tobj drops a model's normals (or texture coordinates) when one face lacks them: the
-/// others' are not used, which is said.
+/// Where one face lacks normals (or texture coordinates), the others' are not used either,
+/// which is said.
 #[test]
 fn normals_on_some_faces_only_are_warned_about() {
     let obj = format!("{TRIANGLE}v 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2 4 3\n");

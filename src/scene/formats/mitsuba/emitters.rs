@@ -18,6 +18,21 @@ use std::sync::Arc;
 impl Builder<'_> {
     pub(super) fn emitter(&mut self, element: &Element) -> Result<(), SceneError> {
         let kind = element.required("type")?;
+        // What the emitter is decides first: its children are judged by its kind.
+        const KINDS: [&str; 7] =
+            ["point", "spot", "projector", "directional", "constant", "envmap", "area"];
+        if kind == "area" {
+            return Err(element.error("an area emitter belongs inside a <shape>"));
+        }
+        let unsupported = || {
+            element.error(format!(
+                "the emitter '{kind}' is not supported yet (point, spot, projector, \
+                 directional, constant, envmap and area are)"
+            ))
+        };
+        if !KINDS.contains(&kind) {
+            return Err(unsupported());
+        }
         let skip: &[&str] = match kind {
             "envmap" => &["filename", "scale"],
             "spot" => &["cutoff_angle", "beam_width", "texture"],
@@ -140,13 +155,7 @@ impl Builder<'_> {
                 p.push(derived(element, "interpolation", Value::Text("bilinear_poles".to_owned())));
                 "environment"
             }
-            "area" => return Err(element.error("an area emitter belongs inside a <shape>")),
-            other => {
-                return Err(element.error(format!(
-                    "the emitter '{other}' is not supported yet (point, spot, projector, \
-                     directional, constant, envmap and area are)"
-                )));
-            }
+            _ => return Err(unsupported()),
         };
         let files = Files { files: self.files, scene: &element.file };
         let light = LightDesc::read(ours, &p, &files)

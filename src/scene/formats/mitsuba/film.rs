@@ -53,7 +53,8 @@ pub(super) fn film(film: &Element, warnings: &mut Vec<String>) -> Result<Film, S
         if !FILTER_SIZES.contains(&value) {
             let at = filter.unwrap_or(film);
             let value = crate::excerpt::short_number(value.to_string());
-            return Err(at.error(format!("{name} is {value}, but must be in [0.001, 16] pixels")));
+            let range = crate::sampling::filter::filter_sizes_text();
+            return Err(at.error(format!("{name} is {value}, but must be {range}")));
         }
         Ok(value as f32)
     };

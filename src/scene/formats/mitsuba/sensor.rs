@@ -141,20 +141,15 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     if kind == "thinlens" {
         let radius = float(element, "aperture_radius")?.unwrap_or(0.0);
         camera.aperture = 2.0 * radius;
-        // The plane in focus, which a lens with an aperture needs in front of it.
-        let focus = float(element, "focus_distance")?;
-        match focus {
-            Some(distance) if distance > 0.0 && distance.is_finite() => {
-                camera.focus_distance = Some(distance);
-            }
-            _ if radius > 0.0 => {
-                let given = focus.map_or("missing".to_owned(), |d| d.to_string());
-                return Err(element.error(format!(
-                    "focus_distance is {given}, but a thin lens with an aperture needs one > 0"
-                )));
-            }
-            _ => {}
+        // The plane in focus: Mitsuba's default is the far clip plane; one not in front of
+        // the lens would focus nowhere.
+        let focus = float(element, "focus_distance")?.unwrap_or(far);
+        if !(focus > 0.0 && focus.is_finite()) {
+            return Err(element.error(format!(
+                "focus_distance is {focus}, but a thin lens needs one > 0 (in front of it)"
+            )));
         }
+        camera.focus_distance = Some(focus);
         camera.lens_shape = LensShape::Disk;
     }
     Ok(Sensor { camera, spp, filter, crop })

@@ -335,7 +335,8 @@ impl Builder<'_> {
             }
             // A textured radiance (or anything else) would otherwise be dropped unseen.
             let constant_radiance = |c: &&Element| {
-                matches!(c.tag.as_str(), "rgb" | "spectrum") && c.attr("name") == Some("radiance")
+                matches!(c.tag.as_str(), "rgb" | "spectrum" | "color")
+                    && c.attr("name") == Some("radiance")
             };
             if let Some(other) = emitter.children.iter().find(|c| !constant_radiance(c)) {
                 return Err(other.error(
@@ -344,7 +345,8 @@ impl Builder<'_> {
                 ));
             }
             let radiance = property(emitter, "rgb", "radiance")
-                .or_else(|| property(emitter, "spectrum", "radiance"));
+                .or_else(|| property(emitter, "spectrum", "radiance"))
+                .or_else(|| property(emitter, "color", "radiance"));
             let radiance = radiance.map_or(Ok(DVec3::ONE), |r| color(r, ColorUse::Emission))?;
             if !radiance.cmpge(DVec3::ZERO).all() {
                 return Err(emitter.error("radiance must be >= 0"));

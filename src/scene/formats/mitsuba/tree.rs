@@ -138,7 +138,7 @@ impl Reader {
         text: &str,
         (depth, level): (usize, usize),
     ) -> Result<Element, SceneError> {
-        if !self.count_bytes(text.len()) {
+        if !self.count_bytes(text.len() as u64) {
             return Err(SceneError::Xml {
                 file: path.to_path_buf(),
                 element: "the document".to_owned(),
@@ -255,25 +255,29 @@ impl Reader {
         Ok(element)
     }
 
-    /// A `<spectrum filename="…">` given its file's pairs as its `value` (the file found
-    /// as Mitsuba finds it, through the `<path>` folders).
     /// Counts `bytes` more read: whether the scene's total is still within
     /// `MAX_XML_BYTES`.
-    fn count_bytes(&mut self, bytes: usize) -> bool {
-        self.bytes += bytes as u64;
+    fn count_bytes(&mut self, bytes: u64) -> bool {
+        self.bytes = self.bytes.saturating_add(bytes);
         self.bytes <= MAX_XML_BYTES
     }
 
+    /// A `<spectrum filename="…">` given its file's pairs as its `value` (the file found
+    /// as Mitsuba finds it, through the `<path>` folders), its size counted before it is
+    /// read.
     fn read_spectrum_file(&mut self, element: &mut Element) -> Result<(), SceneError> {
         let Some(name) = element.attr("filename").map(str::to_owned) else { return Ok(()) };
         if element.attr("value").is_some() {
             return Err(element.error("a <spectrum> takes a value or a filename, not both"));
         }
-        let list = super::spd::spectrum_file_as_list(&self.resolver.resolve(&name))
-            .map_err(|problem| element.error(problem))?;
-        if !self.count_bytes(list.len()) {
+        let path = self.resolver.resolve(&name);
+        // A file that cannot be read is reported by the reader below.
+        let size = std::fs::metadata(&path).map_or(0, |m| m.len());
+        if !self.count_bytes(size) {
             return Err(element.error(bytes_exceeded()));
         }
+        let list =
+            super::spd::spectrum_file_as_list(&path).map_err(|problem| element.error(problem))?;
         element.attrs.retain(|(attr, _)| attr != "filename");
         element.attrs.push(("value".to_owned(), list));
         Ok(())

@@ -189,8 +189,8 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     let mut loaded = LoadedObj { models: Vec::new(), materials: Vec::new() };
     for model in models {
         let name = model.name.clone();
-        // tobj gives a model's normals or texture coordinates only when every face has
-        // them: where some lack them, the others' are dropped, which is said.
+        // Where some faces give normals (or texture coordinates) and some do not, tobj's
+        // arrays do not match the vertices and `mesh_data` uses none of them: said here.
         let vertices = model.mesh.positions.len() / 3;
         let partial = [
             ("normals", model.mesh.normals.len(), 3),

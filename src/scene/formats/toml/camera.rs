@@ -213,13 +213,13 @@ fn pixel_filter(
     path: &FieldPath,
     filter: &crate::scene::formats::toml::format::FilterToml,
 ) -> Result<crate::sampling::filter::PixelFilter, SceneError> {
-    use crate::sampling::filter::{FILTER_SIZES, PixelFilter};
+    use crate::sampling::filter::{FILTER_SIZES, PixelFilter, filter_sizes_text};
     use crate::scene::formats::toml::format::FilterKindToml;
     let item = format!("{path} ({:?} filter)", filter.kind).to_lowercase();
     let size = |name: &str, value: Option<f64>, default: f64| -> Result<f32, SceneError> {
         let value = value.unwrap_or(default);
         let ok = FILTER_SIZES.contains(&value);
-        ctx.require(ok, &path.key(name), value, "in [0.001, 16] pixels")?;
+        ctx.require(ok, &path.key(name), value, &filter_sizes_text())?;
         Ok(value as f32)
     };
     let present = [
