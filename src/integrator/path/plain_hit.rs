@@ -3,9 +3,9 @@
 //! reflectance and no emission or normal perturbation. Such a hit needs only its point, its
 //! error bound, its plane's normal and (with vertex normals) its interpolated normal: not
 //! the texture coordinates, the material's lookups or the general `SurfaceInteraction` that
-//! `scatter` builds for every other hit. The lane it gives is the one `scatter` would give, bit for
-//! bit (the same functions on the same numbers), which `tests/path_batching.rs` checks
-//! against the reference paths, which never take this way.
+//! `scatter` builds for every other hit. The lane it gives is the one `scatter` would give,
+//! bit for bit (the same functions on the same numbers), which `tests/path_batching.rs`
+//! checks against the reference paths, which never take this way.
 
 use super::PathTracer;
 use super::bounce::{PathState, Scattered};

@@ -69,19 +69,18 @@ pub(super) fn film(film: &Element, warnings: &mut Vec<String>) -> Result<Film, S
     };
     // Each filter's own parameters, and no other (Mitsuba refuses what it does not read).
     // (An unsupported filter is warned about below, its parameters unread.)
-    let takes: &[&str] = match filter_type {
-        "gaussian" => &["stddev"],
-        "tent" => &["radius"],
-        "mitchell" => &["B", "C"],
-        "lanczos" => &["lobes"],
-        "box" | "catmullrom" => &[],
-        _ => &["*"],
+    let takes: Option<&[&str]> = match filter_type {
+        "gaussian" => Some(&["stddev"]),
+        "tent" => Some(&["radius"]),
+        "mitchell" => Some(&["B", "C"]),
+        "lanczos" => Some(&["lobes"]),
+        "box" | "catmullrom" => Some(&[]),
+        _ => None,
     };
-    let children = match takes {
-        ["*"] => &[][..],
-        _ => filter.map_or(&[][..], |f| &f.children[..]),
-    };
-    if let Some(other) = children.iter().find(|c| !takes.contains(&c.attr("name").unwrap_or(""))) {
+    let unread = |takes: &[&str], c: &Element| !takes.contains(&c.attr("name").unwrap_or(""));
+    if let (Some(filter), Some(takes)) = (filter, takes)
+        && let Some(other) = filter.children.iter().find(|c| unread(takes, c))
+    {
         let known = if takes.is_empty() { "none".to_owned() } else { takes.join(", ") };
         return Err(other.error(format!(
             "the {filter_type} filter does not take it (its parameters: {known})"
