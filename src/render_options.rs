@@ -86,7 +86,7 @@ impl RenderOptions {
             spp: scene.settings.spp,
             max_depth: scene.settings.max_depth,
             rr_depth: scene.settings.rr_depth,
-            seed: 0,
+            seed: scene.settings.seed,
             jitter: true,
             threads: None,
             backend: BackendKind::default_compiled(),

@@ -319,23 +319,33 @@ fn tonemap_maps_an_exr_like_render_does() {
 
 /// `embray compare` on two EXRs gives the linear figures: identical renders agree exactly,
 /// renders with different seeds differ by a small RMSE; an EXR against a PNG, or a heat map
-/// of EXRs, is refused with a clear message.
+/// of EXRs, is refused with a clear message. A scene's own seed is `--seed`'s default.
 #[test]
 fn compare_reads_two_exrs_linearly() {
     let dir = temp_dir("compare-exr");
     std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
-    for (name, seed) in [("a", "1"), ("b", "1"), ("c", "2")] {
-        let out = embray(
-            &["render", "scene.toml", "-o", &format!("{name}.exr"), "--seed", seed, "--quiet"],
-            &dir,
-        );
+    let seeded = GOOD_SCENE.replace("[materials.white]", "[render]\nseed = 2\n[materials.white]");
+    std::fs::write(dir.join("seeded.toml"), seeded).unwrap();
+    for (name, scene, seed) in [
+        ("a", "scene.toml", Some("1")),
+        ("b", "scene.toml", Some("1")),
+        ("c", "scene.toml", Some("2")),
+        ("d", "seeded.toml", None),
+        ("e", "seeded.toml", Some("1")),
+    ] {
+        let output = format!("{name}.exr");
+        let mut args = vec!["render", scene, "-o", &output, "--quiet"];
+        args.extend(seed.map(|seed| ["--seed", seed]).iter().flatten());
+        let out = embray(&args, &dir);
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     }
-    let same = embray(&["compare", "a.exr", "b.exr"], &dir);
-    let text = String::from_utf8_lossy(&same.stdout);
-    assert!(same.status.success(), "{}", String::from_utf8_lossy(&same.stderr));
-    assert!(text.contains("16x12 linear") && text.contains("RMSE 0.000000,"), "{text}");
-    assert!(text.contains("(largest difference 0.0000 %)"), "{text}");
+    for (a, b) in [("a", "b"), ("c", "d"), ("a", "e")] {
+        let same = embray(&["compare", &format!("{a}.exr"), &format!("{b}.exr")], &dir);
+        let text = String::from_utf8_lossy(&same.stdout);
+        assert!(same.status.success(), "{}", String::from_utf8_lossy(&same.stderr));
+        assert!(text.contains("16x12 linear") && text.contains("RMSE 0.000000,"), "{a} {b}: {text}");
+        assert!(text.contains("(largest difference 0.0000 %)"), "{text}");
+    }
     let other = embray(&["compare", "a.exr", "c.exr"], &dir);
     let text = String::from_utf8_lossy(&other.stdout);
     assert!(other.status.success() && !text.contains("RMSE 0.000000,"), "{text}");

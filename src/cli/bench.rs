@@ -52,8 +52,9 @@ pub struct ConvergenceArgs {
     pub sampler: SamplerKind,
     #[arg(long)]
     pub threads: Option<usize>,
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// The seed of the random numbers (default: the scene's, else 0).
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Also print the spp at which the RMSE would reach this value (MSE ∝ 1/spp).
     #[arg(long)]
     pub target_rmse: Option<f64>,
@@ -365,7 +366,9 @@ fn bench_convergence(args: &ConvergenceArgs) -> Result<()> {
     let inputs = [("the scene", args.scene.as_path()), ("the reference", args.reference.as_path())];
     let csv = args.csv.as_deref().map(|csv| plan_csv(csv, &inputs)).transpose()?;
     let mut options = embray::render::RenderOptions::for_scene(&scene);
-    options.seed = args.seed;
+    if let Some(seed) = args.seed {
+        options.seed = seed;
+    }
     options.sampler = args.sampler;
     options.threads = args.threads;
     if let Some(backend) = args.backend {

@@ -49,8 +49,9 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores). The image does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// The seed of the random numbers (default: the scene's, else 0).
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Space the committed scene lives in.
     #[arg(long, value_parser = choice::<RenderSpace>(), default_value_t = RenderSpace::Cameraworld)]
     pub render_space: RenderSpace,
@@ -255,7 +256,9 @@ impl RenderArgs {
             options.threads = Some(threads);
         }
         self.look.check()?;
-        options.seed = self.seed;
+        if let Some(seed) = self.seed {
+            options.seed = seed;
+        }
         options.jitter = !self.no_jitter;
         options.render_space = self.render_space;
         options.offset = self.offset.unwrap_or(DVec3::ZERO);

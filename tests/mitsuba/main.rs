@@ -6,6 +6,7 @@
 mod common;
 
 mod blend;
+mod film_sampler;
 mod bsdfs;
 mod principled;
 mod reader;

@@ -207,8 +207,8 @@ fn errors_name_the_plugin_the_file_and_the_line() {
     assert_contains(&message, &["the scene has no <sensor>"]);
 }
 
-/// `embray convert`'s TOML keeps what the Mitsuba scene says, the reconstruction filter
-/// included (the TOML format's `[render] filter`).
+/// `embray convert`'s TOML keeps what the Mitsuba scene says, the reconstruction filter and
+/// the sampler's seed included (the TOML format's `[render] filter` and `seed`).
 #[test]
 fn a_mitsuba_scene_converts_to_toml_and_back() {
     let main = format!(
@@ -219,13 +219,16 @@ fn a_mitsuba_scene_converts_to_toml_and_back() {
     <emitter type="point"><point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="10"/></emitter>
     <emitter type="constant"><rgb name="radiance" value="0.5"/></emitter>
 </scene>"#,
-        SENSOR.replace(
-            r#"<rfilter type="box"/>"#,
-            r#"<rfilter type="gaussian"><float name="stddev" value="0.4"/></rfilter>"#
-        )
+        SENSOR
+            .replace(
+                r#"<rfilter type="box"/>"#,
+                r#"<rfilter type="gaussian"><float name="stddev" value="0.4"/></rfilter>"#
+            )
+            .replace("</sampler>", r#"<integer name="seed" value="5"/></sampler>"#)
     );
     let path = files("mitsuba-convert", &main, &[]);
     let scene = load_mitsuba(&path, &[]).unwrap();
+    assert_eq!(scene.settings.seed, 5);
     assert_eq!(
         scene.settings.filter,
         embray::sampling::filter::PixelFilter::Gaussian { stddev: 0.4 }

@@ -60,6 +60,9 @@ pub struct RenderSettings {
     /// The window of the image the scene asks for (Mitsuba's film crop); `--crop` overrides
     /// it and `--resolution` drops it (its pixels are the scene's).
     pub crop: Option<crate::film::Tile>,
+    /// The seed of the render's random numbers (Mitsuba's sampler `seed`); `--seed`
+    /// overrides it.
+    pub seed: u64,
 }
 
 /// Where Russian roulette starts unless a scene says.
@@ -80,6 +83,7 @@ impl Default for RenderSettings {
             aovs: None,
             rr_depth: DEFAULT_RR_DEPTH,
             crop: None,
+            seed: 0,
         }
     }
 }

@@ -120,7 +120,7 @@ pub fn load_str_with_warnings(
         hide_emitters: false,
         aovs: None,
         rr_depth: crate::scene::DEFAULT_RR_DEPTH,
-        crop: None,
+        ..RenderSettings::default()
     };
     if let Some(node) = x.child(root, "BackgroundColor")? {
         settings.background = x.color(node)?;

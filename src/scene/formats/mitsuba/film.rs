@@ -1,10 +1,34 @@
 //! `<film>` (`hdrfilm`): the image size, its crop window and the reconstruction filter.
 
 use super::tree::Element;
-use super::values::{float, integer};
+use super::values::{boolean, float, integer, refuse_unread};
 use crate::film::Tile;
 use crate::sampling::filter::{FILTER_SIZES, PixelFilter};
 use crate::scene::error::SceneError;
+
+/// What `hdrfilm` reads. The output's format, channels and precision are embray's own
+/// (`-o`, `--aovs`), so those are only checked.
+const FILM_PARAMETERS: [&str; 11] = [
+    "width",
+    "height",
+    "crop_offset_x",
+    "crop_offset_y",
+    "crop_width",
+    "crop_height",
+    "file_format",
+    "pixel_format",
+    "component_format",
+    "sample_border",
+    // Mitsuba 3 accepts it (Mitsuba 0.6's) and draws no banner.
+    "banner",
+];
+
+/// The values Mitsuba accepts for the film's string parameters (in any case).
+const FILM_CHOICES: [(&str, &[&str]); 3] = [
+    ("file_format", &["openexr", "exr", "rgbe", "pfm"]),
+    ("pixel_format", &["luminance", "luminance_alpha", "rgb", "rgba", "xyz", "xyza"]),
+    ("component_format", &["float16", "float32", "uint32"]),
+];
 
 pub(super) struct Film {
     pub width: u32,
@@ -36,6 +60,26 @@ fn film_crop(film: &Element, width: u32, height: u32) -> Result<Option<Tile>, Sc
 
 /// `hdrfilm`: the image size, the reconstruction filter and the crop window.
 pub(super) fn film(film: &Element, warnings: &mut Vec<String>) -> Result<Film, SceneError> {
+    let kind = film.required("type")?;
+    if kind != "hdrfilm" {
+        let kind = crate::excerpt::excerpt(kind);
+        return Err(film.error(format!("the film type '{kind}' is not supported (hdrfilm is)")));
+    }
+    refuse_unread(film, "the hdrfilm film", &FILM_PARAMETERS, &["rfilter"])?;
+    for (name, values) in FILM_CHOICES {
+        let choice = super::values::property(film, "string", name);
+        if let Some(choice) = choice
+            && !values.contains(&choice.required("value")?.to_lowercase().as_str())
+        {
+            let known = values.join(", ");
+            return Err(choice.error(format!("{name} must be one of {known}")));
+        }
+    }
+    boolean(film, "sample_border")?;
+    boolean(film, "banner")?;
+    if film.children.iter().filter(|c| c.tag == "rfilter").count() > 1 {
+        return Err(film.error("a film takes one <rfilter>"));
+    }
     let size = |name: &str, default: i64| -> Result<u32, SceneError> {
         let value = integer(film, name)?.unwrap_or(default);
         let max = i64::from(crate::limits::MAX_RESOLUTION);

@@ -2,7 +2,7 @@
 //! for, each integrator's own parameters read and any other refused.
 
 use super::tree::Element;
-use super::values::{boolean, integer};
+use super::values::{boolean, integer, refuse_unread};
 use crate::limits::MAX_DEPTH;
 use crate::scene::desc::{IntegratorKind, RenderSettings};
 use crate::scene::error::SceneError;
@@ -21,20 +21,7 @@ pub(super) fn integrator(
         "aov" => &["aovs"],
         _ => &[],
     };
-    for child in &element.children {
-        match child.attr("name") {
-            Some(name) if !known.contains(&name) => {
-                return Err(child.error(format!(
-                    "the {kind} integrator does not take `{name}` (it takes: {})",
-                    known.join(", ")
-                )));
-            }
-            None if child.tag != "integrator" => {
-                return Err(child.error(format!("an integrator does not take a <{}>", child.tag)));
-            }
-            _ => {}
-        }
-    }
+    refuse_unread(element, &format!("the {kind} integrator"), known, &["integrator"])?;
     match kind {
         "moment" => match element.children.iter().find(|c| c.tag == "integrator") {
             Some(inner) => integrator(inner, settings, warnings),

@@ -10,6 +10,7 @@ mod film;
 mod integrator;
 mod ior;
 mod metals;
+mod sampler;
 mod scalars;
 mod sensor;
 mod shapes;
@@ -186,6 +187,7 @@ pub fn load(
     } else {
         settings.spp = 4;
     }
+    settings.seed = sensor.seed.unwrap_or(0);
     settings.filter = sensor.filter;
     settings.crop = sensor.crop;
     let Builder { materials, objects, lights, .. } = builder;

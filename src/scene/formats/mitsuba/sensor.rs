@@ -3,15 +3,16 @@
 
 use super::transform::transform;
 use super::tree::Element;
-use super::values::{float, integer, numbers, property};
+use super::values::{float, numbers, property, refuse_unread};
 use crate::sampling::filter::PixelFilter;
 use crate::scene::desc::{CameraDesc, LensShape};
 use crate::scene::error::SceneError;
 
-/// A camera and the sample count its sampler asks for.
+/// A camera and the sample count and seed its sampler asks for.
 pub(super) struct Sensor {
     pub camera: CameraDesc,
     pub spp: Option<u32>,
+    pub seed: Option<u64>,
     pub filter: PixelFilter,
     pub crop: Option<crate::film::Tile>,
 }
@@ -75,7 +76,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         )));
     }
     check_sensor_properties(element, kind)?;
-    let (mut width, mut height, mut spp) = (768u32, 576u32, None);
+    let (mut width, mut height, mut spp, mut seed) = (768u32, 576u32, None, None);
     // Mitsuba's default film: 768 × 576 with a Gaussian filter.
     let mut filter = PixelFilter::Gaussian { stddev: 0.5 };
     let mut crop = None;
@@ -86,11 +87,8 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
                 (width, height, filter, crop) = (film.width, film.height, film.filter, film.crop);
             }
             "sampler" => {
-                let count = integer(child, "sample_count")?.unwrap_or(4);
-                if !(1..=i64::from(u32::MAX)).contains(&count) {
-                    return Err(child.error("sample_count must be at least 1"));
-                }
-                spp = Some(count as u32);
+                let sampler = super::sampler::sampler(child)?;
+                (spp, seed) = (Some(sampler.sample_count), sampler.seed);
             }
             _ => {}
         }
@@ -123,7 +121,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         camera.ortho_half_height = Some(sy / aspect);
         camera.clip = (near, far);
         camera.pixel_aspect = sx / sy;
-        return Ok(Sensor { camera, spp, filter, crop });
+        return Ok(Sensor { camera, spp, seed, filter, crop });
     }
     let x_fov = x_fov(element, aspect)?;
     let vfov = (2.0 * ((0.5 * x_fov).to_radians().tan() / aspect).atan()).to_degrees();
@@ -152,7 +150,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         camera.focus_distance = Some(focus);
         camera.lens_shape = LensShape::Disk;
     }
-    Ok(Sensor { camera, spp, filter, crop })
+    Ok(Sensor { camera, spp, seed, filter, crop })
 }
 
 /// Refuses a parameter the sensor does not read (`shutter_open`/`shutter_close` are read
@@ -172,18 +170,6 @@ fn check_sensor_properties(element: &Element, kind: &str) -> Result<(), SceneErr
         if child.tag == "medium" {
             return Err(child.error("participating media (<medium>) are not supported"));
         }
-        match child.attr("name") {
-            Some(name) if !known.contains(&name) => {
-                return Err(child.error(format!(
-                    "the {kind} sensor does not take `{name}` (it takes: {})",
-                    known.join(", ")
-                )));
-            }
-            None if !matches!(child.tag.as_str(), "film" | "sampler") => {
-                return Err(child.error(format!("a sensor does not take a <{}>", child.tag)));
-            }
-            _ => {}
-        }
     }
-    Ok(())
+    refuse_unread(element, &format!("the {kind} sensor"), &known, &["film", "sampler"])
 }

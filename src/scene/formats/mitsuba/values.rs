@@ -65,6 +65,32 @@ pub(super) fn boolean(plugin: &Element, name: &str) -> Result<Option<bool>, Scen
     }
 }
 
+/// Refuses a child of `plugin` that `label` (the plugin, as the message names it) does not
+/// read, as Mitsuba refuses an unreferenced property: a named child whose name is not in
+/// `known`, or an unnamed one whose tag is not in `nested`.
+pub(super) fn refuse_unread(
+    plugin: &Element,
+    label: &str,
+    known: &[&str],
+    nested: &[&str],
+) -> Result<(), SceneError> {
+    for child in &plugin.children {
+        match child.attr("name") {
+            Some(name) if !known.contains(&name) => {
+                let takes = if known.is_empty() { "nothing".to_owned() } else { known.join(", ") };
+                return Err(
+                    child.error(format!("{label} does not take `{name}` (it takes: {takes})"))
+                );
+            }
+            None if !nested.contains(&child.tag.as_str()) => {
+                return Err(child.error(format!("{label} does not take a <{}>", child.tag)));
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// The value of a property element, as a kind reads it.
 pub(super) fn property_value(element: &Element, usage: ColorUse) -> Result<Value, SceneError> {
     Ok(match element.tag.as_str() {

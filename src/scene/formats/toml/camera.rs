@@ -181,6 +181,7 @@ pub(crate) fn settings(
         ctx.require(rr_depth >= 1, &path.key("rr_depth"), rr_depth, "at least 1")?;
         settings.rr_depth = rr_depth;
     }
+    settings.seed = render.seed.unwrap_or(0);
     if let Some(filter) = &render.filter {
         settings.filter = pixel_filter(ctx, &path.key("filter"), filter)?;
     }

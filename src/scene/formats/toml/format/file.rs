@@ -73,6 +73,8 @@ pub(crate) struct RenderToml {
     pub rr_depth: Option<u32>,
     /// `[x0, y0, x1, y1]`: the window of the image rendered (the second corner excluded).
     pub crop: Option<[u32; 4]>,
+    /// The seed of the render's random numbers (`--seed` overrides it).
+    pub seed: Option<u64>,
 }
 
 /// `filter = { type = "gaussian", stddev = 0.5 }`: the pixel reconstruction filter.

@@ -222,6 +222,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
     if s.rr_depth != crate::scene::DEFAULT_RR_DEPTH {
         let _ = writeln!(out, "rr_depth = {}", s.rr_depth);
     }
+    if s.seed != 0 {
+        let _ = writeln!(out, "seed = {}", s.seed);
+    }
     if s.hide_emitters {
         let _ = writeln!(out, "hide_emitters = true");
     }

@@ -1,0 +1,52 @@
+//! `<sampler>`: the sample count and seed it asks for. embray draws its own Owen-scrambled
+//! Sobol numbers whatever the sampler's type (its estimate is the same, its noise lower:
+//! README, Mitsuba 3 scenes), so `jitter` and `strength` are checked and not used.
+
+use super::tree::Element;
+use super::values::{boolean, integer, refuse_unread};
+use crate::scene::error::SceneError;
+
+/// What a sampler asks of the render.
+pub(super) struct Sampler {
+    pub sample_count: u32,
+    pub seed: Option<u64>,
+}
+
+/// Mitsuba's samplers and the parameters each reads.
+fn parameters(kind: &str) -> Option<&'static [&'static str]> {
+    Some(match kind {
+        "independent" | "ldsampler" => &["sample_count", "seed"],
+        "stratified" | "multijitter" => &["sample_count", "seed", "jitter"],
+        "orthogonal" => &["sample_count", "seed", "jitter", "strength"],
+        _ => return None,
+    })
+}
+
+pub(super) fn sampler(element: &Element) -> Result<Sampler, SceneError> {
+    let kind = element.required("type")?;
+    let Some(known) = parameters(kind) else {
+        return Err(element.error(format!(
+            "the sampler type '{}' is not one of Mitsuba's (independent, stratified, \
+             multijitter, orthogonal, ldsampler)",
+            crate::excerpt::excerpt(kind)
+        )));
+    };
+    refuse_unread(element, &format!("the {kind} sampler"), known, &[])?;
+    let sample_count = integer(element, "sample_count")?.unwrap_or(4);
+    if !(1..=i64::from(u32::MAX)).contains(&sample_count) {
+        return Err(element.error("sample_count must be at least 1"));
+    }
+    let named = |name: &str| element.children.iter().find(|c| c.attr("name") == Some(name));
+    // Mitsuba reads the seed as an unsigned 32-bit number.
+    let seed = integer(element, "seed")?;
+    if let Some(seed) = seed.filter(|seed| !(0..=i64::from(u32::MAX)).contains(seed)) {
+        let at = named("seed").unwrap_or(element);
+        return Err(at.error(format!("seed is {seed}, but must be 0 to {}", u32::MAX)));
+    }
+    boolean(element, "jitter")?;
+    if let Some(strength) = integer(element, "strength")?.filter(|s| *s < 1) {
+        let at = named("strength").unwrap_or(element);
+        return Err(at.error(format!("strength is {strength}, but must be at least 1")));
+    }
+    Ok(Sampler { sample_count: sample_count as u32, seed: seed.map(|seed| seed as u64) })
+}

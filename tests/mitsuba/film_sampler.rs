@@ -1,0 +1,98 @@
+//! The `<film>` and `<sampler>` of a sensor: what they ask of the render is read (the
+//! sampler's seed too), and what embray would otherwise drop unseen is refused with its
+//! line, as Mitsuba refuses a property it does not read.
+
+use super::common::assert_contains;
+use super::load_mitsuba;
+use super::reader::{SENSOR, files};
+use embray::scene::SceneDesc;
+
+/// The scene of `SENSOR` with `film` added to its film and `sampler` to its sampler.
+fn with(name: &str, film: &str, sampler: &str) -> Result<SceneDesc, String> {
+    with_kinds(name, ("hdrfilm", film), ("independent", sampler))
+}
+
+/// `with`, the film and the sampler of the types given.
+fn with_kinds(
+    name: &str,
+    (film_kind, film): (&str, &str),
+    (sampler_kind, sampler): (&str, &str),
+) -> Result<SceneDesc, String> {
+    let sensor = SENSOR
+        .replace("hdrfilm", film_kind)
+        .replace("\"independent\"", &format!("\"{sampler_kind}\""))
+        .replace("<rfilter", &format!("{film}<rfilter"))
+        .replace("</sampler>", &format!("{sampler}</sampler>"));
+    let main = format!(
+        "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+         value=\"40\"/>{sensor}\n</scene>"
+    );
+    load_mitsuba(&files(name, &main, &[]), &[])
+}
+
+/// The sampler's seed is the scene's (what `--seed` overrides); without one it is 0.
+#[test]
+fn the_samplers_seed_is_the_scenes() {
+    assert_eq!(with("m-seed-none", "", "").unwrap().settings.seed, 0);
+    let seeded = with("m-seed", "", "<integer name=\"seed\" value=\"7\"/>").unwrap();
+    assert_eq!(seeded.settings.seed, 7);
+    let options = embray::render::RenderOptions::for_scene(&seeded);
+    assert_eq!(options.seed, 7, "the render's seed");
+    let message = with("m-seed-neg", "", "<integer name=\"seed\" value=\"-1\"/>").unwrap_err();
+    assert_contains(&message, &["seed is -1, but must be 0 to 4294967295", "(line 9)"]);
+}
+
+/// Every sampler Mitsuba has is read, with its own parameters; another type, or a
+/// parameter the type does not take, is refused.
+#[test]
+fn sampler_types_and_parameters_are_read_or_refused() {
+    for (kind, extra) in [
+        ("stratified", "<boolean name=\"jitter\" value=\"false\"/>"),
+        ("multijitter", "<boolean name=\"jitter\" value=\"true\"/>"),
+        ("orthogonal", "<integer name=\"strength\" value=\"2\"/>"),
+        ("ldsampler", "<integer name=\"seed\" value=\"3\"/>"),
+    ] {
+        let name = format!("m-sampler-{kind}");
+        let scene = with_kinds(&name, ("hdrfilm", ""), (kind, extra));
+        assert_eq!(scene.map(|s| s.settings.spp), Ok(1), "{kind}");
+    }
+    let typo = with("m-sampler-typo", "", "<integer name=\"sead\" value=\"3\"/>").unwrap_err();
+    assert_contains(
+        &typo,
+        &["the independent sampler does not take `sead` (it takes: sample_count, seed)"],
+    );
+    let jitter = with("m-sampler-jit", "", "<boolean name=\"jitter\" value=\"true\"/>");
+    assert_contains(&jitter.unwrap_err(), &["does not take `jitter`", "(line 9)"]);
+}
+
+/// The sampler's type is Mitsuba's name for it.
+#[test]
+fn an_unknown_sampler_type_is_refused() {
+    let message = with_kinds("m-sampler-sobol", ("hdrfilm", ""), ("sobol", "")).unwrap_err();
+    assert_contains(&message, &["the sampler type 'sobol' is not one of Mitsuba's", "(line 9)"]);
+}
+
+/// The film's output settings are Mitsuba's names (checked, not used: the outputs are
+/// embray's); a misspelt parameter or value, a second filter or another film type is
+/// refused.
+#[test]
+fn film_parameters_are_checked() {
+    let settings = "<string name=\"pixel_format\" value=\"RGBA\"/><string \
+                    name=\"component_format\" value=\"float32\"/><string name=\"file_format\" \
+                    value=\"openexr\"/><boolean name=\"sample_border\" value=\"true\"/>";
+    let scene = with("m-film-ok", settings, "").unwrap();
+    assert_eq!((scene.camera.width, scene.camera.height), (32, 24));
+    let cases = [
+        ("<integer name=\"widht\" value=\"8\"/>", "the hdrfilm film does not take `widht`"),
+        ("<string name=\"pixel_format\" value=\"rgbw\"/>", "pixel_format must be one of"),
+        ("<boolean name=\"sample_border\" value=\"1\"/>", "'1' is not true or false"),
+        ("<rfilter type=\"tent\"/>", "a film takes one <rfilter>"),
+        ("<bsdf type=\"diffuse\"/>", "the hdrfilm film does not take a <bsdf>"),
+    ];
+    for (i, (film, expected)) in cases.into_iter().enumerate() {
+        let message = with(&format!("m-film-{i}"), film, "").unwrap_err();
+        assert_contains(&message, &[expected, "main.xml"]);
+    }
+    let message = with_kinds("m-film-spec", ("specfilm", ""), ("independent", "")).unwrap_err();
+    assert_contains(&message, &["the film type 'specfilm' is not supported (hdrfilm is)"]);
+}
