@@ -97,7 +97,7 @@ pub const BYTES_PER_HDR_TEXEL: u64 = 30;
 pub const BYTES_PER_SAMPLED_TEXEL: u64 = 24;
 
 /// The memory this process may still use: the smallest of the kernel's MemAvailable, the
-/// cgroup's limit (in a container) and `EMBRAY_MAX_MEMORY` (bytes: a budget for a shared
+/// cgroup's limit (in a container), what `ulimit -v` leaves and `EMBRAY_MAX_MEMORY` (bytes: a budget for a shared
 /// machine), or `None` when none is known.
 pub fn memory_available() -> Option<u64> {
     let budget = std::env::var("EMBRAY_MAX_MEMORY").ok().and_then(|v| v.trim().parse::<u64>().ok());
@@ -113,8 +113,17 @@ fn detected_memory() -> Option<u64> {
     let cgroup = std::fs::read_to_string("/sys/fs/cgroup/memory.max")
         .ok()
         .and_then(|t| t.trim().parse::<u64>().ok());
-    match (meminfo, cgroup) {
-        (Some(a), Some(b)) => Some(a.min(b)),
-        (a, b) => a.or(b),
-    }
+    [meminfo, cgroup, address_space_left()].into_iter().flatten().min()
+}
+
+/// What `ulimit -v` (the soft RLIMIT_AS) leaves of the address space beyond what the
+/// process maps already, if it sets one: past it an allocation fails, and Rust aborts.
+fn address_space_left() -> Option<u64> {
+    let limits = std::fs::read_to_string("/proc/self/limits").ok()?;
+    let line = limits.lines().find(|l| l.starts_with("Max address space"))?;
+    let limit: u64 = line.trim_start_matches("Max address space").split_whitespace().next()?.parse().ok()?;
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let size = status.lines().find(|l| l.starts_with("VmSize:"))?;
+    let kib: u64 = size.split_whitespace().nth(1)?.parse().ok()?;
+    Some(limit.saturating_sub(kib * 1024))
 }

@@ -89,7 +89,10 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
     for object in &desc.objects {
         if let ShapeDesc::Mesh(mesh) = &object.shape {
             if meshes.insert(Arc::as_ptr(mesh)) {
-                triangles += mesh.indices.len() as u64;
+                // A triangle's cost covers its share of a mesh's vertices (a triangle soup
+                // has three); a mesh of more vertices than that costs as a soup of them.
+                let soup = (mesh.positions.len() as u64).div_ceil(3);
+                triangles += (mesh.indices.len() as u64).max(soup);
             }
         }
     }

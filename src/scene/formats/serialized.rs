@@ -15,9 +15,10 @@ const HAS_NORMALS: u32 = 0x0001;
 const HAS_TEXCOORDS: u32 = 0x0002;
 const HAS_COLORS: u32 = 0x0008;
 const DOUBLE_PRECISION: u32 = 0x2000;
-/// The most vertices or triangles one mesh may declare (as the PLY and OBJ readers'
-/// input cap allows: 2 GiB of 12-byte records).
-const MAX_COUNT: u64 = (2u64 << 30) / 12;
+/// The most data one mesh may declare, decoded (the PLY and OBJ readers' input cap).
+const MAX_DECODED_BYTES: u64 = 2 << 30;
+/// Values (or triangles) decoded at a time.
+const DECODE_BLOCK: usize = 1 << 16;
 
 fn u16_at(bytes: &[u8], at: usize) -> Option<u16> {
     Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?))
@@ -68,61 +69,114 @@ pub(crate) fn parse(
     }
     let counts = read(16, "vertex and face counts")?;
     let (vertices, faces) = (u64_at(&counts, 0).unwrap_or(0), u64_at(&counts, 8).unwrap_or(0));
-    if vertices > MAX_COUNT || faces > MAX_COUNT {
-        return Err(format!(
-            "{vertices} vertices and {faces} triangles declared: at most {MAX_COUNT} of each"
-        ));
-    }
     if vertices == 0 || faces == 0 {
         return Err(format!("the mesh has {vertices} vertices and {faces} triangles"));
     }
-    let (vertices, faces) = (vertices as usize, faces as usize);
-    let width = if flags & DOUBLE_PRECISION != 0 { 8 } else { 4 };
-    let mut floats = |count: usize, what: &str| -> Result<Vec<f64>, String> {
-        let data = read(count * width, what)?;
-        let values: Vec<f64> = data
-            .chunks_exact(width)
-            .map(|c| match width {
-                8 => f64::from_le_bytes(c.try_into().unwrap()),
-                _ => f32::from_le_bytes(c.try_into().unwrap()) as f64,
-            })
-            .collect();
-        match values.iter().position(|v| !v.is_finite()) {
-            Some(i) => Err(format!("{what}: value {} is not finite", i)),
-            None => Ok(values),
-        }
+    let width: u64 = if flags & DOUBLE_PRECISION != 0 { 8 } else { 4 };
+    let floats_per_vertex = 3
+        + 3 * u64::from(flags & HAS_NORMALS != 0)
+        + 2 * u64::from(flags & HAS_TEXCOORDS != 0)
+        + 3 * u64::from(flags & HAS_COLORS != 0);
+    // A small stream may inflate to any size: what the counts ask for is bounded as the
+    // other mesh readers bound their files, before anything is decoded.
+    let declared = vertices
+        .checked_mul(floats_per_vertex * width)
+        .and_then(|v| faces.checked_mul(12).and_then(|f| v.checked_add(f)));
+    if !declared.is_some_and(|bytes| bytes <= MAX_DECODED_BYTES) {
+        return Err(format!(
+            "{vertices} vertices and {faces} triangles declared: more than the {} GiB of data a \
+             mesh may hold",
+            MAX_DECODED_BYTES >> 30
+        ));
+    }
+    // What the decoded mesh holds (f64 positions and normals, f32 texture coordinates, u32
+    // corners), against what the machine has.
+    let kept = vertices * (24 + 24 * u64::from(flags & HAS_NORMALS != 0))
+        + vertices * 8 * u64::from(flags & HAS_TEXCOORDS != 0)
+        + faces * 12;
+    if let Some(available) = crate::limits::memory_available().filter(|&a| kept > a) {
+        return Err(format!(
+            "{vertices} vertices and {faces} triangles need {} MiB decoded, but only {} MiB \
+             are available",
+            kept >> 20,
+            available >> 20
+        ));
+    }
+    let (vertices, faces, width) = (vertices as usize, faces as usize, width as usize);
+    let mut decode = |count: usize, arity: usize, what: &str, keep: &mut dyn FnMut(&[f64])| {
+        decode_floats(&mut read, (count, arity, width), what, keep)
     };
-    let triple = |v: &[f64]| DVec3::new(v[0], v[1], v[2]);
-    let positions: Vec<DVec3> =
-        floats(3 * vertices, "positions")?.chunks_exact(3).map(triple).collect();
+    let mut triples = |what: &str| -> Result<Vec<DVec3>, String> {
+        let mut kept = Vec::new();
+        let keep = &mut |block: &[f64]| {
+            kept.extend(block.chunks_exact(3).map(|v| DVec3::new(v[0], v[1], v[2])));
+        };
+        decode(vertices, 3, what, keep)?;
+        Ok(kept)
+    };
+    let positions = triples("positions")?;
     let normals = match flags & HAS_NORMALS != 0 {
         false => None,
-        true => Some(floats(3 * vertices, "normals")?.chunks_exact(3).map(triple).collect()),
+        true => Some(triples("normals")?),
     };
     let uvs = match flags & HAS_TEXCOORDS != 0 {
         false => None,
-        true => Some(
-            floats(2 * vertices, "texture coordinates")?
-                .chunks_exact(2)
-                .map(|t| Vec2::new(t[0] as f32, t[1] as f32))
-                .collect(),
-        ),
+        true => {
+            let mut kept = Vec::new();
+            let keep = &mut |block: &[f64]| {
+                kept.extend(block.chunks_exact(2).map(|t| Vec2::new(t[0] as f32, t[1] as f32)));
+            };
+            decode(vertices, 2, "texture coordinates", keep)?;
+            Some(kept)
+        }
     };
     if flags & HAS_COLORS != 0 {
-        floats(3 * vertices, "vertex colours")?;
+        decode(vertices, 3, "vertex colours", &mut |_| {})?;
     }
-    let data = read(12 * faces, "triangles")?;
-    let mut indices = Vec::with_capacity(faces);
-    for (i, t) in data.chunks_exact(12).enumerate() {
-        let corner = |k: usize| u32_at(t, 4 * k).unwrap_or(u32::MAX);
-        let triangle = [corner(0), corner(1), corner(2)];
-        if let Some(bad) = triangle.iter().find(|&&v| v as usize >= vertices) {
-            return Err(format!("triangle {i} uses vertex {bad}, but there are {vertices}"));
+    let mut indices = Vec::new();
+    let mut left = faces;
+    while left > 0 {
+        let take = left.min(DECODE_BLOCK);
+        for t in read(12 * take, "triangles")?.chunks_exact(12) {
+            let corner = |k: usize| u32_at(t, 4 * k).unwrap_or(u32::MAX);
+            let triangle = [corner(0), corner(1), corner(2)];
+            if let Some(bad) = triangle.iter().find(|&&v| v as usize >= vertices) {
+                let i = indices.len();
+                return Err(format!("triangle {i} uses vertex {bad}, but there are {vertices}"));
+            }
+            indices.push(triangle);
         }
-        indices.push(triangle);
+        left -= take;
     }
     let normals = if face_normals { None } else { normals };
     Ok(MeshData { positions, indices, normals, uvs, attributes: Vec::new() })
+}
+
+/// Decodes `count` records of `arity` floats of `width` bytes from `read`, a block at a
+/// time, handing each block to `keep`: what is allocated grows with the data actually
+/// there, however large the count declared.
+fn decode_floats(
+    read: &mut impl FnMut(usize, &str) -> Result<Vec<u8>, String>,
+    (count, arity, width): (usize, usize, usize),
+    what: &str,
+    keep: &mut dyn FnMut(&[f64]),
+) -> Result<(), String> {
+    let (mut done, mut block) = (0, Vec::new());
+    while done < count {
+        let take = (count - done).min(DECODE_BLOCK);
+        let data = read(take * arity * width, what)?;
+        block.clear();
+        block.extend(data.chunks_exact(width).map(|c| match width {
+            8 => f64::from_le_bytes(c.try_into().unwrap()),
+            _ => f32::from_le_bytes(c.try_into().unwrap()) as f64,
+        }));
+        if let Some(i) = block.iter().position(|v| !v.is_finite()) {
+            return Err(format!("{what}: value {} is not finite", done * arity + i));
+        }
+        keep(&block);
+        done += take;
+    }
+    Ok(())
 }
 
 /// Where mesh `index` starts, from the table at the end of the file (after its own 4-byte
@@ -191,7 +245,10 @@ mod tests {
     fn bad_counts_indices_and_truncation_are_refused_without_allocating() {
         assert!(parse(&triangle_file(3, 3), 0, false).unwrap_err().contains("uses vertex 3"));
         let huge = parse(&triangle_file(u64::MAX / 2, 2), 0, false).unwrap_err();
-        assert!(huge.contains("at most"), "{huge}");
+        assert!(huge.contains("more than the 2 GiB of data a mesh may hold"), "{huge}");
+        // Two zero-filled streams that inflate past the cap: by count, and by total.
+        let many = parse(&triangle_file(178_956_970, 1), 0, false).unwrap_err();
+        assert!(many.contains("more than the 2 GiB"), "{many}");
         let mut file = triangle_file(3, 2);
         file.truncate(file.len() - 6);
         assert!(parse(&file, 0, false).is_err());

@@ -187,6 +187,12 @@ pub(super) fn parse_header(bytes: &[u8]) -> Result<Header, PlyProblem> {
     }
     let encoding =
         encoding.ok_or_else(|| problem(None, "the header has no 'format' line".to_owned()))?;
+    // A record of no properties takes no data: nothing would bound reading a count of them.
+    if let Some(empty) = elements.iter().find(|e| e.count > 0 && e.properties.is_empty()) {
+        let message =
+            format!("element '{}' has {} records but no properties", empty.name, empty.count);
+        return Err(problem(Some(empty.line), message));
+    }
     Ok(Header { encoding, elements, body_start: offset, lines: line_number })
 }
 

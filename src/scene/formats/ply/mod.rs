@@ -291,7 +291,7 @@ fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, 
             }
         }
     }
-    values.finish().map_err(|(line, m)| problem(Some(line), m))?;
+    values.finish().map_err(|(line, m)| problem(line, m))?;
     if mesh.indices.is_empty() {
         let message = if has_face_element {
             "the PLY file has no faces (no polygon with 3 or more vertices)"

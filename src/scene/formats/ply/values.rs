@@ -22,11 +22,14 @@ pub(super) trait Values {
     fn end_record(&mut self) -> Result<(), String> {
         Ok(())
     }
-    /// After the last element: ASCII data left over means the header's counts are wrong.
-    fn finish(&mut self) -> Result<(), (usize, String)> {
-        Ok(())
-    }
+    /// After the last element: data left over means the header's counts are wrong (its
+    /// line, where there are lines).
+    fn finish(&mut self) -> Result<(), (Option<usize>, String)>;
 }
+
+/// What `finish` says of data past the last element.
+const DATA_LEFT_OVER: &str = "the data goes on after the last element the header declares \
+                              (do the header's element counts match the data?)";
 
 pub(super) struct Binary<'a> {
     pub(super) data: &'a [u8],
@@ -67,6 +70,15 @@ impl Values for Binary<'_> {
 
     fn remaining(&self) -> usize {
         self.data.len().saturating_sub(self.pos)
+    }
+
+    /// Bytes left over are refused, but for a line end or spaces some writers add.
+    fn finish(&mut self) -> Result<(), (Option<usize>, String)> {
+        let rest = self.data.get(self.pos..).unwrap_or_default();
+        if rest.iter().all(u8::is_ascii_whitespace) {
+            return Ok(());
+        }
+        Err((None, format!("{DATA_LEFT_OVER}: {} bytes are left", rest.len())))
     }
 }
 
@@ -134,16 +146,11 @@ impl Values for Ascii<'_> {
         }
     }
 
-    fn finish(&mut self) -> Result<(), (usize, String)> {
+    fn finish(&mut self) -> Result<(), (Option<usize>, String)> {
         for line in self.lines.by_ref() {
             self.line += 1;
             if !line.trim().is_empty() {
-                return Err((
-                    self.line,
-                    "the data goes on after the last element the header declares (do the \
-                     header's element counts match the data?)"
-                        .to_owned(),
-                ));
+                return Err((Some(self.line), DATA_LEFT_OVER.to_owned()));
             }
         }
         Ok(())
