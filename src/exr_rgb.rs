@@ -43,9 +43,23 @@ pub fn header_size(bytes: &[u8]) -> Result<(u64, u64, u64), String> {
 }
 
 /// The first layer's pixels, row-major from the top, as they are (not clamped, not checked
-/// for finiteness); its width and height.
+/// for finiteness); its width and height. Every channel is decoded: a small compressed file
+/// of many channels can decode to gigabytes, so its decoded size is checked against the
+/// memory there is before the decoder allocates.
 pub fn read(bytes: &[u8]) -> Result<(u32, u32, Vec<Vec3>), String> {
     use exr::prelude::*;
+    let (w, h, channels) = header_size(bytes)?;
+    let needed = (w * h).saturating_mul(read_bytes_per_pixel(channels));
+    if let Some(available) = crate::limits::memory_available()
+        && needed > available
+    {
+        return Err(format!(
+            "{w} × {h} pixels of {channels} channels need about {} MiB to read, but only {} MiB \
+             are available",
+            needed >> 20,
+            available >> 20
+        ));
+    }
     let image = guarded(|| {
         exr::prelude::read()
             .no_deep_data()

@@ -44,24 +44,12 @@ pub fn read_reference(path: &Path) -> Result<Film, ConvergenceError> {
     let bytes = crate::input_file::read_bytes(path).map_err(|e| error(e.to_string()))?;
     // The header's size is checked before the reader allocates for it: a render's size at
     // most, as any image embray wrote is.
-    let (w, h, channels) = crate::exr_rgb::header_size(&bytes).map_err(error)?;
+    let (w, h) = crate::exr_rgb::size(&bytes).map_err(error)?;
     let max = u64::from(crate::scene::MAX_RESOLUTION);
     if w == 0 || h == 0 || w > max || h > max {
         return Err(error(format!("{w} × {h} pixels; images of 1 to {max} on a side are read")));
     }
-    // A small compressed file can decode to gigabytes: its decoded size against the memory
-    // there is, before the decoder allocates.
-    let needed = (w * h).saturating_mul(crate::exr_rgb::read_bytes_per_pixel(channels));
-    if let Some(available) = crate::limits::memory_available()
-        && needed > available
-    {
-        return Err(error(format!(
-            "{w} × {h} pixels of {channels} channels need about {} MiB to read, but only {} MiB \
-             are available",
-            needed >> 20,
-            available >> 20
-        )));
-    }
+    // (`read` checks the memory its channels need.)
     let (w, h, pixels) = crate::exr_rgb::read(&bytes).map_err(error)?;
     let mut film = Film::new(w, h);
     film.color = pixels;

@@ -11,6 +11,7 @@ mod collisions;
 #[path = "../common/mod.rs"]
 mod common;
 mod harness;
+mod inflating;
 mod limits;
 mod meshes;
 mod nesting;
