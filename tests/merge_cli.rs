@@ -121,18 +121,28 @@ fn parts_that_do_not_make_one_render_are_refused() {
     assert_eq!(std::fs::read(dir.join("m.jpg")).unwrap()[..3], [0xFF, 0xD8, 0xFF]);
 }
 
+/// Options a part cannot honour are refused before it renders: among them a grading LUT
+/// (the merge grades the image) and a scene's own crop window (the parts split the whole
+/// image: merged, they were refused as damaged).
 #[test]
 fn bad_part_options_are_refused_before_rendering() {
     let dir = temp_dir("options");
     std::fs::write(dir.join("scene.toml"), scene()).unwrap();
+    let cropped = scene().replace("spp = 4", "spp = 4\ncrop = [0, 0, 4, 4]");
+    std::fs::write(dir.join("cropped.toml"), cropped).unwrap();
     for (args, expected) in [
         (vec!["--part", "3/3"], "the index counts from 0"),
         (vec!["--part", "x"], "is not of the form I/N"),
         (vec!["--part", "0/2", "--png", "a.png"], "--png cannot be used with --part"),
+        (vec!["--part", "0/2", "--lut", "none.cube"], "--lut cannot be used with --part"),
+        (vec!["cropped.toml", "--part", "0/2"], "asks for a crop window (0, 0) to (4, 4)"),
         (vec!["--part", "0/5", "--split", "samples"], "4 spp cannot be split into 5 sample ranges"),
         (vec!["--split", "samples"], "--part"),
     ] {
-        let mut all = vec!["render", "scene.toml", "-q"];
+        let mut all = vec!["render", "-q"];
+        if args[0] != "cropped.toml" {
+            all.push("scene.toml");
+        }
         all.extend(&args);
         let out = embray(&all, &dir);
         let stderr = String::from_utf8_lossy(&out.stderr);
@@ -140,7 +150,7 @@ fn bad_part_options_are_refused_before_rendering() {
         assert!(!stderr.contains("panicked"));
     }
     let files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
-    assert_eq!(files.len(), 1, "nothing but the scene: {files:?}");
+    assert_eq!(files.len(), 2, "nothing but the scenes: {files:?}");
 }
 
 /// The RGB pixels of an EXR.

@@ -19,8 +19,9 @@ pub fn default_part_path(part: Part) -> PathBuf {
 
 /// Renders `part` of the scene `args` names and commits its part file.
 pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
+    let lut = args.look.lut.is_some();
     for (flag, given) in
-        [("--png", args.png.is_some()), ("--stats-json", args.stats_json.is_some())]
+        [("--png", args.png.is_some()), ("--stats-json", args.stats_json.is_some()), ("--lut", lut)]
     {
         if given {
             bail!(
@@ -58,6 +59,18 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         path => super::load_scene(path, &args.defines)?,
     };
     args.apply_preview(&mut scene)?;
+    if let Some(crop) = scene.settings.crop {
+        bail!(
+            "'{}' asks for a crop window ({}, {}) to ({}, {}), and --part splits the whole \
+             image: render the crop without --part (or all of the image in parts with \
+             --resolution, which drops the crop)",
+            scene.source.display(),
+            crop.x0,
+            crop.y0,
+            crop.x1,
+            crop.y1
+        );
+    }
     plan.inputs_read(&embray::input_file::files_read());
     let output = args.output.clone().unwrap_or_else(|| default_part_path(part));
     let target = plan.output(

@@ -1,6 +1,7 @@
-//! What a second probe of the binary found: input that panicked, or that was dropped
-//! without a word (a textured radiance read as none, a light scaled out of f32's range, a
-//! thin lens focused nowhere), now refused with the file, line and field.
+//! What the second and third probes of the binary found: input that panicked, or that was
+//! dropped without a word (a textured radiance read as none, a light scaled out of f32's
+//! range, a thin lens focused nowhere, a second integrator, a film parameter misspelt), now
+//! refused with the file, line and field.
 
 use crate::harness::{Scratch, accepted_in, refused_cases, refused_in, scene};
 
@@ -42,6 +43,12 @@ refused_cases! {
         => ["s.xml", "only a constant radiance", "<texture", "line 10"];
     textured_constant_sky: ["s.xml" => mitsuba(PERSPECTIVE, "", "").replace(r#"<emitter type="constant"/>"#, r#"<emitter type="constant"><texture type="checkerboard" name="radiance"/></emitter>"#)], ["render", "s.xml"]
         => ["s.xml", "does not take a <texture> named `radiance`", "line 9"];
+    pinhole_focus_not_a_number: ["s.xml" => mitsuba(r#"<sensor type="perspective"><float name="focus_distance" value="abc"/>"#, "", "")], ["render", "s.xml"]
+        => ["s.xml", "'abc' is not a number", "line 2"];
+    two_integrators: ["s.xml" => mitsuba(PERSPECTIVE, "", r#"<integrator type="path"/><integrator type="direct"/>"#)], ["render", "s.xml"]
+        => ["s.xml", "a scene takes one <integrator>", "line 10"];
+    film_typo: ["s.xml" => mitsuba(PERSPECTIVE, r#"<string name="pixel_fromat" value="rgb"/>"#, "")], ["render", "s.xml"]
+        => ["s.xml", "the hdrfilm film does not take `pixel_fromat`", "line 5"];
     environment_scaled_past_f32: ["s.toml" => scene("[[lights]]\ntype = \"environment\"\nradiance = [1e38, 1e38, 1e38]\nscale = [10.0, 10.0, 10.0]\n")], ["render", "s.toml"]
         => ["s.toml", "scale", "within f32's range"];
 }

@@ -136,6 +136,10 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         offset("principal_point_offset_x")? * x_extent,
         -offset("principal_point_offset_y")? * x_extent / aspect,
     );
+    if kind == "perspective" {
+        // Read (a pinhole has no use for it), so that it is a number as Mitsuba requires.
+        float(element, "focus_distance")?;
+    }
     if kind == "thinlens" {
         let radius = float(element, "aperture_radius")?.unwrap_or(0.0);
         camera.aperture = 2.0 * radius;
