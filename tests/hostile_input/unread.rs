@@ -49,6 +49,12 @@ refused_cases! {
         => ["s.xml", "a scene takes one <integrator>", "line 10"];
     film_typo: ["s.xml" => mitsuba(PERSPECTIVE, r#"<string name="pixel_fromat" value="rgb"/>"#, "")], ["render", "s.xml"]
         => ["s.xml", "the hdrfilm film does not take `pixel_fromat`", "line 5"];
+    toml_array_longer_than_its_field: ["s.toml" => scene("").replace("[8, 8]", "[8, 8, \"junk\"]")], ["render", "s.toml"]
+        => ["s.toml", "line 5", "invalid length 3, expected an array of length 2"];
+    toml_colour_of_four: ["s.toml" => scene("").replace("albedo = [0.5, 0.5, 0.5]", "albedo = [0.5, 0.5, 0.5, 0.9]")], ["render", "s.toml"]
+        => ["s.toml", "line 11", "invalid length 4, expected an array of length 3"];
+    toml_matrix_row_of_five: ["s.toml" => scene("").replace("v = [2.0, 0.0, 0.0]", "v = [2.0, 0.0, 0.0]\ntransform = [{ matrix = [[1.0, 0, 0, 0, 9], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]] }]")], ["render", "s.toml"]
+        => ["s.toml", "invalid length 5, expected an array of length 4"];
     environment_scaled_past_f32: ["s.toml" => scene("[[lights]]\ntype = \"environment\"\nradiance = [1e38, 1e38, 1e38]\nscale = [10.0, 10.0, 10.0]\n")], ["render", "s.toml"]
         => ["s.toml", "scale", "within f32's range"];
 }

@@ -24,10 +24,14 @@ pub(crate) struct SceneFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct CameraToml {
+    #[serde(deserialize_with = "super::values::exact")]
     pub lookfrom: Vec3,
+    #[serde(deserialize_with = "super::values::exact")]
     pub lookat: Vec3,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub up: Option<Vec3>,
     pub vfov: f64,
+    #[serde(deserialize_with = "super::values::exact")]
     pub resolution: [u32; 2],
     /// Lens diameter (side for a square lens); excludes `f_number`/`focal_length`.
     pub aperture: Option<f64>,
@@ -37,10 +41,12 @@ pub(crate) struct CameraToml {
     pub lens: Option<LensToml>,
     pub focus_distance: Option<f64>,
     /// Lens shift (off-axis projection): the window centre at unit distance.
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub shift: Option<[f64; 2]>,
     /// A pixel's width over its height (default 1, square pixels).
     pub pixel_aspect: Option<f64>,
     /// Near and far clip distances along the view axis (Mitsuba's `near_clip`, `far_clip`).
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub clip: Option<[f64; 2]>,
 }
 
@@ -63,6 +69,7 @@ pub(crate) enum IntegratorToml {
 pub(crate) struct RenderToml {
     pub spp: Option<u32>,
     pub max_depth: Option<u32>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub background: Option<Vec3>,
     pub light_samples: Option<u32>,
     pub integrator: Option<IntegratorToml>,
@@ -72,6 +79,7 @@ pub(crate) struct RenderToml {
     pub hide_emitters: Option<bool>,
     pub rr_depth: Option<u32>,
     /// `[x0, y0, x1, y1]`: the window of the image rendered (the second corner excluded).
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub crop: Option<[u32; 4]>,
     /// The seed of the render's random numbers (`--seed` overrides it).
     pub seed: Option<u64>,

@@ -23,13 +23,18 @@ impl EmissiveShapeKind {
 pub(crate) struct EmissiveShapeToml {
     #[serde(rename = "type")]
     pub kind: EmissiveShapeKind,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub corner: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub u: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub v: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub emission: Option<Vec3>,
     /// Emits on both sides (a quad emits only towards u × v, a mesh towards its
     /// counter-clockwise side, a sphere outwards).
     pub two_sided: Option<bool>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub center: Option<Vec3>,
     pub radius: Option<f64>,
     pub file: Option<String>,

@@ -63,19 +63,25 @@ pub(crate) enum RoughnessToml {
 pub(crate) struct MaterialToml {
     #[serde(rename = "type")]
     pub kind: Option<MaterialKind>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub albedo: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub emission: Option<Vec3>,
     pub two_sided_emission: Option<bool>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub reflectance: Option<Vec3>,
     pub roughness: Option<RoughnessToml>,
     pub distribution: Option<DistributionToml>,
     pub nonlinear: Option<bool>,
     pub opacity: Option<OpacityToml>,
     pub one_sided: Option<bool>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub eta: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub k: Option<Vec3>,
     pub preset: Option<MetalPreset>,
     pub ior: Option<f64>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub absorption: Option<Vec3>,
     /// The parameters of a `principled` or `principledthin` material.
     pub principled: Option<super::principled::PrincipledToml>,
@@ -120,7 +126,9 @@ pub(crate) struct BrdfToml {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct PhongToml {
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub ambient: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub specular: Option<Vec3>,
     pub exponent: Option<f64>,
 }

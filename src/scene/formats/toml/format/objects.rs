@@ -19,12 +19,18 @@ pub(crate) struct ObjectToml {
     #[serde(rename = "type")]
     pub kind: ObjectKind,
     pub material: Option<String>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub corner: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub u: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub v: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub center: Option<Vec3>,
     pub radius: Option<f64>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub min: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub max: Option<Vec3>,
     pub file: Option<String>,
     pub smooth: Option<bool>,
@@ -37,6 +43,8 @@ pub(crate) struct ObjectToml {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RepeatToml {
+    #[serde(deserialize_with = "super::values::exact")]
     pub count: [u32; 3],
+    #[serde(deserialize_with = "super::values::exact")]
     pub spacing: Vec3,
 }

@@ -59,13 +59,18 @@ pub(crate) struct TextureToml {
     pub kind: TextureKind,
     pub mode: Option<TextureModeToml>,
     pub scale: Option<f64>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub even: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub odd: Option<Vec3>,
     pub offset: Option<f64>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub black: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub white: Option<Vec3>,
     pub conversion: Option<NoiseConversionToml>,
     pub file: Option<String>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub value: Option<Vec3>,
     /// A `mesh_attribute` texture's attribute.
     pub name: Option<String>,

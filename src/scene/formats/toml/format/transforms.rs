@@ -12,7 +12,9 @@ use std::fmt;
 pub(crate) struct TransformEntry {
     pub scale: Option<Scale>,
     pub rotate: Option<Rotate>,
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub translate: Option<Vec3>,
+    #[serde(default, deserialize_with = "super::values::exact_rows_opt")]
     pub matrix: Option<[[f64; 4]; 4]>,
 }
 
@@ -47,6 +49,7 @@ pub(crate) enum TransformOp {
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct Rotate {
+    #[serde(deserialize_with = "super::values::exact")]
     pub axis: Vec3,
     pub degrees: f64,
 }
