@@ -41,22 +41,29 @@ fn luminance(c: Vec3) -> f32 {
 }
 
 impl Photographic {
+    /// The first parameter out of its range, if any: its name (the TOML field's), its value
+    /// and what it must be.
+    pub fn out_of_range(&self) -> Option<(&'static str, f32, &'static str)> {
+        let Photographic { key, burn_out, saturation, gamma } = *self;
+        [
+            ("key", key, key > 0.0 && key.is_finite(), "> 0"),
+            ("burn_out", burn_out, (0.0..100.0).contains(&burn_out), "in [0, 100)"),
+            ("saturation", saturation, saturation >= 0.0 && saturation.is_finite(), ">= 0"),
+            ("gamma", gamma, gamma > 0.0 && gamma.is_finite(), "> 0"),
+        ]
+        .into_iter()
+        .find(|(_, _, ok, _)| !ok)
+        .map(|(name, value, _, requirement)| (name, value, requirement))
+    }
+
     /// A problem with the parameters, if any (for messages naming where they came from).
     pub fn problem(&self) -> Option<String> {
-        let Photographic { key, burn_out, saturation, gamma } = *self;
-        if !(key > 0.0 && key.is_finite()) {
-            return Some(format!("the key must be > 0, not {key}"));
-        }
-        if !(0.0..100.0).contains(&burn_out) {
-            return Some(format!("the burn-out percentage must be in [0, 100), not {burn_out}"));
-        }
-        if !(saturation >= 0.0 && saturation.is_finite()) {
-            return Some(format!("the saturation must be >= 0, not {saturation}"));
-        }
-        if !(gamma > 0.0 && gamma.is_finite()) {
-            return Some(format!("the gamma must be > 0, not {gamma}"));
-        }
-        None
+        let (name, value, requirement) = self.out_of_range()?;
+        let name = match name {
+            "burn_out" => "burn-out percentage",
+            name => name,
+        };
+        Some(format!("the {name} must be {requirement}, not {value}"))
     }
 
     /// 8-bit RGB of linear `colors` (the whole image: the operator is global). Negative and

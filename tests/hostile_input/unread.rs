@@ -55,6 +55,8 @@ refused_cases! {
         => ["s.toml", "line 11", "invalid length 4, expected an array of length 3"];
     toml_matrix_row_of_five: ["s.toml" => scene("").replace("v = [2.0, 0.0, 0.0]", "v = [2.0, 0.0, 0.0]\ntransform = [{ matrix = [[1.0, 0, 0, 0, 9], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]] }]")], ["render", "s.toml"]
         => ["s.toml", "invalid length 5, expected an array of length 4"];
+    toml_tonemap_key_zero: ["s.toml" => scene("").replace("spp = 1", "spp = 1\ntonemap = { operator = \"photographic\", key = 0 }")], ["render", "s.toml"]
+        => ["s.toml", "render.tonemap.key is 0, but must be > 0", "(line 9)"];
     environment_scaled_past_f32: ["s.toml" => scene("[[lights]]\ntype = \"environment\"\nradiance = [1e38, 1e38, 1e38]\nscale = [10.0, 10.0, 10.0]\n")], ["render", "s.toml"]
         => ["s.toml", "scale", "within f32's range"];
 }

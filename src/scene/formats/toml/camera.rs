@@ -200,8 +200,8 @@ pub(crate) fn settings(
                 *target = ctx.f32(&path.key(field), v)?;
             }
         }
-        if let Some(problem) = p.problem() {
-            return Err(ctx.out_of_range(&path, format!("{p:?}"), &problem));
+        if let Some((field, value, requirement)) = p.out_of_range() {
+            return Err(ctx.out_of_range(&path.key(field), value, requirement));
         }
         settings.tonemap = Some(p);
     }
