@@ -204,7 +204,12 @@ pub(super) fn ceng795_jobs(
         } else {
             png_target(args, &exr, &png, new_folders, plan)?
         };
-        jobs.push(Job::new(camera.scene, Some(exr), Some((png, ImageFormat::Png))));
+        // A JPEG where the name says so (an ImageName of .jpg), else a PNG.
+        let format = match ImageFormat::of_path(&png.path, "--png") {
+            Ok(Some(format)) if format.is_display() => format,
+            _ => ImageFormat::Png,
+        };
+        jobs.push(Job::new(camera.scene, Some(exr), Some((png, format))));
     }
     Ok(jobs)
 }

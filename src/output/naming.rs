@@ -36,12 +36,42 @@ pub fn image_name_problem(image_name: &str) -> Option<String> {
     }
 }
 
+/// The image name without its extension where that names an image embray writes (`.png`,
+/// `.jpg`, `.jpeg`, `.exr`: the EXR and the display image take the stem, a JPEG display
+/// image where the name says so); a name with any other extension, or a dot inside it
+/// (`img_1.5`), is kept whole and both images are named after it (`img_1.5.exr`,
+/// `img_1.5.png`), not cut at its last dot.
+fn image_stem(image_name: &Path) -> PathBuf {
+    let known = image_name.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+        ["png", "jpg", "jpeg", "exr"].contains(&e.to_ascii_lowercase().as_str())
+    });
+    if known { image_name.with_extension("") } else { image_name.to_path_buf() }
+}
+
+/// The display image an image name asks for: its own name where it is a PNG or JPEG name,
+/// else the stem's PNG.
+fn display_image(image_name: &Path) -> PathBuf {
+    let extension = image_name.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("png" | "jpg" | "jpeg") => image_name.to_path_buf(),
+        _ => with_suffix(&image_stem(image_name), "png"),
+    }
+}
+
+/// `path` with `.extension` added (never replacing a part of its name).
+fn with_suffix(path: &Path, extension: &str) -> PathBuf {
+    let mut name = path.as_os_str().to_owned();
+    name.push(".");
+    name.push(extension);
+    PathBuf::from(name)
+}
+
 /// What two image names must differ in to give different files: the path without `.`
-/// components and without its extension (the EXR and PNG replace it).
+/// components and without the extension of an image embray writes (`image_stem`).
 pub fn image_name_key(image_name: &str) -> PathBuf {
     let path: PathBuf =
         Path::new(image_name).components().filter(|c| !matches!(c, Component::CurDir)).collect();
-    path.with_extension("")
+    image_stem(&path)
 }
 
 /// The (EXR, PNG) paths of the camera whose `ImageName` is `image_name`. `exr` and `png` are
@@ -52,8 +82,9 @@ pub fn camera_outputs(
     exr: Option<&Path>,
     png: Option<&Path>,
 ) -> (PathBuf, PathBuf) {
-    let named = out_dir.join(image_name).with_extension("png");
-    let exr_path = exr.map(Path::to_path_buf).unwrap_or_else(|| named.with_extension("exr"));
+    let named = out_dir.join(display_image(Path::new(image_name)));
+    let stem = out_dir.join(image_stem(Path::new(image_name)));
+    let exr_path = exr.map(Path::to_path_buf).unwrap_or_else(|| with_suffix(&stem, "exr"));
     let png_path = match (png, exr) {
         (Some(png), _) => png.to_path_buf(),
         (None, Some(exr)) => exr.with_extension("png"),
@@ -83,6 +114,18 @@ mod tests {
             camera_outputs("a/b.png", dir, None, None),
             (PathBuf::from("out/a/b.exr"), PathBuf::from("out/a/b.png"))
         );
+        // A JPEG name gives a JPEG; an EXR name the EXR; other names are kept whole.
+        for (name, exr, display) in [
+            ("c.JPG", "out/c.exr", "out/c.JPG"),
+            ("d.exr", "out/d.exr", "out/d.png"),
+            ("img_1.5", "out/img_1.5.exr", "out/img_1.5.png"),
+            ("e.tga", "out/e.tga.exr", "out/e.tga.png"),
+            ("f", "out/f.exr", "out/f.png"),
+        ] {
+            let expected = (PathBuf::from(exr), PathBuf::from(display));
+            assert_eq!(camera_outputs(name, dir, None, None), expected, "{name}");
+        }
+        assert_ne!(image_name_key("img_1.5"), image_name_key("img_1.6"));
         assert_eq!(
             camera_outputs("b.png", dir, Some(Path::new("x.exr")), None),
             (PathBuf::from("x.exr"), PathBuf::from("x.png"))

@@ -32,6 +32,21 @@ fn image_names_in_subfolders_stay_inside_out_dir() {
     }
 }
 
+/// An ImageName's extension decides the display image (a JPEG for .jpg: it was a PNG under
+/// the JPEG's name) where it names one embray writes; any other name is kept whole, not cut
+/// at its last dot (`img_1.5` gave img_1.png).
+#[test]
+fn image_names_keep_their_format_and_their_dots() {
+    let scratch = Scratch::new();
+    scratch.write("s.xml", xml_scene(&["a.jpg", "img_1.5", "c.exr"], ""));
+    accepted_in(&scratch, &["render", "s.xml", "-q"]);
+    let jpeg = std::fs::read(scratch.path("a.jpg")).unwrap();
+    assert_eq!(jpeg[..3], [0xFF, 0xD8, 0xFF], "a.jpg is a JPEG");
+    for file in ["a.exr", "img_1.5.png", "img_1.5.exr", "c.exr", "c.png"] {
+        assert!(scratch.path(file).is_file(), "{file} missing");
+    }
+}
+
 /// Two facing mirrors and a MaxRecursionDepth of 2000: a recursive integrator overflowed
 /// its thread's stack here (SIGABRT).
 #[test]
