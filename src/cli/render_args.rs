@@ -294,6 +294,7 @@ impl RenderArgs {
             [("--time-limit", self.time_limit), ("--checkpoint-every", self.checkpoint_every)]
         {
             if let Some(seconds) = value.filter(|s| !(s.is_finite() && *s > 0.0 && *s < 1e9)) {
+                let seconds = embray::excerpt::short_number(seconds.to_string());
                 bail!("{flag} is {seconds}, but must be a number of seconds > 0 and below 1e9");
             }
         }

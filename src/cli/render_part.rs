@@ -31,6 +31,12 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
             );
         }
     }
+    if args.crop.is_some() {
+        bail!(
+            "--crop cannot be used with --part: --part splits the whole image (render the crop \
+             without --part)"
+        );
+    }
     if let Some(flag) = args.whole_render_only_flag() {
         bail!(
             "{flag} cannot be used with --part: a part file holds all of its samples of its \

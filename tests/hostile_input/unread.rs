@@ -87,3 +87,13 @@ fn a_compile_error_names_the_file_once() {
         refused_in(&scratch, &["render", "s.xml"], &["s.xml: <shape type=\"cube\"> (line 10)"]);
     assert_eq!(run.stderr.matches("transform is singular").count(), 1, "{}", run.stderr);
 }
+
+/// What `convert` cannot write is named with the scene file and the material (it said only
+/// "a texture").
+#[test]
+fn convert_names_the_scene_and_material_it_cannot_write() {
+    let scratch = Scratch::new();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/mitsuba/materials.xml");
+    let expected = ["materials.xml: material 'floor': a texture:", "cannot express"];
+    refused_in(&scratch, &["convert", scene, "-o", "m.toml"], &expected);
+}

@@ -25,6 +25,18 @@ pub enum TomlWriteError {
     Unsupported { item: String, problem: String },
 }
 
+impl TomlWriteError {
+    /// The error of a part of `outer` (a material, the scene file): its item says where.
+    fn within(self, outer: &str) -> Self {
+        match self {
+            TomlWriteError::Unsupported { item, problem } if !item.starts_with(outer) => {
+                TomlWriteError::Unsupported { item: format!("{outer}: {item}"), problem }
+            }
+            other => other,
+        }
+    }
+}
+
 /// Writes scenes as TOML, sharing one mesh folder between them.
 pub struct TomlWriter {
     mesh_dir: PathBuf,
@@ -88,8 +100,19 @@ impl TomlWriter {
         Ok(files.commit()?)
     }
 
-    /// The TOML text for `scene`, to be written at `path` (mesh paths are relative to it).
+    /// The TOML text for `scene`, to be written at `path` (mesh paths are relative to it);
+    /// what it cannot express is named with the scene's file.
     pub fn toml(
+        &mut self,
+        scene: &SceneDesc,
+        path: &Path,
+        note: &str,
+    ) -> Result<String, TomlWriteError> {
+        let source = scene.source.display().to_string();
+        self.toml_text(scene, path, note).map_err(|e| e.within(&source))
+    }
+
+    fn toml_text(
         &mut self,
         scene: &SceneDesc,
         path: &Path,
@@ -102,7 +125,8 @@ impl TomlWriter {
         camera_and_render(scene, &mut out)?;
         let names = material_names(&scene.materials);
         for (material, name) in scene.materials.iter().zip(&names) {
-            write_material(material, name, &mut out)?;
+            write_material(material, name, &mut out)
+                .map_err(|e| e.within(&format!("material '{name}'")))?;
         }
         let toml_dir = path.parent().unwrap_or(Path::new(""));
         for object in &scene.objects {

@@ -48,7 +48,11 @@ pub(super) fn texture_table(
         Pattern::UvMapped(_) => {
             return Err(unsupported("its texture coordinates are mapped (no TOML form yet)"));
         }
-        Pattern::MeshAttribute { .. } => return Err(unsupported("it looks up a mesh attribute")),
+        Pattern::MeshAttribute { .. } => {
+            return Err(unsupported(
+                "it looks up a mesh attribute, which the OBJ meshes convert writes do not carry",
+            ));
+        }
         Pattern::CourseChecker { scale, offset, black, white } => {
             at_most_one(black.max(*white))?;
             format!(
