@@ -121,7 +121,8 @@ fn detected_memory() -> Option<u64> {
 fn address_space_left() -> Option<u64> {
     let limits = std::fs::read_to_string("/proc/self/limits").ok()?;
     let line = limits.lines().find(|l| l.starts_with("Max address space"))?;
-    let limit: u64 = line.trim_start_matches("Max address space").split_whitespace().next()?.parse().ok()?;
+    let limit: u64 =
+        line.trim_start_matches("Max address space").split_whitespace().next()?.parse().ok()?;
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let size = status.lines().find(|l| l.starts_with("VmSize:"))?;
     let kib: u64 = size.split_whitespace().nth(1)?.parse().ok()?;

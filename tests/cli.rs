@@ -343,7 +343,10 @@ fn compare_reads_two_exrs_linearly() {
         let same = embray(&["compare", &format!("{a}.exr"), &format!("{b}.exr")], &dir);
         let text = String::from_utf8_lossy(&same.stdout);
         assert!(same.status.success(), "{}", String::from_utf8_lossy(&same.stderr));
-        assert!(text.contains("16x12 linear") && text.contains("RMSE 0.000000,"), "{a} {b}: {text}");
+        assert!(
+            text.contains("16x12 linear") && text.contains("RMSE 0.000000,"),
+            "{a} {b}: {text}"
+        );
         assert!(text.contains("(largest difference 0.0000 %)"), "{text}");
     }
     let other = embray(&["compare", "a.exr", "c.exr"], &dir);

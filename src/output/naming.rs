@@ -42,9 +42,10 @@ pub fn image_name_problem(image_name: &str) -> Option<String> {
 /// (`img_1.5`), is kept whole and both images are named after it (`img_1.5.exr`,
 /// `img_1.5.png`), not cut at its last dot.
 fn image_stem(image_name: &Path) -> PathBuf {
-    let known = image_name.extension().and_then(|e| e.to_str()).is_some_and(|e| {
-        ["png", "jpg", "jpeg", "exr"].contains(&e.to_ascii_lowercase().as_str())
-    });
+    let known = image_name
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| ["png", "jpg", "jpeg", "exr"].contains(&e.to_ascii_lowercase().as_str()));
     if known { image_name.with_extension("") } else { image_name.to_path_buf() }
 }
 

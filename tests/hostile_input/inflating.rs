@@ -80,9 +80,8 @@ fn exr_of_channels(channels: usize) -> Vec<u8> {
     use exr::prelude::*;
     let names = ["R", "G", "B"].map(String::from).into_iter();
     let names = names.chain((3..channels).map(|i| format!("extra{i:03}")));
-    let list = names.map(|name| {
-        AnyChannel::new(name.as_str(), FlatSamples::F16(vec![f16::ZERO; 64 * 64]))
-    });
+    let list = names
+        .map(|name| AnyChannel::new(name.as_str(), FlatSamples::F16(vec![f16::ZERO; 64 * 64])));
     let image = Image::from_channels((64, 64), AnyChannels::sort(list.collect()));
     let mut bytes = std::io::Cursor::new(Vec::new());
     image.write().to_buffered(&mut bytes).unwrap();

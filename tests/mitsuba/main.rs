@@ -6,8 +6,8 @@
 mod common;
 
 mod blend;
-mod film_sampler;
 mod bsdfs;
+mod film_sampler;
 mod principled;
 mod reader;
 mod suite;

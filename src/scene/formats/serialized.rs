@@ -82,7 +82,7 @@ pub(crate) fn parse(
     let declared = vertices
         .checked_mul(floats_per_vertex * width)
         .and_then(|v| faces.checked_mul(12).and_then(|f| v.checked_add(f)));
-    if !declared.is_some_and(|bytes| bytes <= MAX_DECODED_BYTES) {
+    if declared.is_none_or(|bytes| bytes > MAX_DECODED_BYTES) {
         return Err(format!(
             "{vertices} vertices and {faces} triangles declared: more than the {} GiB of data a \
              mesh may hold",
