@@ -27,9 +27,9 @@ pub fn read_bytes_per_pixel(channels: u64) -> u64 {
     8 * channels.max(3) + 28
 }
 
-/// The first layer's width, height and channel count, from the header alone (checked by the
-/// caller against its limits before `read` allocates).
-pub fn header_size(bytes: &[u8]) -> Result<(u64, u64, u64), String> {
+/// Every layer's width, height and channel count, from the headers alone (the first is the
+/// one callers check against their limits before `read` allocates).
+fn layer_sizes(bytes: &[u8]) -> Result<Vec<(u64, u64, u64)>, String> {
     if bytes.is_empty() {
         return Err("the file is empty".to_owned());
     }
@@ -37,9 +37,16 @@ pub fn header_size(bytes: &[u8]) -> Result<(u64, u64, u64), String> {
         exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
             .map_err(|e| format!("not a readable OpenEXR file ({e})"))
     })?;
-    let header = meta.headers.first().ok_or("an EXR file without layers")?;
-    let (w, h) = (header.layer_size.width() as u64, header.layer_size.height() as u64);
-    Ok((w, h, header.channels.list.len() as u64))
+    let size = |header: &exr::meta::header::Header| {
+        let (w, h) = (header.layer_size.width() as u64, header.layer_size.height() as u64);
+        (w, h, header.channels.list.len() as u64)
+    };
+    Ok(meta.headers.iter().map(size).collect())
+}
+
+/// The first layer's width, height and channel count, from the header alone.
+pub fn header_size(bytes: &[u8]) -> Result<(u64, u64, u64), String> {
+    layer_sizes(bytes)?.first().copied().ok_or_else(|| "an EXR file without layers".to_owned())
 }
 
 /// The first layer's pixels, row-major from the top, as they are (not clamped, not checked
@@ -48,8 +55,15 @@ pub fn header_size(bytes: &[u8]) -> Result<(u64, u64, u64), String> {
 /// memory there is before the decoder allocates.
 pub fn read(bytes: &[u8]) -> Result<(u32, u32, Vec<Vec3>), String> {
     use exr::prelude::*;
-    let (w, h, channels) = header_size(bytes)?;
-    let needed = (w * h).saturating_mul(read_bytes_per_pixel(channels));
+    // The layer decoded is the first valid one, not always the first: the largest counts.
+    let layers = layer_sizes(bytes)?;
+    let bytes_of = |&(w, h, channels): &(u64, u64, u64)| {
+        (w.saturating_mul(h)).saturating_mul(read_bytes_per_pixel(channels))
+    };
+    let Some(&(w, h, channels)) = layers.iter().max_by_key(|layer| bytes_of(layer)) else {
+        return Err("an EXR file without layers".to_owned());
+    };
+    let needed = bytes_of(&(w, h, channels));
     if let Some(available) = crate::limits::memory_available()
         && needed > available
     {

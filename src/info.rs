@@ -22,10 +22,12 @@ pub fn describe(scene: &SceneDesc) -> String {
         c.aperture
     );
     out += &format!(
-        "render: {} spp, max depth {}, {} sampler (the default; `render --sampler` chooses)\n",
+        "render: {} spp, max depth {}, {} sampler (the default; `render --sampler` chooses), \
+         seed {}\n",
         scene.settings.spp,
         scene.settings.max_depth,
-        crate::sampling::SamplerKind::default()
+        crate::sampling::SamplerKind::default(),
+        scene.settings.seed
     );
     let (mut meshes, mut triangles, mut spheres) = (0, 0, 0);
     for object in &scene.objects {

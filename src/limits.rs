@@ -97,8 +97,10 @@ pub const BYTES_PER_HDR_TEXEL: u64 = 30;
 pub const BYTES_PER_SAMPLED_TEXEL: u64 = 24;
 
 /// The memory this process may still use: the smallest of the kernel's MemAvailable, the
-/// cgroup's limit (in a container), what `ulimit -v` leaves and `EMBRAY_MAX_MEMORY` (bytes: a budget for a shared
-/// machine), or `None` when none is known.
+/// cgroup's limit (in a container), what `ulimit -v` leaves of the address space and
+/// `EMBRAY_MAX_MEMORY` (bytes: a budget for a shared machine), or `None` when none is known.
+/// (The estimates it is held against count resident memory; threads reserve more address
+/// space than that, so under `ulimit -v` the check is a bound on the estimate only.)
 pub fn memory_available() -> Option<u64> {
     let budget = std::env::var("EMBRAY_MAX_MEMORY").ok().and_then(|v| v.trim().parse::<u64>().ok());
     [detected_memory(), budget].into_iter().flatten().min()

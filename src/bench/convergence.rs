@@ -49,7 +49,6 @@ pub fn read_reference(path: &Path) -> Result<Film, ConvergenceError> {
     if w == 0 || h == 0 || w > max || h > max {
         return Err(error(format!("{w} × {h} pixels; images of 1 to {max} on a side are read")));
     }
-    // (`read` checks the memory its channels need.)
     let (w, h, pixels) = crate::exr_rgb::read(&bytes).map_err(error)?;
     let mut film = Film::new(w, h);
     film.color = pixels;

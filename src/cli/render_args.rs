@@ -209,17 +209,51 @@ impl RenderArgs {
         self.png.clone().unwrap_or_else(|| exr.with_extension("png"))
     }
 
-    /// The first option given that only a whole render has (a part holds all the samples
-    /// of its share of the image, or nothing).
-    pub fn whole_render_only_flag(&self) -> Option<&'static str> {
-        [
+    /// Why these options cannot render a part of a split render (`--part`, `embray slurm`),
+    /// if they cannot: checked before the scene is loaded.
+    pub fn part_flag_problem(&self) -> Option<String> {
+        let lut = self.look.lut.is_some();
+        let images = [("--png", self.png.is_some()), ("--stats-json", self.stats_json.is_some())];
+        if let Some((flag, _)) = [images[0], images[1], ("--lut", lut)].into_iter().find(|f| f.1) {
+            return Some(format!(
+                "{flag} cannot be used with --part: a part holds sample sums, not an image; \
+                 `embray merge` writes the image (and its PNG, graded with its own --lut) once \
+                 every part is done"
+            ));
+        }
+        if self.crop.is_some() {
+            return Some(
+                "--crop cannot be used with --part: --part splits the whole image (render the \
+                 crop without --part)"
+                    .to_owned(),
+            );
+        }
+        let whole_only = [
             ("--time-limit", self.time_limit.is_some()),
             ("--checkpoint-every", self.checkpoint_every.is_some()),
-            ("--crop", self.crop.is_some()),
             ("--denoise", self.denoise),
-        ]
-        .into_iter()
-        .find_map(|(flag, given)| given.then_some(flag))
+        ];
+        let (flag, _) = whole_only.into_iter().find(|(_, given)| *given)?;
+        Some(format!(
+            "{flag} cannot be used with --part: a part file holds all of its samples of its share \
+             of the whole image, or nothing (a part that did not finish is rendered again)"
+        ))
+    }
+
+    /// Why `scene` (after `apply_preview`) cannot be rendered in parts, if it cannot: its own
+    /// crop window (the parts split the whole image; merged, they were refused as damaged).
+    pub fn part_scene_problem(scene: &SceneDesc) -> Option<String> {
+        let crop = scene.settings.crop?;
+        Some(format!(
+            "'{}' asks for a crop window ({}, {}) to ({}, {}), and --part splits the whole image: \
+             render the crop without --part (or all of the image in parts with --resolution, \
+             which drops the crop)",
+            scene.source.display(),
+            crop.x0,
+            crop.y0,
+            crop.x1,
+            crop.y1
+        ))
     }
 
     /// `--resolution` applied to a loaded scene.

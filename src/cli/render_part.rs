@@ -19,29 +19,8 @@ pub fn default_part_path(part: Part) -> PathBuf {
 
 /// Renders `part` of the scene `args` names and commits its part file.
 pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
-    let lut = args.look.lut.is_some();
-    for (flag, given) in
-        [("--png", args.png.is_some()), ("--stats-json", args.stats_json.is_some()), ("--lut", lut)]
-    {
-        if given {
-            bail!(
-                "{flag} cannot be used with --part: a part holds sample sums, not an image; \
-                 `embray merge` writes the image (and its PNG, graded with its own --lut) once \
-                 every part is done"
-            );
-        }
-    }
-    if args.crop.is_some() {
-        bail!(
-            "--crop cannot be used with --part: --part splits the whole image (render the crop \
-             without --part)"
-        );
-    }
-    if let Some(flag) = args.whole_render_only_flag() {
-        bail!(
-            "{flag} cannot be used with --part: a part file holds all of its samples of its \
-             share of the whole image, or nothing (a part that did not finish is rendered again)"
-        );
+    if let Some(problem) = args.part_flag_problem() {
+        bail!(problem);
     }
     let mut plan = OutputPlan::new();
     if let Some(path) = &args.scene {
@@ -65,17 +44,8 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         path => super::load_scene(path, &args.defines)?,
     };
     args.apply_preview(&mut scene)?;
-    if let Some(crop) = scene.settings.crop {
-        bail!(
-            "'{}' asks for a crop window ({}, {}) to ({}, {}), and --part splits the whole \
-             image: render the crop without --part (or all of the image in parts with \
-             --resolution, which drops the crop)",
-            scene.source.display(),
-            crop.x0,
-            crop.y0,
-            crop.x1,
-            crop.y1
-        );
+    if let Some(problem) = RenderArgs::part_scene_problem(&scene) {
+        bail!(problem);
     }
     plan.inputs_read(&embray::input_file::files_read());
     let output = args.output.clone().unwrap_or_else(|| default_part_path(part));

@@ -185,8 +185,11 @@ fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[Stri
         super::load_scene(Some(scene), &render.defines)?
     };
     render.apply_preview(&mut desc)?;
-    if let Some(flag) = render.whole_render_only_flag() {
-        bail!("{flag} cannot be used for a split render: each part renders all its samples");
+    if let Some(problem) = render.part_flag_problem() {
+        bail!("{problem} (after --: a split render's parts are `embray render --part`)");
+    }
+    if let Some(problem) = super::render_args::RenderArgs::part_scene_problem(&desc) {
+        bail!(problem);
     }
     let options = render.to_options(&desc)?;
     let part = Part { index: 0, count: parts, split };

@@ -1,5 +1,6 @@
-//! Where a CENG795 camera's images go: its `ImageName` (PNG) in the output folder and an EXR
-//! of the same stem, unless the command line names the files.
+//! Where a CENG795 camera's images go: its `ImageName` in the output folder (a PNG, or a
+//! JPEG or EXR where the name says so) and the other image beside it, unless the command
+//! line names the files.
 
 use std::path::{Component, Path, PathBuf};
 

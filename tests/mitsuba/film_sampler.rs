@@ -54,7 +54,8 @@ fn sampler_types_and_parameters_are_read_or_refused() {
     ] {
         let name = format!("m-sampler-{kind}");
         let scene = with_kinds(&name, ("hdrfilm", ""), (kind, extra));
-        assert_eq!(scene.map(|s| s.settings.spp), Ok(1), "{kind}");
+        let seed = if kind == "ldsampler" { 3 } else { 0 };
+        assert_eq!(scene.map(|s| (s.settings.spp, s.settings.seed)), Ok((1, seed)), "{kind}");
     }
     let typo = with("m-sampler-typo", "", "<integer name=\"sead\" value=\"3\"/>").unwrap_err();
     assert_contains(
@@ -79,7 +80,9 @@ fn an_unknown_sampler_type_is_refused() {
 fn film_parameters_are_checked() {
     let settings = "<string name=\"pixel_format\" value=\"RGBA\"/><string \
                     name=\"component_format\" value=\"float32\"/><string name=\"file_format\" \
-                    value=\"openexr\"/><boolean name=\"sample_border\" value=\"true\"/>";
+                    value=\"openexr\"/><boolean name=\"sample_border\" value=\"true\"/>\
+                    <boolean name=\"compensate\" value=\"true\"/><string name=\"banner\" \
+                    value=\"no\"/>";
     let scene = with("m-film-ok", settings, "").unwrap();
     assert_eq!((scene.camera.width, scene.camera.height), (32, 24));
     let cases = [
@@ -87,6 +90,7 @@ fn film_parameters_are_checked() {
         ("<string name=\"pixel_format\" value=\"rgbw\"/>", "pixel_format must be one of"),
         ("<boolean name=\"sample_border\" value=\"1\"/>", "'1' is not true or false"),
         ("<rfilter type=\"tent\"/>", "a film takes one <rfilter>"),
+        ("<integer name=\"file_format\" value=\"1\"/>", "`file_format` must be a <string>"),
         ("<bsdf type=\"diffuse\"/>", "the hdrfilm film does not take a <bsdf>"),
     ];
     for (i, (film, expected)) in cases.into_iter().enumerate() {
@@ -95,4 +99,29 @@ fn film_parameters_are_checked() {
     }
     let message = with_kinds("m-film-spec", ("specfilm", ""), ("independent", "")).unwrap_err();
     assert_contains(&message, &["the film type 'specfilm' is not supported (hdrfilm is)"]);
+}
+
+/// A nested filter may carry a name, as in Mitsuba; a second film or sampler is refused, as
+/// Mitsuba refuses it (the last one won).
+#[test]
+fn one_film_and_one_sampler_a_sensor_and_a_named_filter() {
+    let named = with("m-film-named", "", "").map(|_| ());
+    assert_eq!(named, Ok(()));
+    let main = |sensor: String| {
+        format!(
+            "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default \
+             name=\"fov\" value=\"40\"/>{sensor}\n</scene>"
+        )
+    };
+    let filter = SENSOR.replace("<rfilter type=\"box\"/>", "<rfilter type=\"tent\" name=\"f\"/>");
+    let scene = load_mitsuba(&files("m-film-rfilter-name", &main(filter), &[]), &[]).unwrap();
+    assert_eq!(scene.settings.filter, embray::sampling::filter::PixelFilter::Tent { radius: 1.0 });
+    for tag in ["sampler", "film"] {
+        let opening = format!("<{tag} type=");
+        let end = SENSOR.find(&format!("</{tag}>")).unwrap() + tag.len() + 3;
+        let start = SENSOR.find(&opening).unwrap();
+        let twice = SENSOR.replacen(&SENSOR[start..end], &SENSOR[start..end].repeat(2), 1);
+        let message = load_mitsuba(&files(&format!("m-two-{tag}"), &main(twice), &[]), &[]);
+        assert_contains(&message.unwrap_err(), &[&format!("a sensor takes one <{tag}>")]);
+    }
 }

@@ -17,7 +17,7 @@ const HAS_COLORS: u32 = 0x0008;
 const DOUBLE_PRECISION: u32 = 0x2000;
 /// The most data one mesh may declare, decoded (the PLY and OBJ readers' input cap).
 const MAX_DECODED_BYTES: u64 = 2 << 30;
-/// Values (or triangles) decoded at a time.
+/// Records (vertices, or triangles) decoded at a time.
 const DECODE_BLOCK: usize = 1 << 16;
 
 fn u16_at(bytes: &[u8], at: usize) -> Option<u16> {
@@ -246,7 +246,7 @@ mod tests {
         assert!(parse(&triangle_file(3, 3), 0, false).unwrap_err().contains("uses vertex 3"));
         let huge = parse(&triangle_file(u64::MAX / 2, 2), 0, false).unwrap_err();
         assert!(huge.contains("more than the 2 GiB of data a mesh may hold"), "{huge}");
-        // Two zero-filled streams that inflate past the cap: by count, and by total.
+        // Counts that ask for just more than the cap, in a stream of a few bytes.
         let many = parse(&triangle_file(178_956_970, 1), 0, false).unwrap_err();
         assert!(many.contains("more than the 2 GiB"), "{many}");
         let mut file = triangle_file(3, 2);

@@ -8,7 +8,7 @@ use crate::scene::error::SceneError;
 
 /// What `hdrfilm` reads. The output's format, channels and precision are embray's own
 /// (`-o`, `--aovs`), so those are only checked.
-const FILM_PARAMETERS: [&str; 11] = [
+const FILM_PARAMETERS: [&str; 12] = [
     "width",
     "height",
     "crop_offset_x",
@@ -19,7 +19,8 @@ const FILM_PARAMETERS: [&str; 11] = [
     "pixel_format",
     "component_format",
     "sample_border",
-    // Mitsuba 3 accepts it (Mitsuba 0.6's) and draws no banner.
+    "compensate",
+    // Mitsuba 3 accepts it (Mitsuba 0.6's), of any type, and draws no banner.
     "banner",
 ];
 
@@ -67,16 +68,20 @@ pub(super) fn film(film: &Element, warnings: &mut Vec<String>) -> Result<Film, S
     }
     refuse_unread(film, "the hdrfilm film", &FILM_PARAMETERS, &["rfilter"])?;
     for (name, values) in FILM_CHOICES {
-        let choice = super::values::property(film, "string", name);
-        if let Some(choice) = choice
-            && !values.contains(&choice.required("value")?.to_lowercase().as_str())
-        {
+        let Some(choice) = film.children.iter().find(|c| c.attr("name") == Some(name)) else {
+            continue;
+        };
+        let value = match choice.tag.as_str() {
+            "string" => choice.required("value")?.to_lowercase(),
+            _ => return Err(choice.error(format!("`{name}` must be a <string>"))),
+        };
+        if !values.contains(&value.as_str()) {
             let known = values.join(", ");
             return Err(choice.error(format!("{name} must be one of {known}")));
         }
     }
     boolean(film, "sample_border")?;
-    boolean(film, "banner")?;
+    boolean(film, "compensate")?;
     if film.children.iter().filter(|c| c.tag == "rfilter").count() > 1 {
         return Err(film.error("a film takes one <rfilter>"));
     }

@@ -1,6 +1,6 @@
-//! `<sampler>`: the sample count and seed it asks for. embray draws its own Owen-scrambled
-//! Sobol numbers whatever the sampler's type (its estimate is the same, its noise lower:
-//! README, Mitsuba 3 scenes), so `jitter` and `strength` are checked and not used.
+//! `<sampler>`: the sample count and seed it asks for. The sampler's type does not choose
+//! embray's (`--sampler` does, Owen-scrambled Sobol by default: the same estimate with less
+//! noise; README, Mitsuba 3 scenes), so `jitter` and `strength` are checked and not used.
 
 use super::tree::Element;
 use super::values::{boolean, integer, refuse_unread};
@@ -32,11 +32,13 @@ pub(super) fn sampler(element: &Element) -> Result<Sampler, SceneError> {
         )));
     };
     refuse_unread(element, &format!("the {kind} sampler"), known, &[])?;
+    let named = |name: &str| element.children.iter().find(|c| c.attr("name") == Some(name));
     let sample_count = integer(element, "sample_count")?.unwrap_or(4);
     if !(1..=i64::from(u32::MAX)).contains(&sample_count) {
-        return Err(element.error("sample_count must be at least 1"));
+        let at = named("sample_count").unwrap_or(element);
+        let range = format!("sample_count is {sample_count}, but must be 1 to {}", u32::MAX);
+        return Err(at.error(range));
     }
-    let named = |name: &str| element.children.iter().find(|c| c.attr("name") == Some(name));
     // Mitsuba reads the seed as an unsigned 32-bit number.
     let seed = integer(element, "seed")?;
     if let Some(seed) = seed.filter(|seed| !(0..=i64::from(u32::MAX)).contains(seed)) {

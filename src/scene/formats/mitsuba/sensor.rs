@@ -80,6 +80,11 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     // Mitsuba's default film: 768 × 576 with a Gaussian filter.
     let mut filter = PixelFilter::Gaussian { stddev: 0.5 };
     let mut crop = None;
+    for tag in ["film", "sampler"] {
+        if let Some(second) = element.children.iter().filter(|c| c.tag == tag).nth(1) {
+            return Err(second.error(format!("a sensor takes one <{tag}>")));
+        }
+    }
     for child in &element.children {
         match child.tag.as_str() {
             "film" => {
@@ -112,6 +117,10 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         )));
     }
     let aspect = f64::from(width) / f64::from(height);
+    if kind != "thinlens" {
+        // Read (without a lens it has no use), so that it is a number as Mitsuba requires.
+        float(element, "focus_distance")?;
+    }
     if kind == "orthographic" {
         // Mitsuba's film spans x in [−1, 1] and y in [−1/aspect, 1/aspect] of the camera's
         // space, which to_world may scale.
@@ -136,10 +145,6 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         offset("principal_point_offset_x")? * x_extent,
         -offset("principal_point_offset_y")? * x_extent / aspect,
     );
-    if kind == "perspective" {
-        // Read (a pinhole has no use for it), so that it is a number as Mitsuba requires.
-        float(element, "focus_distance")?;
-    }
     if kind == "thinlens" {
         let radius = float(element, "aperture_radius")?.unwrap_or(0.0);
         camera.aperture = 2.0 * radius;
@@ -160,12 +165,13 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
 /// Refuses a parameter the sensor does not read (`shutter_open`/`shutter_close` are read
 /// and unused: no Mitsuba scene embray reads moves).
 fn check_sensor_properties(element: &Element, kind: &str) -> Result<(), SceneError> {
+    // Every projective camera of Mitsuba's reads `focus_distance` (the orthographic one
+    // too); only a thin lens has a use for it.
     let mut known = vec!["to_world", "near_clip", "far_clip", "shutter_open", "shutter_close"];
+    known.push("focus_distance");
     if kind != "orthographic" {
         known.extend(["fov", "fov_axis", "focal_length"]);
         known.extend(["principal_point_offset_x", "principal_point_offset_y"]);
-        // Every projective camera of Mitsuba's reads it; a pinhole has no use for it.
-        known.push("focus_distance");
     }
     if kind == "thinlens" {
         known.push("aperture_radius");

@@ -66,15 +66,15 @@ pub(super) fn boolean(plugin: &Element, name: &str) -> Result<Option<bool>, Scen
 }
 
 /// Refuses a child of `plugin` that `label` (the plugin, as the message names it) does not
-/// read, as Mitsuba refuses an unreferenced property: a named child whose name is not in
-/// `known`, or an unnamed one whose tag is not in `nested`.
+/// read, as Mitsuba refuses an unreferenced property: a child whose tag is not in `nested`
+/// (nested objects, named or not) and whose name is not in `known`.
 pub(super) fn refuse_unread(
     plugin: &Element,
     label: &str,
     known: &[&str],
     nested: &[&str],
 ) -> Result<(), SceneError> {
-    for child in &plugin.children {
+    for child in plugin.children.iter().filter(|c| !nested.contains(&c.tag.as_str())) {
         match child.attr("name") {
             Some(name) if !known.contains(&name) => {
                 let takes = if known.is_empty() { "nothing".to_owned() } else { known.join(", ") };
@@ -82,7 +82,7 @@ pub(super) fn refuse_unread(
                     child.error(format!("{label} does not take `{name}` (it takes: {takes})"))
                 );
             }
-            None if !nested.contains(&child.tag.as_str()) => {
+            None => {
                 return Err(child.error(format!("{label} does not take a <{}>", child.tag)));
             }
             _ => {}
