@@ -15,9 +15,11 @@ pub fn guarded<T>(read: impl FnOnce() -> Result<T, String>) -> Result<T, String>
     })
 }
 
-/// An EXR's first layer's width and height, from its header alone.
+/// An EXR's first layer's width and height, from its header alone (checked by the caller
+/// against its limits before `read` allocates).
 pub fn size(bytes: &[u8]) -> Result<(u64, u64), String> {
-    header_size(bytes).map(|(w, h, _)| (w, h))
+    let first = layer_sizes(bytes)?.first().copied();
+    first.map(|(w, h, _)| (w, h)).ok_or_else(|| "an EXR file without layers".to_owned())
 }
 
 /// Bytes per pixel that reading an EXR with `channels` channels into a film holds at its
@@ -27,8 +29,7 @@ pub fn read_bytes_per_pixel(channels: u64) -> u64 {
     8 * channels.max(3) + 28
 }
 
-/// Every layer's width, height and channel count, from the headers alone (the first is the
-/// one callers check against their limits before `read` allocates).
+/// Every layer's width, height and channel count, from the headers alone.
 fn layer_sizes(bytes: &[u8]) -> Result<Vec<(u64, u64, u64)>, String> {
     if bytes.is_empty() {
         return Err("the file is empty".to_owned());
@@ -42,11 +43,6 @@ fn layer_sizes(bytes: &[u8]) -> Result<Vec<(u64, u64, u64)>, String> {
         (w, h, header.channels.list.len() as u64)
     };
     Ok(meta.headers.iter().map(size).collect())
-}
-
-/// The first layer's width, height and channel count, from the header alone.
-pub fn header_size(bytes: &[u8]) -> Result<(u64, u64, u64), String> {
-    layer_sizes(bytes)?.first().copied().ok_or_else(|| "an EXR file without layers".to_owned())
 }
 
 /// The first layer's pixels, row-major from the top, as they are (not clamped, not checked

@@ -212,9 +212,12 @@ impl RenderArgs {
     /// Why these options cannot render a part of a split render (`--part`, `embray slurm`),
     /// if they cannot: checked before the scene is loaded.
     pub fn part_flag_problem(&self) -> Option<String> {
-        let lut = self.look.lut.is_some();
-        let images = [("--png", self.png.is_some()), ("--stats-json", self.stats_json.is_some())];
-        if let Some((flag, _)) = [images[0], images[1], ("--lut", lut)].into_iter().find(|f| f.1) {
+        let images = [
+            ("--png", self.png.is_some()),
+            ("--stats-json", self.stats_json.is_some()),
+            ("--lut", self.look.lut.is_some()),
+        ];
+        if let Some((flag, _)) = images.into_iter().find(|(_, given)| *given) {
             return Some(format!(
                 "{flag} cannot be used with --part: a part holds sample sums, not an image; \
                  `embray merge` writes the image (and its PNG, graded with its own --lut) once \

@@ -1,7 +1,7 @@
 //! `<film>` (`hdrfilm`): the image size, its crop window and the reconstruction filter.
 
 use super::tree::Element;
-use super::values::{boolean, float, integer, refuse_unread};
+use super::values::{boolean, float, integer, refuse_second, refuse_unread};
 use crate::film::Tile;
 use crate::sampling::filter::{FILTER_SIZES, PixelFilter};
 use crate::scene::error::SceneError;
@@ -82,9 +82,7 @@ pub(super) fn film(film: &Element, warnings: &mut Vec<String>) -> Result<Film, S
     }
     boolean(film, "sample_border")?;
     boolean(film, "compensate")?;
-    if film.children.iter().filter(|c| c.tag == "rfilter").count() > 1 {
-        return Err(film.error("a film takes one <rfilter>"));
-    }
+    refuse_second(film, "rfilter", "a film")?;
     let size = |name: &str, default: i64| -> Result<u32, SceneError> {
         let value = integer(film, name)?.unwrap_or(default);
         let max = i64::from(crate::limits::MAX_RESOLUTION);

@@ -145,7 +145,8 @@ pub fn load(
         }
     }
     let mut settings = RenderSettings { max_depth: crate::limits::MAX_DEPTH, ..Default::default() };
-    let (mut sensor, mut integrators) = (None, 0);
+    let mut sensor = None;
+    values::refuse_second(&root, "integrator", "a scene")?;
     let mut builder = Builder {
         files: &files,
         ids: Ids { by_id, nesting: Cell::new(0) },
@@ -159,14 +160,7 @@ pub fn load(
     };
     for child in &root.children {
         match child.tag.as_str() {
-            "integrator" => {
-                // Mitsuba refuses a second one too (the last would win here).
-                integrators += 1;
-                if integrators > 1 {
-                    return Err(child.error("a scene takes one <integrator>"));
-                }
-                integrator::integrator(child, &mut settings, builder.warnings)?
-            }
+            "integrator" => integrator::integrator(child, &mut settings, builder.warnings)?,
             "sensor" => {
                 if sensor.is_some() {
                     return Err(child.error("embray renders one sensor per scene"));

@@ -3,7 +3,7 @@
 
 use super::transform::transform;
 use super::tree::Element;
-use super::values::{float, numbers, property, refuse_unread};
+use super::values::{float, numbers, property, refuse_second, refuse_unread};
 use crate::sampling::filter::PixelFilter;
 use crate::scene::desc::{CameraDesc, LensShape};
 use crate::scene::error::SceneError;
@@ -80,11 +80,8 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     // Mitsuba's default film: 768 × 576 with a Gaussian filter.
     let mut filter = PixelFilter::Gaussian { stddev: 0.5 };
     let mut crop = None;
-    for tag in ["film", "sampler"] {
-        if let Some(second) = element.children.iter().filter(|c| c.tag == tag).nth(1) {
-            return Err(second.error(format!("a sensor takes one <{tag}>")));
-        }
-    }
+    refuse_second(element, "film", "a sensor")?;
+    refuse_second(element, "sampler", "a sensor")?;
     for child in &element.children {
         match child.tag.as_str() {
             "film" => {

@@ -91,6 +91,15 @@ pub(super) fn refuse_unread(
     Ok(())
 }
 
+/// Refuses a second child `<tag>` of `parent` (`owner` names the parent in the message), as
+/// Mitsuba refuses it: read one after another, the last would win unseen.
+pub(super) fn refuse_second(parent: &Element, tag: &str, owner: &str) -> Result<(), SceneError> {
+    match parent.children.iter().filter(|c| c.tag == tag).nth(1) {
+        Some(second) => Err(second.error(format!("{owner} takes one <{tag}>"))),
+        None => Ok(()),
+    }
+}
+
 /// The value of a property element, as a kind reads it.
 pub(super) fn property_value(element: &Element, usage: ColorUse) -> Result<Value, SceneError> {
     Ok(match element.tag.as_str() {
