@@ -23,11 +23,12 @@ pub fn describe(scene: &SceneDesc) -> String {
     );
     out += &format!(
         "render: {} spp, max depth {}, {} sampler (the default; `render --sampler` chooses), \
-         seed {}\n",
+         seed {}{}\n",
         scene.settings.spp,
         scene.settings.max_depth,
         crate::sampling::SamplerKind::default(),
-        scene.settings.seed
+        scene.settings.seed,
+        if scene.settings.jitter { "" } else { ", samples at stratum centres (not jittered)" }
     );
     let (mut meshes, mut triangles, mut spheres) = (0, 0, 0);
     for object in &scene.objects {

@@ -87,7 +87,7 @@ impl RenderOptions {
             max_depth: scene.settings.max_depth,
             rr_depth: scene.settings.rr_depth,
             seed: scene.settings.seed,
-            jitter: true,
+            jitter: scene.settings.jitter,
             threads: None,
             backend: BackendKind::default_compiled(),
             render_space: RenderSpace::default(),

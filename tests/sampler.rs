@@ -100,3 +100,42 @@ fn sobol_images_are_the_same_for_any_thread_count() {
         assert_eq!(one, two, "{}", backend.name());
     }
 }
+
+/// A scene's `seed` and `jitter = false` are `--seed`'s and `--no-jitter`'s defaults, and
+/// the flags override them: the same image, bit for bit, either way.
+#[test]
+fn a_scenes_seed_and_jitter_are_the_flags_defaults() {
+    use common::command::{GOOD_SCENE, embray, temp_dir};
+    let dir = temp_dir("scene-seed-jitter");
+    let with_render = |lines: &str| {
+        GOOD_SCENE.replace("[materials.white]", &format!("[render]\n{lines}\n[materials.white]"))
+    };
+    for (file, text) in [
+        ("plain.toml", GOOD_SCENE.to_string()),
+        ("seeded.toml", with_render("seed = 2")),
+        ("centred.toml", with_render("jitter = false")),
+    ] {
+        std::fs::write(dir.join(file), text).unwrap();
+    }
+    let render = |name: &str, args: &[&str]| {
+        let output = format!("{name}.exr");
+        let out = embray(&[&["render", "-o", &output, "--quiet"], args].concat(), &dir);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        output
+    };
+    // The EXRs' headers name their scene files, so their pixels are compared.
+    let same = |a: &str, b: &str| {
+        let out = embray(&["compare", a, b], &dir);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        text.contains("RMSE 0.000000,") && text.contains("(largest difference 0.0000 %)")
+    };
+    let seed_2 = render("seed-2", &["plain.toml", "--seed", "2"]);
+    assert!(same(&render("seeded", &["seeded.toml"]), &seed_2), "the scene's seed");
+    let seed_1 = render("seed-1", &["plain.toml", "--seed", "1"]);
+    assert!(same(&render("seeded-1", &["seeded.toml", "--seed", "1"]), &seed_1), "--seed wins");
+    assert!(!same(&seed_1, &seed_2), "seeds 1 and 2 give the same image");
+    let centred = render("centred", &["plain.toml", "--no-jitter"]);
+    assert!(same(&render("centred-scene", &["centred.toml"]), &centred), "the scene's jitter");
+    assert!(!same(&render("jittered", &["plain.toml"]), &centred), "--no-jitter changed nothing");
+}

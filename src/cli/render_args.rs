@@ -58,7 +58,8 @@ pub struct RenderArgs {
     /// Move the whole scene and camera by X,Y,Z (e.g. 1e7,1e7,1e7) to test precision.
     #[arg(long, value_parser = parse_offset, allow_hyphen_values = true)]
     pub offset: Option<DVec3>,
-    /// Put samples at stratum centres instead of jittering them.
+    /// Put samples at stratum centres instead of jittering them (default: the scene's, else
+    /// jittered).
     #[arg(long)]
     pub no_jitter: bool,
     /// Intersection backend.
@@ -296,7 +297,9 @@ impl RenderArgs {
         if let Some(seed) = self.seed {
             options.seed = seed;
         }
-        options.jitter = !self.no_jitter;
+        if self.no_jitter {
+            options.jitter = false;
+        }
         options.render_space = self.render_space;
         options.offset = self.offset.unwrap_or(DVec3::ZERO);
         if let Some(backend) = self.backend {

@@ -42,8 +42,9 @@ fn the_samplers_seed_is_the_scenes() {
     assert_contains(&message, &["seed is -1, but must be 0 to 4294967295", "(line 9)"]);
 }
 
-/// Every sampler Mitsuba has is read, with its own parameters; another type, or a
-/// parameter the type does not take, is refused.
+/// Every sampler Mitsuba has is read, with its own parameters (`jitter` false: samples at
+/// their strata's centres, as `--no-jitter`); another type, or a parameter the type does
+/// not take, is refused.
 #[test]
 fn sampler_types_and_parameters_are_read_or_refused() {
     for (kind, extra) in [
@@ -53,9 +54,12 @@ fn sampler_types_and_parameters_are_read_or_refused() {
         ("ldsampler", "<integer name=\"seed\" value=\"3\"/>"),
     ] {
         let name = format!("m-sampler-{kind}");
-        let scene = with_kinds(&name, ("hdrfilm", ""), (kind, extra));
-        let seed = if kind == "ldsampler" { 3 } else { 0 };
-        assert_eq!(scene.map(|s| (s.settings.spp, s.settings.seed)), Ok((1, seed)), "{kind}");
+        let scene = with_kinds(&name, ("hdrfilm", ""), (kind, extra)).unwrap();
+        let (seed, jitter) = (if kind == "ldsampler" { 3 } else { 0 }, kind != "stratified");
+        let read = (scene.settings.spp, scene.settings.seed, scene.settings.jitter);
+        assert_eq!(read, (1, seed, jitter), "{kind}");
+        let options = embray::render::RenderOptions::for_scene(&scene);
+        assert_eq!(options.jitter, jitter, "{kind}: the render's jitter");
     }
     let typo = with("m-sampler-typo", "", "<integer name=\"sead\" value=\"3\"/>").unwrap_err();
     assert_contains(

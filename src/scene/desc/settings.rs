@@ -63,6 +63,9 @@ pub struct RenderSettings {
     /// The seed of the render's random numbers (Mitsuba's sampler `seed`); `--seed`
     /// overrides it.
     pub seed: u64,
+    /// Sample positions jittered within their pixel strata (Mitsuba's stratified samplers'
+    /// `jitter`); false puts them at stratum centres, as `--no-jitter` does.
+    pub jitter: bool,
 }
 
 /// Where Russian roulette starts unless a scene says.
@@ -84,6 +87,7 @@ impl Default for RenderSettings {
             rr_depth: DEFAULT_RR_DEPTH,
             crop: None,
             seed: 0,
+            jitter: true,
         }
     }
 }

@@ -183,12 +183,11 @@ pub fn load(
         }
     }
     let sensor = sensor.ok_or_else(|| root.error("the scene has no <sensor>"))?;
-    if let Some(spp) = sensor.spp {
-        settings.spp = spp;
-    } else {
-        settings.spp = 4;
-    }
-    settings.seed = sensor.seed.unwrap_or(0);
+    // Mitsuba's default sampler: independent, 4 samples, seed 0.
+    let sampler = sensor.sampler.unwrap_or_default();
+    settings.spp = sampler.sample_count;
+    settings.seed = sampler.seed;
+    settings.jitter = sampler.jitter;
     settings.filter = sensor.filter;
     settings.crop = sensor.crop;
     let Builder { materials, objects, lights, .. } = builder;

@@ -1,6 +1,6 @@
-//! `<sampler>`: the sample count and seed it asks for. The sampler's type does not choose
-//! embray's (`--sampler` does, Owen-scrambled Sobol by default: the same estimate with less
-//! noise; README, Mitsuba 3 scenes), so `jitter` and `strength` are checked and not used.
+//! `<sampler>`: the sample count, seed and jitter it asks for. The sampler's type does not
+//! choose embray's (`--sampler` does, Owen-scrambled Sobol by default: the same estimate with
+//! less noise; README, Mitsuba 3 scenes), so `strength` is checked and not used.
 
 use super::tree::Element;
 use super::values::{boolean, integer, refuse_unread};
@@ -9,7 +9,15 @@ use crate::scene::error::SceneError;
 /// What a sampler asks of the render.
 pub(super) struct Sampler {
     pub sample_count: u32,
-    pub seed: Option<u64>,
+    pub seed: u64,
+    /// False puts each sample at its stratum's centre (stratified, multijitter, orthogonal).
+    pub jitter: bool,
+}
+
+impl Default for Sampler {
+    fn default() -> Self {
+        Sampler { sample_count: 4, seed: 0, jitter: true }
+    }
 }
 
 /// Mitsuba's samplers and the parameters each reads.
@@ -45,10 +53,11 @@ pub(super) fn sampler(element: &Element) -> Result<Sampler, SceneError> {
         let at = named("seed").unwrap_or(element);
         return Err(at.error(format!("seed is {seed}, but must be 0 to {}", u32::MAX)));
     }
-    boolean(element, "jitter")?;
+    let jitter = boolean(element, "jitter")?.unwrap_or(true);
     if let Some(strength) = integer(element, "strength")?.filter(|s| *s < 1) {
         let at = named("strength").unwrap_or(element);
         return Err(at.error(format!("strength is {strength}, but must be at least 1")));
     }
-    Ok(Sampler { sample_count: sample_count as u32, seed: seed.map(|seed| seed as u64) })
+    let seed = seed.unwrap_or(0) as u64;
+    Ok(Sampler { sample_count: sample_count as u32, seed, jitter })
 }

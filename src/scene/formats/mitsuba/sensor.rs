@@ -8,11 +8,10 @@ use crate::sampling::filter::PixelFilter;
 use crate::scene::desc::{CameraDesc, LensShape};
 use crate::scene::error::SceneError;
 
-/// A camera and the sample count and seed its sampler asks for.
+/// A camera and what its sampler asks for.
 pub(super) struct Sensor {
     pub camera: CameraDesc,
-    pub spp: Option<u32>,
-    pub seed: Option<u64>,
+    pub sampler: Option<super::sampler::Sampler>,
     pub filter: PixelFilter,
     pub crop: Option<crate::film::Tile>,
 }
@@ -76,7 +75,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         )));
     }
     check_sensor_properties(element, kind)?;
-    let (mut width, mut height, mut spp, mut seed) = (768u32, 576u32, None, None);
+    let (mut width, mut height, mut sampler) = (768u32, 576u32, None);
     // Mitsuba's default film: 768 × 576 with a Gaussian filter.
     let mut filter = PixelFilter::Gaussian { stddev: 0.5 };
     let mut crop = None;
@@ -88,10 +87,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
                 let film = super::film::film(child, warnings)?;
                 (width, height, filter, crop) = (film.width, film.height, film.filter, film.crop);
             }
-            "sampler" => {
-                let sampler = super::sampler::sampler(child)?;
-                (spp, seed) = (Some(sampler.sample_count), sampler.seed);
-            }
+            "sampler" => sampler = Some(super::sampler::sampler(child)?),
             _ => {}
         }
     }
@@ -127,7 +123,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         camera.ortho_half_height = Some(sy / aspect);
         camera.clip = (near, far);
         camera.pixel_aspect = sx / sy;
-        return Ok(Sensor { camera, spp, seed, filter, crop });
+        return Ok(Sensor { camera, sampler, filter, crop });
     }
     let x_fov = x_fov(element, aspect)?;
     let vfov = (2.0 * ((0.5 * x_fov).to_radians().tan() / aspect).atan()).to_degrees();
@@ -156,7 +152,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         camera.focus_distance = Some(focus);
         camera.lens_shape = LensShape::Disk;
     }
-    Ok(Sensor { camera, spp, seed, filter, crop })
+    Ok(Sensor { camera, sampler, filter, crop })
 }
 
 /// Refuses a parameter the sensor does not read (`shutter_open`/`shutter_close` are read

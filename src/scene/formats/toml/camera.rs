@@ -182,6 +182,7 @@ pub(crate) fn settings(
         settings.rr_depth = rr_depth;
     }
     settings.seed = render.seed.unwrap_or(0);
+    settings.jitter = render.jitter.unwrap_or(true);
     if let Some(filter) = &render.filter {
         settings.filter = pixel_filter(ctx, &path.key("filter"), filter)?;
     }

@@ -83,6 +83,8 @@ pub(crate) struct RenderToml {
     pub crop: Option<[u32; 4]>,
     /// The seed of the render's random numbers (`--seed` overrides it).
     pub seed: Option<u64>,
+    /// Whether sample positions are jittered within their strata (`--no-jitter`: false).
+    pub jitter: Option<bool>,
 }
 
 /// `filter = { type = "gaussian", stddev = 0.5 }`: the pixel reconstruction filter.

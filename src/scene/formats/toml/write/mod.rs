@@ -249,6 +249,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
     if s.seed != 0 {
         let _ = writeln!(out, "seed = {}", s.seed);
     }
+    if !s.jitter {
+        let _ = writeln!(out, "jitter = false");
+    }
     if s.hide_emitters {
         let _ = writeln!(out, "hide_emitters = true");
     }
