@@ -120,7 +120,7 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
                     error,
                     line: mesh_ref.line,
                 })?;
-            let mesh = ply::parse(&bytes).map_err(|problem| SceneError::PlyData {
+            let (mesh, warning) = ply::parse(&bytes).map_err(|problem| SceneError::PlyData {
                 ply: path.clone().into_boxed_path(),
                 ply_line: crate::scene::error::Line(problem.line),
                 scene: mesh_ref.scene.to_path_buf().into_boxed_path(),
@@ -128,6 +128,10 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
                 problem: problem.message,
                 line: mesh_ref.line,
             })?;
+            if let Some(warning) = warning {
+                let line = warning.line.map_or(String::new(), |line| format!(" (line {line})"));
+                warnings.push(format!("{}: {}{line}", path.display(), warning.message));
+            }
             let model =
                 CachedModel { name: None, material: None, mesh: Arc::new(mesh), toggled: None };
             Ok(CachedFile { models: vec![model], materials: Vec::new() })

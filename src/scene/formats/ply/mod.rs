@@ -3,7 +3,7 @@
 //! The `vertex` element gives positions (`x y z`), optionally normals (`nx ny nz`) and
 //! texture coordinates (`u v`, `s t`, `texture_u texture_v` or `texture_s texture_t`); the
 //! `face` element a list property `vertex_indices` (or `vertex_index`) of polygons, which are
-//! fan-triangulated (polygons with fewer than 3 vertices are skipped). Other elements and
+//! fan-triangulated (polygons with fewer than 3 vertices are skipped, with a warning). Other elements and
 //! properties are read and ignored. Every problem is reported with what and where: the
 //! element and its number, and the line in an ASCII file.
 //!
@@ -31,8 +31,8 @@ fn problem(line: Option<usize>, message: impl Into<String>) -> PlyProblem {
     PlyProblem { line, message: message.into() }
 }
 
-/// Parses a whole PLY file.
-pub(crate) fn parse(bytes: &[u8]) -> Result<MeshData, PlyProblem> {
+/// Parses a whole PLY file: its mesh, and a warning if faces were skipped.
+pub(crate) fn parse(bytes: &[u8]) -> Result<(MeshData, Option<PlyProblem>), PlyProblem> {
     let header = parse_header(bytes)?;
     let body = &bytes[header.body_start..];
     match header.encoding {
@@ -120,7 +120,10 @@ fn face_indices(element: &Element) -> Result<usize, PlyProblem> {
     }
 }
 
-fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, PlyProblem> {
+fn read_body(
+    elements: &[Element],
+    values: &mut dyn Values,
+) -> Result<(MeshData, Option<PlyProblem>), PlyProblem> {
     let vertex_element = elements
         .iter()
         .find(|e| e.name == "vertex")
@@ -156,6 +159,8 @@ fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, 
     // Property values of one element (scalars; lists are read separately).
     let mut row: Vec<f64> = Vec::new();
     let mut polygon: Vec<u32> = Vec::new();
+    // Faces of fewer than 3 vertices: how many, and where the first is.
+    let (mut short_faces, mut first_short) = (0usize, None);
     for element in elements {
         let is_vertex = element.name == "vertex";
         let face_list = if element.name == "face" {
@@ -226,6 +231,9 @@ fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, 
                             for i in 1..polygon.len() - 1 {
                                 mesh.indices.push([polygon[0], polygon[i], polygon[i + 1]]);
                             }
+                        } else if is_polygon {
+                            short_faces += 1;
+                            first_short.get_or_insert((number, polygon.len(), values.line()));
                         }
                         row.push(f64::NAN); // keeps `row` indexed by property
                     }
@@ -300,7 +308,20 @@ fn read_body(elements: &[Element], values: &mut dyn Values) -> Result<MeshData, 
         };
         return Err(problem(None, message));
     }
-    Ok(mesh)
+    let warning = first_short.map(|(number, vertices, line)| {
+        let message = match short_faces {
+            1 => format!(
+                "face {number} has {vertices} {} and is ignored (a face needs at least 3)",
+                if vertices == 1 { "vertex" } else { "vertices" }
+            ),
+            n => format!(
+                "{n} faces of fewer than 3 vertices are ignored (the first: face {number}, with \
+                 {vertices})"
+            ),
+        };
+        problem(line, message)
+    });
+    Ok((mesh, warning))
 }
 
 #[cfg(test)]

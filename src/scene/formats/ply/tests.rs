@@ -14,12 +14,27 @@ fn cube() -> String {
 
 #[test]
 fn ascii_cube_is_fan_triangulated() {
-    let mesh = parse(cube().as_bytes()).unwrap();
+    let (mesh, warning) = parse(cube().as_bytes()).unwrap();
+    assert_eq!(warning, None);
     assert_eq!(mesh.positions.len(), 8);
     assert_eq!(mesh.positions[6], DVec3::ONE);
     assert_eq!(mesh.indices.len(), 12);
     assert_eq!(mesh.indices[0..2], [[0, 1, 2], [0, 2, 3]]);
     assert!(mesh.normals.is_none() && mesh.uvs.is_none());
+}
+
+/// Faces of fewer than 3 vertices are skipped, as OBJ's are, and a warning says how many
+/// and where the first is.
+#[test]
+fn short_faces_are_skipped_with_a_warning() {
+    let text = cube().replace("4 0 4 5 1\n", "2 0 4\n").replace("4 3 7 4 0\n", "0\n");
+    let (mesh, warning) = parse(text.as_bytes()).unwrap();
+    assert_eq!(mesh.indices.len(), 8);
+    let message = "2 faces of fewer than 3 vertices are ignored (the first: face 2, with 2)";
+    assert_eq!(warning, Some(problem(Some(21), message)));
+    let one = cube().replace("4 3 7 4 0\n", "1 3\n");
+    let message = "face 5 has 1 vertex and is ignored (a face needs at least 3)";
+    assert_eq!(parse(one.as_bytes()).unwrap().1, Some(problem(Some(24), message)));
 }
 
 #[test]
@@ -29,7 +44,7 @@ fn crlf_header_and_extra_properties() {
         property float t\r\nelement edge 1\r\nproperty int a\r\nproperty int b\r\n\
         element face 1\r\nproperty uchar flags\r\nproperty list int uint vertex_index\r\n\
         end_header\r\n0 0 0 255 0 0\r\n1 0 0 0 1 0\r\n0 1 0 7 0 1\r\n0 1\r\n9 3 0 1 2\r\n";
-    let mesh = parse(text.as_bytes()).unwrap();
+    let (mesh, _) = parse(text.as_bytes()).unwrap();
     assert_eq!(mesh.indices, [[0, 1, 2]]);
     assert_eq!(mesh.uvs.unwrap()[2], Vec2::new(0.0, 1.0));
 }
@@ -96,7 +111,7 @@ fn extra_properties_become_mitsubas_mesh_attributes() {
         property float col_r\nproperty float col_g\nproperty float col_b\nend_header\n\
         0 0 0 255 0 0 1 2 3\n1 0 0 0 255 0 1 2 3\n1 1 0 0 0 255 1 2 3\n0 1 0 9 9 9 1 2 3\n\
         4 0 1 2 3 0.25 0.1 0.2 0.3\n3 0 2 3 0.75 0.4 0.5 0.6\n";
-    let mesh = parse(text.as_bytes()).unwrap();
+    let (mesh, _) = parse(text.as_bytes()).unwrap();
     let names: Vec<&str> = mesh.attributes.iter().map(|a| a.name.as_str()).collect();
     assert_eq!(names, ["vertex_color", "face_weight", "face_col_color"]);
     // Mitsuba keeps integer colours as they are (it warns that [0, 1] is expected).
