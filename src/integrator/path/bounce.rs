@@ -149,7 +149,8 @@ impl PathTracer<'_> {
     /// only: light sampling and BSDF sampling share every bounce by MIS, the last included
     /// (Mitsuba's and pbrt's `max_depth` count so), which keeps glossy lobes lit by large
     /// lights as quiet as anywhere else, and lets delta lobes (mirrors, glass, a mask's
-    /// holes) see the lights at all.
+    /// holes) see the lights at all. Where no ray can find light (point and directional
+    /// lights only, no environment or background), that ray is not traced.
     ///
     /// A plain Lambertian bounce is left to the caller (`true`), written into `lane` with
     /// its random numbers drawn: `lambert_outcome` computes it (or `LambertLanes`, with many
@@ -192,6 +193,14 @@ impl PathTracer<'_> {
         self.max_depth == 0 || depth == self.max_depth.max(1)
     }
 
+    /// Whether the ray to surface interaction `depth` (the camera's: 0) is traced: up to the
+    /// last, which looks only for light, and which is not traced where no ray finds any.
+    #[inline]
+    fn traces_ray(&self, depth: u32) -> bool {
+        let last = self.max_depth.max(1);
+        depth < last || (depth == last && self.rays_find_light)
+    }
+
     /// The path goes on along `next`, if it is valid (an invalid ray ends it, uncounted).
     #[inline]
     fn advance(&self, state: &mut PathState, next: Ray) {
@@ -204,7 +213,7 @@ impl PathTracer<'_> {
     fn advance_valid(&self, state: &mut PathState, next: Ray, valid: bool) {
         debug_assert_eq!(valid, next.is_valid(), "{next:?}");
         state.depth += 1;
-        state.live = valid & (state.depth <= self.max_depth.max(1));
+        state.live = valid & self.traces_ray(state.depth);
         state.ray = next;
     }
 
@@ -328,6 +337,9 @@ impl PathTracer<'_> {
         if bsdf.has_smooth_lobe() {
             state.direct_weight = Some(state.throughput);
             self.direct_light(&si, &bsdf, wo, ray.time, stream, stats, shadows);
+        }
+        if !self.traces_ray(depth + 1) {
+            return Scattered::End;
         }
         // Direction first (the best stratified pair), then lobe and roulette.
         let [u0, u1, u_lobe, u_survive] = stream.next_4d();

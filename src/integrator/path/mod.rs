@@ -55,6 +55,10 @@ pub struct PathTracer<'a> {
     /// The instances whose hits go straight to their Lambertian lane (`plain_hit`); none
     /// without the lanes.
     plain_surfaces: PlainSurfaces<'a>,
+    /// Whether a ray can find light where it hits or leaves the scene (an emissive surface,
+    /// an environment, a background): if not, the ray after the last bounce, which looks
+    /// for nothing else, is not traced.
+    rays_find_light: bool,
 }
 
 /// How far from 1 a squared normal length may be for the normal to count as unit: 16 ulps,
@@ -118,6 +122,11 @@ impl<'a> PathTracer<'a> {
             true => PlainSurfaces::new(tracer.scene, energy),
             false => PlainSurfaces::default(),
         };
+        let scene = tracer.scene;
+        let rays_find_light = lights.environment.is_some()
+            || scene.background != Vec3::ZERO
+            || lights.has_emitters()
+            || scene.materials.iter().any(|m| m.is_emissive());
         PathTracer {
             tracer,
             max_depth,
@@ -128,6 +137,7 @@ impl<'a> PathTracer<'a> {
             lambert_lanes,
             lone_emitter,
             plain_surfaces,
+            rays_find_light,
         }
     }
 
