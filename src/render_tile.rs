@@ -227,7 +227,8 @@ pub(crate) fn render_tile(
                 add(sums, &sample, weight);
             }
         }
-        return Some(result);
+        // A Whitted tree stops mid-sample on a stop: the tile's last samples may be cut.
+        return (!stopped()).then_some(result);
     };
     let wavefront = &mut scratch.wavefront;
     let mut clock = PhaseClock::new(options.time_phases);

@@ -48,9 +48,13 @@ pub struct BounceCounts {
     /// files written before it was counted.
     #[serde(default)]
     pub near_lights: u64,
+    /// Whitted samples whose tree reached `whitted::MAX_RAYS_PER_SAMPLE` rays and was cut
+    /// there. Absent from part files written before it was counted.
+    #[serde(default)]
+    pub cut_trees: u64,
 }
 
-add_fields!(BounceCounts { lanes, scalar, near_lights });
+add_fields!(BounceCounts { lanes, scalar, near_lights, cut_trees });
 
 /// All counters of a render (or of one worker's share of it).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]

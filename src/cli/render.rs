@@ -190,6 +190,14 @@ fn render_jobs(
         }
         let line = summary(&output, &options, &job.paths());
         let table = stats_table(&output.stats, output.observes, options.time_phases);
+        if let cut @ 1.. = output.stats.bounces.cut_trees {
+            note(format!(
+                "warning: {cut} samples' reflection and refraction trees reached {} rays and \
+                 ended there (max depth {}: glass between mirrors branches at every hit)",
+                embray::integrator::whitted::MAX_RAYS_PER_SAMPLE,
+                options.max_depth
+            ));
+        }
         reports.push((line, table));
         if let Some(reason) = output.stopped {
             let skipped = jobs[k + 1..].iter().flat_map(job_paths).collect();

@@ -55,7 +55,9 @@ impl<'a> Tracer<'a> {
                 options.energy,
                 options.paths != PathBatching::Reference,
             )),
-            IntegratorKind::Whitted => Tracer::Whitted(WhittedTracer::new(tracer, max_depth)),
+            IntegratorKind::Whitted => {
+                Tracer::Whitted(WhittedTracer::new(tracer, max_depth, options.stop.clone()))
+            }
         }
     }
 

@@ -91,6 +91,12 @@ pub fn stats_table(stats: &RenderStats, observes: Observes, timed: bool) -> Stri
             100.0 * bounces.scalar as f64 / total as f64
         );
     }
+    if bounces.cut_trees > 0 {
+        out += &format!(
+            "cut trees        {} (Whitted samples ended at their ray limit)\n",
+            bounces.cut_trees
+        );
+    }
     if timed && stats.phases.is_empty() {
         out += "phases           not timed: only the path tracer's batched paths have them \
                 (--paths batched)\n";

@@ -3,6 +3,21 @@
 
 use crate::harness::{Scratch, accepted_in, refused_cases, xml_scene};
 
+/// Glass spheres inside a mirror sphere at MaxRecursionDepth 40: every hit branches in two
+/// and no ray escapes, so a sample's tree would take days. It ends at its ray limit, and a
+/// warning says how many samples were cut.
+#[test]
+fn a_ray_tree_that_branches_at_every_hit_ends_at_its_limit() {
+    let scratch = Scratch::new();
+    scratch.write("glass.xml", GLASS_IN_A_MIRROR);
+    let run = accepted_in(&scratch, &["render", "glass.xml", "--threads", "2", "--stats"]);
+    run.assert_says(&["4 samples' reflection and refraction trees reached 65536 rays"]);
+    assert!(run.stdout.contains("cut trees        4"), "{}", run.stdout);
+    assert!(scratch.path("img.png").is_file());
+}
+
+const GLASS_IN_A_MIRROR: &str = r#"<Scene><MaxRecursionDepth>40</MaxRecursionDepth><Cameras><Camera id="1"><Position>0 0 15</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up><NearPlane>-1 1 -1 1</NearPlane><NearDistance>1</NearDistance><ImageResolution>2 2</ImageResolution><ImageName>img.png</ImageName></Camera></Cameras><Lights><AmbientLight>25 25 25</AmbientLight><PointLight id="1"><Position>0 0 0</Position><Intensity>1000 1000 1000</Intensity></PointLight></Lights><Materials><Material id="1" type="dielectric"><AmbientReflectance>0.1 0.1 0.1</AmbientReflectance><DiffuseReflectance>0 0 0</DiffuseReflectance><SpecularReflectance>0 0 0</SpecularReflectance><MirrorReflectance>1 1 1</MirrorReflectance><RefractionIndex>1.5</RefractionIndex><AbsorptionCoefficient>0 0 0</AbsorptionCoefficient></Material><Material id="2" type="mirror"><AmbientReflectance>0.1 0.1 0.1</AmbientReflectance><DiffuseReflectance>0.1 0.1 0.1</DiffuseReflectance><SpecularReflectance>0 0 0</SpecularReflectance><MirrorReflectance>0.9 0.9 0.9</MirrorReflectance></Material></Materials><Transformations></Transformations><VertexData>0 0 0</VertexData><Objects><Sphere id="1"><Material>2</Material><Center>1</Center><Radius>20</Radius></Sphere><Sphere id="2"><Material>1</Material><Center>1</Center><Radius>10</Radius></Sphere><Sphere id="3"><Material>1</Material><Center>1</Center><Radius>5</Radius></Sphere></Objects></Scene>"#;
+
 refused_cases! {
     image_name_climbing_out: ["s.xml" => xml_scene(&["../../x.png"], "")], ["render", "s.xml", "--out-dir", "out"]
         => ["s.xml", "ImageName", "'..'", "(line 12)"];

@@ -21,6 +21,7 @@ use super::PathSample;
 use super::trace::SceneTracer;
 use crate::ray::Ray;
 use crate::render_scene::{Geometry, RenderScene};
+use crate::render_stop::Stop;
 use crate::sampling::SampleStream;
 use crate::scene::Specular;
 use crate::shading::fresnel::{fresnel_conductor, fresnel_dielectric};
@@ -32,7 +33,20 @@ pub struct WhittedTracer<'a> {
     tracer: SceneTracer<'a>,
     /// Reflection/refraction bounces after the camera ray.
     max_depth: u32,
+    /// The render's stop request, looked at while one sample's tree is traced: between
+    /// glass and mirrors a tree can take minutes.
+    stop: Option<Stop>,
 }
+
+/// The rays one camera sample's tree may trace before the rest of it ends at its next hits.
+/// Every hit on glass branches in two, so a tree can hold 2^`max_depth` rays, and glass
+/// inside a mirror makes every branch go on: at depth 40 a sample would take days. No
+/// course scene comes near (MaxRecursionDepth 6: at most 2⁷ rays); `--stats` counts the
+/// samples cut.
+pub const MAX_RAYS_PER_SAMPLE: u32 = 1 << 16;
+
+/// How many rays pass between looks at the stop request.
+const STOP_CHECK_EVERY: u32 = 1 << 12;
 
 fn reflect(d: Vec3, n: Vec3) -> Vec3 {
     d - 2.0 * d.dot(n) * n
@@ -47,8 +61,8 @@ fn perturb(r: Vec3, side: f32, u: Vec2) -> Vec3 {
 }
 
 impl<'a> WhittedTracer<'a> {
-    pub(crate) fn new(tracer: SceneTracer<'a>, max_depth: u32) -> Self {
-        WhittedTracer { tracer, max_depth }
+    pub(crate) fn new(tracer: SceneTracer<'a>, max_depth: u32, stop: Option<Stop>) -> Self {
+        WhittedTracer { tracer, max_depth, stop }
     }
 
     pub fn scene(&self) -> &RenderScene {
@@ -82,9 +96,21 @@ impl<'a> WhittedTracer<'a> {
             medium: None,
         })];
         let mut values: Vec<Vec3> = Vec::new();
+        let mut traced = 0u32;
         while let Some(task) = tasks.pop() {
             match task {
-                Task::Trace(node) => {
+                Task::Trace(mut node) => {
+                    traced += 1;
+                    if traced % STOP_CHECK_EVERY == 0
+                        && self.stop.as_ref().is_some_and(|s| s.requested().is_some())
+                    {
+                        // The tile is dropped (`render_tile`): the value does not matter.
+                        return Vec3::ZERO;
+                    }
+                    if traced >= MAX_RAYS_PER_SAMPLE {
+                        stats.bounces.cut_trees += u64::from(traced == MAX_RAYS_PER_SAMPLE);
+                        node.depth_left = 0;
+                    }
                     let seen_behind = if node.camera_ray { backdrop } else { None };
                     self.visit(node, seen_behind, &mut tasks, &mut values, stream, stats, first)
                 }
