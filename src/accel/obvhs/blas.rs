@@ -32,7 +32,7 @@ pub(super) fn aabb_of(points: impl IntoIterator<Item = Vec3>) -> Aabb {
 }
 
 /// obvhs's presets, with leaves no larger than a triangle block.
-pub(super) fn build_params(quality: BuildQuality) -> BvhBuildParams {
+fn build_params(quality: BuildQuality) -> BvhBuildParams {
     let preset = match quality {
         BuildQuality::Low => BvhBuildParams::fastest_build(),
         BuildQuality::Medium => BvhBuildParams::medium_build(),
@@ -41,14 +41,21 @@ pub(super) fn build_params(quality: BuildQuality) -> BvhBuildParams {
     BvhBuildParams { max_prims_per_leaf: triangle_block::LANES as u32, ..preset }
 }
 
+/// The wide BVH over `boxes`, built through obvhs's binary tree (repeated boxes made
+/// distinct first: `tie_break`), and each of its slots' primitive.
+pub(super) fn build_wide(boxes: Vec<Aabb>, quality: BuildQuality) -> (WideBvh, Vec<u32>) {
+    let boxes = super::tie_break::distinct_boxes(&boxes).unwrap_or(boxes);
+    let bvh2 = build_bvh2(&boxes, build_params(quality), &mut Duration::default());
+    WideBvh::new(&bvh2, &boxes)
+}
+
 /// A BVH over `triangles` (each with its geometry id and triangle index).
 pub(super) fn build_mesh_blas(
     triangles: Vec<([Vec3; 3], (u32, u32))>,
     quality: BuildQuality,
 ) -> MeshBlas {
     let boxes: Vec<Aabb> = triangles.iter().map(|(t, _)| aabb_of(*t)).collect();
-    let bvh2 = build_bvh2(&boxes, build_params(quality), &mut Duration::default());
-    let (bvh, slot_primitives) = WideBvh::new(&bvh2, &boxes);
+    let (bvh, slot_primitives) = build_wide(boxes, quality);
     let (triangles, ids): (Vec<_>, _) =
         slot_primitives.iter().map(|&i| triangles[i as usize]).unzip();
     let blocks =

@@ -20,6 +20,7 @@
 mod blas;
 mod edge_test;
 mod node_test;
+mod tie_break;
 mod triangle_block;
 mod wide_bvh;
 
@@ -28,13 +29,11 @@ use crate::intersect::intersect_sphere;
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{Geometry, Placement, RenderScene, Sphere, Trs, transformed_bounds};
 use crate::stats::TraversalCounters;
-use blas::{MeshBlas, aabb_of, build_mesh_blas, build_params, mesh_triangles, motion_bounds};
+use blas::{MeshBlas, aabb_of, build_mesh_blas, build_wide, mesh_triangles, motion_bounds};
 use edge_test::EdgeTest;
 use glam::{Affine3A, Vec3};
 use node_test::NodeRay;
-use obvhs::bvh2::builder::build_bvh2;
 use std::ops::ControlFlow;
-use std::time::Duration;
 use triangle_block::TriangleBlock;
 use wide_bvh::WideBvh;
 
@@ -127,8 +126,7 @@ impl ObvhsAccel {
         let baked =
             (!baked_triangles.is_empty()).then(|| build_mesh_blas(baked_triangles, quality));
         let tlas = (!bounds.is_empty()).then(|| {
-            let bvh2 = build_bvh2(&bounds, build_params(quality), &mut Duration::default());
-            let (bvh, slot_primitives) = WideBvh::new(&bvh2, &bounds);
+            let (bvh, slot_primitives) = build_wide(std::mem::take(&mut bounds), quality);
             tlas_instances = slot_primitives.iter().map(|&i| tlas_instances[i as usize]).collect();
             bvh
         });
