@@ -101,7 +101,7 @@ impl<'a> WhittedTracer<'a> {
             match task {
                 Task::Trace(mut node) => {
                     traced += 1;
-                    if traced % STOP_CHECK_EVERY == 0
+                    if traced.is_multiple_of(STOP_CHECK_EVERY)
                         && self.stop.as_ref().is_some_and(|s| s.requested().is_some())
                     {
                         // The tile is dropped (`render_tile`): the value does not matter.
