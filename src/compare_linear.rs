@@ -22,10 +22,16 @@ pub struct LinearComparison {
 }
 
 impl LinearComparison {
-    /// The largest relative difference of a channel mean, |a − b| / b.
-    pub fn mean_relative_difference(&self) -> f64 {
-        ((self.mean_a - self.mean_b).abs() / self.mean_b.abs().max(DVec3::splat(1e-30)))
-            .max_element()
+    /// The largest relative difference of a channel mean, |a − b| / b; `None` when a
+    /// channel's mean is 0 in `b` but not in `a`, where no ratio means anything (dividing
+    /// by a tiny floor instead printed 10³² %).
+    pub fn mean_relative_difference(&self) -> Option<f64> {
+        let (a, b) = (self.mean_a.to_array(), self.mean_b.to_array());
+        a.iter().zip(&b).try_fold(0.0f64, |largest, (&a, &b)| match (a == b, b == 0.0) {
+            (true, _) => Some(largest),
+            (false, true) => None,
+            (false, false) => Some(largest.max((a - b).abs() / b.abs())),
+        })
     }
 }
 
@@ -99,7 +105,10 @@ mod tests {
         let c = compare_films(&a, &b).unwrap();
         assert_eq!(c.mean_a, DVec3::splat(2.0));
         assert_eq!(c.mean_b, DVec3::splat(1.0));
-        assert!((c.mean_relative_difference() - 1.0).abs() < 1e-12);
+        assert!((c.mean_relative_difference().unwrap() - 1.0).abs() < 1e-12);
+        let black = Film::new(2, 1);
+        assert_eq!(compare_films(&a, &black).unwrap().mean_relative_difference(), None);
+        assert_eq!(compare_films(&black, &black).unwrap().mean_relative_difference(), Some(0.0));
         // Half the samples differ by 2: RMSE √(4/2).
         assert!((c.rmse - 2f64.sqrt()).abs() < 1e-12, "{}", c.rmse);
         assert!(matches!(compare_films(&a, &Film::new(1, 2)), Err(CompareError::Size { .. })));

@@ -102,8 +102,40 @@ pub const BYTES_PER_SAMPLED_TEXEL: u64 = 24;
 /// (The estimates it is held against count resident memory; threads reserve more address
 /// space than that, so under `ulimit -v` the check is a bound on the estimate only.)
 pub fn memory_available() -> Option<u64> {
-    let budget = std::env::var("EMBRAY_MAX_MEMORY").ok().and_then(|v| v.trim().parse::<u64>().ok());
+    // The command line refuses an unusable value before any work (`memory_budget`), so
+    // it is never silently dropped there.
+    let budget = memory_budget().ok().flatten();
     [detected_memory(), budget].into_iter().flatten().min()
+}
+
+/// An environment variable embray reads, set to a value it cannot use.
+#[derive(Debug, thiserror::Error)]
+#[error("the environment variable {name} is '{value}', but must be {expected}")]
+pub struct EnvError {
+    pub name: &'static str,
+    pub value: String,
+    pub expected: &'static str,
+}
+
+/// The environment variable `name`, trimmed; `None` when unset or empty (how a variable is
+/// cleared in a job script).
+pub(crate) fn env_text(name: &'static str) -> Option<String> {
+    let value = std::env::var_os(name)?;
+    let text = value.to_string_lossy().trim().to_owned();
+    (!text.is_empty()).then_some(text)
+}
+
+/// `EMBRAY_MAX_MEMORY`, the budget of a shared machine in bytes, if set. A value such as
+/// `1e9` or `8GiB` is an error rather than no budget: a cap that silently does nothing is
+/// the one outcome its user did not ask for.
+pub fn memory_budget() -> Result<Option<u64>, EnvError> {
+    let name = "EMBRAY_MAX_MEMORY";
+    let Some(text) = env_text(name) else { return Ok(None) };
+    text.parse::<u64>().map(Some).map_err(|_| EnvError {
+        name,
+        value: crate::excerpt::excerpt(&text),
+        expected: "a whole number of bytes (8 GiB is 8589934592)",
+    })
 }
 
 fn detected_memory() -> Option<u64> {

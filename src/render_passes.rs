@@ -4,6 +4,7 @@
 //! add up to the same image bit for bit as one pass would.
 
 use crate::film::Tile;
+use crate::limits::EnvError;
 use crate::render_stop::StopReason;
 use crate::sample_sums::FilmSums;
 use crate::stats::RenderStats;
@@ -64,10 +65,24 @@ pub struct Progress {
     spp_total: u32,
 }
 
-/// How often a progress line is printed into a pipe: `EMBRAY_PROGRESS_SECONDS`, or 5 s.
-fn line_every() -> Duration {
-    let seconds = std::env::var("EMBRAY_PROGRESS_SECONDS").ok().and_then(|s| s.parse::<f64>().ok());
-    Duration::from_secs_f64(seconds.filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(5.0))
+/// The longest `EMBRAY_PROGRESS_SECONDS`: past it a log would have no line for days.
+const MAX_PROGRESS_SECONDS: f64 = 1e6;
+
+/// How often a progress line is printed into a pipe: `EMBRAY_PROGRESS_SECONDS` (seconds,
+/// fractions allowed), or 5 s when unset; any other value is an error naming it.
+pub fn progress_interval() -> Result<Duration, EnvError> {
+    let name = "EMBRAY_PROGRESS_SECONDS";
+    let Some(text) = crate::limits::env_text(name) else { return Ok(Duration::from_secs(5)) };
+    match text.parse::<f64>() {
+        Ok(seconds) if (0.0..=MAX_PROGRESS_SECONDS).contains(&seconds) => {
+            Ok(Duration::from_secs_f64(seconds))
+        }
+        _ => Err(EnvError {
+            name,
+            value: crate::excerpt::excerpt(&text),
+            expected: "a number of seconds from 0 to 1000000",
+        }),
+    }
 }
 
 impl Progress {
@@ -86,7 +101,9 @@ impl Progress {
         Progress {
             bar,
             lines: (shown && !terminal).then(|| Mutex::new(Instant::now())),
-            line_every: line_every(),
+            // The command line refuses a bad value before any work; a library caller gets
+            // the default rather than a render stopped over its progress lines.
+            line_every: progress_interval().unwrap_or(Duration::from_secs(5)),
             start: Instant::now(),
             units_total: units.max(1),
             units_done: AtomicU64::new(0),

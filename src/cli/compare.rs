@@ -4,7 +4,7 @@
 use anyhow::Result;
 use clap::Args;
 use embray::compare::{compare_images, read_rgb};
-use embray::output::{OutputPlan, OutputSet, encode_rgb8};
+use embray::output::{ImageFormat, OutputPlan, OutputSet, encode_display_rgb8};
 use std::path::{Path, PathBuf};
 
 use super::console::{note, out};
@@ -15,8 +15,8 @@ pub struct CompareArgs {
     pub a: PathBuf,
     /// Second image (e.g. the reference).
     pub b: PathBuf,
-    /// Write a heat map of the per-pixel largest channel difference (PNG): black where
-    /// equal, blue up to the tolerance, red to yellow beyond it.
+    /// Write a heat map of the per-pixel largest channel difference (PNG, or JPEG for .jpg):
+    /// black where equal, blue up to the tolerance, red to yellow beyond it.
     #[arg(long)]
     pub heatmap: Option<PathBuf>,
     /// Per-channel tolerance in 1/255 steps.
@@ -39,6 +39,13 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     plan.input("the second image", &args.b);
     let heatmap =
         args.heatmap.as_deref().map(|p| plan.output("--heatmap", p, false)).transpose()?;
+    let hint = "the heat map is an 8-bit image (.png, .jpg or .jpeg)";
+    let heatmap_format = match &args.heatmap {
+        Some(path) => {
+            ImageFormat::display_of_path(path, "--heatmap", hint).map_err(anyhow::Error::msg)?
+        }
+        None => ImageFormat::Png,
+    };
     match (is_exr(&args.a), is_exr(&args.b)) {
         (true, true) if heatmap.is_some() => {
             anyhow::bail!("--heatmap is for 8-bit images (PNG, JPEG), not EXRs")
@@ -76,7 +83,10 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     if let Some(target) = &heatmap {
         let image = c.heatmap();
         let mut files = OutputSet::new();
-        files.write(target, |w| encode_rgb8(image.as_raw(), image.width(), image.height(), w))?;
+        let (width, height) = image.dimensions();
+        files.write(target, |w| {
+            encode_display_rgb8(image.as_raw(), width, height, heatmap_format, w)
+        })?;
         files.commit()?;
         note(format!("wrote {}", target.path.display()));
     }
@@ -95,12 +105,15 @@ fn compare_linear(a: &Path, b: &Path) -> Result<()> {
     let [rb, gb, bb] = c.mean_b.to_array();
     out(format!(
         "{}x{} linear: channel means [{ra:.6}, {ga:.6}, {ba:.6}] vs [{rb:.6}, {gb:.6}, {bb:.6}] \
-         (largest difference {:.4} %); RMSE {:.6}, relative MSE {:.4e} (Σ err² / Σ ref²), \
+         ({}); RMSE {:.6}, relative MSE {:.4e} (Σ err² / Σ ref²), \
          per-pixel relMSE {:.4e}, max abs {:.6}; \
          {:.4} % of pixels off by more than 1 % of the second's mean{}\n",
         c.width,
         c.height,
-        100.0 * c.mean_relative_difference(),
+        match c.mean_relative_difference() {
+            Some(d) => format!("largest difference {:.4} %", 100.0 * d),
+            None => "no relative difference: a channel's mean is 0 in the second only".to_owned(),
+        },
         c.rmse,
         c.error.relative_mse,
         c.error.pixel_relative_mse,

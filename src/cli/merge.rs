@@ -1,13 +1,10 @@
 //! `embray merge`: the part files of a split render → its EXR (and PNG).
 
 use super::console::note;
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Args;
 use embray::distributed::{merge_parts, merge_some_parts};
-use embray::output::{
-    DisplayLook, ImageFormat, OutputPlan, OutputSet, Photographic, ToneMap, encode_display,
-    encode_exr,
-};
+use embray::output::{DisplayLook, ImageFormat, OutputPlan, OutputSet, encode_display, encode_exr};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -54,13 +51,8 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     let png = args.png.as_deref().map(|p| plan.output("--png", p, false)).transpose()?;
     let display_format = match &args.png {
         None => ImageFormat::Png,
-        Some(path) => match ImageFormat::of_path(path, "--png").map_err(anyhow::Error::msg)? {
-            Some(ImageFormat::Exr) => {
-                bail!("--png '{}' names an EXR: the EXR is -o's", path.display())
-            }
-            Some(format) => format,
-            None => ImageFormat::Png,
-        },
+        Some(path) => ImageFormat::display_of_path(path, "--png", "the EXR is -o's")
+            .map_err(anyhow::Error::msg)?,
     };
     let merged =
         if args.partial { merge_some_parts(&args.parts)? } else { merge_parts(&args.parts)? };
@@ -77,15 +69,10 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     let attributes = meta.image_attributes(merged.spp_reached(), partial.clone());
     files.write(&exr, |w| encode_exr(&film, aovs, &attributes, w))?;
     if let Some(png) = &png {
-        let curve: ToneMap = meta.png.curve.parse().context("the parts' PNG settings")?;
-        let [key, burn_out, saturation, gamma] = meta.png.photographic;
-        let photographic = Photographic { key, burn_out, saturation, gamma };
-        let look = DisplayLook {
-            curve,
-            exposure: meta.png.exposure,
-            photographic: &photographic,
-            lut: lut.as_ref(),
-        };
+        // Each part's settings were checked as it was read.
+        let (curve, exposure, photographic) =
+            meta.png.look().map_err(|e| anyhow::anyhow!("the parts' PNG settings: {e}"))?;
+        let look = DisplayLook { curve, exposure, photographic: &photographic, lut: lut.as_ref() };
         files.write(png, |w| encode_display(&film, &look, display_format, w))?;
     }
     files.commit()?;

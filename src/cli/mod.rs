@@ -79,6 +79,10 @@ pub enum Command {
 
 /// Runs the command `cli` names.
 pub fn run(cli: Cli) -> Result<()> {
+    // Checked before any work, whatever the command: a bad value is a mistake to report
+    // once, not a setting each part of a cluster job silently drops.
+    embray::limits::memory_budget()?;
+    embray::render_passes::progress_interval()?;
     match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Bench(command) => bench::run(command),

@@ -57,8 +57,22 @@ pub fn select_cameras(
     let found = cameras
         .iter()
         .position(|c| c.image_name == choice || stem(&c.image_name).as_deref() == Some(choice));
+    // A number that is one camera's name and another's position has no right reading.
+    if let (Some(named), Some(n)) = (found, position)
+        && named != n - 1
+    {
+        let short = |i: usize| embray::excerpt::excerpt(&cameras[i].image_name);
+        let (by_name, by_position) = (short(named), short(n - 1));
+        bail!(
+            "--camera '{choice}' is ambiguous in '{}': camera {} is named '{by_name}' and camera \
+             {n} ('{by_position}') is at position {choice}; give the whole ImageName instead \
+             ('{by_name}' or '{by_position}')",
+            path.display(),
+            named + 1,
+        );
+    }
     match found.or(position.map(|n| n - 1)) {
-        Some(index) => Ok(vec![cameras.into_iter().nth(index).unwrap()]),
+        Some(index) => Ok(cameras.into_iter().skip(index).take(1).collect()),
         None => {
             let names: Vec<&str> = cameras.iter().map(|c| c.image_name.as_str()).collect();
             bail!(

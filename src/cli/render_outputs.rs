@@ -80,13 +80,7 @@ pub(super) fn scene_outputs(
     plan: &mut OutputPlan,
 ) -> Result<(Option<Target>, Option<DisplayTarget>)> {
     let display_format = |path: &Path| -> Result<ImageFormat> {
-        match ImageFormat::of_path(path, "--png").map_err(anyhow::Error::msg)? {
-            Some(ImageFormat::Exr) => {
-                bail!("--png '{}' names an EXR: the EXR is -o's", path.display())
-            }
-            Some(format) => Ok(format),
-            None => Ok(ImageFormat::Png),
-        }
+        ImageFormat::display_of_path(path, "--png", "the EXR is -o's").map_err(anyhow::Error::msg)
     };
     let Some(output) = &args.output else {
         if let Some(png) = &args.png {

@@ -5,14 +5,14 @@
 use super::choices::{LookArgs, choice};
 use anyhow::Result;
 use clap::Args;
-use embray::output::{OutputPlan, OutputSet, ToneMap, encode_png_graded};
+use embray::output::{DisplayLook, ImageFormat, OutputPlan, OutputSet, ToneMap, encode_display};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
 pub struct TonemapArgs {
     /// Linear EXR (its R, G, B channels; half or float, any compression).
     pub input: PathBuf,
-    /// PNG to write.
+    /// The image to write: PNG (.png, or no extension) or JPEG (.jpg, .jpeg).
     #[arg(short, long)]
     pub output: PathBuf,
     /// The tone curve: photographic (Reinhard et al.'s global operator: --key, --burn-out,
@@ -33,6 +33,9 @@ pub fn run(args: &TonemapArgs) -> Result<()> {
     plan.input("the EXR", &args.input);
     let lut = super::read_lut(args.look.lut.as_deref(), &mut plan)?;
     let png = plan.output("-o", &args.output, false)?;
+    let hint = "tonemap writes a tone-mapped PNG or JPEG (.png, .jpg or .jpeg)";
+    let format =
+        ImageFormat::display_of_path(&args.output, "-o", hint).map_err(anyhow::Error::msg)?;
     let film = embray::bench::convergence::read_reference(&args.input)?;
     // Showing non-finite pixels is this command's job, but never as a silent black image.
     if let Some(bad) = film.non_finite() {
@@ -45,9 +48,13 @@ pub fn run(args: &TonemapArgs) -> Result<()> {
         ));
     }
     let mut files = OutputSet::new();
-    files.write(&png, |w| {
-        encode_png_graded(&film, args.tonemap, args.look.exposure, &photographic, lut.as_ref(), w)
-    })?;
+    let look = DisplayLook {
+        curve: args.tonemap,
+        exposure: args.look.exposure,
+        photographic: &photographic,
+        lut: lut.as_ref(),
+    };
+    files.write(&png, |w| encode_display(&film, &look, format, w))?;
     files.commit()?;
     Ok(())
 }

@@ -3,6 +3,8 @@
 //! compares these before reading any pixel.
 
 use super::part::Part;
+use crate::accel::{AccelOptions, BackendKind};
+use crate::output::{Photographic, ToneMap};
 use crate::render::RenderOptions;
 use crate::stats::RenderStats;
 use serde::{Deserialize, Serialize};
@@ -20,6 +22,33 @@ pub struct PngSettings {
     pub exposure: f32,
     /// The photographic operator's key, burn-out, saturation and gamma.
     pub photographic: [f32; 4],
+}
+
+impl PngSettings {
+    /// The curve, exposure and photographic parameters, checked as the command line checks
+    /// `--tonemap`, `--exposure`, `--key`, `--burn-out`, `--saturation` and `--gamma`.
+    pub fn look(&self) -> Result<(ToneMap, f32, Photographic), String> {
+        let curve: ToneMap = self.curve.parse().map_err(|e| format!("{e}"))?;
+        if !self.exposure.is_finite() {
+            return Err(format!("the exposure must be a finite number, not {}", self.exposure));
+        }
+        let [key, burn_out, saturation, gamma] = self.photographic;
+        let photographic = Photographic { key, burn_out, saturation, gamma };
+        match photographic.problem() {
+            Some(problem) => Err(format!("photographic tone mapping: {problem}")),
+            None => Ok((curve, self.exposure, photographic)),
+        }
+    }
+
+    /// As a message shows them.
+    fn describe(&self) -> String {
+        let [key, burn_out, saturation, gamma] = self.photographic;
+        format!(
+            "curve {}, exposure {}, photographic key {key}, burn-out {burn_out}, saturation \
+             {saturation}, gamma {gamma}",
+            self.curve, self.exposure
+        )
+    }
 }
 
 /// The metadata of one part file.
@@ -73,14 +102,14 @@ impl PartMeta {
         vec![
             ("format", self.format.clone()),
             ("embray version", self.embray_version.clone()),
-            ("Embree library", format!("{:?}", self.embree)),
+            ("Embree library", self.embree.clone().unwrap_or_else(|| "not used".into())),
             ("scene contents (SHA-256)", self.scene_hash.clone()),
             ("image size", format!("{}x{}", self.width, self.height)),
             ("camera", self.camera.clone()),
             ("spp", self.spp.to_string()),
             ("split", format!("{} into {} parts", self.part.split, self.part.count)),
             ("tile size", self.tile_size.to_string()),
-            ("PNG settings", format!("{:?}", self.png)),
+            ("PNG settings", self.png.describe()),
             ("AOVs", self.aovs.clone()),
         ]
     }
@@ -106,14 +135,20 @@ pub fn process_cpu_seconds() -> f64 {
 
 /// The render options that decide the image, as text: the options less the thread count and
 /// the progress bar (and the other options that do not change a pixel: the stop, the crop,
-/// the phase timing).
+/// the phase timing, and on obvhs the traversal counters of `--stats`). What is left must
+/// agree between parts and is written into the image. Embree counts by tracing triangles
+/// as user geometry with embray's own test, whose hits differ from its native kernels' in
+/// the last bits, so there `--stats` stays an option that changes the image.
 pub fn options_fingerprint(options: &RenderOptions) -> String {
+    let counting = options.count_traversal && options.backend == BackendKind::Embree;
     let canonical = RenderOptions {
         threads: None,
         progress: false,
         stop: None,
         crop: None,
         time_phases: false,
+        count_traversal: counting,
+        accel: AccelOptions { count_traversal: counting, ..options.accel },
         ..options.clone()
     };
     format!("{canonical:?}")
@@ -151,6 +186,12 @@ impl PartMeta {
 /// The camera as text (every field: pose, field of view, lens, size).
 pub fn camera_fingerprint(camera: &crate::scene::CameraDesc) -> String {
     format!("{camera:?}")
+}
+
+/// The value of the option `name` in a fingerprint, as text (`true`, `Some(2.0)`).
+pub fn option_value<'a>(options: &'a str, name: &str) -> Option<&'a str> {
+    let start = options.find(&format!(" {name}: "))? + name.len() + 3;
+    options[start..].split([',', ' ', '}']).next().filter(|v| !v.is_empty())
 }
 
 /// The first option that differs between two fingerprints, as `name: a vs b`.
@@ -214,5 +255,15 @@ mod tests {
         assert_eq!(options_difference(&fa, &fb), format!("spp: {} vs {}", a.spp, b.spp));
         let c = RenderOptions { threads: Some(1), progress: true, ..a.clone() };
         assert_eq!(options_fingerprint(&c), fa, "threads and progress do not change a pixel");
+        let obvhs = RenderOptions { backend: BackendKind::Obvhs, ..a.clone() };
+        let counted = RenderOptions { count_traversal: true, time_phases: true, ..obvhs.clone() };
+        let fingerprint = options_fingerprint(&obvhs);
+        assert_eq!(options_fingerprint(&counted), fingerprint, "nor obvhs's counting or timing");
+        let embree = RenderOptions { backend: BackendKind::Embree, ..a.clone() };
+        let counted = RenderOptions { count_traversal: true, ..embree.clone() };
+        assert_ne!(options_fingerprint(&counted), options_fingerprint(&embree), "Embree's hits");
+        assert_eq!(option_value(&fa, "first_hit_albedo"), Some("false"));
+        assert_eq!(option_value(&fa, "spp"), Some(a.spp.to_string().as_str()));
+        assert_eq!(option_value(&fa, "nothing"), None);
     }
 }

@@ -7,6 +7,7 @@ mod part;
 pub use part::{MAX_PARTS, Part, PartError, Split};
 mod merge;
 mod metadata;
+mod part_check;
 mod part_file;
 pub mod slurm;
 

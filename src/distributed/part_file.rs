@@ -4,7 +4,7 @@
 //! reader can open it; only `embray merge` makes an image of it.
 
 use super::metadata::PartMeta;
-use super::part::{MAX_PARTS, Split};
+use super::part::Split;
 use crate::output::WriteSeek;
 use crate::sample_sums::{FilmSums, PixelSums};
 use std::path::Path;
@@ -143,7 +143,7 @@ pub fn read_part_meta(path: &Path) -> Result<PartMeta, PartFileError> {
     let json = std::str::from_utf8(text.bytes()).map_err(|e| damaged(e.to_string()))?;
     let meta: PartMeta = serde_json::from_str(json)
         .map_err(|e| damaged(format!("its metadata does not parse ({e})")))?;
-    check_meta(&meta).map_err(damaged)?;
+    super::part_check::check_meta(&meta).map_err(damaged)?;
     let size = header.layer_size;
     let ((width, height), _) = file_layout(&meta);
     if (size.0, size.1) != (width as usize, height as usize) {
@@ -153,29 +153,6 @@ pub fn read_part_meta(path: &Path) -> Result<PartMeta, PartFileError> {
         )));
     }
     Ok(meta)
-}
-
-/// The metadata's numbers are within what a render can have, so that laying out and reading
-/// the file is bounded (a hostile header cannot ask for a huge allocation).
-fn check_meta(meta: &PartMeta) -> Result<(), String> {
-    use crate::limits::{MAX_RESOLUTION, MAX_SAMPLES, MAX_SPP};
-    let pixels = meta.width as u64 * meta.height as u64;
-    let side = 1..=MAX_RESOLUTION;
-    let part = meta.part;
-    let samples = pixels.saturating_mul(u64::from(meta.spp.max(1)));
-    if !side.contains(&meta.width) || !side.contains(&meta.height) || samples > MAX_SAMPLES {
-        return Err(format!("its image size {}x{} is out of range", meta.width, meta.height));
-    }
-    if meta.spp == 0 || meta.spp > MAX_SPP {
-        return Err(format!("its spp {} is out of range", meta.spp));
-    }
-    if !(1..=4096).contains(&meta.tile_size) {
-        return Err(format!("its tile size {} is out of range", meta.tile_size));
-    }
-    if part.count == 0 || part.count > MAX_PARTS || part.index >= part.count {
-        return Err(format!("its part {part} is out of range"));
-    }
-    Ok(())
 }
 
 /// Refuses what is not a regular file before an EXR reader opens it (a FIFO would block).

@@ -27,6 +27,19 @@ impl ImageFormat {
         }
     }
 
+    /// The display format (PNG or JPEG) `path` asks for, PNG without an extension, for a
+    /// `flag` whose file is a tone-mapped 8-bit image: an `.exr` would hold PNG bytes under
+    /// an EXR's name, so it is refused, saying `exr_hint` (where an EXR comes from).
+    pub fn display_of_path(path: &Path, flag: &str, exr_hint: &str) -> Result<Self, String> {
+        match Self::of_path(path, flag)? {
+            Some(ImageFormat::Exr) => {
+                Err(format!("{flag} '{}' names an EXR: {exr_hint}", path.display()))
+            }
+            Some(format) => Ok(format),
+            None => Ok(ImageFormat::Png),
+        }
+    }
+
     /// A display format (PNG or JPEG): tone-mapped 8-bit pixels.
     pub fn is_display(self) -> bool {
         self != ImageFormat::Exr
@@ -68,5 +81,10 @@ mod tests {
         assert_eq!(of("/dev/null"), Ok(None));
         let err = of("a.tif").unwrap_err();
         assert!(err.contains("-o 'a.tif'") && err.contains("'.tif'"), "{err}");
+        let display = |p: &str| ImageFormat::display_of_path(Path::new(p), "-o", "hint");
+        assert_eq!(display("a.jpg"), Ok(ImageFormat::Jpeg));
+        assert_eq!(display("/dev/stdout"), Ok(ImageFormat::Png));
+        assert_eq!(display("a.EXR"), Err("-o 'a.EXR' names an EXR: hint".to_owned()));
+        assert!(display("a.tif").is_err());
     }
 }

@@ -23,7 +23,7 @@ mod transaction;
 pub use aovs::Aovs;
 pub use cleanup::remove_temp_files_on_signals;
 pub use exr::{encode_exr, write_exr};
-pub use format::ImageFormat;
+pub use format::{ImageFormat, encode_display_rgb8};
 pub use lut::{Lut3d, LutError};
 pub use naming::{camera_outputs, image_name_key, image_name_problem};
 pub use photographic::Photographic;

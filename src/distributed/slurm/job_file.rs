@@ -68,12 +68,32 @@ impl JobFile {
                 job.parts
             ));
         }
+        for (i, round) in job.submissions.iter().enumerate() {
+            let ids =
+                [("array_job", round.array_job.as_deref()), ("merge_job", Some(&*round.merge_job))];
+            for (field, id) in ids {
+                if let Some(id) = id.filter(|id| !is_job_id(id)) {
+                    return Err(format!(
+                        "'{}': submissions[{i}].{field} is '{}', but a Slurm job id is digits, as \
+                         `sbatch --parsable` printed it",
+                        path.display(),
+                        crate::excerpt::excerpt(id)
+                    ));
+                }
+            }
+        }
         Ok(job)
     }
 
     pub fn encode(&self) -> String {
         serde_json::to_string_pretty(self).unwrap_or_default() + "\n"
     }
+}
+
+/// Whether `id` is a job id as `submit` records it: these are handed to `squeue` and
+/// `scancel` as arguments of their own, where a hand-edited `--user=root` would be an option.
+fn is_job_id(id: &str) -> bool {
+    !id.is_empty() && id.len() <= 20 && id.bytes().all(|b| b.is_ascii_digit())
 }
 
 /// Where part `index` of `count` is written in the job folder `dir`.

@@ -6,6 +6,7 @@
 use std::io::Read;
 use std::path::Path;
 use std::process::{Command, Stdio};
+use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 /// How long one scheduler command may take before it is given up.
@@ -25,6 +26,35 @@ pub enum SchedulerError {
     NoJobId { command: String, answer: String },
 }
 
+/// The most bytes kept of one command's output: `squeue`'s answer for the largest job
+/// (100,000 tasks of about 40 bytes each) with room to spare.
+const MAX_ANSWER: u64 = 64 << 20;
+
+/// What a reader thread got from one of a command's pipes: the bytes kept, and whether
+/// there were more.
+type Drained = std::io::Result<(Vec<u8>, bool)>;
+
+/// Reads `stream` to its end on a thread of its own. The command's pipes are drained while
+/// it runs: a pipe holds 64 KiB, and a command whose output is larger (`squeue` on a few
+/// thousand tasks) blocks writing until it is read, so it would never exit.
+fn drain(stream: Option<impl Read + Send + 'static>) -> mpsc::Receiver<Drained> {
+    let (sender, receiver) = mpsc::channel();
+    std::thread::spawn(move || {
+        let Some(mut stream) = stream else {
+            let _ = sender.send(Ok((Vec::new(), false)));
+            return;
+        };
+        let mut bytes = Vec::new();
+        let result = (&mut stream).take(MAX_ANSWER).read_to_end(&mut bytes).and_then(|_| {
+            // Past the cap the rest is still read, so the command can finish.
+            let more = std::io::copy(&mut stream, &mut std::io::sink())?;
+            Ok((bytes, more > 0))
+        });
+        let _ = sender.send(result);
+    });
+    receiver
+}
+
 /// Runs `program args…`, returning its standard output.
 fn run(program: &str, args: &[String]) -> Result<String, SchedulerError> {
     let command = std::iter::once(program.to_owned())
@@ -38,33 +68,40 @@ fn run(program: &str, args: &[String]) -> Result<String, SchedulerError> {
         .stderr(Stdio::piped())
         .spawn()
         .map_err(|e| SchedulerError::Spawn { command: command.clone(), message: e.to_string() })?;
-    let start = Instant::now();
+    let (stdout, stderr) = (drain(child.stdout.take()), drain(child.stderr.take()));
+    let deadline = Instant::now() + COMMAND_TIMEOUT;
+    let failed = |message: String| SchedulerError::Failed { command: command.clone(), message };
     let status = loop {
-        if let Some(status) = child.try_wait().map_err(|e| SchedulerError::Failed {
-            command: command.clone(),
-            message: e.to_string(),
-        })? {
+        if let Some(status) = child.try_wait().map_err(|e| failed(e.to_string()))? {
             break status;
         }
-        if start.elapsed() > COMMAND_TIMEOUT {
+        if Instant::now() > deadline {
             let _ = child.kill();
             let _ = child.wait();
             return Err(SchedulerError::Timeout { command });
         }
         std::thread::sleep(Duration::from_millis(20));
     };
-    let (mut out, mut err) = (String::new(), String::new());
-    if let Some(mut s) = child.stdout.take() {
-        let _ = s.read_to_string(&mut out);
-    }
-    if let Some(mut s) = child.stderr.take() {
-        let _ = s.read_to_string(&mut err);
-    }
+    // A process the command left behind may hold its pipes open: the wait stays bounded.
+    let collect = |receiver: mpsc::Receiver<Drained>, name: &str| {
+        let left = deadline.saturating_duration_since(Instant::now());
+        match receiver.recv_timeout(left) {
+            Ok(Ok((bytes, more))) => Ok((String::from_utf8_lossy(&bytes).into_owned(), more)),
+            Ok(Err(e)) => Err(failed(format!("cannot read its {name}: {e}"))),
+            Err(_) => Err(SchedulerError::Timeout { command: command.clone() }),
+        }
+    };
+    let (err, _) = collect(stderr, "standard error")?;
     if !status.success() {
         let message = crate::excerpt::excerpt(err.trim());
         return Err(SchedulerError::Failed { command, message });
     }
-    Ok(out)
+    match collect(stdout, "standard output")? {
+        (out, false) => Ok(out),
+        (_, true) => {
+            Err(failed(format!("its standard output is longer than {} MiB", MAX_ANSWER >> 20)))
+        }
+    }
 }
 
 /// Submits `script` with `args` (`--array`, `--dependency`) and returns the job id.
