@@ -201,3 +201,27 @@ fn a_colour_read_as_a_number_is_its_luminance() {
     };
     assert_eq!((even, odd), (Vec3::splat(0.0722), Vec3::splat(0.2126)));
 }
+
+/// A `<float>` (or `<integer>`) where Mitsuba takes a colour is that constant grey, in every
+/// BSDF's colour (it was ignored: the default was rendered).
+#[test]
+fn a_number_as_a_colour_is_a_grey() {
+    let grey = |bsdf: &str| material_of("m-grey", bsdf).unwrap();
+    let diffuse = grey("<bsdf type=\"diffuse\"><float name=\"reflectance\" value=\"0.1\"/></bsdf>");
+    assert_eq!(diffuse.albedo, Vec3::splat(0.1));
+    let plastic = grey(
+        "<bsdf type=\"roughplastic\"><float name=\"diffuse_reflectance\" value=\"0.2\"/></bsdf>",
+    );
+    assert_eq!(plastic.albedo, Vec3::splat(0.2));
+    let principled =
+        grey("<bsdf type=\"principled\"><integer name=\"base_color\" value=\"1\"/></bsdf>");
+    assert_eq!(principled.albedo, Vec3::ONE);
+    let conductor = grey(
+        "<bsdf type=\"conductor\"><float name=\"specular_reflectance\" value=\"0.3\"/></bsdf>",
+    );
+    assert_eq!(conductor.specular, Specular::Mirror { reflectance: Vec3::splat(0.3) });
+    // Mitsuba's k defaults to 1 beside an eta (it was 0).
+    let metal = grey("<bsdf type=\"conductor\"><float name=\"eta\" value=\"0.5\"/></bsdf>");
+    let Specular::Conductor { eta, k, .. } = metal.specular else { panic!("{metal:?}") };
+    assert_eq!((eta, k), (Vec3::splat(0.5), Vec3::ONE));
+}

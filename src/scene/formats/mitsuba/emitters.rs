@@ -5,8 +5,8 @@
 use super::Builder;
 use super::transform::transform;
 use super::tree::Element;
-use super::values::{ColorUse, params};
-use super::values::{float, property};
+use super::values::{ColorUse, PROPERTY_TAGS, params};
+use super::values::{boolean, float, property, refuse_unread};
 use crate::light::LightDesc;
 use crate::params::{Entry, ParamError, Params, Resources, Value};
 use crate::scene::error::SceneError;
@@ -33,13 +33,49 @@ impl Builder<'_> {
         if !KINDS.contains(&kind) {
             return Err(unsupported());
         }
-        let skip: &[&str] = match kind {
-            "envmap" => &["filename", "scale"],
-            "spot" => &["cutoff_angle", "beam_width", "texture"],
-            "projector" => &["irradiance", "scale", "fov", "fov_axis", "focal_length"],
-            _ => &[],
+        // Mitsuba's names only: embray's own (`file`, `falloff_angle`, …) would otherwise
+        // reach its light kinds unseen. `sampling_weight` and `mis_compensation` change how
+        // Mitsuba samples, not what it renders: checked, and not used.
+        let (known, colour): (&[&str], Option<&str>) = match kind {
+            "point" => (&["position", "intensity"], Some("intensity")),
+            "directional" => (&["direction", "irradiance"], Some("irradiance")),
+            "spot" => (&["intensity", "cutoff_angle", "beam_width", "texture"], Some("intensity")),
+            "projector" => (&["irradiance", "scale", "fov", "fov_axis", "focal_length"], None),
+            "constant" => (&["radiance"], Some("radiance")),
+            _ => (&["filename", "scale", "mis_compensation"], None),
         };
-        let mut p = params(element, skip, ColorUse::Emission)?;
+        let known: Vec<&str> =
+            known.iter().chain(&["to_world", "sampling_weight"]).copied().collect();
+        refuse_unread(element, &format!("the {kind} emitter"), &known, &[])?;
+        boolean(element, "mis_compensation")?;
+        float(element, "sampling_weight")?;
+        let mut skip: Vec<&str> = match kind {
+            "envmap" => vec!["filename", "scale"],
+            "spot" => vec!["cutoff_angle", "beam_width", "texture"],
+            "projector" => vec!["irradiance", "scale", "fov", "fov_axis", "focal_length"],
+            _ => vec![],
+        };
+        skip.extend(["mis_compensation", "sampling_weight"]);
+        // A colour given as a number (or as what is no colour) is read as `color` reads it;
+        // a texture there is left for `params` to refuse.
+        let colour = colour.and_then(|name| {
+            element
+                .children
+                .iter()
+                .find(|c| c.attr("name") == Some(name) && PROPERTY_TAGS.contains(&c.tag.as_str()))
+        });
+        skip.extend(colour.and_then(|c| c.attr("name")));
+        let mut p = params(element, &skip, ColorUse::Emission)?;
+        if let Some(child) = colour {
+            let rgb = super::values::color(child, ColorUse::Emission)?;
+            p.push(Entry {
+                name: child.required("name")?.to_owned(),
+                value: Value::Numbers(rgb.to_array().to_vec()),
+                field: child.describe(),
+                line: Some(child.line),
+                indexed: false,
+            });
+        }
         let to_world = match property(element, "transform", "to_world") {
             Some(t) => Some(transform(t)?),
             None => None,
@@ -54,17 +90,27 @@ impl Builder<'_> {
             })
         };
         let ours = match kind {
-            "point" => {
-                if let (Some(m), false) = (to_world, p.has("position")) {
-                    set(&mut p, "position", m.translation);
+            "point" | "directional" => {
+                let (placed, at) = match kind {
+                    "point" => ("position", to_world.map(|m| m.translation)),
+                    _ => ("direction", to_world.map(|m| m.transform_vector3(DVec3::Z))),
+                };
+                // Without either, Mitsuba places it by the identity: at the origin, along +z.
+                let at = match (at, p.has(placed)) {
+                    (None, false) => Some(if kind == "point" { DVec3::ZERO } else { DVec3::Z }),
+                    _ => at,
+                };
+                match (at, p.has(placed)) {
+                    (Some(_), true) => {
+                        // As Mitsuba: one of them would be dropped unseen.
+                        return Err(
+                            element.error(format!("give `{placed}` or a to_world, not both"))
+                        );
+                    }
+                    (Some(at), false) => set(&mut p, placed, at),
+                    (None, _) => {}
                 }
-                "point"
-            }
-            "directional" => {
-                if let (Some(m), false) = (to_world, p.has("direction")) {
-                    set(&mut p, "direction", m.transform_vector3(DVec3::Z));
-                }
-                "directional"
+                kind
             }
             "projector" => {
                 let Some(m) = to_world else {
@@ -74,8 +120,12 @@ impl Builder<'_> {
                 let irradiance =
                     element.children.iter().find(|c| c.attr("name") == Some("irradiance"));
                 let constant = match irradiance {
-                    Some(c) if matches!(c.tag.as_str(), "rgb" | "spectrum") => {
-                        super::values::color(c, ColorUse::Emission)?
+                    Some(c) if PROPERTY_TAGS.contains(&c.tag.as_str()) => {
+                        let rgb = super::values::color(c, ColorUse::Emission)?;
+                        if !rgb.cmpge(DVec3::ZERO).all() {
+                            return Err(c.error(format!("irradiance is {rgb}, but must be >= 0")));
+                        }
+                        rgb
                     }
                     None => DVec3::ONE,
                     Some(_) => {
@@ -96,8 +146,13 @@ impl Builder<'_> {
                 };
                 let fov = super::sensor::x_fov(element, aspect)?;
                 // Mitsuba's irradiance is π·scale·image on the plane at distance 1.
-                let scale =
-                    std::f64::consts::PI * float(element, "scale")?.unwrap_or(1.0) * constant;
+                let scale = float(element, "scale")?.unwrap_or(1.0);
+                if !(scale >= 0.0) {
+                    let at = element.children.iter().find(|c| c.attr("name") == Some("scale"));
+                    let at = at.unwrap_or(element);
+                    return Err(at.error(format!("scale is {scale}, but must be >= 0")));
+                }
+                let scale = std::f64::consts::PI * scale * constant;
                 set(&mut p, "position", m.translation);
                 set(&mut p, "direction", m.transform_vector3(DVec3::Z));
                 set(&mut p, "up", m.transform_vector3(DVec3::Y));
@@ -141,9 +196,27 @@ impl Builder<'_> {
             "envmap" => {
                 let file = property(element, "string", "filename")
                     .ok_or_else(|| element.error("the property `filename` is missing"))?;
+                super::bsdfs::refuse_rgbe(file)?;
                 p.push(derived(element, "file", Value::Text(file.required("value")?.to_owned())));
                 if let Some(scale) = float(element, "scale")? {
                     p.push(derived(element, "scale", Value::Numbers(vec![scale; 3])));
+                }
+                if let (Some(m), Some(t)) = (to_world, property(element, "transform", "to_world")) {
+                    // Checked before the half turn below, so that a message shows the user's
+                    // matrix.
+                    let m = m.matrix3;
+                    let off = (m.transpose() * m - glam::DMat3::IDENTITY).to_cols_array();
+                    if !(off.iter().all(|e| e.abs() < 1e-9) && m.determinant() > 0.0) {
+                        return Err(t.error(format!(
+                            "an envmap's to_world must be a rotation (no scale, shear or \
+                             mirror), not {}",
+                            m.transpose()
+                                .to_cols_array()
+                                .map(|x| (x * 1e6).round() / 1e6)
+                                .map(|x| x.to_string())
+                                .join(", ")
+                        )));
+                    }
                 }
                 // Mitsuba's map looks along +z at its centre, embray's along −z: half a
                 // turn about y between them.

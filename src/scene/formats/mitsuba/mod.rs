@@ -3,6 +3,7 @@
 //! conventions. What embray cannot render as Mitsuba would is refused with the plugin type,
 //! file and line, never silently replaced.
 
+mod attributes;
 mod bsdfs;
 mod cie;
 mod emitters;

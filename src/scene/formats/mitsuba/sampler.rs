@@ -42,9 +42,11 @@ pub(super) fn sampler(element: &Element) -> Result<Sampler, SceneError> {
     refuse_unread(element, &format!("the {kind} sampler"), known, &[])?;
     let named = |name: &str| element.children.iter().find(|c| c.attr("name") == Some(name));
     let sample_count = integer(element, "sample_count")?.unwrap_or(4);
-    if !(1..=i64::from(u32::MAX)).contains(&sample_count) {
+    // Checked here, where the file and line are known, rather than as the render's spp.
+    let max = crate::limits::MAX_SPP;
+    if !(1..=i64::from(max)).contains(&sample_count) {
         let at = named("sample_count").unwrap_or(element);
-        let range = format!("sample_count is {sample_count}, but must be 1 to {}", u32::MAX);
+        let range = format!("sample_count is {sample_count}, but must be 1 to {max}");
         return Err(at.error(range));
     }
     // Mitsuba reads the seed as an unsigned 32-bit number.

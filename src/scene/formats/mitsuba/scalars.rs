@@ -34,19 +34,25 @@ pub(super) fn number_attr(element: &Element, name: &str) -> Result<f64, SceneErr
     }
 }
 
-/// A point or vector: `x`, `y`, `z` attributes (each 0 when absent) or `value="x, y, z"`
-/// (one number for all three when `splat`).
-pub(super) fn vec3(element: &Element, splat: bool) -> Result<DVec3, SceneError> {
+/// A point, vector or transform step: `x`, `y`, `z` attributes or `value="x, y, z"` (one
+/// number for all three), as Mitsuba expands them. A coordinate left out is `missing`, or
+/// refused when `missing` is `None` (a `<point>`/`<vector>` needs all three).
+pub(super) fn vec3(element: &Element, missing: Option<f64>) -> Result<DVec3, SceneError> {
     if let Some(text) = element.attr("value") {
+        // Mitsuba refuses the mix rather than letting one of them win.
+        if let Some(axis) = ["x", "y", "z"].into_iter().find(|a| element.attr(a).is_some()) {
+            return Err(element.error(format!("give `value` or `x`/`y`/`z`, not both (`{axis}`)")));
+        }
         return match numbers(element, text)?[..] {
             [x, y, z] => Ok(DVec3::new(x, y, z)),
-            [v] if splat => Ok(DVec3::splat(v)),
-            _ => Err(element.error("`value` must be three numbers")),
+            [v] => Ok(DVec3::splat(v)),
+            _ => Err(element.error("`value` must be one or three numbers")),
         };
     }
-    let coordinate = |name: &str| match element.attr(name) {
-        Some(_) => number_attr(element, name),
-        None => Ok(0.0),
+    let coordinate = |name: &str| match (element.attr(name), missing) {
+        (Some(_), _) => number_attr(element, name),
+        (None, Some(default)) => Ok(default),
+        (None, None) => Err(element.error(format!("the attribute `{name}` is missing"))),
     };
     Ok(DVec3::new(coordinate("x")?, coordinate("y")?, coordinate("z")?))
 }

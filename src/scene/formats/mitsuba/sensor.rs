@@ -3,7 +3,7 @@
 
 use super::transform::transform;
 use super::tree::Element;
-use super::values::{float, numbers, property, refuse_second, refuse_unread};
+use super::values::{float, numbers, property, refuse_second, refuse_unread, string};
 use crate::sampling::filter::PixelFilter;
 use crate::scene::desc::{CameraDesc, LensShape};
 use crate::scene::error::SceneError;
@@ -16,21 +16,21 @@ pub(super) struct Sensor {
     pub crop: Option<crate::film::Tile>,
 }
 
-fn string<'a>(plugin: &'a Element, name: &str) -> Option<&'a Element> {
-    property(plugin, "string", name)
-}
-
 /// The x field of view in degrees (Mitsuba's `parse_fov`): `fov` along `fov_axis`, or a
 /// 35 mm-equivalent `focal_length` (default 50mm) along the film's diagonal.
 pub(super) fn x_fov(sensor: &Element, aspect: f64) -> Result<f64, SceneError> {
+    if let (Some(_), Some(focal)) = (float(sensor, "fov")?, string(sensor, "focal_length")?) {
+        // As Mitsuba: one of them would be dropped unseen.
+        return Err(focal.error("give either fov or focal_length, not both"));
+    }
     let (fov, axis, at) = match float(sensor, "fov")? {
         Some(fov) => {
-            let axis = string(sensor, "fov_axis");
+            let axis = string(sensor, "fov_axis")?;
             let name = axis.map_or(Ok("x"), |a| a.required("value"))?;
             (fov, name, axis.unwrap_or(sensor))
         }
         None => {
-            let length = match string(sensor, "focal_length") {
+            let length = match string(sensor, "focal_length")? {
                 Some(element) => {
                     let text = element.required("value")?;
                     let mm = text.trim().strip_suffix("mm").unwrap_or(text.trim());
@@ -95,6 +95,17 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         Some(t) => transform(t)?,
         None => glam::DAffine3::IDENTITY,
     };
+    if kind != "orthographic" {
+        // Mitsuba's test (`has_scale`): M·Mᵀ within 1e-3 of the identity.
+        let m = to_world.matrix3;
+        let off = (m * m.transpose() - glam::DMat3::IDENTITY).to_cols_array();
+        if off.iter().any(|e| !(e.abs() <= 1e-3)) {
+            let at = property(element, "transform", "to_world").unwrap_or(element);
+            return Err(at.error(
+                "scale factors (or shear) in a camera's to_world are not allowed (as in Mitsuba)",
+            ));
+        }
+    }
     let origin = to_world.translation;
     let dir = to_world.matrix3.col(2).normalize();
     let up = to_world.matrix3.col(1).normalize();

@@ -70,6 +70,11 @@ impl Builder<'_> {
         if flip_normals && kind == "sphere" {
             return Err(element.error("flip_normals on a sphere is not supported yet"));
         }
+        if let (Some(file), "obj" | "ply" | "serialized") =
+            (property(element, "string", "filename"), kind)
+        {
+            mesh_type_matches(file, kind)?;
+        }
         let material = self.shape_material(element)?;
         let name = format!("{} (line {})", element.describe(), element.line);
         let shapes: Vec<ShapeDesc> = match kind {
@@ -117,7 +122,7 @@ impl Builder<'_> {
             "cylinder" => {
                 let radius = float(element, "radius")?.unwrap_or(1.0);
                 let point = |name: &str, default: DVec3| {
-                    property(element, "point", name).map_or(Ok(default), |p| vec3(p, false))
+                    property(element, "point", name).map_or(Ok(default), |p| vec3(p, None))
                 };
                 let (p0, p1) = (point("p0", DVec3::ZERO)?, point("p1", DVec3::Z)?);
                 let length = (p1 - p0).length();
@@ -141,7 +146,7 @@ impl Builder<'_> {
             }
             "sphere" => {
                 let center = property(element, "point", "center")
-                    .map_or(Ok(DVec3::ZERO), |c| vec3(c, false))?;
+                    .map_or(Ok(DVec3::ZERO), |c| vec3(c, None))?;
                 let radius = float(element, "radius")?.unwrap_or(1.0);
                 if !(radius > 0.0) {
                     return Err(element.error(format!("radius is {radius}, but must be > 0")));
@@ -308,6 +313,10 @@ impl Builder<'_> {
                 }
             }
         }
+        if let Some(second) = emitters.get(1) {
+            // As Mitsuba: the last would win unseen.
+            return Err(second.error(format!("{} takes one <emitter>", element.describe())));
+        }
         let emitting = !emitters.is_empty();
         // Shapes that share a BSDF by id (and emit nothing) share one material.
         let shared_id = match bsdfs[..] {
@@ -335,18 +344,16 @@ impl Builder<'_> {
             }
             // A textured radiance (or anything else) would otherwise be dropped unseen.
             let constant_radiance = |c: &&Element| {
-                matches!(c.tag.as_str(), "rgb" | "spectrum" | "color")
+                super::values::PROPERTY_TAGS.contains(&c.tag.as_str())
                     && c.attr("name") == Some("radiance")
             };
             if let Some(other) = emitter.children.iter().find(|c| !constant_radiance(c)) {
                 return Err(other.error(
-                    "an area emitter takes only a constant radiance (an <rgb> or <spectrum> \
-                     named radiance)",
+                    "an area emitter takes only a constant radiance (an <rgb>, <spectrum> or \
+                     <float> named radiance)",
                 ));
             }
-            let radiance = property(emitter, "rgb", "radiance")
-                .or_else(|| property(emitter, "spectrum", "radiance"))
-                .or_else(|| property(emitter, "color", "radiance"));
+            let radiance = emitter.children.first();
             let radiance = radiance.map_or(Ok(DVec3::ONE), |r| color(r, ColorUse::Emission))?;
             if !radiance.cmpge(DVec3::ZERO).all() {
                 return Err(emitter.error("radiance must be >= 0"));
@@ -369,4 +376,19 @@ fn flipped(mesh: &MeshData) -> MeshData {
         normals: mesh.normals.as_ref().map(|n| n.iter().map(|v| -*v).collect()),
         ..mesh.clone()
     }
+}
+
+/// Refuses a mesh file whose extension names another of Mitsuba's mesh plugins than `kind`:
+/// Mitsuba's plugin would fail to parse it, where embray would read it by its extension.
+fn mesh_type_matches(file: &Element, kind: &str) -> Result<(), SceneError> {
+    let name = file.required("value")?;
+    let extension = std::path::Path::new(name).extension().and_then(|e| e.to_str());
+    let extension = extension.map(str::to_ascii_lowercase).unwrap_or_default();
+    if ["obj", "ply", "serialized"].contains(&extension.as_str()) && extension != kind {
+        return Err(file.error(format!(
+            "a <shape type=\"{kind}\"> given a .{extension} file (use <shape \
+             type=\"{extension}\">)"
+        )));
+    }
+    Ok(())
 }

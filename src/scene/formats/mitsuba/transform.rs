@@ -11,7 +11,7 @@ pub(super) fn transform(element: &Element) -> Result<DAffine3, SceneError> {
     let mut world = DAffine3::IDENTITY;
     for op in &element.children {
         let step = match op.tag.as_str() {
-            "translate" => DAffine3::from_translation(vec3(op, true)?),
+            "translate" => DAffine3::from_translation(vec3(op, Some(0.0))?),
             "scale" => scale(op)?,
             "rotate" => rotate(op)?,
             "matrix" => matrix(op)?,
@@ -32,24 +32,11 @@ pub(super) fn transform(element: &Element) -> Result<DAffine3, SceneError> {
 }
 
 fn scale(op: &Element) -> Result<DAffine3, SceneError> {
-    let factors = match op.attr("value") {
-        Some(_) => vec3(op, true)?,
-        None => {
-            let axis = |name: &str| match op.attr(name) {
-                Some(text) => match numbers(op, text)?[..] {
-                    [v] => Ok(v),
-                    _ => Err(op.error(format!("`{name}` must be one number"))),
-                },
-                None => Ok(1.0),
-            };
-            DVec3::new(axis("x")?, axis("y")?, axis("z")?)
-        }
-    };
-    Ok(DAffine3::from_scale(factors))
+    Ok(DAffine3::from_scale(vec3(op, Some(1.0))?))
 }
 
 fn rotate(op: &Element) -> Result<DAffine3, SceneError> {
-    let axis = vec3(op, true)?;
+    let axis = vec3(op, Some(0.0))?;
     let angle = match numbers(op, op.required("angle")?)?[..] {
         [degrees] => degrees.to_radians(),
         _ => return Err(op.error("`angle` must be one number (degrees)")),

@@ -168,6 +168,18 @@ impl Reader {
         if depth == 0 && element.attr("version").is_none() {
             return Err(element.error("the attribute `version` is missing"));
         }
+        if let Some(version) = element.attr("version") {
+            // Mitsuba parses it (three numbers: 3.0.0) and refuses what it cannot parse.
+            let parts: Vec<&str> =
+                version.split([' ', '.']).filter(|part| !part.is_empty()).collect();
+            let number = |part: &&str| part.bytes().all(|b| b.is_ascii_digit());
+            if parts.len() != 3 || !parts.iter().all(number) {
+                let version = excerpt(version);
+                return Err(element.error(format!(
+                    "the version '{version}' is not a version number (three numbers: 3.0.0)"
+                )));
+            }
+        }
         element.attrs.retain(|(name, _)| name != "version");
         Ok(element)
     }
@@ -193,6 +205,10 @@ impl Reader {
             .map(|(name, value)| Ok((name.clone(), self.substitute(&raw, value)?)))
             .collect::<Result<Vec<_>, SceneError>>()?;
         let mut element = Element { attrs, ..raw };
+        let names = element.attrs.iter().map(|(name, _)| name.as_str());
+        if let Some(refusal) = super::attributes::unread(&element.tag, names) {
+            return Err(element.error(refusal));
+        }
         self.elements += 1;
         if self.elements > MAX_XML_ELEMENTS {
             let limit = format!(

@@ -13,9 +13,12 @@ use glam::DVec3;
 pub(super) const PROPERTY_TAGS: [&str; 9] =
     ["integer", "float", "boolean", "string", "point", "vector", "rgb", "spectrum", "color"];
 
-/// The RGB of an `<rgb>` or `<spectrum>` element.
+/// The RGB of an `<rgb>`, `<spectrum>`, `<float>` or `<integer>` element: Mitsuba makes a
+/// number a constant grey, for a reflectance and for emission alike (its `uniform` or
+/// `srgb` texture).
 pub(super) fn color(element: &Element, usage: ColorUse) -> Result<DVec3, SceneError> {
     match element.tag.as_str() {
+        "float" | "integer" => Ok(DVec3::splat(number_attr(element, "value")?)),
         "rgb" | "color" => {
             let text = element.required("value")?;
             match numbers(element, text)?[..] {
@@ -25,7 +28,18 @@ pub(super) fn color(element: &Element, usage: ColorUse) -> Result<DVec3, SceneEr
             }
         }
         "spectrum" => spectrum::to_rgb(element, usage),
-        _ => Err(element.error("expected an <rgb> or <spectrum>")),
+        "texture" | "ref" => Err(element.error(format!(
+            "a textured `{}` is not supported here",
+            crate::excerpt::excerpt(element.attr("name").unwrap_or("colour"))
+        ))),
+        other => {
+            let name = element.attr("name").unwrap_or("the colour");
+            Err(element.error(format!(
+                "`{}` must be a colour (an <rgb>, <spectrum> or <float>) or a <texture>, not a \
+                 <{other}>",
+                crate::excerpt::excerpt(name)
+            )))
+        }
     }
 }
 
@@ -45,12 +59,31 @@ pub(super) fn float(plugin: &Element, name: &str) -> Result<Option<f64>, SceneEr
 }
 
 pub(super) fn integer(plugin: &Element, name: &str) -> Result<Option<i64>, SceneError> {
+    if let Some(child) = plugin.children.iter().find(|c| c.attr("name") == Some(name))
+        && !matches!(child.tag.as_str(), "integer" | "float")
+    {
+        return Err(child.error(format!("`{name}` must be an <integer>")));
+    }
     let Some(value) = float(plugin, name)? else { return Ok(None) };
     if value.fract() != 0.0 || value.abs() > 1e15 {
         let child = plugin.children.iter().find(|c| c.attr("name") == Some(name)).unwrap();
         return Err(child.error(format!("`{name}` must be a whole number")));
     }
     Ok(Some(value as i64))
+}
+
+/// The `<string>` property `name`; another element under that name is refused, not
+/// passed over.
+pub(super) fn string<'a>(
+    plugin: &'a Element,
+    name: &str,
+) -> Result<Option<&'a Element>, SceneError> {
+    match plugin.children.iter().find(|c| c.attr("name") == Some(name)) {
+        Some(found) if found.tag != "string" => {
+            Err(found.error(format!("`{name}` must be a <string>")))
+        }
+        found => Ok(found),
+    }
 }
 
 /// The `<boolean>` property `name` (Mitsuba writes `true` or `false`); anything else is
@@ -113,7 +146,7 @@ pub(super) fn property_value(element: &Element, usage: ColorUse) -> Result<Value
             }
         },
         "string" => Value::Text(element.required("value")?.to_owned()),
-        "point" | "vector" => Value::Numbers(vec3(element, false)?.to_array().to_vec()),
+        "point" | "vector" => Value::Numbers(vec3(element, None)?.to_array().to_vec()),
         "rgb" | "color" | "spectrum" => Value::Numbers(color(element, usage)?.to_array().to_vec()),
         _ => return Err(element.error("not a property")),
     })

@@ -30,26 +30,30 @@ pub(super) fn conductor(
     };
     let named = property(element, "string", "material");
     let find = |name: &str| element.children.iter().find(|c| c.attr("name") == Some(name));
-    let named_none = named.map_or(Ok(true), |m| m.required("value").map(|v| v == "none"))?;
-    let (eta, k) = match find("eta") {
-        None if named_none => {
-            // Mitsuba's default material "none": a perfect mirror.
-            return Ok(MaterialDesc { specular: Specular::Mirror { reflectance }, ..none });
+    let material = named.map_or(Ok("none"), |m| m.required("value"))?;
+    let (eta, k) = if find("eta").is_some() || material == "none" {
+        // Mitsuba's defaults: η = 0 and k = 1, a perfect mirror (as is any k with η = 0).
+        if material != "none" {
+            let both = find("eta").or(find("k")).unwrap_or(element);
+            return Err(both.error("give either (eta, k) or material, not both (as Mitsuba)"));
         }
-        Some(eta) => {
-            let k = find("k").map_or(Ok(DVec3::ZERO), |k| color(k, ColorUse::Unbounded))?;
-            (color(eta, ColorUse::Unbounded)?, k)
+        let k = find("k").map_or(Ok(DVec3::ONE), |k| color(k, ColorUse::Unbounded))?;
+        match find("eta") {
+            None => return Ok(MaterialDesc { specular: Specular::Mirror { reflectance }, ..none }),
+            Some(eta) => (color(eta, ColorUse::Unbounded)?, k),
         }
-        None => {
-            let value = named.map_or(Ok("none"), |m| m.required("value"))?;
-            conductor_ior(value).ok_or_else(|| {
-                let known: Vec<&str> = super::super::metals::names().collect();
-                named.unwrap_or(element).error(format!(
-                    "the conductor material '{value}' is not known (known: {}; or give eta and k)",
-                    known.join(", ")
-                ))
-            })?
+    } else {
+        if let Some(k) = find("k") {
+            // Mitsuba reads k only beside eta: with a material it is left unread, an error.
+            return Err(k.error("give either (eta, k) or material, not both (as Mitsuba)"));
         }
+        conductor_ior(material).ok_or_else(|| {
+            let known: Vec<&str> = super::super::metals::names().collect();
+            named.unwrap_or(element).error(format!(
+                "the conductor material '{material}' is not known (known: {}; or give eta and k)",
+                known.join(", ")
+            ))
+        })?
     };
     let specular = Specular::Conductor { eta: eta.as_vec3(), k: k.as_vec3(), reflectance };
     Ok(MaterialDesc { specular, ..none })

@@ -7,6 +7,7 @@ mod conductor;
 mod dielectric;
 mod plastic;
 mod principled;
+mod range;
 mod texture;
 
 use super::tree::{Element, FileResolver};
@@ -17,6 +18,7 @@ use crate::scene::desc::{
 };
 use crate::scene::error::SceneError;
 use glam::{DVec3, Vec3};
+pub(super) use texture::refuse_rgbe;
 use texture::{float_texture, reflectance_texture};
 
 /// The BSDFs this reader knows, for messages.
@@ -34,18 +36,26 @@ pub(super) fn bsdf(
     let none = MaterialDesc { name, albedo: Vec3::ZERO, one_sided: true, ..Default::default() };
     match kind {
         "twosided" => {
+            check_properties(element, &["allow_transmission"])?;
+            let allowed = super::values::boolean(element, "allow_transmission")?;
             let inner = nested_bsdf(
                 element,
                 ids,
                 files,
                 "twosided takes one nested <bsdf> (two are not supported)",
             )?;
-            if inner.principled.as_ref().is_some_and(|p| p.transmits()) {
-                // Mitsuba refuses it too: the back would be shaded as a second front.
-                return Err(element.error(
-                    "twosided cannot hold a transmitting BSDF (principledthin, or principled \
-                     with spec_trans)",
-                ));
+            if transmits(&inner) {
+                // As Mitsuba ("Only materials without a transmission component can be
+                // nested!"): the back would be shaded as a second front. Mitsuba's
+                // allow_transmission renders that; embray does not.
+                let why = match allowed {
+                    Some(true) => "allow_transmission is not supported: ",
+                    _ => "",
+                };
+                return Err(element.error(format!(
+                    "{why}twosided cannot hold a transmitting BSDF (dielectric, \
+                     roughdielectric, mask, principledthin, or principled with spec_trans)"
+                )));
             }
             Ok(MaterialDesc { name: none.name, ..two_sided(inner) })
         }
@@ -106,7 +116,7 @@ pub(super) fn bsdf(
                 return Err(element.error("bumpmap takes one height <texture>"));
             };
             check_properties(element, &["scale", name])?;
-            let texture = float_texture(element, name, ids, files)?
+            let texture = float_texture(element, name, range::ANY, ids, files)?
                 .ok_or_else(|| element.error("bumpmap needs a height <texture>"))?;
             if inner.normal_map.is_some() || inner.bump_map.is_some() {
                 return Err(element.error("a normal or bump map inside another is not supported"));
@@ -173,6 +183,15 @@ fn nested_bsdfs(
     })
 }
 
+/// Whether `material` lets light through (Mitsuba's transmission flags, its mask's null
+/// component too), itself or in a blend.
+fn transmits(material: &MaterialDesc) -> bool {
+    matches!(material.specular, crate::scene::desc::Specular::Dielectric { .. })
+        || material.opacity.is_some()
+        || material.principled.as_ref().is_some_and(|p| p.transmits())
+        || material.blend.as_ref().is_some_and(|b| b.materials.iter().any(transmits))
+}
+
 /// `material` scattering on both sides (`twosided`), a blend's materials too.
 fn two_sided(material: MaterialDesc) -> MaterialDesc {
     let blend = material.blend.map(|b| {
@@ -194,7 +213,7 @@ fn number_or_texture(
     ids: &super::Ids,
     files: &FileResolver,
 ) -> Result<Opacity, SceneError> {
-    if let Some(texture) = float_texture(element, name, ids, files)? {
+    if let Some(texture) = float_texture(element, name, range::UNIT, ids, files)? {
         return Ok(Opacity::Texture(texture));
     }
     let value = float(element, name)?
@@ -214,6 +233,10 @@ fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError>
         Some("twosided" | "mask" | "normalmap" | "bumpmap" | "blendbsdf")
     );
     for child in &element.children {
+        if wrapper && child.tag == "bsdf" {
+            // A nested BSDF, whatever its name (Mitsuba takes every nested object).
+            continue;
+        }
         if let Some(name) = child.attr("name") {
             if !known.contains(&name) {
                 return Err(child.error(format!(
@@ -313,7 +336,7 @@ fn roughness_textures(
         return Ok(None);
     }
     let read = |name: &str| -> Result<Option<TextureDesc>, SceneError> {
-        if let Some(texture) = float_texture(element, name, ids, files)? {
+        if let Some(texture) = float_texture(element, name, range::UNIT, ids, files)? {
             return Ok(Some(texture));
         }
         Ok(float(element, name)?.map(|alpha| TextureDesc {
@@ -329,12 +352,13 @@ fn roughness_textures(
     }
 }
 
-/// An `<rgb>`/`<spectrum>` reflectance named `name`, each component in [0, 1].
+/// The constant reflectance named `name` (anything but a texture: what is not a colour is
+/// refused by `color`), each component in [0, 1].
 fn reflectance(element: &Element, name: &str) -> Result<Option<Vec3>, SceneError> {
     let found = element
         .children
         .iter()
-        .find(|c| c.attr("name") == Some(name) && matches!(c.tag.as_str(), "rgb" | "spectrum"));
+        .find(|c| c.attr("name") == Some(name) && !matches!(c.tag.as_str(), "texture" | "ref"));
     let Some(found) = found else { return Ok(None) };
     let rgb = color(found, ColorUse::Reflectance)?;
     if !rgb.cmpge(DVec3::ZERO).all() || !rgb.cmple(DVec3::ONE).all() {

@@ -4,6 +4,7 @@
 
 use super::super::tree::{Element, FileResolver};
 use super::super::values::float;
+use super::range::{NON_NEGATIVE, POSITIVE, Range, UNIT};
 use super::texture::float_texture;
 use super::{check_properties, reflectance, reflectance_texture};
 use crate::scene::desc::{MaterialDesc, ParamDesc, PrincipledDesc};
@@ -103,33 +104,6 @@ fn solid_eta(element: &Element, transmits: bool) -> Result<f32, SceneError> {
         .ok_or_else(|| element.error("give either eta or specular, not both"))
 }
 
-/// What a number must be: the bounds of its range, which is closed unless `open_start`.
-#[derive(Clone, Copy)]
-struct Range {
-    start: f64,
-    end: f64,
-    open_start: bool,
-}
-
-const UNIT: Range = Range { start: 0.0, end: 1.0, open_start: false };
-const POSITIVE: Range = Range { start: 0.0, end: f64::INFINITY, open_start: true };
-const NON_NEGATIVE: Range = Range { start: 0.0, end: f64::INFINITY, open_start: false };
-
-impl Range {
-    fn contains(&self, value: f64) -> bool {
-        let above = if self.open_start { value > self.start } else { value >= self.start };
-        above && value <= self.end && value.is_finite()
-    }
-
-    fn describe(&self) -> String {
-        match (self.open_start, self.end.is_finite()) {
-            (true, false) => format!("above {}", self.start),
-            (false, false) => format!("at least {}", self.start),
-            _ => format!("in [{}, {}]", self.start, self.end),
-        }
-    }
-}
-
 /// The `<float>` `name` (refused outside `range`), or `None`.
 fn number(element: &Element, name: &str, range: Range) -> Result<Option<f32>, SceneError> {
     let Some(value) = float(element, name)? else { return Ok(None) };
@@ -151,7 +125,7 @@ fn param(
     ids: &super::super::Ids,
     files: &FileResolver,
 ) -> Result<ParamDesc, SceneError> {
-    if let Some(texture) = float_texture(element, name, ids, files)? {
+    if let Some(texture) = float_texture(element, name, range, ids, files)? {
         return Ok(ParamDesc::Texture(texture));
     }
     Ok(ParamDesc::Constant(number(element, name, range)?.unwrap_or(default)))

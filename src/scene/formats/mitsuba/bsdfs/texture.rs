@@ -2,22 +2,25 @@
 //! mask's opacity.
 
 use super::super::tree::{Element, FileResolver};
-use super::super::values::{ColorUse, boolean, color, number_attr, property, vec3};
+use super::super::values::{ColorUse, boolean, color, number_attr, property, string, vec3};
+use super::range::Range;
 use super::reflectance;
 use crate::scene::desc::{Interpolation, Pattern, TextureDesc, TextureMode, UvMapped, Wrap};
 use crate::scene::error::{Line, SceneError};
-use crate::scene::texture_image::{ImageRef, load};
+use crate::scene::texture_image::{self, ImageRef, load_radiance};
 use glam::{DAffine3, DVec3, Vec3};
 
 /// A `<texture name="…">` read as a number (a roughness, a mask's opacity, a bump map's
 /// height); see `texture`.
+/// A checkerboard's colours must lie in `range`, as the number they stand for must.
 pub(super) fn float_texture(
     element: &Element,
     name: &str,
+    range: Range,
     ids: &super::super::Ids,
     files: &FileResolver,
 ) -> Result<Option<TextureDesc>, SceneError> {
-    texture(element, name, ids, files, true)
+    texture(element, name, ids, files, Some(range))
 }
 
 /// A `<texture name="…">` (bitmap or checkerboard) for the reflectance `name`.
@@ -27,10 +30,10 @@ pub(super) fn reflectance_texture(
     ids: &super::super::Ids,
     files: &FileResolver,
 ) -> Result<Option<TextureDesc>, SceneError> {
-    texture(element, name, ids, files, false)
+    texture(element, name, ids, files, None)
 }
 
-/// The texture `name`, looked up as a number (`as_number`) or a colour: Mitsuba's
+/// The texture `name`, looked up as a number in a range (`as_number`) or a colour: Mitsuba's
 /// checkerboard gives `color0` where u's and v's halves agree when a colour is looked up
 /// (`eval`), and where they differ when a number is (`eval_1`); a colour read as a number
 /// is its luminance (embray's number lookups take the mean channel, which of a grey is
@@ -40,7 +43,7 @@ fn texture(
     name: &str,
     ids: &super::super::Ids,
     files: &FileResolver,
-    as_number: bool,
+    as_number: Option<Range>,
 ) -> Result<Option<TextureDesc>, SceneError> {
     let Some(texture) = element
         .children
@@ -49,6 +52,7 @@ fn texture(
     else {
         return Ok(None);
     };
+    let used_as = name;
     let texture = ids.resolve(texture)?;
     if texture.tag != "texture" {
         return Err(texture.error(format!("`{name}` must be a colour or a <texture>")));
@@ -74,6 +78,14 @@ fn texture(
         "bitmap" => {
             let file = property(texture, "string", "filename")
                 .ok_or_else(|| texture.error("a bitmap needs a filename"))?;
+            refuse_rgbe(file)?;
+            let interpolation = match choice(texture, "filter_type", &["bilinear", "nearest"])? {
+                Some("nearest") => Interpolation::Nearest,
+                _ => Interpolation::BilinearCentered,
+            };
+            // Storage precision only (Mitsuba's spectral variants refuse uint8; RGB's do not).
+            choice(texture, "format", &["auto", "variant", "float16", "fp16", "uint8"])?;
+            boolean(texture, "accel")?;
             let raw = boolean(texture, "raw")?.unwrap_or(false);
             let at = ImageRef {
                 image: files.resolve(file.required("value")?),
@@ -81,27 +93,41 @@ fn texture(
                 item: file.describe(),
                 line: Line(Some(file.line)),
             };
-            let image = load(&at, !raw)?;
+            // EXR files hold linear values: read as TOML's and CENG795's textures read them.
+            let image = load_radiance(&at, !raw)?;
             let image =
-                if as_number { crate::scene::texture_image::as_luminance(&image) } else { image };
+                if as_number.is_some() { texture_image::as_luminance(&image) } else { image };
             let normalizer = if image.srgb_decoded || image.hdr { 1.0 } else { 255.0 };
-            let interpolation = match property(texture, "string", "filter_type") {
-                Some(f) if f.required("value")? == "nearest" => Interpolation::Nearest,
-                _ => Interpolation::BilinearCentered,
-            };
             Pattern::Image { image, interpolation, normalizer }
         }
         "checkerboard" => {
-            // A colour, or a number for a float texture (a roughness).
-            let color_of = |name: &str, default: f64| -> Result<Vec3, SceneError> {
-                if let Some(rgb) = reflectance(texture, name)? {
-                    return Ok(rgb);
+            if let Some(nested) =
+                texture.children.iter().find(|c| matches!(c.tag.as_str(), "texture" | "ref"))
+            {
+                return Err(nested.error("a checkerboard of textures is not supported"));
+            }
+            // A colour or a number, in [0, 1] for a colour and in the number's range for a
+            // number (a roughness, a principled weight) either way.
+            let color_of = |name: &str, default: f32| -> Result<Vec3, SceneError> {
+                let Some(range) = as_number else {
+                    return Ok(reflectance(texture, name)?.unwrap_or(Vec3::splat(default)));
+                };
+                let Some(child) = texture.children.iter().find(|c| c.attr("name") == Some(name))
+                else {
+                    return Ok(Vec3::splat(default));
+                };
+                let rgb = color(child, ColorUse::Reflectance)?;
+                if let Some(bad) = rgb.to_array().into_iter().find(|v| !range.contains(*v)) {
+                    return Err(child.error(format!(
+                        "{name} is {bad}, but must be {} (as `{}` is)",
+                        range.describe(),
+                        used_as
+                    )));
                 }
-                let number = super::super::values::float(texture, name)?;
-                Ok(Vec3::splat(number.unwrap_or(default) as f32))
+                Ok(rgb.as_vec3())
             };
             let (color0, color1) = (color_of("color0", 0.4)?, color_of("color1", 0.2)?);
-            let (even, odd) = if as_number {
+            let (even, odd) = if as_number.is_some() {
                 let grey = |c: Vec3| Vec3::splat(crate::color::luminance(c));
                 (grey(color1), grey(color0))
             } else {
@@ -116,7 +142,7 @@ fn texture(
                 .find(|c| c.attr("name") == Some("value"))
                 .ok_or_else(|| texture.error("a rawconstant needs a `value`"))?;
             let value = match value.tag.as_str() {
-                "vector" | "point" => vec3(value, false)?,
+                "vector" | "point" => vec3(value, None)?,
                 "rgb" => color(value, ColorUse::Unbounded)?,
                 "float" => DVec3::splat(number_attr(value, "value")?),
                 other => {
@@ -152,22 +178,46 @@ fn texture(
     }))
 }
 
+/// Refuses a Radiance RGBE (`.hdr`) file named by the `<string name="filename">` `file`
+/// with a message that says so: Mitsuba reads them, embray's image decoders do not.
+pub(in super::super) fn refuse_rgbe(file: &Element) -> Result<(), SceneError> {
+    let name = file.required("value")?;
+    let extension = std::path::Path::new(name).extension().and_then(|e| e.to_str());
+    if extension.is_some_and(|e| e.eq_ignore_ascii_case("hdr") || e.eq_ignore_ascii_case("rgbe")) {
+        return Err(file.error(format!(
+            "'{}' is a Radiance RGBE image, which embray does not read (convert it to \
+             OpenEXR)",
+            crate::excerpt::excerpt(name)
+        )));
+    }
+    Ok(())
+}
+
+/// The `<string>` `name` of `texture`, one of `choices` (as Mitsuba checks it), or `None`.
+fn choice<'a>(
+    texture: &'a Element,
+    name: &str,
+    choices: &[&str],
+) -> Result<Option<&'a str>, SceneError> {
+    let Some(found) = string(texture, name)? else { return Ok(None) };
+    let value = found.required("value")?;
+    if !choices.contains(&value) {
+        return Err(found.error(format!(
+            "the {name} '{}' is not known ({})",
+            crate::excerpt::excerpt(value),
+            choices.join(", ")
+        )));
+    }
+    Ok(Some(value))
+}
+
 /// `pattern` with the texture's `to_uv` and `wrap_mode` applied (a uniform scale of a
 /// checkerboard's coordinates stays a checkerboard: more checks).
 fn uv_mapped(texture: &Element, pattern: Pattern) -> Result<Pattern, SceneError> {
-    let wrap = match property(texture, "string", "wrap_mode") {
-        None => Wrap::Repeat,
-        Some(w) => match w.required("value")? {
-            "repeat" => Wrap::Repeat,
-            "mirror" => Wrap::Mirror,
-            "clamp" => Wrap::Clamp,
-            other => {
-                return Err(w.error(format!(
-                    "the wrap_mode '{}' is not known (repeat, mirror or clamp)",
-                    crate::excerpt::excerpt(other)
-                )));
-            }
-        },
+    let wrap = match choice(texture, "wrap_mode", &["repeat", "mirror", "clamp"])? {
+        None | Some("repeat") => Wrap::Repeat,
+        Some("mirror") => Wrap::Mirror,
+        _ => Wrap::Clamp,
     };
     let Some(to_uv) = property(texture, "transform", "to_uv") else {
         return Ok(match wrap {
