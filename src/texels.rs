@@ -3,10 +3,10 @@
 use glam::{Vec2, Vec3};
 use std::path::PathBuf;
 
-/// Decoded texels, row-major from the top-left, in the file's own units (0–255 for 8-bit
-/// files, 0–65535 for 16-bit ones, linear values for float ones) unless the loader was
-/// asked to decode sRGB into linear [0, 1]. `file` is kept for messages and for writing
-/// the scene back out.
+/// Decoded texels, row-major from the top-left: 0–255 for integer files whatever their bit
+/// depth (a 16-bit file's values divided by 257, so that a normalizer means the same for
+/// both), linear values for float ones, or linear [0, 1] where the loader was asked to
+/// decode sRGB. `file` is kept for messages and for writing the scene back out.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureImage {
     pub file: PathBuf,

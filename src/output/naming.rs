@@ -27,6 +27,18 @@ pub fn image_name_problem(image_name: &str) -> Option<String> {
             }
         }
     }
+    // `Path` forgets a trailing '/' or '.', and an extension alone is no name: `sub/`,
+    // `sub/.` and `sub/.png` would give hidden files `sub/.exr`, `sub/..exr`, `sub/.png.exr`.
+    let last = image_name.rsplit('/').next().unwrap_or_default();
+    let extension_alone = last
+        .strip_prefix('.')
+        .is_some_and(|e| ["png", "jpg", "jpeg", "exr"].contains(&e.to_ascii_lowercase().as_str()));
+    if last.is_empty() || last == "." {
+        return Some(format!("ImageName '{shown}' ends in a folder, not a file name"));
+    }
+    if extension_alone {
+        return Some(format!("ImageName '{shown}' has no name before its extension"));
+    }
     match path.file_name() {
         None => Some(format!("ImageName '{shown}' does not name a file")),
         Some(name) if name.len() > super::NAME_MAX - 4 => Some(format!(
@@ -105,6 +117,10 @@ mod tests {
         assert!(image_name_problem("../../x.png").unwrap().contains("'..'"));
         assert!(image_name_problem("/abs/x.png").unwrap().contains("absolute"));
         assert!(image_name_problem("a/..").is_some());
+        for hidden in ["sub/", "sub/.", ".PNG", "sub/.exr", "/"] {
+            assert!(image_name_problem(hidden).is_some(), "{hidden}");
+        }
+        assert!(image_name_problem("sub/.x").is_none());
         assert_eq!(image_name_key("./a.png"), image_name_key("a.jpg"));
         assert_ne!(image_name_key("a.png"), image_name_key("b/a.png"));
     }

@@ -64,27 +64,41 @@ fn is_sixteen_bit(decoded: &image::DynamicImage) -> bool {
     )
 }
 
+/// What a raw texel of any integer image runs up to: 16-bit files are scaled to it, so
+/// that every normalizer (the CENG795 `Normalizer`, Mitsuba's raw bitmaps, a TOML
+/// `normalizer`) means the same for a 16-bit file as for the 8-bit file of the same picture.
+pub const RAW_FULL_SCALE: f32 = 255.0;
+
+/// Per channel, how many of a decoded image's units make one of `RAW_FULL_SCALE`'s
+/// (65535 / 257 = 255 exactly).
+fn units_per_raw_unit(decoded: &image::DynamicImage) -> f32 {
+    if is_sixteen_bit(decoded) { 257.0 } else { 1.0 }
+}
+
 /// The image `at` names. `decode_srgb`: texels become linear [0, 1] through sRGB's curve;
-/// otherwise they keep the file's own units (0–255 for 8-bit files, 0–65535 for 16-bit).
+/// otherwise they run from 0 to `RAW_FULL_SCALE` (a 16-bit file's values divided by 257,
+/// keeping their fractions).
 pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
     let decoded = decode(at)?;
     let (width, height) = (decoded.width(), decoded.height());
+    let per_raw_unit = units_per_raw_unit(&decoded);
     // Straight from the decoded channels to linear texels: no f32 copy of the image between
     // (the peak was the file, the decoded image and two 12-byte copies per texel).
-    let texel = |c: [f32; 3], full_scale: f32| {
-        let c = glam::Vec3::from_array(c) / full_scale;
+    let texel = |c: [f32; 3]| {
+        let c = glam::Vec3::from_array(c) / per_raw_unit;
         if decode_srgb {
+            let c = c / RAW_FULL_SCALE;
             glam::Vec3::new(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z))
         } else {
-            (c * full_scale).round()
+            c
         }
     };
     let texels: Vec<glam::Vec3> = if is_sixteen_bit(&decoded) {
         let rgb = decoded.into_rgb16();
-        rgb.pixels().map(|p| texel(p.0.map(f32::from), 65535.0)).collect()
+        rgb.pixels().map(|p| texel(p.0.map(f32::from))).collect()
     } else {
         let rgb = decoded.into_rgb8();
-        rgb.pixels().map(|p| texel(p.0.map(f32::from), 255.0)).collect()
+        rgb.pixels().map(|p| texel(p.0.map(f32::from))).collect()
     };
     Ok(Arc::new(TextureImage {
         file: at.image.clone(),
@@ -99,10 +113,8 @@ pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, Scene
 
 /// An image of data rather than colour (`load_data`).
 pub struct DataImage {
-    /// Texels in the file's own units, no sRGB curve.
+    /// Texels from 0 to `RAW_FULL_SCALE`, no sRGB curve.
     pub image: Arc<TextureImage>,
-    /// The file's full scale (255 or 65535), which a texture divides by for [0, 1].
-    pub full_scale: f32,
     /// Every texel is the file's alpha (as grey), not its colour.
     pub alpha: bool,
 }
@@ -113,17 +125,18 @@ pub struct DataImage {
 pub fn load_data(at: &ImageRef, alpha: bool) -> Result<DataImage, SceneError> {
     let decoded = decode(at)?;
     let (width, height) = (decoded.width(), decoded.height());
-    let sixteen_bit = is_sixteen_bit(&decoded);
+    let per_raw_unit = units_per_raw_unit(&decoded);
     let alpha = alpha && decoded.color().has_alpha();
     let texel = |[r, g, b, a]: [f32; 4]| {
-        if alpha { glam::Vec3::splat(a) } else { glam::Vec3::new(r, g, b) }
+        let texel = if alpha { glam::Vec3::splat(a) } else { glam::Vec3::new(r, g, b) };
+        texel / per_raw_unit
     };
-    let (texels, full_scale): (Vec<glam::Vec3>, f32) = if sixteen_bit {
+    let texels: Vec<glam::Vec3> = if is_sixteen_bit(&decoded) {
         let rgba = decoded.into_rgba16();
-        (rgba.pixels().map(|p| texel(p.0.map(f32::from))).collect(), 65535.0)
+        rgba.pixels().map(|p| texel(p.0.map(f32::from))).collect()
     } else {
         let rgba = decoded.into_rgba8();
-        (rgba.pixels().map(|p| texel(p.0.map(f32::from))).collect(), 255.0)
+        rgba.pixels().map(|p| texel(p.0.map(f32::from))).collect()
     };
     let image = Arc::new(TextureImage {
         file: at.image.clone(),
@@ -134,7 +147,7 @@ pub fn load_data(at: &ImageRef, alpha: bool) -> Result<DataImage, SceneError> {
         hdr: false,
         rows_flipped: false,
     });
-    Ok(DataImage { image, full_scale, alpha })
+    Ok(DataImage { image, alpha })
 }
 
 /// `image` upside down (`TextureImage::rows_flipped`): for texture coordinates whose v runs
@@ -260,7 +273,7 @@ mod tests {
         let path = std::env::temp_dir().join(format!("embray-tex-{}-a.png", std::process::id()));
         image::RgbaImage::from_pixel(1, 1, image::Rgba([10, 20, 30, 40])).save(&path).unwrap();
         let alpha = load_data(&at(&path), true).unwrap();
-        assert_eq!((alpha.image.texels[0], alpha.full_scale), (glam::Vec3::splat(40.0), 255.0));
+        assert_eq!(alpha.image.texels[0], glam::Vec3::splat(40.0));
         assert!(alpha.alpha);
         let colour = load_data(&at(&path), false).unwrap();
         assert_eq!(colour.image.texels[0], glam::Vec3::new(10.0, 20.0, 30.0));
@@ -269,10 +282,25 @@ mod tests {
             image::ImageBuffer::<image::Rgb<u16>, _>::from_pixel(1, 1, image::Rgb([1, 2, 65535]));
         deep.save(&path).unwrap();
         let deep = load_data(&at(&path), true).unwrap();
-        assert_eq!(
-            (deep.image.texels[0].z, deep.full_scale, deep.alpha),
-            (65535.0, 65535.0, false)
+        assert_eq!((deep.image.texels[0].z, deep.alpha), (255.0, false));
+        std::fs::remove_file(path).unwrap();
+    }
+
+    #[test]
+    fn a_sixteen_bit_image_means_what_the_eight_bit_one_of_its_picture_does() {
+        let path = std::env::temp_dir().join(format!("embray-tex-{}-16.png", std::process::id()));
+        let deep = image::ImageBuffer::<image::Rgb<u16>, _>::from_pixel(
+            1,
+            1,
+            image::Rgb([32896, 65535, 257 * 10 + 128]),
         );
+        deep.save(&path).unwrap();
+        let raw = load(&at(&path), false).unwrap();
+        let expected = glam::Vec3::new(128.0, 255.0, 2698.0 / 257.0);
+        assert!((raw.texels[0] - expected).abs().max_element() < 1e-5, "{}", raw.texels[0]);
+        let linear = load(&at(&path), true).unwrap();
+        assert_eq!(linear.texels[0].y, 1.0);
+        assert!((linear.texels[0].x - 0.2158605).abs() < 1e-5, "{}", linear.texels[0].x);
         std::fs::remove_file(path).unwrap();
     }
 

@@ -12,6 +12,7 @@
 
 mod brdfs;
 mod camera;
+mod inline_mesh;
 mod lights;
 mod materials;
 mod objects;

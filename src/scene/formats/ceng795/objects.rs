@@ -11,9 +11,11 @@
 //! each gets its own copy of its material with that emission, appended to the material
 //! list, so the renderer samples it like any emitter (one-sided, where its normal points).
 //! An object with `<Textures>` likewise gets its own copy of its material with the texture
-//! maps attached. Texture coordinates are per vertex: `<TexCoordData>` entry `i +
-//! textureOffset` for vertex index `i` of a `Faces` list.
+//! maps attached; a mesh with an image texture must have texture coordinates for every
+//! vertex (the course gives no meaning to a missing one), from `<TexCoordData>`
+//! (`inline_mesh`) or its PLY file.
 
+use super::inline_mesh::{InlineMesh, inline_mesh, vertex_index};
 use super::materials::Materials;
 use super::textures::TextureMaps;
 use super::transforms::Transforms;
@@ -21,7 +23,7 @@ use super::xml::{Xml, describe, id_list, tokens};
 use crate::scene::desc::{MaterialDesc, MeshData, ObjectDesc, ShapeDesc};
 use crate::scene::error::SceneError;
 use crate::scene::formats::obj::ObjRef;
-use crate::scene::mesh_file::{MeshCache, area_weighted_normals};
+use crate::scene::mesh_file::MeshCache;
 use glam::{DAffine3, DVec3, Vec2};
 use roxmltree::Node;
 use std::collections::HashMap;
@@ -41,6 +43,8 @@ pub(super) struct Refs<'a> {
 /// A mesh as a `MeshInstance` finds it.
 struct BaseMesh {
     mesh: Arc<MeshData>,
+    /// Why the mesh has no texture coordinates, where it has none.
+    no_uvs: Option<String>,
     world_from_object: DAffine3,
     material: u32,
 }
@@ -129,6 +133,27 @@ impl Builder<'_, '_, '_> {
         index as u32
     }
 
+    /// An image texture needs texture coordinates at every vertex; without them it would
+    /// show one texel, or whatever a renderer defaults to, without a word.
+    fn require_uvs(
+        &self,
+        node: Node,
+        material: u32,
+        no_uvs: Option<&str>,
+    ) -> Result<(), SceneError> {
+        let m = self.material_desc(material);
+        let bump = m.bump_map.as_ref().map(|b| &b.texture);
+        let textures = [&m.texture, &m.specular_texture, &m.normal_map];
+        let image = textures.into_iter().flatten().chain(bump).any(|t| t.image().is_some());
+        match no_uvs {
+            Some(why) if image => Err(self.x.error(
+                node,
+                format!("the object has an image texture but no texture coordinates: {why}"),
+            )),
+            _ => Ok(()),
+        }
+    }
+
     /// `<Transformations>` and `<MotionBlur>` of `node`, on top of `base`.
     fn placement(
         &self,
@@ -162,79 +187,6 @@ impl Builder<'_, '_, '_> {
             world_from_object: place.0,
             world_from_object_end: place.1,
         });
-    }
-
-    /// The 0-based scene vertex of the 1-based `token` (plus `offset`) at `pos` in `node`.
-    fn vertex_index(
-        &self,
-        node: Node,
-        token: &str,
-        pos: usize,
-        offset: i64,
-    ) -> Result<usize, SceneError> {
-        let count = self.refs.vertices.len();
-        let bad = |problem: String| self.x.token_error(node, pos, problem);
-        let id: i64 = token
-            .parse()
-            .map_err(|_| bad(format!("vertex index '{token}' is not a whole number")))?;
-        let index = id.saturating_add(offset);
-        if index < 1 || index as u64 > count as u64 {
-            let shown = if offset == 0 {
-                format!("vertex index {id}")
-            } else {
-                format!("vertex index {id} + vertexOffset {offset} = {index}")
-            };
-            return Err(bad(format!(
-                "{shown} is out of range: the scene has {count} vertices (indices 1 to {count})"
-            )));
-        }
-        Ok(index as usize - 1)
-    }
-
-    /// A mesh of the listed scene vertices (triples of indices in `node`'s text), keeping
-    /// only the vertices it uses.
-    fn inline_mesh(
-        &self,
-        node: Node,
-        offset: i64,
-        texture_offset: i64,
-        smooth: bool,
-    ) -> Result<MeshData, SceneError> {
-        let mut local: HashMap<usize, u32> = HashMap::new();
-        let mut positions = Vec::new();
-        let mut used = Vec::new();
-        let mut corners = Vec::new();
-        for (token, pos) in tokens(node) {
-            let global = self.vertex_index(node, token, pos, offset)?;
-            let index = *local.entry(global).or_insert_with(|| {
-                positions.push(self.refs.vertices[global]);
-                used.push(global);
-                (positions.len() - 1) as u32
-            });
-            corners.push(index);
-        }
-        if corners.is_empty() {
-            return Err(self.x.error(node, "the mesh has no faces"));
-        }
-        if corners.len() % 3 != 0 {
-            return Err(self.x.error(
-                node,
-                format!("{} vertex indices is not a whole number of triangles", corners.len()),
-            ));
-        }
-        let indices: Vec<[u32; 3]> = corners.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-        // Vertex `g` (0-based, vertexOffset included) has the coordinates of entry
-        // `g - vertexOffset + textureOffset`; a mesh any of whose vertices has none gets none.
-        let texcoords = self.refs.texcoords;
-        let uvs = used
-            .iter()
-            .map(|&g| {
-                let i = (g as i64).checked_sub(offset)?.checked_add(texture_offset)?;
-                usize::try_from(i).ok().and_then(|i| texcoords.get(i).copied())
-            })
-            .collect::<Option<Vec<Vec2>>>();
-        let normals = smooth.then(|| area_weighted_normals(&positions, &indices));
-        Ok(MeshData { positions, indices, normals, uvs, attributes: Vec::new() })
     }
 
     /// The material of `node`; for an object light, a copy of it emitting `<Radiance>`.
@@ -273,8 +225,23 @@ impl Builder<'_, '_, '_> {
         };
         let material = self.material_of(node, light)?;
         let faces = x.required(node, "Faces")?;
-        let mesh = match faces.attribute("plyFile") {
+        let (mesh, no_uvs) = match faces.attribute("plyFile") {
             Some(file) => {
+                // What is given beside a plyFile would be ignored without a word.
+                let inline =
+                    ["vertexOffset", "textureOffset"].into_iter().find(|a| faces.has_attribute(*a));
+                if let Some(attribute) = inline {
+                    return Err(x.error(
+                        faces,
+                        format!(
+                            "{attribute} is given with a plyFile, whose mesh has its own indices"
+                        ),
+                    ));
+                }
+                if let Some((_, pos)) = tokens(faces).next() {
+                    let problem = "vertex indices are given with a plyFile, whose mesh has its own";
+                    return Err(x.token_error(faces, pos, problem));
+                }
                 let mesh_ref = ObjRef {
                     obj: self.refs.base_dir.join(file.trim()),
                     scene: x.file,
@@ -284,7 +251,11 @@ impl Builder<'_, '_, '_> {
                 let (_, models) = self.cache.models(&mesh_ref, Some(smooth), self.warnings)?;
                 let mut models = models.into_iter();
                 match (models.next(), models.next()) {
-                    (Some(model), None) => model.mesh,
+                    (Some(model), None) => {
+                        let why = format!("{} gives none", file.trim());
+                        let no_uvs = model.mesh.uvs.is_none().then_some(why);
+                        (model.mesh, no_uvs)
+                    }
                     _ => return Err(x.error(faces, "the mesh file must hold exactly one mesh")),
                 }
             }
@@ -295,15 +266,18 @@ impl Builder<'_, '_, '_> {
                     }),
                     None => Ok(0),
                 };
-                let (vertex_offset, texture_offset) =
-                    (offset("vertexOffset")?, offset("textureOffset")?);
-                Arc::new(self.inline_mesh(faces, vertex_offset, texture_offset, smooth)?)
+                let offsets = (offset("vertexOffset")?, offset("textureOffset")?);
+                let data = (self.refs.vertices, self.refs.texcoords);
+                let InlineMesh { mesh, no_uvs } = inline_mesh(x, data, faces, offsets, smooth)?;
+                (Arc::new(mesh), no_uvs)
             }
         };
+        self.require_uvs(node, material, no_uvs.as_deref())?;
         let place = self.placement(node, DAffine3::IDENTITY)?;
         // Light meshes number their ids apart from meshes, and no MeshInstance names them.
         if !id.is_empty() && !light {
-            let base = BaseMesh { mesh: Arc::clone(&mesh), world_from_object: place.0, material };
+            let mesh = Arc::clone(&mesh);
+            let base = BaseMesh { mesh, no_uvs, world_from_object: place.0, material };
             if self.meshes.insert(id.clone(), base).is_some() {
                 return Err(x.error(node, format!("mesh id \"{id}\" is defined twice")));
             }
@@ -323,7 +297,9 @@ impl Builder<'_, '_, '_> {
         if tokens(indices).count() != 3 {
             return Err(x.error(indices, "a triangle takes exactly 3 vertex indices"));
         }
-        let mesh = self.inline_mesh(indices, 0, 0, false)?;
+        let data = (self.refs.vertices, self.refs.texcoords);
+        let InlineMesh { mesh, no_uvs } = inline_mesh(x, data, indices, (0, 0), false)?;
+        self.require_uvs(node, material, no_uvs.as_deref())?;
         let place = self.placement(node, DAffine3::IDENTITY)?;
         self.push(node, ShapeDesc::Mesh(Arc::new(mesh)), material, place);
         Ok(())
@@ -351,7 +327,8 @@ impl Builder<'_, '_, '_> {
         let (Some((token, pos)), None) = (all.next(), all.next()) else {
             return Err(x.error(center_node, "expected one vertex index"));
         };
-        let center = self.refs.vertices[self.vertex_index(center_node, token, pos, 0)?];
+        let center =
+            self.refs.vertices[vertex_index(x, self.refs.vertices, center_node, token, pos, 0)?];
         let radius_node = x.required(node, "Radius")?;
         let radius = x.scalar(radius_node)?;
         if !(radius > 0.0) {
@@ -379,11 +356,13 @@ impl Builder<'_, '_, '_> {
         let reset = x.flag(node, "resetTransform")?;
         let (mesh, base_transform, base_material) =
             (Arc::clone(&base.mesh), base.world_from_object, base.material);
+        let no_uvs = base.no_uvs.as_ref().map(|why| format!("its base mesh's {why}"));
         let material = match x.child(node, "Material")? {
             Some(m) => self.refs.materials.lookup(x, m)?,
             None => base_material,
         };
         let material = self.with_textures(node, material)?;
+        self.require_uvs(node, material, no_uvs.as_deref())?;
         let base = if reset { DAffine3::IDENTITY } else { base_transform };
         let place = self.placement(node, base)?;
         self.push(node, ShapeDesc::Mesh(mesh), material, place);

@@ -1,10 +1,10 @@
 //! `<Textures>` (hw4): `<Images>` and `<TextureMap>`s, and an object's `<Textures>` list →
 //! the object's own copy of its material with the textures attached.
 //!
-//! Image texels keep the file's 0–255 values and are divided by `Normalizer` (default 255,
-//! the text's "divide the texture color value by 255"); `Interpolation` defaults to nearest
-//! (the normal-map scenes give none, and match their references 99.98 % with nearest, 83 %
-//! with bilinear); Perlin noise (`NoiseScale`,
+//! Image texels keep the file's 0–255 values (a 16-bit file's scaled to them) and are
+//! divided by `Normalizer` (default 255, the text's "divide the texture color value by
+//! 255"); `Interpolation` defaults to nearest (the normal-map scenes give none, and match
+//! their references 99.98 % with nearest, 83 % with bilinear); Perlin noise (`NoiseScale`,
 //! `NoiseConversion`) and the checkerboard (`Scale`, `Offset`, `BlackColor`, `WhiteColor`)
 //! are evaluated at the object-space point. Decal modes: `replace_kd`, `blend_kd`,
 //! `replace_all` set the diffuse texture, `replace_ks` the specular one, `replace_normal`

@@ -82,6 +82,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     let obj_dir = obj.parent().unwrap_or(Path::new("")).to_path_buf();
     let mtl_error: RefCell<Option<SceneError>> = RefCell::new(None);
     let missing_mtl: RefCell<Vec<String>> = RefCell::new(Vec::new());
+    let mtl_warnings: RefCell<Vec<String>> = RefCell::new(Vec::new());
     // Parallel to tobj's list of materials (every library's, in the order it reads them).
     let sources: RefCell<Vec<ObjMaterial>> = RefCell::new(Vec::new());
     let material_loader = |mtl_name: &Path| -> tobj::MTLLoadResult {
@@ -105,9 +106,16 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
                 return Err(tobj::LoadError::OpenFileFailed);
             }
         };
-        if let Err(problem) = scan_mtl(&mtl_text) {
-            *mtl_error.borrow_mut() = Some(obj_ref.scan_error(&mtl, problem));
-            return Err(tobj::LoadError::MaterialParseError);
+        match scan_mtl(&mtl_text) {
+            Ok(found) => mtl_warnings.borrow_mut().extend(
+                found
+                    .into_iter()
+                    .map(|w| format!("{}: {} (line {})", mtl.display(), w.message, w.line)),
+            ),
+            Err(problem) => {
+                *mtl_error.borrow_mut() = Some(obj_ref.scan_error(&mtl, problem));
+                return Err(tobj::LoadError::MaterialParseError);
+            }
         }
         let loaded = tobj::load_mtl_buf(&mut mtl_text.as_bytes());
         match &loaded {
@@ -179,6 +187,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
         }
     }
     warnings.extend(missing_mtl);
+    warnings.extend(mtl_warnings.into_inner());
 
     let sources = sources.into_inner();
     if sources.len() != materials.len() {

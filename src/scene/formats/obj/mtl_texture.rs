@@ -4,7 +4,9 @@
 //! (`TextureImage::rows_flipped`).
 
 use crate::scene::error::{Line, SceneError};
-use crate::scene::texture_image::{DataImage, ImageRef, load, load_data, with_rows_flipped};
+use crate::scene::texture_image::{
+    DataImage, ImageRef, RAW_FULL_SCALE, load, load_data, with_rows_flipped,
+};
 use crate::scene::{Interpolation, Pattern, TextureDesc, TextureMode};
 use glam::{DAffine3, Vec3};
 use std::path::Path;
@@ -125,7 +127,7 @@ pub(super) fn data(
     alpha: bool,
 ) -> Result<(TextureDesc, DataImage), SceneError> {
     let data = load_data(&at.image_ref(file), alpha)?;
-    Ok((image_texture(std::sync::Arc::clone(&data.image), data.full_scale), data))
+    Ok((image_texture(std::sync::Arc::clone(&data.image), RAW_FULL_SCALE), data))
 }
 
 /// The mean linear colour of an image (`map_Ke`, whose texture embray cannot emit).
@@ -143,7 +145,7 @@ pub(super) fn looks_like_normal_map(data: &DataImage) -> bool {
         return false;
     }
     let sum: glam::DVec3 = data.image.texels.iter().map(|t| t.as_dvec3()).sum();
-    let mean = sum / (data.image.texels.len() as f64 * f64::from(data.full_scale));
+    let mean = sum / (data.image.texels.len() as f64 * f64::from(RAW_FULL_SCALE));
     let centred = |c: f64| (c - 0.5).abs() < 0.15;
     centred(mean.x) && centred(mean.y) && mean.z > 0.75 && mean.z - mean.x.max(mean.y) > 0.2
 }
@@ -183,7 +185,7 @@ mod tests {
             hdr: false,
             rows_flipped: false,
         };
-        DataImage { image: std::sync::Arc::new(image), full_scale: 255.0, alpha }
+        DataImage { image: std::sync::Arc::new(image), alpha }
     }
 
     #[test]

@@ -148,7 +148,13 @@ fn check_face_vertex(word: &str, seen: &[usize; 3], totals: &[usize; 3]) -> Resu
 }
 
 /// tobj panics on a colour statement (`Ka`, `Kd`, `Ks`, `Ke`) with fewer than 3 values.
-pub(crate) fn scan_mtl(text: &str) -> Result<(), ScanProblem> {
+/// What it drops without a word comes back as warnings: statements before the first
+/// `newmtl` (they belong to no material) and a material defined again (tobj keeps the last
+/// definition). Exporters write both, so neither is refused.
+pub(crate) fn scan_mtl(text: &str) -> Result<Vec<ScanProblem>, ScanProblem> {
+    let mut warnings = Vec::new();
+    let mut defined: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    let mut orphans = Vec::new();
     for (n, line) in text.lines().enumerate() {
         let problem = |message: String| ScanProblem { line: n + 1, message };
         let line = line.trim();
@@ -177,8 +183,28 @@ pub(crate) fn scan_mtl(text: &str) -> Result<(), ScanProblem> {
             }
             _ => {}
         }
+        if keyword == "newmtl" {
+            // tobj's name: the rest of the trimmed line, trimmed.
+            let name = line["newmtl".len()..].trim();
+            if let Some(previous) = defined.insert(name, n + 1) {
+                warnings.push(problem(format!(
+                    "material '{}' is defined again: this definition replaces the one at line \
+                     {previous}",
+                    crate::excerpt::excerpt(name)
+                )));
+            }
+        } else if defined.is_empty() && !keyword.starts_with('#') {
+            orphans.push(n + 1);
+        }
     }
-    Ok(())
+    if let Some(&first) = orphans.first() {
+        let message = format!(
+            "{} statement(s) before the first newmtl belong to no material and are ignored",
+            orphans.len()
+        );
+        warnings.insert(0, ScanProblem { line: first, message });
+    }
+    Ok(warnings)
 }
 
 #[cfg(test)]
@@ -250,6 +276,17 @@ mod tests {
     fn short_colour_is_reported() {
         let err = scan_mtl("newmtl a\nKd 0.5 0.5\n").unwrap_err();
         assert_eq!((err.line, err.message.as_str()), (2, "Kd needs 3 numbers"));
-        assert!(scan_mtl("newmtl a\nKd 0.5 0.5 0.5\n").is_ok());
+        assert!(scan_mtl("newmtl a\nKd 0.5 0.5 0.5\n").unwrap().is_empty());
+    }
+
+    #[test]
+    fn dropped_mtl_statements_are_warned_about() {
+        let text = "# made by a tool\nKd 1 0 0\nNs 10\nnewmtl a\nKd 0 1 0\nnewmtl  a \nnewmtl b\n";
+        let warnings = scan_mtl(text).unwrap();
+        let lines: Vec<usize> = warnings.iter().map(|w| w.line).collect();
+        assert_eq!(lines, [2, 6], "{warnings:?}");
+        assert!(warnings[0].message.starts_with("2 statement(s) before the first newmtl"));
+        assert!(warnings[1].message.contains("'a' is defined again"), "{warnings:?}");
+        assert!(warnings[1].message.contains("line 4"), "{warnings:?}");
     }
 }

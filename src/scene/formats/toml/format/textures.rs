@@ -42,7 +42,8 @@ pub(crate) enum InterpolationToml {
 }
 
 /// How an image's texel values become colours: `srgb` decodes 8- and 16-bit values through
-/// the sRGB curve to linear [0, 1]; `raw` divides the file's own values by `normalizer`.
+/// the sRGB curve to linear [0, 1]; `raw` divides the values, in 0–255 whatever the file's
+/// depth, by `normalizer`.
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub(crate) enum ImageEncodingToml {
