@@ -72,10 +72,24 @@ fn has_temp_file(scratch: &Scratch) -> bool {
 
 fn interrupted_during_commit(signal: &str, code: i32) {
     let scratch = Scratch::new();
-    let child = render_blocked_in_commit(&scratch);
-    let status =
-        std::process::Command::new("kill").args([signal, &child.id().to_string()]).status();
-    assert!(status.unwrap().success());
+    let mut child = render_blocked_in_commit(&scratch);
+    let pid = child.id().to_string();
+    let kill = || {
+        let status = std::process::Command::new("kill").args([signal, &pid]).status();
+        assert!(status.unwrap().success());
+    };
+    kill();
+    // The temporary EXR appears while the render still takes a first signal as a request
+    // to stop and write its images (`Stop::watch`): a signal that lands before the commit
+    // starts is followed by the commit blocking on the FIFO, which a second signal ends.
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(5) {
+            kill();
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
     let run = Run::from(child.wait_with_output().unwrap());
     run.assert_no_panic();
     assert_eq!(run.code, Some(code), "{}", run.stderr);
