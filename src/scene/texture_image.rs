@@ -85,12 +85,14 @@ pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, Scene
     // Straight from the decoded channels to linear texels: no f32 copy of the image between
     // (the peak was the file, the decoded image and two 12-byte copies per texel).
     let texel = |c: [f32; 3]| {
-        let c = glam::Vec3::from_array(c) / per_raw_unit;
+        let c = glam::Vec3::from_array(c);
         if decode_srgb {
-            let c = c / RAW_FULL_SCALE;
+            // One division by the file's full scale (65535 or 255, exact in f32), as before
+            // raw texels were scaled: 16-bit sRGB textures keep their values bit for bit.
+            let c = c / (per_raw_unit * RAW_FULL_SCALE);
             glam::Vec3::new(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z))
         } else {
-            c
+            c / per_raw_unit
         }
     };
     let texels: Vec<glam::Vec3> = if is_sixteen_bit(&decoded) {

@@ -143,6 +143,9 @@ fn numbers_as_colours_and_a_zero_up_are_read_as_mitsuba_reads_them() {
                 </transform></shape>";
     scratch.write("s.xml", m3(body));
     accepted_in(&scratch, &["info", "s.xml"]);
+    // Mitsuba reads each number of the version as `stoul` does: a suffix is let through.
+    scratch.write("dev.xml", m3("").replace("3.0.0", "3.0.0-dev"));
+    accepted_in(&scratch, &["info", "dev.xml"]);
 }
 
 /// A Mitsuba bitmap may be an EXR file, read as TOML's textures read one (it was refused

@@ -88,13 +88,18 @@ refused_cases! {
         => ["s.xml", "ImageName 'sub/.png'", "no name before its extension", "(line 12)"];
 }
 
+/// A colour in range is accepted; so is a constant bump height of any value, which bumps
+/// nothing (`convert` writes a Mitsuba `rawconstant`, which has no range, as one).
 #[test]
-fn a_constant_texture_in_range_is_accepted() {
+fn a_constant_texture_in_range_and_any_constant_height_are_accepted() {
     let scratch = Scratch::new();
     let texture =
         "albedo = [0.5, 0.5, 0.5]\ntexture = { type = \"constant\", value = [1, 0, 0.25] }";
     scratch.write("s.toml", scene("").replace("albedo = [0.5, 0.5, 0.5]", texture));
     accepted_in(&scratch, &["render", "s.toml", "-q"]);
+    let height = "albedo = [0.5, 0.5, 0.5]\nbump_map = { type = \"constant\", value = [5, -2, 7] }";
+    scratch.write("b.toml", scene("").replace("albedo = [0.5, 0.5, 0.5]", height));
+    accepted_in(&scratch, &["info", "b.toml"]);
 }
 
 /// An image texture on a mesh without texture coordinates for every vertex rendered some

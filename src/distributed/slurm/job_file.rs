@@ -92,7 +92,7 @@ impl JobFile {
 
 /// Whether `id` is a job id as `submit` records it: these are handed to `squeue` and
 /// `scancel` as arguments of their own, where a hand-edited `--user=root` would be an option.
-fn is_job_id(id: &str) -> bool {
+pub(super) fn is_job_id(id: &str) -> bool {
     !id.is_empty() && id.len() <= 20 && id.bytes().all(|b| b.is_ascii_digit())
 }
 

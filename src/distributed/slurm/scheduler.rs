@@ -112,7 +112,7 @@ pub fn submit(script: &Path, args: &[String]) -> Result<String, SchedulerError> 
     let answer = run("sbatch", &all)?;
     // `--parsable` prints `id` or `id;cluster`.
     let id = answer.trim().split(';').next().unwrap_or("").to_owned();
-    if id.is_empty() || !id.bytes().all(|b| b.is_ascii_digit()) {
+    if !super::job_file::is_job_id(&id) {
         return Err(SchedulerError::NoJobId {
             command: format!("sbatch {}", all.join(" ")),
             answer: crate::excerpt::excerpt(answer.trim()),

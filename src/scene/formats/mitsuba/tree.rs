@@ -169,10 +169,11 @@ impl Reader {
             return Err(element.error("the attribute `version` is missing"));
         }
         if let Some(version) = element.attr("version") {
-            // Mitsuba parses it (three numbers: 3.0.0) and refuses what it cannot parse.
+            // Mitsuba parses it (three numbers: 3.0.0) and refuses what it cannot parse; each
+            // number is read as `stoul` reads it, so a suffix (3.0.0-dev) is let through.
             let parts: Vec<&str> =
                 version.split([' ', '.']).filter(|part| !part.is_empty()).collect();
-            let number = |part: &&str| part.bytes().all(|b| b.is_ascii_digit());
+            let number = |part: &&str| part.bytes().next().is_some_and(|b| b.is_ascii_digit());
             if parts.len() != 3 || !parts.iter().all(number) {
                 let version = excerpt(version);
                 return Err(element.error(format!(

@@ -144,10 +144,18 @@ pub(super) fn texture_desc(
             },
         },
         TextureKind::Constant => {
-            // Checked as the checkers' colours are: the renderer would clamp an albedo of 5
-            // to 1 without a word.
             let value = ctx.required(path, &item, "value", t.value)?;
-            Pattern::Constant(color(ctx, "value", Some(value), 0.0)?)
+            if usage == Use::Bump {
+                // A constant height bumps nothing, whatever its value (a Mitsuba
+                // `rawconstant`, which has no range, converts to one).
+                let ok = value.iter().all(|v| v.is_finite() && v.abs() <= f32::MAX as f64);
+                ctx.require(ok, &path.key("value"), format!("{value:?}"), "three finite numbers")?;
+                Pattern::Constant(glam::DVec3::from_array(value).as_vec3())
+            } else {
+                // Checked as the checkers' colours are: the renderer would clamp an albedo
+                // of 5 to 1 without a word.
+                Pattern::Constant(color(ctx, "value", Some(value), 0.0)?)
+            }
         }
         TextureKind::MeshAttribute => Pattern::MeshAttribute {
             name: ctx.required(path, &item, "name", t.name.clone())?,
