@@ -239,6 +239,9 @@ fn a_camera_number_that_is_one_cameras_name_and_anothers_position_is_refused() {
     assert!(scratch.path("out/1.exr").exists());
 }
 
+/// Built only with both backends: a build of one (`--no-default-features --features
+/// obvhs`, as CI also tests) cannot write the other's part.
+#[cfg(all(feature = "embree", feature = "obvhs"))]
 #[test]
 fn parts_of_both_backends_are_refused_in_words_not_debug_text() {
     let scratch = Scratch::new();
