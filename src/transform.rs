@@ -74,6 +74,41 @@ pub fn uniform_scale(transform: &DAffine3) -> Option<f64> {
     (uniform && s2 > 0.0).then(|| s2.sqrt())
 }
 
+/// How far from orthonormal a rotation written out may be: Mitsuba's `has_scale` test (Mᵀ·M
+/// within 1e-3 of the identity, entry by entry). Exporters write matrices to six digits or
+/// so, whose columns miss unit length by about 1e-6.
+pub const ROTATION_TOLERANCE: f64 = 1e-3;
+
+/// Whether `m` is a rotation, possibly mirrored, to within `ROTATION_TOLERANCE`: no scale
+/// or shear.
+pub fn is_orthonormal(m: DMat3) -> bool {
+    (m.transpose() * m - DMat3::IDENTITY)
+        .to_cols_array()
+        .iter()
+        .all(|e| e.abs() <= ROTATION_TOLERANCE)
+}
+
+/// The exact rotation that `m`, a rotation written to a few digits, stands for (its nearest
+/// orthonormal matrix, by the polar decomposition's iteration); `None` if `m` scales,
+/// shears or mirrors beyond `ROTATION_TOLERANCE`. Code that inverts a rotation by
+/// transposing it needs it exact.
+pub fn nearest_rotation(m: DMat3) -> Option<DMat3> {
+    if !(is_orthonormal(m) && m.determinant() > 0.0) {
+        return None;
+    }
+    let mut rotation = m;
+    // Newton's iteration R ← (R + R⁻ᵀ) / 2 converges quadratically from this close.
+    for _ in 0..6 {
+        let next = (rotation + rotation.inverse().transpose()) * 0.5;
+        let settled = next.abs_diff_eq(rotation, 1e-16);
+        rotation = next;
+        if settled {
+            break;
+        }
+    }
+    Some(rotation)
+}
+
 /// A rigid transform that maps the standard axes onto an orthonormal `basis` placed at
 /// `origin`.
 pub fn from_basis_and_origin(basis: DMat3, origin: DVec3) -> DAffine3 {
@@ -134,6 +169,31 @@ mod tests {
             assert!((b.determinant() - 1.0).abs() < 1e-9);
             assert!((b.z_axis + forward.normalize()).length() < 1e-9);
         }
+    }
+
+    #[test]
+    fn a_rotation_written_to_six_digits_is_made_exact_and_a_scale_is_not() {
+        let exact = DMat3::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7);
+        let written =
+            DMat3::from_cols_array(&exact.to_cols_array().map(|x| (x * 1e6).round() / 1e6));
+        assert!(
+            (written.transpose() * written - DMat3::IDENTITY)
+                .to_cols_array()
+                .iter()
+                .any(|e| e.abs() > 1e-9)
+        );
+        let rotation = nearest_rotation(written).expect("within Mitsuba's tolerance");
+        let off = (rotation.transpose() * rotation - DMat3::IDENTITY).to_cols_array();
+        assert!(off.iter().all(|e| e.abs() < 1e-15), "{off:?}");
+        assert!(rotation.abs_diff_eq(exact, 1e-6), "{rotation} vs {exact}");
+        assert!(
+            nearest_rotation(exact * DMat3::from_diagonal(DVec3::new(1.0, 1.01, 1.0))).is_none()
+        );
+        assert!(
+            nearest_rotation(exact * DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0))).is_none()
+        );
+        assert!(nearest_rotation(DMat3::from_cols_array(&[f64::NAN; 9])).is_none());
+        assert!(is_orthonormal(DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0))));
     }
 
     #[test]

@@ -112,7 +112,8 @@ fn a_scene_reads_into_the_model_as_mitsuba_defines_it() {
     assert_eq!(sky.map, embray::scene::EnvironmentMap::Constant(Vec3::ONE));
 }
 
-/// Mitsuba's `parse_fov`: every axis, and the 50 mm default along the diagonal.
+/// Mitsuba's `parse_fov`: every axis (in any case, as Mitsuba lowers it), and the 50 mm
+/// default along the diagonal.
 #[test]
 fn fields_of_view_convert_along_every_axis() {
     let vfov = |fov: &str| {
@@ -128,7 +129,7 @@ fn fields_of_view_convert_along_every_axis() {
         |x_deg: f64| (2.0 * ((0.5 * x_deg).to_radians().tan() / aspect).atan()).to_degrees();
     let expected_x = from_x(40.0);
     for (axis, expected) in
-        [("x", expected_x), ("y", 40.0), ("smaller", 40.0), ("larger", expected_x)]
+        [("x", expected_x), ("y", 40.0), ("Y", 40.0), ("smaller", 40.0), ("Larger", expected_x)]
     {
         let got = vfov(&format!(r#"<string name="fov_axis" value="{axis}"/>"#));
         assert!((got - expected).abs() < 1e-9, "{axis}: {got} vs {expected}");
@@ -275,6 +276,36 @@ fn an_envmap_is_oriented_as_in_mitsuba() {
     assert!(ahead.x > 0.5 && ahead.z < 0.01, "{ahead}");
     let turned = seen(r#"<transform name="to_world"><rotate y="1" angle="180"/></transform>"#);
     assert!(turned.z > 0.5 && turned.x < 0.01, "{turned}");
+    // An exporter's rotation, written to six digits (its columns 3e-7 off unit length), is
+    // the rotation it stands for.
+    let exact = seen(r#"<transform name="to_world"><rotate y="1" angle="-45"/></transform>"#);
+    let written = seen(
+        r#"<transform name="to_world"><matrix value="0.707107 0 -0.707107 0  0 1 0 0  0.707107 0 0.707107 0  0 0 0 1"/></transform>"#,
+    );
+    assert!((written - exact).abs().max_element() < 1e-6, "{written} vs {exact}");
+    assert!(exact.x > 0.0 && exact.x < ahead.x, "the test turns the map: {exact} vs {ahead}");
+}
+
+/// A spot light or projector without `to_world` sits where Mitsuba's identity puts it: at
+/// the origin, shining along +z.
+#[test]
+fn spot_and_projector_without_to_world_shine_from_the_origin_along_z() {
+    let main = format!(
+        r#"<scene version="3.0.0"><default name="spp" value="1"/><default name="fov" value="40"/>{SENSOR}
+    <emitter type="spot"><rgb name="intensity" value="2"/></emitter>
+    <emitter type="projector"/>
+</scene>"#
+    );
+    let scene = load_mitsuba(&files("mitsuba-spot-identity", &main, &[]), &[]).unwrap();
+    let [LightDesc::Spot(spot), LightDesc::Projector(projector)] = &scene.lights[..] else {
+        panic!("{:?}", scene.lights)
+    };
+    close(spot.position, DVec3::ZERO);
+    close(spot.direction, DVec3::Z);
+    assert_eq!(spot.intensity, Vec3::splat(2.0));
+    close(projector.position, DVec3::ZERO);
+    close(projector.direction, DVec3::Z);
+    close(projector.up, DVec3::Y);
 }
 
 /// Integrators read their own parameters only: `rr_depth` (Mitsuba's default 5), `direct`'s

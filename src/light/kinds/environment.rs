@@ -6,6 +6,7 @@ use super::{LightKind, LightParts};
 use crate::light::{EnvironmentLight, EnvironmentMapping, TexelLookup};
 use crate::params::{ParamError, ParamSink, Params, Resources};
 use crate::texels::TextureImage;
+use crate::transform::nearest_rotation;
 use glam::{DAffine3, DMat3, Vec3};
 use std::sync::Arc;
 
@@ -82,16 +83,14 @@ impl LightKind for Environment {
         p.require(mapping.is_none() || p.has("file"), "mapping", "given", "given only with file")?;
         let world_from_map = match p.numbers::<9>("to_world")? {
             Some(rows) => {
-                let m = DMat3::from_cols_array(&rows).transpose();
-                let orthonormal = (m.transpose() * m - DMat3::IDENTITY).to_cols_array();
-                let ok = orthonormal.iter().all(|e| e.abs() < 1e-9) && m.determinant() > 0.0;
+                let rotation = nearest_rotation(DMat3::from_cols_array(&rows).transpose());
                 p.require(
-                    ok,
+                    rotation.is_some(),
                     "to_world",
                     format!("{rows:?}"),
-                    "a rotation (9 numbers, row by row)",
+                    "a rotation (9 numbers, row by row; no scale, shear or mirror)",
                 )?;
-                m
+                rotation.unwrap_or(DMat3::IDENTITY)
             }
             None => DMat3::IDENTITY,
         };

@@ -12,6 +12,7 @@ use crate::params::{Entry, ParamError, Params, Resources, Value};
 use crate::scene::error::SceneError;
 use crate::scene::texture_image::radiance_param;
 use crate::texels::TextureImage;
+use crate::transform::nearest_rotation;
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -36,25 +37,28 @@ impl Builder<'_> {
         // Mitsuba's names only: embray's own (`file`, `falloff_angle`, …) would otherwise
         // reach its light kinds unseen. `sampling_weight` and `mis_compensation` change how
         // Mitsuba samples, not what it renders: checked, and not used.
-        let (known, colour): (&[&str], Option<&str>) = match kind {
-            "point" => (&["position", "intensity"], Some("intensity")),
-            "directional" => (&["direction", "irradiance"], Some("irradiance")),
-            "spot" => (&["intensity", "cutoff_angle", "beam_width", "texture"], Some("intensity")),
-            "projector" => (&["irradiance", "scale", "fov", "fov_axis", "focal_length"], None),
-            "constant" => (&["radiance"], Some("radiance")),
-            _ => (&["filename", "scale", "mis_compensation"], None),
+        // Each kind's parameters: those its embray light takes under the same name and
+        // meaning (passed on as they are), those read here, and the one that is a colour.
+        let (passed_on, read_here, colour): (&[&str], &[&str], _) = match kind {
+            "point" => (&["position", "intensity"], &[], Some("intensity")),
+            "directional" => (&["direction", "irradiance"], &[], Some("irradiance")),
+            "spot" => {
+                (&["intensity"], &["cutoff_angle", "beam_width", "texture"], Some("intensity"))
+            }
+            "projector" => (&[], &["irradiance", "scale", "fov", "fov_axis", "focal_length"], None),
+            "constant" => (&["radiance"], &[], Some("radiance")),
+            _ => (&[], &["filename", "scale", "mis_compensation"], None),
         };
-        let known: Vec<&str> =
-            known.iter().chain(&["to_world", "sampling_weight"]).copied().collect();
+        let known: Vec<&str> = passed_on
+            .iter()
+            .chain(read_here)
+            .chain(&["to_world", "sampling_weight"])
+            .copied()
+            .collect();
         refuse_unread(element, &format!("the {kind} emitter"), &known, &[])?;
         boolean(element, "mis_compensation")?;
         float(element, "sampling_weight")?;
-        let mut skip: Vec<&str> = match kind {
-            "envmap" => vec!["filename", "scale"],
-            "spot" => vec!["cutoff_angle", "beam_width", "texture"],
-            "projector" => vec!["irradiance", "scale", "fov", "fov_axis", "focal_length"],
-            _ => vec![],
-        };
+        let mut skip = read_here.to_vec();
         skip.extend(["mis_compensation", "sampling_weight"]);
         // A colour given as a number (or as what is no colour) is read as `color` reads it;
         // a texture there is left for `params` to refuse.
@@ -113,10 +117,8 @@ impl Builder<'_> {
                 kind
             }
             "projector" => {
-                let Some(m) = to_world else {
-                    return Err(element
-                        .error("a projector needs a to_world (where it is, where it points)"));
-                };
+                // Without one, Mitsuba's identity: at the origin, along +z.
+                let m = to_world.unwrap_or(glam::DAffine3::IDENTITY);
                 let irradiance =
                     element.children.iter().find(|c| c.attr("name") == Some("irradiance"));
                 let constant = match irradiance {
@@ -161,10 +163,7 @@ impl Builder<'_> {
                 "projector"
             }
             "spot" => {
-                let Some(m) = to_world else {
-                    return Err(element
-                        .error("a spot light needs a to_world (where it is, where it points)"));
-                };
+                let m = to_world.unwrap_or(glam::DAffine3::IDENTITY);
                 let cutoff = float(element, "cutoff_angle")?.unwrap_or(20.0);
                 let beam = float(element, "beam_width")?.unwrap_or(0.75 * cutoff);
                 if !(cutoff > 0.0 && cutoff < 90.0 && beam >= 0.0 && beam <= cutoff) {
@@ -201,13 +200,13 @@ impl Builder<'_> {
                 if let Some(scale) = float(element, "scale")? {
                     p.push(derived(element, "scale", Value::Numbers(vec![scale; 3])));
                 }
+                let mut rotation = glam::DMat3::IDENTITY;
                 if let (Some(m), Some(t)) = (to_world, property(element, "transform", "to_world")) {
                     // Checked before the half turn below, so that a message shows the user's
                     // matrix.
                     let m = m.matrix3;
-                    let off = (m.transpose() * m - glam::DMat3::IDENTITY).to_cols_array();
-                    if !(off.iter().all(|e| e.abs() < 1e-9) && m.determinant() > 0.0) {
-                        return Err(t.error(format!(
+                    rotation = nearest_rotation(m).ok_or_else(|| {
+                        t.error(format!(
                             "an envmap's to_world must be a rotation (no scale, shear or \
                              mirror), not {}",
                             m.transpose()
@@ -215,14 +214,13 @@ impl Builder<'_> {
                                 .map(|x| (x * 1e6).round() / 1e6)
                                 .map(|x| x.to_string())
                                 .join(", ")
-                        )));
-                    }
+                        ))
+                    })?;
                 }
                 // Mitsuba's map looks along +z at its centre, embray's along −z: half a
                 // turn about y between them.
                 let half_turn = glam::DMat3::from_diagonal(DVec3::new(-1.0, 1.0, -1.0));
-                let world_from_map =
-                    to_world.map_or(glam::DMat3::IDENTITY, |m| m.matrix3) * half_turn;
+                let world_from_map = rotation * half_turn;
                 let rows = world_from_map.transpose().to_cols_array().to_vec();
                 p.push(derived(element, "to_world", Value::Numbers(rows)));
                 p.push(derived(element, "interpolation", Value::Text("bilinear_poles".to_owned())));

@@ -26,7 +26,8 @@ pub(super) fn x_fov(sensor: &Element, aspect: f64) -> Result<f64, SceneError> {
     let (fov, axis, at) = match float(sensor, "fov")? {
         Some(fov) => {
             let axis = string(sensor, "fov_axis")?;
-            let name = axis.map_or(Ok("x"), |a| a.required("value"))?;
+            // Mitsuba lowers its case.
+            let name = axis.map_or(Ok("x"), |a| a.required("value"))?.to_ascii_lowercase();
             (fov, name, axis.unwrap_or(sensor))
         }
         None => {
@@ -43,14 +44,14 @@ pub(super) fn x_fov(sensor: &Element, aspect: f64) -> Result<f64, SceneError> {
             };
             let diagonal = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
             let fov = (2.0 * (diagonal / (2.0 * length)).atan()).to_degrees();
-            (fov, "diagonal", sensor)
+            (fov, "diagonal".to_owned(), sensor)
         }
     };
     if !(fov > 0.0 && fov < 180.0) {
         return Err(sensor.error(format!("fov is {fov}, but must be between 0 and 180 degrees")));
     }
     let half_tan = (0.5 * fov).to_radians().tan();
-    let x_half_tan = match axis {
+    let x_half_tan = match axis.as_str() {
         "x" => half_tan,
         "y" => half_tan * aspect,
         "diagonal" => half_tan / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
@@ -96,10 +97,8 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         None => glam::DAffine3::IDENTITY,
     };
     if kind != "orthographic" {
-        // Mitsuba's test (`has_scale`): M·Mᵀ within 1e-3 of the identity.
-        let m = to_world.matrix3;
-        let off = (m * m.transpose() - glam::DMat3::IDENTITY).to_cols_array();
-        if off.iter().any(|e| !(e.abs() <= 1e-3)) {
+        // Mitsuba's test (`has_scale`).
+        if !crate::transform::is_orthonormal(to_world.matrix3) {
             let at = property(element, "transform", "to_world").unwrap_or(element);
             return Err(at.error(
                 "scale factors (or shear) in a camera's to_world are not allowed (as in Mitsuba)",
