@@ -225,3 +225,28 @@ fn a_number_as_a_colour_is_a_grey() {
     let Specular::Conductor { eta, k, .. } = metal.specular else { panic!("{metal:?}") };
     assert_eq!((eta, k), (Vec3::splat(0.5), Vec3::ONE));
 }
+
+/// A wrapper takes its BSDF under any name, as Mitsuba does, also by reference: a
+/// `<ref name="bsdf" id=…>` in a `twosided` is the BSDF it names, and a reference by another
+/// name to what is no BSDF is refused.
+#[test]
+fn a_wrapper_takes_a_named_reference_to_its_bsdf() {
+    let scene = |inner: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+             value=\"40\"/>{SENSOR}\n<bsdf type=\"diffuse\" id=\"white\"><rgb name=\"reflectance\" \
+             value=\"0.8\"/></bsdf>\n<texture type=\"checkerboard\" id=\"board\"/>\n<shape \
+             type=\"cube\"><bsdf type=\"twosided\">{inner}</bsdf></shape>\n</scene>"
+        )
+    };
+    let load = |name: &str, inner: &str| load_mitsuba(&files(name, &scene(inner), &[]), &[]);
+    let named = load("m-ref-named", "<ref name=\"bsdf\" id=\"white\"/>").unwrap();
+    let material = &named.materials[named.objects[0].material as usize];
+    assert_eq!(material.albedo, Vec3::splat(0.8));
+    assert!(!material.one_sided);
+    let wrong = load("m-ref-texture", "<ref name=\"bsdf\" id=\"board\"/>").unwrap_err();
+    assert_contains(
+        &wrong,
+        &["<ref name=\"bsdf\" id=\"board\">", "is a <texture>, not a <bsdf>", "(line "],
+    );
+}

@@ -8,8 +8,10 @@ mod common;
 mod blend;
 mod bsdfs;
 mod film_sampler;
+mod emitters_compat;
 mod principled;
 mod reader;
+mod shapes_compat;
 mod suite;
 
 use embray::scene::SceneDesc;

@@ -36,10 +36,12 @@ pub(super) fn bsdf(
     let none = MaterialDesc { name, albedo: Vec3::ZERO, one_sided: true, ..Default::default() };
     match kind {
         "twosided" => {
-            check_properties(element, &["allow_transmission"])?;
+            const PARAMETERS: [&str; 1] = ["allow_transmission"];
+            check_properties(element, &PARAMETERS)?;
             let allowed = super::values::boolean(element, "allow_transmission")?;
             let inner = nested_bsdf(
                 element,
+                &PARAMETERS,
                 ids,
                 files,
                 "twosided takes one nested <bsdf> (two are not supported)",
@@ -61,7 +63,7 @@ pub(super) fn bsdf(
         }
         "blendbsdf" => {
             check_properties(element, &["weight"])?;
-            let parts = nested_bsdfs(element, ids, files)?;
+            let parts = nested_bsdfs(element, &["weight"], ids, files)?;
             let [first, second] = <[MaterialDesc; 2]>::try_from(parts)
                 .map_err(|_| element.error("blendbsdf takes two nested <bsdf>s"))?;
             let weight = number_or_texture(element, "weight", None, ids, files)?;
@@ -86,7 +88,8 @@ pub(super) fn bsdf(
         }
         "mask" => {
             check_properties(element, &["opacity"])?;
-            let inner = nested_bsdf(element, ids, files, "mask takes one nested <bsdf>")?;
+            let inner =
+                nested_bsdf(element, &["opacity"], ids, files, "mask takes one nested <bsdf>")?;
             if inner.opacity.is_some() {
                 return Err(element.error("a mask inside a mask is not supported"));
             }
@@ -95,7 +98,8 @@ pub(super) fn bsdf(
         }
         "normalmap" => {
             check_properties(element, &["normalmap"])?;
-            let inner = nested_bsdf(element, ids, files, "normalmap takes one nested <bsdf>")?;
+            let only = "normalmap takes one nested <bsdf>";
+            let inner = nested_bsdf(element, &["normalmap"], ids, files, only)?;
             let map = reflectance_texture(element, "normalmap", ids, files)?
                 .ok_or_else(|| element.error("normalmap needs a <texture name=\"normalmap\">"))?;
             if inner.normal_map.is_some() || inner.bump_map.is_some() {
@@ -105,17 +109,24 @@ pub(super) fn bsdf(
             Ok(MaterialDesc { name: none.name, normal_map: Some(map), bump_shadowing, ..inner })
         }
         "bumpmap" => {
-            let inner = nested_bsdf(element, ids, files, "bumpmap takes one nested <bsdf>")?;
+            // Its texture under any name, as its BSDF: told apart by what a reference is.
+            let is_texture = |c: &Element| match c.tag.as_str() {
+                "texture" => true,
+                "ref" => ids.resolve(c).is_ok_and(|target| target.tag != "bsdf"),
+                _ => false,
+            };
             let textures: Vec<&str> = element
                 .children
                 .iter()
-                .filter(|c| matches!(c.tag.as_str(), "texture" | "ref") && c.attr("name").is_some())
+                .filter(|c| is_texture(c))
                 .filter_map(|c| c.attr("name"))
                 .collect();
             let [name] = textures[..] else {
                 return Err(element.error("bumpmap takes one height <texture>"));
             };
             check_properties(element, &["scale", name])?;
+            let only = "bumpmap takes one nested <bsdf>";
+            let inner = nested_bsdf(element, &["scale", name], ids, files, only)?;
             let texture = float_texture(element, name, range::ANY, ids, files)?
                 .ok_or_else(|| element.error("bumpmap needs a height <texture>"))?;
             if inner.normal_map.is_some() || inner.bump_map.is_some() {
@@ -156,28 +167,33 @@ pub(super) fn bsdf(
 /// The one `<bsdf>` (or reference to one) inside a wrapper such as `twosided` or `mask`.
 fn nested_bsdf(
     element: &Element,
+    parameters: &[&str],
     ids: &super::Ids,
     files: &FileResolver,
     otherwise: &str,
 ) -> Result<MaterialDesc, SceneError> {
-    let mut inner = nested_bsdfs(element, ids, files)?;
+    let mut inner = nested_bsdfs(element, parameters, ids, files)?;
     match inner.len() {
         1 => Ok(inner.remove(0)),
         _ => Err(element.error(otherwise)),
     }
 }
 
-/// The `<bsdf>`s (or references to them) inside `element`, in order.
+/// The `<bsdf>`s (or references to them) inside `element`, in order. As in Mitsuba, a
+/// wrapper takes its BSDFs under any name, or none: every reference not by the name of one
+/// of its `parameters` must be to a BSDF.
 fn nested_bsdfs(
     element: &Element,
+    parameters: &[&str],
     ids: &super::Ids,
     files: &FileResolver,
 ) -> Result<Vec<MaterialDesc>, SceneError> {
+    let parameter = |c: &Element| c.attr("name").is_some_and(|n| parameters.contains(&n));
     ids.nested(element, || {
         element
             .children
             .iter()
-            .filter(|c| c.tag == "bsdf" || (c.tag == "ref" && c.attr("name").is_none()))
+            .filter(|c| c.tag == "bsdf" || (c.tag == "ref" && !parameter(c)))
             .map(|one| bsdf(ids.bsdf(one)?, ids, files))
             .collect()
     })
@@ -233,8 +249,10 @@ fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError>
         Some("twosided" | "mask" | "normalmap" | "bumpmap" | "blendbsdf")
     );
     for child in &element.children {
-        if wrapper && child.tag == "bsdf" {
-            // A nested BSDF, whatever its name (Mitsuba takes every nested object).
+        let parameter = child.attr("name").is_some_and(|n| known.contains(&n));
+        if wrapper && matches!(child.tag.as_str(), "bsdf" | "ref") && !parameter {
+            // A nested BSDF, whatever its name (Mitsuba takes every nested object), or a
+            // reference that `nested_bsdfs` requires to be one.
             continue;
         }
         if let Some(name) = child.attr("name") {
