@@ -91,19 +91,29 @@ pub fn render_with(
     on_pass: &mut OnPass<'_>,
 ) -> Result<RenderOutput, RenderError> {
     let part = render_part_with(desc, options, Part::WHOLE, on_pass)?;
+    let film = match options.crop {
+        Some(window) => part.sums.resolve().cropped(window),
+        None => part.sums.resolve(),
+    };
+    let mut warnings = part.warnings;
+    let brightest = film.color.iter().fold(0.0f32, |b, c| b.max(c.abs().max_element()));
+    if brightest > 0.0 && brightest < crate::sample_sums::SMALLEST_EXACT {
+        warnings.push(format!(
+            "the brightest pixel is {brightest:.3e}, below {:.3e}, under which a pixel's exact \
+             sums truncate each sample: the image has lost precision (scale the lights up)",
+            crate::sample_sums::SMALLEST_EXACT
+        ));
+    }
     Ok(RenderOutput {
         spp_done: part.spp_done,
         stopped: part.stopped,
-        film: match options.crop {
-            Some(window) => part.sums.resolve().cropped(window),
-            None => part.sums.resolve(),
-        },
+        film,
         stats: part.stats,
         backend: part.backend,
         observes: part.observes,
         build_time: part.build_time,
         render_time: part.render_time,
-        warnings: part.warnings,
+        warnings,
     })
 }
 
@@ -159,6 +169,15 @@ pub fn render_part_with(
         let build_time = build_start.elapsed();
         let render_start = Instant::now();
         let passes = render_passes(&scene, accel.as_ref(), options, part, on_pass);
+        let mut warnings = warnings;
+        if let clamped @ 1.. = passes.stats.clamped_samples {
+            warnings.push(format!(
+                "{clamped} samples were brighter than {:.3e}, the most a pixel's exact sums \
+                 hold for one sample, and were added as that (lights that bright are beyond \
+                 what the film represents: scale them down, or give --clamp)",
+                crate::sample_sums::LARGEST_SAMPLE
+            ));
+        }
         Ok(PartOutput {
             sums: passes.sums,
             stats: passes.stats,

@@ -205,7 +205,10 @@ pub(crate) fn render_tile(
             _ => sample.radiance,
         };
         // The box filter's weight is exactly 1, and x · 1 is x: its renders are unchanged.
-        sums.add_sample(radiance * weight, sample.depth, sample.normal, sample.albedo)
+        let radiance = radiance * weight;
+        sums.add_sample(radiance, sample.depth, sample.normal, sample.albedo);
+        // Whether the sums held it whole (a light of 10¹⁶ seen directly does not).
+        u64::from(radiance.abs().max_element() >= crate::sample_sums::LARGEST_SAMPLE)
     };
     let batched = match tracer {
         Tracer::Path(path) if options.paths == PathBatching::Batched => Some(path),
@@ -224,7 +227,7 @@ pub(crate) fn render_tile(
                 let uniform = stream.pixel_position(s, spp, options.jitters());
                 let (ray, backdrop, weight) = camera_ray(scene, pixel, uniform, &stream);
                 let sample = tracer.trace(ray, backdrop, &mut stream, &mut result.stats);
-                add(sums, &sample, weight);
+                result.stats.clamped_samples += add(sums, &sample, weight);
             }
         }
         // A Whitted tree stops mid-sample on a stop: the tile's last samples may be cut.
@@ -248,7 +251,7 @@ pub(crate) fn render_tile(
         for ((sums, sample), weight) in
             result.sums.iter_mut().zip(wavefront.results()).zip(&scratch.camera.weights)
         {
-            add(sums, sample, *weight);
+            result.stats.clamped_samples += add(sums, sample, *weight);
         }
         clock.lap(Phase::Accumulate, &mut result.stats.phases);
     }

@@ -17,6 +17,11 @@ const FRACTION_BITS: i32 = 56;
 /// scene within the coordinate limits gives): one sample is at most 2¹⁰⁶ in fixed point, so
 /// the sum of `limits::MAX_SPP` = 2²⁰ samples stays below 2¹²⁶, inside `i128`.
 const MAX_MAGNITUDE_LOG2: i32 = 50;
+/// The largest magnitude of one sample's value, 2^`MAX_MAGNITUDE_LOG2`: beyond it, the value
+/// is summed as this.
+pub const LARGEST_SAMPLE: f32 = (1u64 << MAX_MAGNITUDE_LOG2) as f32;
+/// The smallest magnitude whose every bit the sums keep; below it, the value is truncated.
+pub const SMALLEST_EXACT: f32 = 1.0 / (1u64 << 32) as f32;
 
 /// `value` in fixed point (NaN counts as 0; ±∞ and huge values are clamped), truncated
 /// toward zero: `value · 2^FRACTION_BITS` exactly, through an i64 when it fits, else read off

@@ -71,6 +71,14 @@ pub struct RenderStats {
     /// (`--time-phases`).
     #[serde(default, skip_serializing_if = "PhaseTimes::is_empty")]
     pub phases: PhaseTimes,
+    /// Samples with a colour channel beyond what a pixel's exact sums hold
+    /// (`sample_sums::LARGEST_SAMPLE`), added as that largest value. Absent when none was.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub clamped_samples: u64,
+}
+
+fn is_zero(count: &u64) -> bool {
+    *count == 0
 }
 
 impl RenderStats {
@@ -79,4 +87,4 @@ impl RenderStats {
     }
 }
 
-add_fields!(RenderStats { camera, shadow, indirect, traversal, bounces, phases });
+add_fields!(RenderStats { camera, shadow, indirect, traversal, bounces, phases, clamped_samples });

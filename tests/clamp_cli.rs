@@ -33,3 +33,38 @@ fn a_clamp_bounds_every_pixel_and_nonsense_is_refused() {
         assert!(stderr.contains("--clamp is"), "{bad}: {stderr}");
     }
 }
+
+/// A sample beyond what a pixel's exact sums hold (2⁵⁰) is added as that largest value, and
+/// an image whose brightest pixel is below the sums' exact range (2⁻³²) has lost precision:
+/// both are said, not left silent; `--clamp` keeps the first from happening.
+#[test]
+fn radiance_beyond_the_exact_sums_is_warned_about() {
+    let dir = temp_dir("clamp-range");
+    let scene = |emission: &str| {
+        format!(
+            "[camera]\nlookfrom = [0.0, 0.0, 3.0]\nlookat = [0.0, 0.0, 0.0]\nvfov = 40.0\n\
+             resolution = [4, 4]\n[render]\nspp = 2\n[materials.light]\nalbedo = [0.0, 0.0, 0.0]\n\
+             emission = [{emission}, {emission}, {emission}]\n[[objects]]\ntype = \"sphere\"\n\
+             material = \"light\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\n"
+        )
+    };
+    let warnings = |emission: &str, extra: &[&str]| {
+        std::fs::write(dir.join("s.toml"), scene(emission)).unwrap();
+        let mut args = vec!["render", "s.toml", "-o", "s.exr"];
+        args.extend(extra);
+        let out = embray(&args, &dir);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stderr)
+            .lines()
+            .filter(|l| l.contains("warning"))
+            .map(str::to_owned)
+            .collect::<Vec<_>>()
+    };
+    let bright = warnings("1e20", &[]);
+    assert!(bright.iter().any(|w| w.contains("samples were brighter than 1.126e15")), "{bright:?}");
+    assert!(brightest(&dir.join("s.exr")) <= 1.126e15 * 1.001);
+    assert_eq!(warnings("1e20", &["--clamp", "1e10"]), Vec::<String>::new());
+    assert_eq!(warnings("1", &[]), Vec::<String>::new());
+    let dim = warnings("1e-12", &[]);
+    assert!(dim.iter().any(|w| w.contains("the brightest pixel is 1.000e-12")), "{dim:?}");
+}
