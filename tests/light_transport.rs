@@ -6,6 +6,7 @@ mod common;
 use common::build::*;
 use common::*;
 use embray::choice::Choice;
+use embray::render_options::PathBatching;
 use embray::sampling::SamplerKind;
 use embray::scene::{MeshData, SceneDesc, ShapeDesc};
 use glam::{DAffine3, DVec3, Vec3};
@@ -146,5 +147,41 @@ fn mirrored_objects_render_alike_baked_and_instanced() {
         // Observed 3e-13 (Embree) and 8e-13 (obvhs): rounding of the transforms only. Before
         // one handedness rule the baked emitter shone inwards and the image was black.
         assert!(error.relative_mse < 1e-10, "{}: {error:?}", backend.name());
+    }
+}
+
+/// The path tracer's last ray looks only for light: where no ray can find any (no emitter,
+/// environment or background), it is not traced, and the image is the same. Inside a
+/// closed box lit by a point light, a grey background (which no ray can reach) makes it
+/// traced: the same image bit for bit, with more rays, on both backends and both ways of
+/// advancing paths.
+#[test]
+fn the_last_ray_is_traced_only_where_rays_can_find_light() {
+    let box_scene = |background: f32| {
+        scene_from_str(&format!(
+            "[camera]\nlookfrom = [0.0, 0.0, 1.5]\nlookat = [0.0, 0.0, 0.0]\nvfov = 60.0\n\
+             resolution = [16, 16]\n[render]\nmax_depth = 3\nbackground = [{background}, \
+             {background}, {background}]\n[materials.grey]\nalbedo = [0.6, 0.6, 0.6]\n\
+             [[objects]]\ntype = \"box\"\nmaterial = \"grey\"\nmin = [-2.0, -2.0, -2.0]\n\
+             max = [2.0, 2.0, 2.0]\n[[lights]]\ntype = \"point\"\nposition = [0.0, 1.0, 0.0]\n\
+             intensity = [5.0, 5.0, 5.0]\n"
+        ))
+    };
+    let (dark, grey) = (box_scene(0.0), box_scene(0.5));
+    for backend in backends() {
+        for paths in [PathBatching::Batched, PathBatching::Scalar] {
+            let render = |s: &SceneDesc| {
+                let mut o = options(s, backend, 4);
+                o.paths = paths;
+                render_ok(s, &o)
+            };
+            let (skipped, traced) = (render(&dark), render(&grey));
+            let what = format!("{} {paths:?}", backend.name());
+            assert!(film_mean(&skipped.film).x > 0.01, "{what}: the box must be lit");
+            assert_eq!(skipped.film.color, traced.film.color, "{what}: the images differ");
+            let (a, b) = (skipped.stats.indirect.rays, traced.stats.indirect.rays);
+            assert!(b > a && a > 0, "{what}: {a} rays without light to find, {b} with");
+            assert_eq!(traced.stats.indirect.hits, traced.stats.indirect.rays, "{what}: closed");
+        }
     }
 }
