@@ -21,6 +21,13 @@ pub enum CompareError {
          infinite value): there is nothing to compare"
     )]
     NothingFinite { a: usize, b: usize },
+    #[error(
+        "variance image '{}': pixel ({x}, {y}) has {channel} = {value}, but a variance must be \
+         a finite number >= 0 (the test divides by it: an infinite one passes any image, and \
+         a NaN or negative one is no variance)",
+        .path.display()
+    )]
+    Variance { path: PathBuf, x: u32, y: u32, channel: char, value: f32 },
 }
 
 /// How two images differ.

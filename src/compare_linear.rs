@@ -5,6 +5,7 @@ use crate::compare::CompareError;
 use crate::film::Film;
 use crate::image_error::{ImageError, image_error};
 use glam::DVec3;
+use std::path::Path;
 
 /// How two linear images differ.
 #[derive(Clone, Debug)]
@@ -71,6 +72,25 @@ pub fn compare_films(a: &Film, b: &Film) -> Result<LinearComparison, CompareErro
         rmse: (sum2 / n.max(1) as f64).sqrt(),
         error: image_error(a, b),
     })
+}
+
+/// Refuses a variance image (`compare --variance`) with a texel that is NaN, infinite or
+/// negative: the Z-test divides by it, so +inf passes every image and NaN or a negative
+/// one turns the test into nonsense rather than a failure.
+pub fn check_variance(variance: &Film, path: &Path) -> Result<(), CompareError> {
+    for (i, texel) in variance.color.iter().enumerate() {
+        let bad = texel
+            .to_array()
+            .into_iter()
+            .zip(['R', 'G', 'B'])
+            .find(|(v, _)| !(*v >= 0.0) || !v.is_finite());
+        if let Some((value, channel)) = bad {
+            let width = variance.width.max(1);
+            let (x, y) = (i as u32 % width, i as u32 / width);
+            return Err(CompareError::Variance { path: path.to_path_buf(), x, y, channel, value });
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

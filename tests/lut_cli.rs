@@ -58,3 +58,18 @@ fn a_broken_table_is_refused_with_its_line_before_rendering() {
         "inputs are never overwritten"
     );
 }
+
+#[test]
+fn a_table_starting_with_a_byte_order_mark_is_read() {
+    let dir = temp_dir("lut-bom");
+    std::fs::write(dir.join("scene.toml"), GOOD_SCENE).unwrap();
+    // As Windows editors save UTF-8: it was "line 1: table values before LUT_3D_SIZE".
+    std::fs::write(dir.join("bom.cube"), format!("\u{feff}{SWAP_RED_BLUE}")).unwrap();
+    std::fs::write(dir.join("swap.cube"), SWAP_RED_BLUE).unwrap();
+    for (lut, png) in [("bom.cube", "bom.png"), ("swap.cube", "swap.png")] {
+        let out =
+            embray(&["render", "scene.toml", "-q", "--spp", "1", "--lut", lut, "--png", png], &dir);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    }
+    assert_eq!(rgb(&dir.join("bom.png")), rgb(&dir.join("swap.png")));
+}

@@ -80,7 +80,10 @@ fn parts_that_do_not_make_one_render_are_refused() {
     assert_refused(
         &dir,
         &["p0.exr", "seed.exr", "p2.exr"],
-        &["'seed.exr' does not belong with 'p0.exr'", "render option seed differs (5 vs 0)"],
+        &[
+            "'seed.exr' does not belong with 'p0.exr'",
+            "the render options differ (--seed 5 vs --seed 0)",
+        ],
     );
     std::fs::write(dir.join("other.toml"), scene().replace("radius = 1.0", "radius = 0.9"))
         .unwrap();
@@ -119,6 +122,32 @@ fn parts_that_do_not_make_one_render_are_refused() {
     }
     ok(&["merge", "p0.exr", "p1.exr", "p2.exr", "-o", "m.exr", "--png", "m.jpg"], &dir);
     assert_eq!(std::fs::read(dir.join("m.jpg")).unwrap()[..3], [0xFF, 0xD8, 0xFF]);
+}
+
+/// Parts rendered with different options are refused naming the options as the command
+/// line writes them, not as Rust's debug text (`DVec3(1.0` cut at its comma, `Fast }`).
+#[test]
+fn parts_of_other_options_are_refused_in_command_line_words() {
+    let dir = rendered("option-words");
+    for (options, expected) in [
+        (&["--offset", "1,1,1"][..], "(--offset 1,1,1 vs --offset 0,0,0)"),
+        (&["--clamp", "0.5"], "(--clamp 0.5 vs no --clamp)"),
+        (&["--spawn", "epsilon=1"], "(--spawn epsilon=1 vs --spawn robust)"),
+        (&["--build-quality", "high"], "(--build-quality high vs --build-quality medium)"),
+        (&["--batch", "single"], "(--batch single vs --batch native)"),
+        (&["--intersection", "fast"], "(--intersection fast vs --intersection robust)"),
+    ] {
+        let mut args = vec!["render", "scene.toml", "-q", "--part", "1/3", "-o", "other.exr"];
+        args.extend(options);
+        ok(&args, &dir);
+        let expected = ["'other.exr' does not belong with 'p0.exr'", expected];
+        assert_refused(&dir, &["p0.exr", "other.exr", "p2.exr"], &expected);
+        let out = embray(&["merge", "p0.exr", "other.exr", "p2.exr", "-o", "m.exr"], &dir);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        for debug in ["DVec3", "Some(", "None", "Epsilon(", "}"] {
+            assert!(!stderr.contains(debug), "{debug} in: {stderr}");
+        }
+    }
 }
 
 /// Options a part cannot honour are refused before it renders: among them a grading LUT

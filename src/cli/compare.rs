@@ -33,6 +33,10 @@ pub struct CompareArgs {
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
+    if args.spp == Some(0) {
+        // The test's standard error is √(variance / spp): at 0 spp every difference passes.
+        anyhow::bail!("--spp is 0, but the first image has at least 1 sample per pixel");
+    }
     // The heat map may overwrite neither image: checked before anything is read.
     let mut plan = OutputPlan::new();
     plan.input("the first image", &args.a);
@@ -132,8 +136,10 @@ fn compare_linear(a: &Path, b: &Path) -> Result<()> {
 /// per-sample `variance`; a failing image is an exit status of 1.
 fn mitsuba_rule(a: &Path, b: &Path, variance: &Path, spp: u32) -> Result<()> {
     use embray::bench::convergence::read_reference;
-    let (image, reference, variance) =
+    let (image, reference, variance_film) =
         (read_reference(a)?, read_reference(b)?, read_reference(variance)?);
+    embray::compare_linear::check_variance(&variance_film, variance)?;
+    let variance = variance_film;
     let size = |f: &embray::film::Film| (f.width, f.height);
     if size(&image) != size(&reference) || size(&variance) != size(&reference) {
         anyhow::bail!("the image, the reference and the variance must have the same size");

@@ -74,6 +74,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         args.stats_json.as_deref().map(|p| plan.output("--stats-json", p, false)).transpose()?;
     for job in &jobs {
         let options = args.to_options(&job.scene)?;
+        args.check_samples(&job.scene, options.spp, job.camera.as_deref())?;
         if args.denoise {
             let triangle = options.backend.bytes_per_triangle();
             embray::denoise::check_memory(&job.scene, triangle, options.worker_threads())?;
@@ -100,9 +101,21 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
     }
     match stopped {
-        Some(Stopped { reason, skipped, .. }) => {
+        Some(Stopped { reason, stopped_in, skipped }) => {
             if !skipped.is_empty() {
-                note(format!("not rendered ({reason}): {}", skipped.join(", ")));
+                // Exit 0 as for any time limit (README: Progressive renders), so the warning
+                // is what tells a script's log that whole cameras are missing.
+                let skipped: Vec<String> = skipped
+                    .iter()
+                    .map(|(camera, files)| format!("{camera} ({})", files.join(", ")))
+                    .collect();
+                note(format!(
+                    "warning: {reason} in {}, whose image holds the passes done; the later \
+                     cameras were skipped and their files not written: {} (render one alone \
+                     with --camera NAME)",
+                    stopped_in.as_deref().unwrap_or("the first camera"),
+                    skipped.join(", ")
+                ));
             }
             // A signal still ends the process as the signal would have: scripts see it.
             if let StopReason::Signal(signal) = reason {
@@ -117,10 +130,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 /// The EXR's AOVs and text attributes.
 type ExrLook = (Aovs, Vec<(String, String)>);
 
-/// A run that stopped early: why, and the images it did not render.
+/// A run that stopped early: why, in which camera, and the cameras it did not render
+/// (each with the files it would have written).
 struct Stopped {
     reason: StopReason,
-    skipped: Vec<String>,
+    stopped_in: Option<String>,
+    skipped: Vec<(String, Vec<String>)>,
 }
 
 type Rendered = (OutputSet, Vec<(String, String)>, Option<Stopped>);
@@ -200,8 +215,10 @@ fn render_jobs(
         }
         reports.push((line, table));
         if let Some(reason) = output.stopped {
-            let skipped = jobs[k + 1..].iter().flat_map(job_paths).collect();
-            return Ok((files, reports, Some(Stopped { reason, skipped })));
+            let label = |job: &Job| job.camera.clone().unwrap_or_else(|| "the scene".into());
+            let skipped = jobs[k + 1..].iter().map(|job| (label(job), job_paths(job))).collect();
+            let stopped_in = job.camera.clone();
+            return Ok((files, reports, Some(Stopped { reason, stopped_in, skipped })));
         }
     }
     Ok((files, reports, None))

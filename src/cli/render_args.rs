@@ -6,7 +6,7 @@ use clap::Args;
 use embray::accel::{AccelOptions, BackendKind, BatchMode, BuildQuality, Intersection};
 use embray::compile::EffectsMode;
 use embray::distributed::Split;
-use embray::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SPP, MAX_THREADS};
+use embray::limits::{MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_SAMPLES, MAX_SPP, MAX_THREADS};
 use embray::render::RenderOptions;
 use embray::render_options::PathBatching;
 use embray::render_space::RenderSpace;
@@ -271,6 +271,31 @@ impl RenderArgs {
     /// The AOVs `scene`'s EXR carries: `--aovs`, else the scene's, else depth and normal.
     pub fn aovs_for(&self, scene: &SceneDesc) -> embray::output::Aovs {
         self.aovs.or(scene.settings.aovs).unwrap_or_default()
+    }
+
+    /// Refuses more camera samples than a render takes (`limits::MAX_SAMPLES`) before
+    /// anything is built, naming the scene file, the camera (of a file of several) and
+    /// where the spp came from.
+    pub fn check_samples(&self, scene: &SceneDesc, spp: u32, camera: Option<&str>) -> Result<()> {
+        let (width, height) = (scene.camera.width, scene.camera.height);
+        let pixels = u64::from(width) * u64::from(height);
+        let samples = pixels.saturating_mul(u64::from(spp));
+        if samples <= MAX_SAMPLES {
+            return Ok(());
+        }
+        let xml = scene.source.extension().is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+        let field = match (self.spp.is_some(), xml) {
+            (true, _) => "--spp",
+            (false, true) => "the scene's NumSamples (CENG795) or sample_count (Mitsuba)",
+            (false, false) => "the scene's [render] spp",
+        };
+        let camera = camera.map(|c| format!(", {c}")).unwrap_or_default();
+        bail!(
+            "'{}'{camera}: pixels × spp is {samples} ({width}x{height} pixels × {spp} spp, \
+             from {field}), but must be at most {MAX_SAMPLES} (2³⁶): lower the spp, or the size \
+             with --resolution",
+            scene.source.display()
+        )
     }
 
     pub fn to_options(&self, scene: &SceneDesc) -> Result<RenderOptions> {

@@ -17,6 +17,8 @@ pub(super) struct Job {
     pub display: Option<DisplayTarget>,
     /// The denoised beauty's files (`--denoise`), beside the others.
     pub denoised: Option<(Option<Target>, Option<DisplayTarget>)>,
+    /// Which camera of a CENG795 file it renders (`camera 2 of 3 ('side.png')`).
+    pub camera: Option<String>,
 }
 
 /// Where a display image goes, and as what.
@@ -24,7 +26,7 @@ pub(super) type DisplayTarget = (Target, ImageFormat);
 
 impl Job {
     pub fn new(scene: SceneDesc, exr: Option<Target>, display: Option<DisplayTarget>) -> Self {
-        Job { scene, exr, display, denoised: None }
+        Job { scene, exr, display, denoised: None, camera: None }
     }
 
     /// The paths of the files it writes, for messages.
@@ -180,7 +182,13 @@ pub(super) fn ceng795_jobs(
     }
     let new_folders = args.output.is_none();
     let mut jobs = Vec::new();
-    for camera in cameras {
+    let count = cameras.len();
+    for (k, camera) in cameras.into_iter().enumerate() {
+        let name = excerpt(&camera.image_name);
+        let label = match count {
+            1 => format!("camera '{name}'"),
+            _ => format!("camera {} of {count} ('{name}')", k + 1),
+        };
         let (exr, png) = camera_outputs(
             &camera.image_name,
             &args.out_dir,
@@ -203,7 +211,8 @@ pub(super) fn ceng795_jobs(
             Ok(Some(format)) if format.is_display() => format,
             _ => ImageFormat::Png,
         };
-        jobs.push(Job::new(camera.scene, Some(exr), Some((png, format))));
+        let job = Job::new(camera.scene, Some(exr), Some((png, format)));
+        jobs.push(Job { camera: Some(label), ..job });
     }
     Ok(jobs)
 }

@@ -55,6 +55,8 @@ pub fn run(args: &RenderArgs, part: Part) -> Result<()> {
         false,
     )?;
     let options = args.to_options(&scene)?;
+    let camera = args.camera.as_ref().map(|c| format!("camera '{c}'"));
+    args.check_samples(&scene, options.spp, camera.as_deref())?;
     let files = embray::scene::files_read();
     let scene_hash = hash_files(&files)?;
     let rendered = render_part(&scene, &options, part)?;

@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand};
 use embray::distributed::slurm::{
     self, JOB_FILE, JobFile, PartStatus, SbatchOptions, Submission, TaskState, part_path, status,
 };
-use embray::distributed::{MAX_PARTS, Part, Split};
+use embray::distributed::{MAX_PARTS, Part, PartIdentity, Split};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -78,7 +78,7 @@ pub struct SubmitArgs {
 pub fn run(args: &SlurmArgs) -> Result<()> {
     match &args.action {
         Some(SlurmAction::Status { dir }) => {
-            let report = status(dir)?;
+            let report = status(dir, &mut identity_source())?;
             out(report.text(dir))
         }
         Some(SlurmAction::Resume { dir, no_wait }) => resume(dir, *no_wait),
@@ -122,28 +122,19 @@ fn submit(args: &SubmitArgs) -> Result<()> {
             dir.display()
         );
     }
+    // Job-only fields are checked before any folder is made (the real paths come after).
+    let draft = job_file(args, &scene, parts)?;
+    slurm::parts_script(&draft, &std::path::absolute(dir)?).map_err(anyhow::Error::msg)?;
     for sub in ["parts", "logs"] {
         std::fs::create_dir_all(dir.join(sub))
             .with_context(|| format!("cannot create '{}'", dir.join(sub).display()))?;
     }
     let dir = dir.canonicalize()?;
-    let job = JobFile {
-        embray: std::env::current_exe().context("cannot find the embray binary")?,
-        scene,
-        parts,
-        split: args.split,
-        render_args: args.render_args.clone(),
-        sbatch: SbatchOptions {
-            partition: args.partition.clone(),
-            time: args.time.clone(),
-            cpus_per_task: args.cpus_per_task,
-            max_running: args.max_running,
-            extra: args.sbatch_arg.clone(),
-        },
-        submissions: Vec::new(),
-    };
-    write_text(&dir.join("parts.sbatch"), &slurm::parts_script(&job, &dir))?;
-    write_text(&dir.join("merge.sbatch"), &slurm::merge_script(&job, &dir))?;
+    let job = draft;
+    let parts_script = slurm::parts_script(&job, &dir).map_err(anyhow::Error::msg)?;
+    let merge_script = slurm::merge_script(&job, &dir).map_err(anyhow::Error::msg)?;
+    write_text(&dir.join("parts.sbatch"), &parts_script)?;
+    write_text(&dir.join("merge.sbatch"), &merge_script)?;
     write_text(&dir.join(JOB_FILE), &job.encode())?;
     note(format!(
         "{}: {parts} parts of {} into {}",
@@ -159,9 +150,46 @@ fn submit(args: &SubmitArgs) -> Result<()> {
     follow(&dir, &job)
 }
 
+/// The job file of a new submission of `parts` parts of `scene`.
+fn job_file(args: &SubmitArgs, scene: &Path, parts: u32) -> Result<JobFile> {
+    Ok(JobFile {
+        embray: std::env::current_exe().context("cannot find the embray binary")?,
+        scene: scene.to_path_buf(),
+        parts,
+        split: args.split,
+        render_args: args.render_args.clone(),
+        sbatch: SbatchOptions {
+            partition: args.partition.clone(),
+            time: args.time.clone(),
+            cpus_per_task: args.cpus_per_task,
+            max_running: args.max_running,
+            extra: args.sbatch_arg.clone(),
+        },
+        submissions: Vec::new(),
+    })
+}
+
+/// What the job's parts must record, from its scene and options as they are now (a part
+/// rendered now records that); asked at most once per command, as following a job asks
+/// for its status every few seconds.
+fn identity_source() -> impl FnMut(&JobFile) -> Result<PartIdentity, String> {
+    let mut known: Option<Result<PartIdentity, String>> = None;
+    move |job| {
+        let identity = || check_render_args(&job.scene, job.parts, job.split, &job.render_args);
+        known.get_or_insert_with(|| identity().map_err(|e| format!("{e:#}"))).clone()
+    }
+}
+
 /// Parses the render options as `embray render` would and checks that the split works for
-/// the scene, so that nothing is submitted that every task would refuse.
-fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[String]) -> Result<()> {
+/// the scene, so that nothing is submitted that every task would refuse. Returns what each
+/// part will record of the scene and the options.
+fn check_render_args(
+    scene: &Path,
+    parts: u32,
+    split: Split,
+    render_args: &[String],
+) -> Result<PartIdentity> {
+    let read_before_scene = embray::scene::files_read().len();
     let mut argv = vec!["embray".to_owned(), "render".to_owned()];
     argv.push(scene.to_string_lossy().into_owned());
     argv.extend(render_args.iter().cloned());
@@ -192,10 +220,15 @@ fn check_render_args(scene: &Path, parts: u32, split: Split, render_args: &[Stri
         bail!(problem);
     }
     let options = render.to_options(&desc)?;
+    let camera = render.camera.as_ref().map(|c| format!("camera '{c}'"));
+    render.check_samples(&desc, options.spp, camera.as_deref())?;
     let part = Part { index: 0, count: parts, split };
     let size = (desc.camera.width, desc.camera.height);
     part.check(size, embray::render::TILE_SIZE, options.spp.max(1))?;
-    Ok(())
+    // As `render --part` hashes them: the scene and every file it read, in order.
+    let scene_files = embray::scene::files_read().split_off(read_before_scene);
+    let scene_hash = embray::distributed::hash_files(&scene_files)?;
+    Ok(PartIdentity { scene_hash, options: embray::distributed::options_fingerprint(&options) })
 }
 
 fn write_text(path: &Path, text: &str) -> Result<()> {
@@ -239,7 +272,13 @@ fn submit_round(
 
 fn resume(dir: &Path, no_wait: bool) -> Result<()> {
     let dir = dir.canonicalize().with_context(|| format!("cannot find '{}'", dir.display()))?;
-    let report = status(&dir)?;
+    let report = status(&dir, &mut identity_source())?;
+    if let Some(why) = &report.unchecked {
+        bail!(
+            "cannot check the part files against the scene and the options, so neither can \
+             new parts be rendered: {why}"
+        );
+    }
     if report.merged {
         note(format!(
             "nothing to resume: the render is merged ({})",
@@ -271,9 +310,9 @@ fn resume(dir: &Path, no_wait: bool) -> Result<()> {
             })
             .collect();
         for &i in &missing {
-            // A damaged file is replaced when the part is rendered again; the merge must not
-            // see it before.
-            if matches!(report.parts[i as usize], PartStatus::Damaged(_)) {
+            // A damaged file, or one of another render, is replaced when the part is
+            // rendered again; the merge must not see it before.
+            if matches!(report.parts[i as usize], PartStatus::Damaged(_) | PartStatus::Stale(_)) {
                 let path = part_path(&dir, i, report.job.parts);
                 std::fs::remove_file(&path)
                     .with_context(|| format!("cannot remove '{}'", path.display()))?;
@@ -294,8 +333,9 @@ fn follow(dir: &Path, job: &JobFile) -> Result<()> {
     if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {msg}") {
         bar.set_style(style);
     }
+    let mut identity = identity_source();
     loop {
-        let report = status(dir)?;
+        let report = status(dir, &mut identity)?;
         let done = report.done() as u64;
         bar.set_position(done + u64::from(report.merged));
         let merge = report.merge.clone();

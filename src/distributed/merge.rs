@@ -1,7 +1,8 @@
 //! Merging parts: check that the files belong to one render and cover it exactly once, then
 //! add their exact sums, one part in memory at a time.
 
-use super::metadata::{PartMeta, PartTiming, options_difference};
+use super::metadata::{PartMeta, PartTiming};
+use super::option_words::options_difference;
 use super::part::{Part, Split};
 use super::part_file::{PartFileError, read_part_meta, read_part_sums};
 use crate::sample_sums::FilmSums;
@@ -19,6 +20,11 @@ pub enum MergeError {
         .path.display(), .first.display()
     )]
     Mismatch { path: PathBuf, first: PathBuf, what: String, theirs: String, ours: String },
+    #[error(
+        "'{}' does not belong with '{}': the render options differ ({theirs} vs {ours})",
+        .path.display(), .first.display()
+    )]
+    OptionMismatch { path: PathBuf, first: PathBuf, theirs: String, ours: String },
     #[error("part {part} is given twice: '{}' and '{}'", .first.display(), .second.display())]
     Duplicate { part: Part, first: PathBuf, second: PathBuf },
     #[error(
@@ -63,29 +69,20 @@ fn check_some_parts(paths: &[PathBuf]) -> Result<(Vec<PartFile>, Vec<u32>), Merg
     let Some(first_path) = paths.first() else {
         return Err(MergeError::Empty);
     };
-    let first = read_part_meta(first_path)?;
-    let mut slots: Vec<Option<(PathBuf, PartMeta)>> = vec![None; first.part.count as usize];
+    let first_meta = read_part_meta(first_path)?;
+    let mut slots: Vec<Option<(PathBuf, PartMeta)>> = vec![None; first_meta.part.count as usize];
     for path in paths {
         let meta = read_part_meta(path)?;
-        let mismatch = |what: &str, theirs: String, ours: String| MergeError::Mismatch {
-            path: path.clone(),
-            first: first_path.clone(),
-            what: what.to_owned(),
-            theirs,
-            ours,
-        };
-        for ((what, theirs), (_, ours)) in
-            meta.shared_fields().into_iter().zip(first.shared_fields())
-        {
-            if theirs != ours {
-                return Err(mismatch(what, theirs, ours));
+        let (path, first) = (path.clone(), first_path.clone());
+        match render_difference(&meta, &first_meta) {
+            Some(Difference::Field { what, theirs, ours }) => {
+                let what = what.to_owned();
+                return Err(MergeError::Mismatch { path, first, what, theirs, ours });
             }
-        }
-        if meta.options != first.options {
-            let difference = options_difference(&meta.options, &first.options);
-            let (name, values) = difference.split_once(": ").unwrap_or(("the options", ""));
-            let (theirs, ours) = values.split_once(" vs ").unwrap_or((values, ""));
-            return Err(mismatch(&format!("render option {name}"), theirs.into(), ours.into()));
+            Some(Difference::Options { theirs, ours }) => {
+                return Err(MergeError::OptionMismatch { path, first, theirs, ours });
+            }
+            None => {}
         }
         let slot = &mut slots[meta.part.index as usize];
         if let Some((earlier, _)) = slot {
@@ -100,6 +97,50 @@ fn check_some_parts(paths: &[PathBuf]) -> Result<(Vec<PartFile>, Vec<u32>), Merg
     let missing: Vec<u32> =
         slots.iter().enumerate().filter(|(_, s)| s.is_none()).map(|(i, _)| i as u32).collect();
     Ok((slots.into_iter().flatten().collect(), missing))
+}
+
+/// How a part differs from another in what makes them one render.
+enum Difference {
+    /// A field of `PartMeta::shared_fields` (named there), with both values.
+    Field { what: &'static str, theirs: String, ours: String },
+    /// The render options, each as the command line writes it.
+    Options { theirs: String, ours: String },
+}
+
+/// The first way `meta` differs from `first` in what makes them one render, if any.
+fn render_difference(meta: &PartMeta, first: &PartMeta) -> Option<Difference> {
+    let shared = meta.shared_fields().into_iter().zip(first.shared_fields());
+    for ((what, theirs), (_, ours)) in shared {
+        if theirs != ours {
+            return Some(Difference::Field { what, theirs, ours });
+        }
+    }
+    let (theirs, ours) = options_difference(&meta.options, &first.options)?;
+    Some(Difference::Options { theirs, ours })
+}
+
+/// What a part must record to be a part of the render a new part would make now: the
+/// scene's contents and the render options (`embray slurm status` and `resume` check each
+/// part file of a job against them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartIdentity {
+    pub scene_hash: String,
+    pub options: String,
+}
+
+/// How `meta` differs from `identity` (checked as `merge` checks two parts), worded for a
+/// status line; `None` when it is a part of that render.
+pub fn identity_difference(meta: &PartMeta, identity: &PartIdentity) -> Option<String> {
+    let scene_hash = identity.scene_hash.clone();
+    let expected = PartMeta { scene_hash, options: identity.options.clone(), ..meta.clone() };
+    Some(match render_difference(meta, &expected)? {
+        Difference::Field { what, theirs, ours } => {
+            format!("{what} differs (the part's {theirs} vs {ours} now)")
+        }
+        Difference::Options { theirs, ours } => {
+            format!("rendered with {theirs}, the job's options now give {ours}")
+        }
+    })
 }
 
 /// What merging gave.

@@ -194,23 +194,6 @@ pub fn option_value<'a>(options: &'a str, name: &str) -> Option<&'a str> {
     options[start..].split([',', ' ', '}']).next().filter(|v| !v.is_empty())
 }
 
-/// The first option that differs between two fingerprints, as `name: a vs b`.
-pub fn options_difference(a: &str, b: &str) -> String {
-    let fields = |s: &str| -> Vec<String> {
-        let inner = s.split_once('{').map_or(s, |(_, rest)| rest);
-        inner.trim_end_matches('}').split(", ").map(|f| f.trim().to_owned()).collect()
-    };
-    let (fa, fb) = (fields(a), fields(b));
-    for (x, y) in fa.iter().zip(&fb) {
-        if x != y {
-            let value = |f: &str| f.split_once(": ").map_or(f.to_owned(), |(_, v)| v.to_owned());
-            let name = x.split_once(": ").map_or("options", |(n, _)| n).to_owned();
-            return format!("{name}: {} vs {}", value(x), value(y));
-        }
-    }
-    "the options".to_owned()
-}
-
 /// SHA-256 over `files` (their names and contents, in the order given), as hex.
 pub fn hash_files(files: &[PathBuf]) -> std::io::Result<String> {
     let mut hasher = Sha256::new();
@@ -252,7 +235,6 @@ mod tests {
         let b = RenderOptions { spp: a.spp + 1, threads: Some(3), ..a.clone() };
         let (fa, fb) = (options_fingerprint(&a), options_fingerprint(&b));
         assert_ne!(fa, fb);
-        assert_eq!(options_difference(&fa, &fb), format!("spp: {} vs {}", a.spp, b.spp));
         let c = RenderOptions { threads: Some(1), progress: true, ..a.clone() };
         assert_eq!(options_fingerprint(&c), fa, "threads and progress do not change a pixel");
         let obvhs = RenderOptions { backend: BackendKind::Obvhs, ..a.clone() };

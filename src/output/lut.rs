@@ -67,6 +67,8 @@ impl Lut3d {
         let mut size = None;
         let (mut domain_min, mut domain_max) = ([0.0f32; 3], [1.0f32; 3]);
         let mut table: Vec<[f32; 3]> = Vec::new();
+        // Editors on Windows start UTF-8 text with a byte order mark; it is no keyword.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         for (n, raw) in text.lines().enumerate() {
             let line = n + 1;
             let at = |message: String| (Some(line), message);

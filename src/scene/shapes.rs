@@ -1,5 +1,5 @@
-//! Built-in shapes that become triangle meshes: the quad (parallelogram) and the
-//! axis-aligned box.
+//! Built-in shapes that become triangle meshes: the quad (parallelogram), the
+//! axis-aligned box, and Mitsuba's cube.
 
 use crate::scene::desc::MeshData;
 use crate::scene::formats::toml::transform_list::fmt_vec;
@@ -73,6 +73,38 @@ pub(crate) fn box_mesh(min: DVec3, max: DVec3) -> Result<MeshData, String> {
     Ok(MeshData { positions, indices, normals: None, uvs: None, attributes: Vec::new() })
 }
 
+/// Mitsuba's `cube` (v3.9.1 `cube.cpp`), vertex for vertex: the cube from (−1, −1, −1) to
+/// (1, 1, 1) as 24 vertices, four per face, each face with its own normal and the uv square
+/// (0,1), (1,1), (1,0), (0,0), so that a texture lands on every face as Mitsuba puts it.
+/// Face `s` is the triangles {4s, 4s+1, 4s+2} and {4s+3, 4s, 4s+2}, wound outwards.
+pub(crate) fn mitsuba_cube_mesh() -> MeshData {
+    // Four vertices a face: −y, +y, +x, +z, −x, −z.
+    #[rustfmt::skip]
+    const CORNERS: [[f64; 3]; 24] = [
+        [1., -1., -1.], [1., -1., 1.], [-1., -1., 1.], [-1., -1., -1.],
+        [1., 1., -1.], [-1., 1., -1.], [-1., 1., 1.], [1., 1., 1.],
+        [1., -1., -1.], [1., 1., -1.], [1., 1., 1.], [1., -1., 1.],
+        [1., -1., 1.], [1., 1., 1.], [-1., 1., 1.], [-1., -1., 1.],
+        [-1., -1., 1.], [-1., 1., 1.], [-1., 1., -1.], [-1., -1., -1.],
+        [1., 1., -1.], [1., -1., -1.], [-1., -1., -1.], [-1., 1., -1.],
+    ];
+    const FACE_NORMALS: [DVec3; 6] =
+        [DVec3::NEG_Y, DVec3::Y, DVec3::X, DVec3::Z, DVec3::NEG_X, DVec3::NEG_Z];
+    const FACE_UVS: [[f32; 2]; 4] = [[0., 1.], [1., 1.], [1., 0.], [0., 0.]];
+    MeshData {
+        positions: CORNERS.iter().map(|&c| DVec3::from_array(c)).collect(),
+        indices: (0..6u32)
+            .flat_map(|s| {
+                let v = 4 * s;
+                [[v, v + 1, v + 2], [v + 3, v, v + 2]]
+            })
+            .collect(),
+        normals: Some((0..24).map(|i| FACE_NORMALS[i / 4]).collect()),
+        uvs: Some((0..24).map(|i| Vec2::from_array(FACE_UVS[i % 4])).collect()),
+        attributes: Vec::new(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -94,6 +126,24 @@ mod tests {
             assert!(n.length() > 0.0);
             assert!(n.dot(centroid - center) > 0.0, "triangle {tri:?} faces inward");
         }
+    }
+
+    #[test]
+    fn mitsubas_cube_faces_outward_with_its_normals_and_uv_squares() {
+        let cube = mitsuba_cube_mesh();
+        assert_eq!((cube.positions.len(), cube.indices.len()), (24, 12));
+        let normals = cube.normals.as_ref().unwrap();
+        for &tri in &cube.indices {
+            let n = face_normal(&cube, tri).normalize();
+            for i in tri {
+                assert_eq!(n, normals[i as usize], "triangle {tri:?}");
+                // Every vertex lies on its face's plane x·n = 1.
+                assert_eq!(cube.positions[i as usize].dot(n), 1.0);
+            }
+        }
+        let uvs = cube.uvs.as_ref().unwrap();
+        assert_eq!(uvs[..4], [Vec2::Y, Vec2::ONE, Vec2::X, Vec2::ZERO]);
+        assert_eq!(uvs[4..8], uvs[..4]);
     }
 
     #[test]

@@ -79,3 +79,16 @@ refused_cases! {
     undefined_transformation_a_megabyte_long: ["s.xml" => xml_scene(&["a.png"], "").replace("<Radius>1</Radius>", &format!("<Radius>1</Radius><Transformations>t{}</Transformations>", "1".repeat(1_000_000)))], ["render", "s.xml"]
         => ["s.xml", "characters cut"];
 }
+
+// The reader looked attributes up by name: a misspelt or unknown one was ignored without a
+// word, and a second vertex list shifted every index after the first.
+refused_cases! {
+    attribute_unknown_on_a_camera: ["s.xml" => xml_scene(&["a.png"], "").replace("<Camera id=\"1\">", "<Camera id=\"1\" foo=\"bar\">")], ["render", "s.xml"]
+        => ["s.xml", "unknown attribute foo=\"bar\"", "<Camera> takes: id, type, handedness", "(line 5)"];
+    attribute_misspelt_on_faces: ["s.xml" => xml_scene(&["a.png"], "").replace("<Sphere id=\"1\"><Material>1</Material><Center>1</Center><Radius>1</Radius></Sphere>", "<Mesh id=\"1\"><Material>1</Material><Faces vertexOfset=\"2\">1 1 1</Faces></Mesh>")], ["render", "s.xml"]
+        => ["s.xml", "unknown attribute vertexOfset=\"2\"", "vertexOffset", "(line 28)"];
+    attribute_on_an_element_that_takes_none: ["s.xml" => xml_scene(&["a.png"], "").replace("<Radius>1</Radius>", "<Radius scale=\"2\">1</Radius>")], ["render", "s.xml"]
+        => ["s.xml", "unknown attribute scale=\"2\"", "<Radius> takes: none", "(line 28)"];
+    vertex_data_given_twice: ["s.xml" => xml_scene(&["a.png"], "").replace("<VertexData>0 0 -3</VertexData>", "<VertexData>0 0 -3</VertexData>\n  <VertexData>1 1 1</VertexData>")], ["render", "s.xml"]
+        => ["s.xml", "<VertexData> is given more than once", "(line 27)"];
+}

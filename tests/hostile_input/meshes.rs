@@ -82,3 +82,26 @@ fn normals_on_some_faces_only_are_warned_about() {
     let obj = format!("{TRIANGLE}v 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2 4 3\n");
     assert_obj_warns(&obj, &["some faces give normals and some do not"]);
 }
+
+/// A UTF-8 byte order mark made tobj drop the first statement (here a vertex, so the face
+/// named one that was not there).
+#[test]
+fn a_byte_order_mark_before_an_obj_or_mtl_is_skipped() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene("[[objects]]\ntype = \"mesh\"\nfile = \"m.obj\"\n"));
+    scratch.write("m.obj", format!("\u{feff}mtllib m.mtl\n{TRIANGLE}usemtl red\nf 1 2 3\n"));
+    scratch.write("m.mtl", "\u{feff}newmtl red\nKd 1 0 0\n");
+    let run = accepted_in(&scratch, &["info", "s.toml"]);
+    // The quad's 2 triangles and the OBJ's one.
+    assert!(run.stdout.contains("2 meshes (3 triangles)"), "{}", run.stdout);
+    assert!(!run.stderr.contains("warning"), "{}", run.stderr);
+}
+
+#[test]
+fn unknown_obj_statements_are_warned_about_once() {
+    let obj = "v 0 0 0\nvv 1 0 0\nv 1 0 0\nv 0 1 0\nvv 0 1 0\nf 1 2 3\n";
+    assert_obj_warns(
+        obj,
+        &["2 statement(s) of no OBJ kind are ignored, the first 'vv'", "(line 2)"],
+    );
+}

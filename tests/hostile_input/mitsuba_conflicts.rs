@@ -31,6 +31,8 @@ const LOOKAT: &str = r#"<lookat origin="0,0,-5" target="0,0,0" up="0,1,0"/>"#;
 refused_cases! {
     string_reflectance: ["s.xml" => sphere(r#"<bsdf type="diffuse"><string name="reflectance" value="0.5"/></bsdf>"#)], ["info", "s.xml"]
         => ["s.xml", "<string name=\"reflectance\">", "must be a colour", "(line 3)"];
+    principled_sampling_rates_all_zero: ["s.xml" => sphere(r#"<bsdf type="principled"><float name="main_specular_sampling_rate" value="0"/><float name="clearcoat_sampling_rate" value="0"/><float name="diffuse_reflectance_sampling_rate" value="0"/></bsdf>"#)], ["info", "s.xml"]
+        => ["s.xml", "every *_sampling_rate is 0", "at least one lobe", "line 3"];
     boolean_base_color: ["s.xml" => sphere(r#"<bsdf type="principled"><boolean name="base_color" value="true"/></bsdf>"#)], ["info", "s.xml"]
         => ["s.xml", "`base_color` must be a colour", "(line 3)"];
     vector_diffuse_reflectance: ["s.xml" => sphere(r#"<bsdf type="roughplastic"><vector name="diffuse_reflectance" value="0.1, 0.2, 0.3"/></bsdf>"#)], ["info", "s.xml"]
@@ -125,6 +127,20 @@ refused_cases! {
         => ["s.xml", "<shape type=\"ply\"> given a .obj file (use <shape type=\"obj\">)", "(line 3)"];
     serialized_shape_given_a_ply: ["s.xml" => m3(r#"<shape type="serialized"><string name="filename" value="m.PLY"/></shape>"#)], ["info", "s.xml"]
         => ["s.xml", "use <shape type=\"ply\">", "(line 3)"];
+    conductor_textured_specular_reflectance: ["s.xml" => sphere(r#"<bsdf type="conductor"><string name="material" value="Ag"/><texture type="checkerboard" name="specular_reflectance"/></bsdf>"#)], ["info", "s.xml"]
+        => ["s.xml", "<texture", "a textured `specular_reflectance` is not supported", "(line 3)"];
+    roughconductor_referenced_specular_reflectance: ["s.xml" => m3("<texture type=\"checkerboard\" id=\"t\"/>\n<shape type=\"sphere\"><bsdf type=\"roughconductor\"><ref name=\"specular_reflectance\" id=\"t\"/></bsdf></shape>")], ["info", "s.xml"]
+        => ["s.xml", "a textured `specular_reflectance` is not supported", "(line 4)"];
+    area_radiance_pairs_negative: ["s.xml" => m3(r#"<shape type="sphere"><emitter type="area"><spectrum name="radiance" value="400:-5, 700:-5"/></emitter></shape>"#)], ["info", "s.xml"]
+        => ["s.xml", "<spectrum name=\"radiance\"", "`radiance` is -5 at 400 nm, but must be >= 0", "(line 3)"];
+    constant_radiance_pairs_negative: ["s.xml" => m3(r#"<emitter type="constant"><spectrum name="radiance" value="400:1, 500:-0.5, 700:1"/></emitter>"#)], ["info", "s.xml"]
+        => ["s.xml", "`radiance` is -0.5 at 500 nm, but must be >= 0", "(line 3)"];
+    reflectance_pairs_past_one: ["s.xml" => sphere(r#"<bsdf type="diffuse"><spectrum name="reflectance" value="400:5, 700:5"/></bsdf>"#)], ["info", "s.xml"]
+        => ["s.xml", "`reflectance` is 5 at 400 nm, but must be in [0, 1]", "(line 3)"];
+    reflectance_spd_past_one: ["s.xml" => sphere(r#"<bsdf type="diffuse"><spectrum name="reflectance" filename="big.spd"/></bsdf>"#), "big.spd" => "400 0.5\n700 5\n"], ["info", "s.xml"]
+        => ["s.xml", "`reflectance` is 5 at 700 nm, but must be in [0, 1]", "(line 3)"];
+    radiance_spd_negative: ["s.xml" => m3(r#"<shape type="sphere"><emitter type="area"><spectrum name="radiance" filename="neg.spd"/></emitter></shape>"#), "neg.spd" => "400 -5\n700 -5\n"], ["info", "s.xml"]
+        => ["s.xml", "`radiance` is -5 at 400 nm, but must be >= 0", "(line 3)"];
     envmap_scaled: ["s.xml" => m3("<emitter type=\"envmap\"><string name=\"filename\" value=\"a.exr\"/>\n<transform name=\"to_world\"><scale value=\"2\"/></transform></emitter>")], ["info", "s.xml"]
         => ["s.xml", "an envmap's to_world must be a rotation", "not 2, 0, 0, 0, 2, 0, 0, 0, 2", "(line 4)"];
 }

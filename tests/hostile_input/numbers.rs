@@ -1,7 +1,7 @@
 //! Numbers in a file are checked before they are used: counts whose product wraps, part
 //! counts that would size a table, images whose pixels are all NaN, empty images.
 
-use crate::harness::{Run, Scratch, accepted_in, refused_in, scene};
+use crate::harness::{Run, Scratch, accepted_in, refused_cases, refused_in, scene, xml_scene};
 use embray::film::Film;
 use glam::Vec3;
 
@@ -94,4 +94,24 @@ fn a_lut_entry_of_ten_thousand_digits_is_quoted_short() {
         &["look.cube", "line 7", "is not finite"],
     );
     assert!(run.stderr.len() < 400, "the number was echoed whole: {} bytes", run.stderr.len());
+}
+
+/// `scene` with `fields` added to its camera.
+fn camera_with(fields: &str) -> String {
+    scene("").replace("resolution = [8, 8]", &format!("resolution = [8, 8]\n{fields}"))
+}
+
+// A lens beyond the coordinate range put ray origins beyond it (1e12) or traced no ray at
+// all and gave a black image (1e20).
+refused_cases! {
+    lens_aperture_beyond_the_coordinate_range: ["s.toml" => camera_with("aperture = 1e12")], ["render", "s.toml"]
+        => ["s.toml", "camera.aperture", "at most 1e8", "(line 6)"];
+    lens_focal_length_over_f_number_beyond_it: ["s.toml" => camera_with("f_number = 1.0\nfocal_length = 1e20")], ["render", "s.toml"]
+        => ["s.toml", "camera.f_number", "at most 1e8", "(line 6)"];
+    lens_focus_distance_beyond_it: ["s.toml" => camera_with("aperture = 0.1\nfocus_distance = 1e39")], ["render", "s.toml"]
+        => ["s.toml", "camera.focus_distance", "at most 1e8", "(line 7)"];
+    lens_shift_beyond_it: ["s.toml" => camera_with("shift = [1e20, 0.0]")], ["render", "s.toml"]
+        => ["s.toml", "camera.shift[0]", "in [-1e8, 1e8]", "(line 6)"];
+    ceng795_aperture_size_beyond_it: ["s.xml" => xml_scene(&["a.png"], "").replace("<NearDistance>1</NearDistance>", "<NearDistance>1</NearDistance><ApertureSize>1e30</ApertureSize><FocusDistance>2</FocusDistance>")], ["render", "s.xml"]
+        => ["s.xml", "ApertureSize", "at most 1e8", "(line 10)"];
 }

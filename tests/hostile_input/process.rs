@@ -1,7 +1,8 @@
-//! The process's surroundings: closed or full standard streams, and signals while output
-//! files are being written.
+//! The process's surroundings: closed or full standard streams, signals while output
+//! files are being written, a time limit that leaves cameras unrendered, and a render too
+//! long to run at all.
 
-use crate::harness::{Run, Scratch, scene};
+use crate::harness::{Run, Scratch, refused_in, scene, xml_scene};
 use std::process::Stdio;
 use std::time::{Duration, Instant};
 
@@ -105,4 +106,60 @@ fn sigterm_while_writing_removes_the_temporary_files() {
 #[test]
 fn sigint_while_writing_removes_the_temporary_files() {
     interrupted_during_commit("-INT", 130);
+}
+
+/// `xml_scene` with `names` as cameras, the first one given `first` (XML in its element).
+fn cameras_scene(names: &[&str], first: &str) -> String {
+    let resolution = "<ImageResolution>8 8</ImageResolution>";
+    xml_scene(names, "").replacen(resolution, &format!("{resolution}{first}"), 1)
+}
+
+#[test]
+fn a_time_limit_in_the_first_camera_names_the_cameras_it_skipped() {
+    let scratch = Scratch::new();
+    // 2²⁰ samples a pixel over 32² pixels: the limit stops the first camera after its
+    // first passes (of 1 spp each), however fast the machine.
+    let first = "<NumSamples>1048576</NumSamples>";
+    let xml = cameras_scene(&["a.png", "b.png", "c.png"], first).replacen(
+        "<ImageResolution>8 8<",
+        "<ImageResolution>32 32<",
+        1,
+    );
+    scratch.write("s.xml", xml);
+    std::fs::create_dir(scratch.path("out")).unwrap();
+    let args = ["render", "s.xml", "--out-dir", "out", "--time-limit", "1", "-q"];
+    let run = Run::from(scratch.command(&args).output().unwrap());
+    run.assert_no_panic();
+    // README (Progressive renders): a time limit writes what it has and exits 0.
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    run.assert_says(&[
+        "warning: --time-limit reached in camera 1 of 3 ('a.png')",
+        "the later cameras were skipped and their files not written",
+        "camera 2 of 3 ('b.png') (out/b.exr, out/b.png), camera 3 of 3 ('c.png')",
+    ]);
+    assert!(scratch.path("out/a.png").exists() && !scratch.path("out/b.png").exists());
+}
+
+#[test]
+fn too_many_samples_are_refused_naming_the_file_the_camera_and_the_field() {
+    let scratch = Scratch::new();
+    // The second camera: 512² pixels at 2²⁰ spp, 2³⁸ samples (at most 2³⁶ are taken).
+    let small = "<ImageResolution>8 8</ImageResolution>";
+    let xml = cameras_scene(&["b.png", "a.png"], "");
+    let at = xml.rfind(small).unwrap();
+    let big = "<ImageResolution>512 512</ImageResolution><NumSamples>1048576</NumSamples>";
+    let xml = format!("{}{big}{}", &xml[..at], &xml[at + small.len()..]);
+    scratch.write("s.xml", xml);
+    std::fs::create_dir(scratch.path("out")).unwrap();
+    refused_in(
+        &scratch,
+        &["render", "s.xml", "--out-dir", "out"],
+        &["'s.xml', camera 2 of 2 ('a.png'): pixels × spp is 274877906944", "NumSamples"],
+    );
+    scratch.write("s.toml", scene(""));
+    refused_in(
+        &scratch,
+        &["render", "s.toml", "--spp", "1048576", "--resolution", "512x512"],
+        &["'s.toml': pixels × spp is 274877906944 (512x512 pixels × 1048576 spp, from --spp)"],
+    );
 }

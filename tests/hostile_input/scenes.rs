@@ -130,6 +130,25 @@ refused_cases! {
         => ["s.toml", "materials.grey.albedo", "line 11"];
 }
 
+/// `scene` rendered by the Whitted integrator, its grey material given `fields` too.
+fn whitted_with(fields: &str) -> String {
+    scene("")
+        .replace("spp = 1", "spp = 1\nintegrator = \"whitted\"")
+        .replace("albedo = [0.5, 0.5, 0.5]", &format!("albedo = [0.5, 0.5, 0.5]\n{fields}"))
+}
+
+// Whitted shades the course's model only: these rendered as plain diffuse without a word.
+refused_cases! {
+    whitted_with_a_principled_material: ["s.toml" => whitted_with("type = \"principled\"")], ["render", "s.toml"]
+        => ["s.toml", "materials.grey.type is principled", "whitted integrator cannot shade a principled BSDF", "(line 13)"];
+    whitted_with_opacity: ["s.toml" => whitted_with("opacity = 0.2")], ["render", "s.toml"]
+        => ["s.toml", "materials.grey.opacity is 0.2", "cannot shade partial opacity", "(line 13)"];
+    whitted_with_a_blend: ["s.toml" => whitted_with("").replace("[materials.grey]", "[materials.m]\ntype = \"mirror\"\n[materials.grey]\ntype = \"blend\"\nweight = 0.5\nmaterials = [\"m\", \"m\"]").replace("albedo = [0.5, 0.5, 0.5]\n", "")], ["render", "s.toml"]
+        => ["s.toml", "materials.grey.type is blend", "cannot shade a blend", "(line 14)"];
+    principled_sampling_rates_all_zero: ["s.toml" => scene("").replace("albedo = [0.5, 0.5, 0.5]", "type = \"principled\"\nprincipled = { main_specular_sampling_rate = 0.0, clearcoat_sampling_rate = 0.0, diffuse_reflectance_sampling_rate = 0.0 }")], ["render", "s.toml"]
+        => ["s.toml", "materials.grey.principled.diffuse_reflectance_sampling_rate is 0", "at least one lobe must be sampled", "(line 12)"];
+}
+
 #[test]
 fn out_dir_with_a_toml_scene_is_warned_about() {
     let scratch = Scratch::new();

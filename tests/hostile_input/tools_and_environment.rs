@@ -267,3 +267,111 @@ fn compare_against_a_black_reference_says_so_instead_of_a_huge_percentage() {
     let run = accepted_in(&scratch, &["compare", "black.exr", "black.exr"]);
     assert!(run.stdout.contains("(largest difference 0.0000 %)"), "{}", run.stdout);
 }
+
+#[test]
+fn compare_refuses_a_variance_or_spp_that_would_pass_any_image() {
+    let scratch = Scratch::new();
+    exr(&scratch, "ten.exr", Vec3::splat(10.0));
+    exr(&scratch, "ref.exr", Vec3::splat(0.5));
+    exr(&scratch, "var.exr", Vec3::splat(0.01));
+    let judge = |variance: &'static str, spp: &'static str| {
+        ["compare", "ten.exr", "ref.exr", "--variance", variance, "--spp", spp]
+    };
+    // Each passed an image 19 times its reference.
+    refused_in(&scratch, &judge("var.exr", "0"), &["--spp is 0"]);
+    let mut film = Film::new(8, 4);
+    film.color.fill(Vec3::splat(0.01));
+    for (name, bad, shown) in [
+        ("inf.exr", Vec3::new(0.01, f32::INFINITY, 0.01), "G = inf"),
+        ("nan.exr", Vec3::new(f32::NAN, 0.01, 0.01), "R = NaN"),
+        ("neg.exr", Vec3::new(0.01, 0.01, -1.0), "B = -1"),
+    ] {
+        film.color[8 + 3] = bad;
+        embray::output::write_exr(&film, &scratch.path(name)).unwrap();
+        refused_in(
+            &scratch,
+            &judge(name, "4"),
+            &[name, "pixel (3, 1)", shown, "finite number >= 0"],
+        );
+    }
+    let run = Run::from(scratch.command(&judge("var.exr", "4")).output().unwrap());
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    assert!(run.stdout.contains("FAIL"), "{}", run.stdout);
+}
+
+/// `embray slurm SCENE` of two sample-range parts into `job/`, with fake Slurm commands
+/// (squeue knows no task): returns the PATH that finds them.
+fn slurm_job(scratch: &Scratch, out: &str) -> String {
+    scratch.write("s.toml", scene(""));
+    let path = fake_slurm(scratch, "");
+    let args = ["slurm", "s.toml", "--parts", "2", "--split", "samples", "--out", out, "--no-wait"];
+    let mut command = scratch.command(&args);
+    let run = Run::from(command.args(["--", "--spp", "2"]).env("PATH", &path).output().unwrap());
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    path
+}
+
+#[test]
+fn a_part_of_an_edited_scene_is_missing_to_slurm_status_and_resume() {
+    let scratch = Scratch::new();
+    let path = slurm_job(&scratch, "job");
+    let task = |i: u32| {
+        let (part, out) = (format!("{i}/2"), format!("job/parts/part-{i}-of-2.exr"));
+        let args = ["render", "s.toml", "--part", &part, "-o", &out, "-q", "--spp", "2"];
+        accepted_in(&scratch, &[&args[..], &["--split", "samples"]].concat());
+    };
+    task(0);
+    // The scene is edited between the tasks: part 0 is of another render, which the merge
+    // refuses, so `resume` must render it again (it resubmitted only the merge).
+    scratch.write("s.toml", scene("").replace("[0.5, 0.5, 0.5]", "[0.1, 0.1, 0.1]"));
+    task(1);
+    let status = |command: &str| {
+        let args = ["slurm", command, "job", "--no-wait"];
+        let args = if command == "status" { &args[..3] } else { &args[..] };
+        Run::from(scratch.command(args).env("PATH", &path).output().unwrap())
+    };
+    let run = status("status");
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(
+        run.stdout.contains("part 0/2  missing: its file is of another render: scene contents")
+    );
+    assert!(run.stdout.contains("part 1/2  done"), "{}", run.stdout);
+    assert!(run.stdout.contains("1 of 2 parts done; missing: 0/2."), "{}", run.stdout);
+    let run = status("resume");
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    let calls = std::fs::read_to_string(scratch.path("calls.log")).unwrap();
+    assert!(calls.lines().last().is_some_and(|l| l.contains("--dependency=afterok:1")), "{calls}");
+    assert!(calls.contains("--array=0 "), "part 0 is rendered again:\n{calls}");
+    assert!(!scratch.path("job/parts/part-0-of-2.exr").exists(), "the stale part is removed");
+    assert!(scratch.path("job/parts/part-1-of-2.exr").exists());
+}
+
+#[test]
+fn a_job_folder_named_like_a_command_is_never_run_by_the_batch_scripts() {
+    let scratch = Scratch::new();
+    let folder = "job $(touch PWNED) `touch PWNED2` 'q\" %x";
+    slurm_job(&scratch, folder);
+    // A node that cannot see the job file prints the paths; the folder's name was run there.
+    std::fs::remove_file(scratch.path(&format!("{folder}/job.json"))).unwrap();
+    for script in ["parts.sbatch", "merge.sbatch"] {
+        let text = std::fs::read_to_string(scratch.path(&format!("{folder}/{script}"))).unwrap();
+        assert!(text.contains("#SBATCH --output=\""), "{text}");
+        let output = std::process::Command::new("bash")
+            .arg(scratch.path(&format!("{folder}/{script}")))
+            .current_dir(scratch.path(""))
+            .env("SLURM_ARRAY_TASK_ID", "0")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(&format!("{folder}/job.json' or '")), "{stderr}");
+        assert!(!scratch.path("PWNED").exists() && !scratch.path("PWNED2").exists(), "{text}");
+    }
+    let args = ["slurm", "s.toml", "--parts", "2", "--split", "samples", "--out", "a\ntouch PWNED"];
+    let mut command = scratch.command(&args);
+    command.args(["--no-wait", "--", "--spp", "2"]).env("PATH", fake_slurm(&scratch, ""));
+    let run = Run::from(command.output().unwrap());
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    run.assert_says(&["the job folder", "a\\ntouch PWNED", "line break"]);
+    assert!(!scratch.path("a\ntouch PWNED").exists(), "no folder is made");
+}

@@ -111,6 +111,38 @@ fn what_is_not_modelled_is_refused_by_name_and_line() {
              <string name=\"wrap_mode\" value=\"clamp\"/></texture></bsdf>",
             "the checkerboard texture does not take `wrap_mode` (it takes: color0, color1, to_uv)",
         ),
+        // Each was read past, leaving Mitsuba's default in its place.
+        (
+            "<bsdf type=\"conductor\"><string name=\"material\" value=\"Ag\"/>\
+             <texture type=\"checkerboard\" name=\"specular_reflectance\"/></bsdf>",
+            "a textured `specular_reflectance` is not supported in <bsdf type=\"conductor\">",
+        ),
+        (
+            "<bsdf type=\"roughconductor\"><texture type=\"checkerboard\" name=\"distribution\"/></bsdf>",
+            "`distribution` must be a <string>",
+        ),
+        (
+            "<bsdf type=\"conductor\"><float name=\"material\" value=\"1\"/></bsdf>",
+            "`material` must be a <string>",
+        ),
+        (
+            "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/><bsdf type=\"conductor\"/></bsdf>",
+            "a different BSDF for the back is not supported",
+        ),
+        (
+            "<bsdf type=\"bumpmap\"><texture type=\"checkerboard\"/>\
+             <texture type=\"checkerboard\" name=\"b\"/><bsdf type=\"diffuse\"/></bsdf>",
+            "bumpmap takes one height <texture>, not 2",
+        ),
+        (
+            "<bsdf type=\"diffuse\"><texture type=\"checkerboard\" name=\"reflectance\">\
+             <float name=\"to_uv\" value=\"2\"/></texture></bsdf>",
+            "`to_uv` must be a <transform>",
+        ),
+        (
+            "<bsdf type=\"dielectric\"><texture type=\"checkerboard\" name=\"int_ior\"/></bsdf>",
+            "`int_ior` must be a <float> or a <string>",
+        ),
     ];
     for (i, (bsdf, expected)) in cases.into_iter().enumerate() {
         let message = material_of(&format!("m-refused-{i}"), bsdf).unwrap_err();
@@ -249,4 +281,52 @@ fn a_wrapper_takes_a_named_reference_to_its_bsdf() {
         &wrong,
         &["<ref name=\"bsdf\" id=\"board\">", "is a <texture>, not a <bsdf>", "(line "],
     );
+}
+
+/// A bumpmap takes its height texture under any name or none, as Mitsuba does (an unnamed
+/// one was refused), and by a reference without a name too.
+#[test]
+fn a_bumpmap_takes_its_texture_under_any_name_or_none() {
+    let textures =
+        ["<texture type=\"checkerboard\"/>", "<texture type=\"checkerboard\" name=\"h\"/>"];
+    for (i, texture) in textures.into_iter().enumerate() {
+        let bsdf = format!(
+            "<bsdf type=\"bumpmap\">{texture}<float name=\"scale\" value=\"0.5\"/>\
+             <bsdf type=\"roughplastic\"/></bsdf>"
+        );
+        let material = material_of(&format!("m-bump-{i}"), &bsdf).unwrap();
+        assert_eq!(material.bump_map.as_ref().expect("a bump map").factor, 0.5);
+        assert!(matches!(material.specular, Specular::Plastic { .. }), "{material:?}");
+    }
+    let main = format!(
+        "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+         value=\"40\"/>{SENSOR}\n<texture type=\"checkerboard\" id=\"board\"/>\n<shape \
+         type=\"cube\"><bsdf type=\"bumpmap\"><ref id=\"board\"/><bsdf type=\"diffuse\"/></bsdf>\
+         </shape>\n</scene>"
+    );
+    let scene = load_mitsuba(&files("m-bump-ref", &main, &[]), &[]).unwrap();
+    let material = &scene.materials[scene.objects[0].material as usize];
+    assert!(material.bump_map.is_some(), "{material:?}");
+}
+
+/// A `<boolean>` is `true` or `false` in any case, as Mitsuba's parser compares them (`True`
+/// was refused); nothing else is.
+#[test]
+fn a_boolean_is_read_in_any_case_and_nothing_more() {
+    let plastic = |name: &str, value: &str| {
+        material_of(
+            name,
+            &format!(
+                "<bsdf type=\"plastic\"><boolean name=\"nonlinear\" value=\"{value}\"/></bsdf>"
+            ),
+        )
+    };
+    let upper = plastic("m-bool-true", "True").unwrap();
+    assert!(matches!(upper.specular, Specular::Plastic { nonlinear: true, .. }));
+    let lower = plastic("m-bool-false", "FALSE").unwrap();
+    assert!(matches!(lower.specular, Specular::Plastic { nonlinear: false, .. }));
+    for (i, value) in ["yes", "1", " true"].into_iter().enumerate() {
+        let message = plastic(&format!("m-bool-bad-{i}"), value).unwrap_err();
+        assert_contains(&message, &["is not true or false", "main.xml", "(line 15)"]);
+    }
 }

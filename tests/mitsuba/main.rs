@@ -7,8 +7,8 @@ mod common;
 
 mod blend;
 mod bsdfs;
-mod film_sampler;
 mod emitters_compat;
+mod film_sampler;
 mod principled;
 mod reader;
 mod shapes_compat;

@@ -3,7 +3,7 @@
 
 use super::job_file::{JobFile, part_path};
 use super::scheduler::{SchedulerError, TaskState, job_state, task_states};
-use crate::distributed::{PartTiming, read_part_meta};
+use crate::distributed::{PartIdentity, PartTiming, identity_difference, read_part_meta};
 use std::path::Path;
 
 #[derive(Debug, thiserror::Error)]
@@ -24,6 +24,9 @@ pub enum PartStatus {
     Missing(Option<TaskState>),
     /// A file that is not this part of this job.
     Damaged(String),
+    /// This part of another render: the scene or the options changed since it was rendered
+    /// (how it differs). The merge would refuse it, so `resume` renders it again.
+    Stale(String),
 }
 
 pub struct Report {
@@ -33,10 +36,19 @@ pub struct Report {
     pub merge: Option<TaskState>,
     /// Whether the merged image exists.
     pub merged: bool,
+    /// Why the part files could not be checked against the scene and options, if they
+    /// could not (the scene no longer loads).
+    pub unchecked: Option<String>,
 }
 
-/// Where the split render in job folder `dir` stands: each part, and the merge.
-pub fn status(dir: &Path) -> Result<Report, StatusError> {
+/// Where the split render in job folder `dir` stands: each part, and the merge. A part
+/// file counts as done only if it records what `identity` gives for the job (the scene's
+/// contents and the options, as a part rendered now would); `identity` is asked once, and
+/// only if there is a part file to check.
+pub fn status(
+    dir: &Path,
+    identity: &mut dyn FnMut(&JobFile) -> Result<PartIdentity, String>,
+) -> Result<Report, StatusError> {
     let job = JobFile::read(dir).map_err(StatusError::JobFile)?;
     let mut states: Vec<Option<TaskState>> = vec![None; job.parts as usize];
     for round in &job.submissions {
@@ -48,32 +60,38 @@ pub fn status(dir: &Path) -> Result<Report, StatusError> {
             }
         }
     }
-    let parts = states
-        .into_iter()
-        .enumerate()
-        .map(|(i, state)| {
-            let path = part_path(dir, i as u32, job.parts);
-            if path.exists() {
-                return match read_part_meta(&path) {
-                    Ok(meta) if meta.part.index == i as u32 && meta.part.count == job.parts => {
-                        PartStatus::Done(meta.timing)
-                    }
-                    Ok(meta) => PartStatus::Damaged(format!("holds part {}", meta.part)),
-                    Err(e) => PartStatus::Damaged(e.to_string()),
-                };
-            }
-            match state {
+    let mut expected: Option<Result<PartIdentity, String>> = None;
+    let mut parts = Vec::with_capacity(states.len());
+    for (i, state) in states.into_iter().enumerate() {
+        let path = part_path(dir, i as u32, job.parts);
+        if !path.exists() {
+            parts.push(match state {
                 Some(s) if s.is_active() => PartStatus::Active(s),
                 other => PartStatus::Missing(other),
+            });
+            continue;
+        }
+        parts.push(match read_part_meta(&path) {
+            Ok(meta) if meta.part.index == i as u32 && meta.part.count == job.parts => {
+                match expected.get_or_insert_with(|| identity(&job)) {
+                    Ok(identity) => match identity_difference(&meta, identity) {
+                        Some(why) => PartStatus::Stale(why),
+                        None => PartStatus::Done(meta.timing),
+                    },
+                    Err(_) => PartStatus::Done(meta.timing),
+                }
             }
-        })
-        .collect();
+            Ok(meta) => PartStatus::Damaged(format!("holds part {}", meta.part)),
+            Err(e) => PartStatus::Damaged(e.to_string()),
+        });
+    }
+    let unchecked = expected.and_then(Result::err);
     let merge = match job.submissions.last() {
         Some(round) => job_state(&round.merge_job)?,
         None => None,
     };
     let merged = dir.join("render.exr").exists();
-    Ok(Report { job, parts, merge, merged })
+    Ok(Report { job, parts, merge, merged, unchecked })
 }
 
 impl Report {
@@ -84,7 +102,9 @@ impl Report {
 
     /// Parts that `resume` renders again: no file and no live task, or an unusable file.
     pub fn missing(&self) -> Vec<u32> {
-        let lost = |p: &PartStatus| matches!(p, PartStatus::Missing(_) | PartStatus::Damaged(_));
+        let lost = |p: &PartStatus| {
+            matches!(p, PartStatus::Missing(_) | PartStatus::Damaged(_) | PartStatus::Stale(_))
+        };
         (0..self.job.parts).filter(|&i| lost(&self.parts[i as usize])).collect()
     }
 
@@ -119,6 +139,9 @@ impl Report {
                 PartStatus::Missing(Some(s)) => format!("missing: its task ended {}", describe(s)),
                 PartStatus::Missing(None) => "missing (Slurm no longer knows its task)".to_owned(),
                 PartStatus::Damaged(why) => format!("missing: its file is unusable ({why})"),
+                PartStatus::Stale(why) => {
+                    format!("missing: its file is of another render: {why}")
+                }
             };
             text += &format!("part {i}/{}  {line}\n", self.job.parts);
         }
@@ -128,6 +151,11 @@ impl Report {
             (None, false) => "not run (Slurm no longer knows the job)".to_owned(),
         };
         text += &format!("merge  {merge}\n");
+        if let Some(why) = &self.unchecked {
+            text += &format!(
+                "the part files were not checked against the scene and the options: {why}\n"
+            );
+        }
         let missing = self.missing();
         if !missing.is_empty() {
             let list = missing

@@ -2,6 +2,18 @@
 
 use glam::{DVec2, DVec3};
 
+/// The largest lens diameter (or side), focus distance and lens shift (either component):
+/// ray origins on the lens stay within the render-space coordinate limit around the camera
+/// (a 1e12 lens put them beyond it; at 1e20 no ray was traced and the image was black),
+/// and directions towards the focus point or the shifted window stay within what f32
+/// holds (a 1e20 shift squared overflows it).
+pub const MAX_LENS_EXTENT: f64 = crate::limits::MAX_COORDINATE;
+
+/// The requirement `MAX_LENS_EXTENT` sets, for messages.
+pub fn lens_extent_requirement() -> String {
+    format!("at most {MAX_LENS_EXTENT:e} (the supported coordinate range around the camera)")
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct CameraDesc {
     pub lookfrom: DVec3,

@@ -113,6 +113,22 @@ impl MaterialDesc {
         1 + parts.map(MaterialDesc::blend_materials).sum::<usize>()
     }
 
+    /// What of this material the course's Whitted model would leave out without a word:
+    /// it shades the Lambertian part, the course's terms and one specular part, so a
+    /// principled BSDF or a blend would render as its base colour, and a partly transparent
+    /// surface as an opaque one.
+    pub fn unshaded_by_whitted(&self) -> Option<WhittedGap> {
+        if self.principled.is_some() {
+            Some(WhittedGap::Principled)
+        } else if self.blend.is_some() {
+            Some(WhittedGap::Blend)
+        } else if self.opacity.as_ref().is_some_and(|o| *o != Opacity::Constant(1.0)) {
+            Some(WhittedGap::Opacity)
+        } else {
+            None
+        }
+    }
+
     /// The images a blend's weight and materials look up.
     fn blend_images(
         &self,
@@ -145,6 +161,24 @@ impl Default for MaterialDesc {
             phong: None,
             blend: None,
             principled: None,
+        }
+    }
+}
+
+/// A part of a material the Whitted integrator cannot shade.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WhittedGap {
+    Principled,
+    Blend,
+    Opacity,
+}
+
+impl WhittedGap {
+    pub fn describe(self) -> &'static str {
+        match self {
+            WhittedGap::Principled => "a principled BSDF",
+            WhittedGap::Blend => "a blend of two materials",
+            WhittedGap::Opacity => "partial opacity",
         }
     }
 }

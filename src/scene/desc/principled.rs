@@ -48,6 +48,24 @@ impl Default for SamplingRates {
     }
 }
 
+impl SamplingRates {
+    /// Every rate the model (`thin` or not) reads is 0: no lobe would ever be sampled, and
+    /// the image would be dark without a word.
+    pub fn samples_nothing(&self, thin: bool) -> bool {
+        let read: &[f32] = if thin {
+            &[
+                self.specular_reflectance,
+                self.specular_transmittance,
+                self.diffuse_transmittance,
+                self.diffuse_reflectance,
+            ]
+        } else {
+            &[self.specular_reflectance, self.clearcoat, self.diffuse_reflectance]
+        };
+        read.iter().all(|&rate| rate == 0.0)
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct PrincipledDesc {
     /// `principledthin`: a two-sided sheet (no interior), with diffuse transmission.

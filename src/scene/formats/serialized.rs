@@ -1,12 +1,14 @@
 //! Mitsuba's `.serialized` meshes (versions 3 and 4): a little-endian header (magic 0x041C,
 //! version), then each mesh as a zlib stream of flags, (v4) a name, vertex and face counts,
 //! positions, optional normals, texture coordinates and colours (single or double
-//! precision) and u32 triangle indices; several meshes are indexed by a table of offsets at
+//! precision) and u32 triangle indices; the meshes are indexed by a table of offsets at
 //! the end of the file. Every count is checked against what the stream can hold before
-//! anything is allocated, and every index against the vertex count.
+//! anything is allocated, and every index against the vertex count. As the PLY reader
+//! refuses data after its elements, a stream holding more than it declares, flags no
+//! mesh defines, and bytes between a mesh and the next (or the table) are refused.
 
 use crate::scene::desc::MeshData;
-use flate2::read::ZlibDecoder;
+use flate2::bufread::ZlibDecoder;
 use glam::{DVec3, Vec2};
 use std::io::Read;
 
@@ -14,7 +16,12 @@ const MAGIC: u16 = 0x041C;
 const HAS_NORMALS: u32 = 0x0001;
 const HAS_TEXCOORDS: u32 = 0x0002;
 const HAS_COLORS: u32 = 0x0008;
+/// A hint only (no data): the mesh is to be shaded flat.
+const FACE_NORMALS: u32 = 0x0010;
+const SINGLE_PRECISION: u32 = 0x1000;
 const DOUBLE_PRECISION: u32 = 0x2000;
+const KNOWN_FLAGS: u32 =
+    HAS_NORMALS | HAS_TEXCOORDS | HAS_COLORS | FACE_NORMALS | SINGLE_PRECISION | DOUBLE_PRECISION;
 /// The most data one mesh may declare, decoded (the PLY and OBJ readers' input cap).
 const MAX_DECODED_BYTES: u64 = 2 << 30;
 /// Records (vertices, or triangles) decoded at a time.
@@ -45,7 +52,13 @@ pub(crate) fn parse(
     if !(version == 3 || version == 4) {
         return Err(format!("serialized version {version} is not supported (3 and 4 are)"));
     }
-    let start = if shape_index == 0 { 4 } else { mesh_offset(bytes, version, shape_index)? };
+    // Mesh 0 is read even where the table is broken, so that what its stream declares is
+    // checked first; the table is then checked as for any other mesh.
+    let table = mesh_table(bytes, version);
+    let start = match shape_index {
+        0 => 4,
+        _ => mesh_start(table.as_ref()?, shape_index)?,
+    };
     let stream = bytes.get(start..).ok_or("the offset of the mesh is past the end of the file")?;
     let mut z = ZlibDecoder::new(stream);
     let mut read = |n: usize, what: &str| -> Result<Vec<u8>, String> {
@@ -57,6 +70,15 @@ pub(crate) fn parse(
         Ok(buffer)
     };
     let flags = u32_at(&read(4, "flags")?, 0).unwrap_or(0);
+    if flags & !KNOWN_FLAGS != 0 {
+        return Err(format!(
+            "flags 0x{flags:04x} set bits (0x{:04x}) that no serialized mesh defines",
+            flags & !KNOWN_FLAGS
+        ));
+    }
+    if flags & SINGLE_PRECISION != 0 && flags & DOUBLE_PRECISION != 0 {
+        return Err(format!("flags 0x{flags:04x} ask for both single and double precision"));
+    }
     if version == 4 {
         // The mesh's name, NUL-terminated.
         let mut length = 0;
@@ -148,6 +170,24 @@ pub(crate) fn parse(
         }
         left -= take;
     }
+    let mut beyond = [0u8; 1];
+    if z.read(&mut beyond).map_err(|e| format!("after the triangles: {e}"))? != 0 {
+        return Err(format!(
+            "the mesh's compressed stream holds more than its {vertices} vertices and {faces} \
+             triangles (data follows the last triangle)"
+        ));
+    }
+    let end = start + (stream.len() - z.into_inner().len());
+    let table = table?;
+    let index = shape_index as usize;
+    let next = table.offsets.get(index + 1).map_or(table.start, |&o| o as usize);
+    if end != next {
+        let what = if index + 1 < table.offsets.len() { "the next mesh" } else { "the table" };
+        return Err(format!(
+            "mesh {index} ends at byte {end}, but {what} starts at byte {next} (the table of \
+             meshes at the end of the file does not match the file)"
+        ));
+    }
     let normals = if face_normals { None } else { normals };
     Ok(MeshData { positions, indices, normals, uvs, attributes: Vec::new() })
 }
@@ -179,24 +219,59 @@ fn decode_floats(
     Ok(())
 }
 
-/// Where mesh `index` starts, from the table at the end of the file (after its own 4-byte
-/// header, which the mesh repeats).
-fn mesh_offset(bytes: &[u8], version: u16, index: u32) -> Result<usize, String> {
+/// The table of meshes at the end of the file: where each mesh starts (at its own 4-byte
+/// header, which repeats the file's), and where the table starts.
+struct MeshTable {
+    offsets: Vec<u64>,
+    start: usize,
+}
+
+/// Reads and checks the table: mesh 0 starts at byte 0, each mesh after the one before,
+/// each at a header, and the table holds nothing else.
+fn mesh_table(bytes: &[u8], version: u16) -> Result<MeshTable, String> {
     let count = bytes.len().checked_sub(4).and_then(|at| u32_at(bytes, at));
     let count = count.ok_or("the file is too short for its table of meshes")?;
-    if index >= count {
-        return Err(format!("shape_index {index} is out of range: the file has {count} meshes"));
+    if count == 0 {
+        return Err("the table of meshes at the end of the file counts 0 meshes".into());
     }
     let entry = if version == 4 { 8 } else { 4 };
-    let at = (count - index) as usize * entry + 4;
-    let at = bytes.len().checked_sub(at).ok_or("the table of meshes is longer than the file")?;
-    let offset = if version == 4 { u64_at(bytes, at) } else { u32_at(bytes, at).map(u64::from) };
-    let offset = offset.ok_or("the table of meshes is cut short")?;
-    usize::try_from(offset)
-        .ok()
-        .filter(|o| o.saturating_add(4) < bytes.len())
-        .map(|o| o + 4)
-        .ok_or_else(|| format!("mesh {index} starts at {offset}, past the end of the file"))
+    let start = (count as usize)
+        .checked_mul(entry)
+        .and_then(|table| bytes.len().checked_sub(table + 4))
+        .filter(|&start| start >= 4)
+        .ok_or_else(|| format!("the table of {count} meshes is longer than the file"))?;
+    let offsets: Vec<u64> =
+        bytes[start..bytes.len() - 4]
+            .chunks_exact(entry)
+            .map(|e| {
+                if entry == 8 {
+                    u64_at(e, 0).unwrap_or(0)
+                } else {
+                    u32_at(e, 0).unwrap_or(0).into()
+                }
+            })
+            .collect();
+    for (i, &offset) in offsets.iter().enumerate() {
+        let after = if i == 0 { 0 } else { offsets[i - 1] + 1 };
+        let fits = usize::try_from(offset).is_ok_and(|o| o.saturating_add(4) < start);
+        let at_header = fits && bytes[offset as usize..offset as usize + 4] == bytes[..4];
+        if (i == 0 && offset != 0) || offset < after || !at_header {
+            return Err(format!(
+                "the table of meshes at the end of the file puts mesh {i} at byte {offset}, \
+                 where no mesh starts"
+            ));
+        }
+    }
+    Ok(MeshTable { offsets, start })
+}
+
+/// Where the zlib stream of mesh `index` starts.
+fn mesh_start(table: &MeshTable, index: u32) -> Result<usize, String> {
+    let count = table.offsets.len();
+    let offset = table.offsets.get(index as usize).ok_or_else(|| {
+        format!("shape_index {index} is out of range: the file has {count} meshes")
+    })?;
+    Ok(*offset as usize + 4)
 }
 
 #[cfg(test)]
@@ -207,8 +282,14 @@ mod tests {
 
     /// A v4 file of one mesh: a triangle with texture coordinates.
     fn triangle_file(vertices: u64, index: u32) -> Vec<u8> {
+        triangle_file_with(vertices, index, HAS_TEXCOORDS, &[])
+    }
+
+    /// The same with `flags` (texture coordinates among them) and `extra` after the
+    /// triangle, inside the zlib stream.
+    fn triangle_file_with(vertices: u64, index: u32, flags: u32, extra: &[u8]) -> Vec<u8> {
         let mut body = Vec::new();
-        body.extend(HAS_TEXCOORDS.to_le_bytes());
+        body.extend(flags.to_le_bytes());
         body.extend(b"tri\0");
         body.extend(vertices.to_le_bytes());
         body.extend(1u64.to_le_bytes());
@@ -225,10 +306,13 @@ mod tests {
         for i in [0u32, 1, index] {
             body.extend(i.to_le_bytes());
         }
+        body.extend(extra);
         let mut z = ZlibEncoder::new(Vec::new(), Compression::default());
         z.write_all(&body).unwrap();
         let mut file = vec![0x1C, 0x04, 0x04, 0x00];
         file.extend(z.finish().unwrap());
+        file.extend(0u64.to_le_bytes());
+        file.extend(1u32.to_le_bytes());
         file
     }
 
@@ -256,5 +340,40 @@ mod tests {
         let wide = parse(&triangle_file(1 << 20, 2), 0, false).unwrap_err();
         assert!(wide.contains("ends inside"), "{wide}");
         assert!(parse(&triangle_file(3, 2), 1, false).is_err());
+    }
+
+    /// What Mitsuba would read past unseen is refused, as the PLY reader refuses data after
+    /// its elements: data after the triangles in the stream, flags of no meaning, a table of
+    /// meshes that does not match the file (for mesh 0 too).
+    #[test]
+    fn data_no_mesh_declares_is_refused() {
+        let trailing = parse(&triangle_file_with(3, 2, HAS_TEXCOORDS, b"junk"), 0, false);
+        assert!(trailing.unwrap_err().contains("data follows the last triangle"));
+        let unknown = parse(&triangle_file_with(3, 2, HAS_TEXCOORDS | 0x0100, &[]), 0, false);
+        assert!(unknown.unwrap_err().contains("(0x0100) that no serialized mesh defines"));
+        let both = HAS_TEXCOORDS | SINGLE_PRECISION | DOUBLE_PRECISION;
+        let both = parse(&triangle_file_with(3, 2, both, &[]), 0, false).unwrap_err();
+        assert!(both.contains("both single and double"), "{both}");
+        let hinted = HAS_TEXCOORDS | SINGLE_PRECISION | FACE_NORMALS;
+        assert!(parse(&triangle_file_with(3, 2, hinted, &[]), 0, false).is_ok());
+
+        let good = triangle_file(3, 2);
+        let with_count = |count: u32| {
+            let mut file = good.clone();
+            let at = file.len() - 4;
+            file[at..].copy_from_slice(&count.to_le_bytes());
+            file
+        };
+        assert!(parse(&with_count(0), 0, false).unwrap_err().contains("counts 0 meshes"));
+        let two = parse(&with_count(2), 0, false).unwrap_err();
+        assert!(two.contains("where no mesh starts"), "{two}");
+        let mut gap = good[..good.len() - 12].to_vec();
+        gap.extend([0u8; 3].iter().chain(&good[good.len() - 12..]));
+        let gap = parse(&gap, 0, false).unwrap_err();
+        assert!(gap.contains("but the table starts at byte"), "{gap}");
+        let mut shifted = good.clone();
+        let at = shifted.len() - 12;
+        shifted[at] = 4;
+        assert!(parse(&shifted, 0, false).unwrap_err().contains("puts mesh 0 at byte 4"));
     }
 }

@@ -11,7 +11,7 @@
 use super::xml::Xml;
 use crate::output::Photographic;
 use crate::scene::MAX_RESOLUTION;
-use crate::scene::desc::{CameraDesc, LensShape};
+use crate::scene::desc::{CameraDesc, LensShape, MAX_LENS_EXTENT, lens_extent_requirement};
 use crate::scene::error::SceneError;
 use glam::DVec2;
 use roxmltree::Node;
@@ -164,12 +164,19 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
             if !(a >= 0.0) {
                 return Err(x.out_of_range(n, a, ">= 0"));
             }
+            if a > MAX_LENS_EXTENT {
+                return Err(x.out_of_range(n, a, &lens_extent_requirement()));
+            }
             a
         }
         None => 0.0,
     };
     let focus_distance = match optional_positive(x, node, "FocusDistance")? {
         None if aperture > 0.0 => return Err(x.missing(node, "FocusDistance")),
+        Some(d) if d > MAX_LENS_EXTENT => {
+            let node = x.required(node, "FocusDistance")?;
+            return Err(x.out_of_range(node, d, &lens_extent_requirement()));
+        }
         distance => distance,
     };
     let tonemap = x.child(node, "Tonemap")?.map(|t| tonemap(x, t)).transpose()?;

@@ -10,6 +10,7 @@
 //! `ShadowRayEpsilon` and `IntersectionTestEpsilon` are read and ignored: embray spawns
 //! secondary rays with error bounds instead of a fixed offset.
 
+mod attributes;
 mod brdfs;
 mod camera;
 mod inline_mesh;
@@ -106,6 +107,7 @@ pub fn load_str_with_warnings(
         return Err(x.error(root, "the root element must be <Scene>"));
     }
     x.check_children(root, &SCENE_CHILDREN)?;
+    attributes::check_attributes(&x, root)?;
     let all = |name: &'static str| root.children().filter(move |n| n.has_tag_name(name));
     let mut warnings = Vec::new();
 
@@ -143,8 +145,9 @@ pub fn load_str_with_warnings(
     let brdfs = brdfs::brdfs(&x, all("BRDFs"))?;
     let materials = materials::materials(&x, all("Materials"), &brdfs)?;
     let transforms = transforms::transforms(&x, all("Transformations"))?;
-    let vertices = vertex_data::vertex_data(&x, all("VertexData"))?;
-    let texcoords = vertex_data::texcoord_data(&x, all("TexCoordData"))?;
+    // One list each: a second would shift every index after the first silently.
+    let vertices = vertex_data::vertex_data(&x, x.child(root, "VertexData")?.into_iter())?;
+    let texcoords = vertex_data::texcoord_data(&x, x.child(root, "TexCoordData")?.into_iter())?;
     let base_dir = source.parent().unwrap_or(Path::new(""));
     let textures = textures::texture_maps(&x, base_dir, all("Textures"))?;
     let lights = lights::lights(&x, all("Lights"), &textures)?;

@@ -247,6 +247,7 @@ impl Builder<'_, '_, '_> {
                     scene: x.file,
                     item: describe(node),
                     line: x.line(faces),
+                    read_mtl: true,
                 };
                 let (_, models) = self.cache.models(&mesh_ref, Some(smooth), self.warnings)?;
                 let mut models = models.into_iter();

@@ -31,7 +31,7 @@ fn number_tuples<'a, 'i: 'a, const N: usize>(
     Ok(out)
 }
 
-/// The scene's vertex list (all `<VertexData>` elements, in order).
+/// The scene's vertex list (its `<VertexData>`).
 pub(super) fn vertex_data<'a, 'i: 'a>(
     x: &Xml,
     lists: impl Iterator<Item = Node<'a, 'i>>,

@@ -126,7 +126,6 @@ impl Xml<'_, '_> {
         }
     }
 
-    /// Rejects child elements of `node` that are not in `allowed`.
     /// The boolean attribute `name` of `node`: `"true"` or `"false"` (false when absent).
     pub fn flag(&self, node: Node, name: &str) -> Result<bool, SceneError> {
         match node.attribute(name).map(str::trim) {
@@ -142,6 +141,7 @@ impl Xml<'_, '_> {
         }
     }
 
+    /// Rejects child elements of `node` that are not in `allowed`.
     pub fn check_children(&self, node: Node, allowed: &[&str]) -> Result<(), SceneError> {
         for child in node.children().filter(Node::is_element) {
             let name = child.tag_name().name();

@@ -12,8 +12,8 @@ use crate::params::{Entry, ParamError, Params, Resources, Value};
 use crate::scene::error::SceneError;
 use crate::scene::texture_image::radiance_param;
 use crate::texels::TextureImage;
-use crate::transform::nearest_rotation;
-use glam::DVec3;
+use crate::transform::{is_orthonormal, nearest_rotation};
+use glam::{DMat3, DVec3};
 use std::sync::Arc;
 
 impl Builder<'_> {
@@ -81,7 +81,12 @@ impl Builder<'_> {
             });
         }
         let to_world = match property(element, "transform", "to_world") {
-            Some(t) => Some(transform(t)?),
+            Some(t) => {
+                let m = transform(t)?;
+                let textured = element.children.iter().any(|c| c.attr("name") == Some("texture"));
+                check_placement(kind, m.matrix3, t, textured)?;
+                Some(m)
+            }
             None => None,
         };
         let set = |p: &mut Params, name: &str, v: DVec3| {
@@ -113,6 +118,11 @@ impl Builder<'_> {
                     }
                     (Some(at), false) => set(&mut p, placed, at),
                     (None, _) => {}
+                }
+                // Mitsuba's default, as for a spot.
+                let power = if kind == "point" { "intensity" } else { "irradiance" };
+                if !p.has(power) {
+                    set(&mut p, power, DVec3::ONE);
                 }
                 kind
             }
@@ -164,13 +174,7 @@ impl Builder<'_> {
             }
             "spot" => {
                 let m = to_world.unwrap_or(glam::DAffine3::IDENTITY);
-                let cutoff = float(element, "cutoff_angle")?.unwrap_or(20.0);
-                let beam = float(element, "beam_width")?.unwrap_or(0.75 * cutoff);
-                if !(cutoff > 0.0 && cutoff < 90.0 && beam >= 0.0 && beam <= cutoff) {
-                    return Err(element.error(format!(
-                        "cutoff_angle {cutoff} and beam_width {beam} must satisfy 0 <= beam_width <= cutoff_angle < 90"
-                    )));
-                }
+                let (cutoff, beam) = spot_angles(element)?;
                 set(&mut p, "position", m.translation);
                 set(&mut p, "direction", m.transform_vector3(DVec3::Z));
                 p.push(derived(element, "coverage_angle", Value::Numbers(vec![2.0 * cutoff])));
@@ -209,11 +213,7 @@ impl Builder<'_> {
                         t.error(format!(
                             "an envmap's to_world must be a rotation (no scale, shear or \
                              mirror), not {}",
-                            m.transpose()
-                                .to_cols_array()
-                                .map(|x| (x * 1e6).round() / 1e6)
-                                .map(|x| x.to_string())
-                                .join(", ")
+                            rows(m)
                         ))
                     })?;
                 }
@@ -233,11 +233,70 @@ impl Builder<'_> {
             .expect("a kind of light")
             .map_err(|e| SceneError::from_param(&element.file, e))?;
         if light.one_per_scene() && self.lights.iter().any(|l| l.name() == light.name()) {
-            return Err(element.error(format!("a scene takes one {} emitter", kind)));
+            let what = match light.name() {
+                // As Mitsuba says it: envmap and constant are both the environment.
+                "environment" => "environment emitter (envmap or constant)".to_owned(),
+                _ => format!("{kind} emitter"),
+            };
+            return Err(element.error(format!("a scene takes one {what}, as in Mitsuba")));
         }
         self.lights.push(light);
         Ok(())
     }
+}
+
+/// Refuses a `to_world` whose placement embray's light of `kind` would not render as
+/// Mitsuba does: a directional or projector one that scales (Mitsuba's irradiance scales
+/// with the unnormalised axis), a spot one that stretches or shears (Mitsuba's cone would
+/// stretch; a uniform scale changes nothing there), a mirror where an image is projected.
+fn check_placement(kind: &str, m: DMat3, at: &Element, textured: bool) -> Result<(), SceneError> {
+    let scale = m.determinant().abs().cbrt();
+    let problem = match kind {
+        "directional" | "projector" if !is_orthonormal(m) => Some(format!(
+            "a {kind} emitter's to_world must not scale (or shear): Mitsuba uses its axis \
+             unnormalised, so its irradiance would change with the scale"
+        )),
+        "spot" if !(scale > 0.0 && is_orthonormal(m / scale)) => Some(
+            "a spot emitter's to_world may scale uniformly, but not non-uniformly or with \
+             shear: Mitsuba would stretch its cone"
+                .to_owned(),
+        ),
+        "spot" | "projector" if (textured || kind == "projector") && m.determinant() < 0.0 => {
+            Some(format!(
+                "a {kind} emitter's to_world mirrors: Mitsuba would project its image mirrored"
+            ))
+        }
+        _ => None,
+    };
+    match problem {
+        Some(problem) => Err(at.error(format!("{problem}; its matrix, row by row: {}", rows(m)))),
+        None => Ok(()),
+    }
+}
+
+/// A 3×3 matrix row by row, to 6 decimals.
+fn rows(m: DMat3) -> String {
+    let digits = m.transpose().to_cols_array().map(|x| (x * 1e6).round() / 1e6 + 0.0);
+    digits.map(|x| x.to_string()).join(", ")
+}
+
+/// A spot emitter's `cutoff_angle` and `beam_width` in degrees. A beam wider than the
+/// cutoff is the cutoff (Mitsuba's falloff is then full up to the cutoff); past a cutoff of
+/// 180 Mitsuba's cone test wraps around, and an image is projected only within 90.
+fn spot_angles(element: &Element) -> Result<(f64, f64), SceneError> {
+    let cutoff = float(element, "cutoff_angle")?.unwrap_or(20.0);
+    let beam = float(element, "beam_width")?.unwrap_or(0.75 * cutoff);
+    let textured = element.children.iter().any(|c| c.attr("name") == Some("texture"));
+    let cutoff_ok = cutoff > 0.0 && if textured { cutoff < 90.0 } else { cutoff <= 180.0 };
+    if !(cutoff_ok && beam >= 0.0) {
+        let texture = if textured { " (with a texture)" } else { "" };
+        let bound = if textured { "< 90" } else { "<= 180" };
+        return Err(element.error(format!(
+            "cutoff_angle {cutoff} and beam_width {beam} must satisfy 0 < cutoff_angle \
+             {bound}{texture} and beam_width >= 0"
+        )));
+    }
+    Ok((cutoff, beam.min(cutoff)))
 }
 
 /// A parameter the reader derives from the element's own (a placement, a renamed angle).

@@ -46,10 +46,22 @@ pub(super) fn integrator(
             };
             settings.max_depth = match integer(element, "max_depth")?.unwrap_or(-1) {
                 -1 => MAX_DEPTH,
+                0 => {
+                    // Mitsuba traces no ray: black. embray's depth 0 still shows what the
+                    // camera sees emitting, which hiding the emitters takes away.
+                    settings.hide_emitters = true;
+                    warnings.push(format!(
+                        "{}: line {}: max_depth = 0: no light reaches the camera, the image is \
+                         black (as Mitsuba renders it; embray's max depth 0 with hidden emitters)",
+                        element.file.display(),
+                        element.line
+                    ));
+                    0
+                }
                 depth if (1..=i64::from(MAX_DEPTH)).contains(&depth) => depth as u32 - 1,
                 depth => {
                     return Err(element.error(format!(
-                        "max_depth is {depth}, but must be -1 (no limit) or 1 to {MAX_DEPTH}"
+                        "max_depth is {depth}, but must be -1 (no limit) or 0 to {MAX_DEPTH}"
                     )));
                 }
             };

@@ -135,8 +135,22 @@ pub fn load(
     text: &str,
     defines: &[(String, String)],
 ) -> Result<(SceneDesc, Vec<String>), SceneError> {
+    // Mitsuba sorts its parameters by name length with an unstable sort: which of two
+    // values of one name it substitutes is not defined.
+    for (at, define) in defines.iter().enumerate() {
+        if let Some(first) = defines[..at].iter().find(|(name, _)| *name == define.0) {
+            let problem = format!(
+                "`{}` is given twice (first as {}): Mitsuba leaves which value it uses \
+                 undefined; give it once",
+                crate::excerpt::excerpt(&define.0),
+                crate::excerpt::excerpt(&first.1)
+            );
+            return Err(define_error(path, define, problem));
+        }
+    }
     let (root, files) = tree::read(path, text, defines)?;
     let mut warnings = Vec::new();
+    transform::axis_warnings(&root, &mut warnings);
     let mut by_id = HashMap::new();
     for child in &root.children {
         if let Some(id) = child.attr("id") {

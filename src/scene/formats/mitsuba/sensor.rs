@@ -5,7 +5,7 @@ use super::transform::transform;
 use super::tree::Element;
 use super::values::{float, numbers, property, refuse_second, refuse_unread, string};
 use crate::sampling::filter::PixelFilter;
-use crate::scene::desc::{CameraDesc, LensShape};
+use crate::scene::desc::{CameraDesc, LensShape, MAX_LENS_EXTENT, lens_extent_requirement};
 use crate::scene::error::SceneError;
 
 /// A camera and what its sampler asks for.
@@ -110,7 +110,13 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     let up = to_world.matrix3.col(1).normalize();
     let left = to_world.matrix3.col(0);
     if left.dot(up.cross(dir)) <= 0.0 {
-        return Err(element.error("a mirrored camera transform is not supported"));
+        // Mitsuba renders it, flipped left to right; embray's camera has no mirror.
+        let at = property(element, "transform", "to_world").unwrap_or(element);
+        return Err(at.error(
+            "the camera's to_world mirrors (a negative scale): Mitsuba would render the image \
+             flipped left to right, which embray's camera does not do (flip the image \
+             afterwards instead)",
+        ));
     }
     let near = float(element, "near_clip")?.unwrap_or(1e-2);
     let far = float(element, "far_clip")?.unwrap_or(1e4);
@@ -148,8 +154,24 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         offset("principal_point_offset_x")? * x_extent,
         -offset("principal_point_offset_y")? * x_extent / aspect,
     );
+    // A lens beyond the coordinate range around the camera puts ray origins beyond it.
+    let beyond = |name: &str, value: f64| {
+        let at = element.children.iter().find(|c| c.attr("name") == Some(name));
+        at.unwrap_or(element)
+            .error(format!("{name} is {value}, but must be {}", lens_extent_requirement()))
+    };
+    for (name, shift) in
+        [("principal_point_offset_x", camera.shift.x), ("principal_point_offset_y", camera.shift.y)]
+    {
+        if !(shift.abs() <= MAX_LENS_EXTENT) {
+            return Err(beyond(name, offset(name)?));
+        }
+    }
     if kind == "thinlens" {
         let radius = float(element, "aperture_radius")?.unwrap_or(0.0);
+        if 2.0 * radius > MAX_LENS_EXTENT {
+            return Err(beyond("aperture_radius", radius));
+        }
         camera.aperture = 2.0 * radius;
         // The plane in focus: Mitsuba's default is the far clip plane; one not in front of
         // the lens would focus nowhere.
@@ -158,6 +180,9 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
             return Err(element.error(format!(
                 "focus_distance is {focus}, but a thin lens needs one > 0 (in front of it)"
             )));
+        }
+        if radius > 0.0 && focus > MAX_LENS_EXTENT {
+            return Err(beyond("focus_distance", focus));
         }
         camera.focus_distance = Some(focus);
         camera.lens_shape = LensShape::Disk;

@@ -2,6 +2,9 @@
 //! BSDF (nested or by reference; Mitsuba's default is a one-sided diffuse 0.5) and an `area`
 //! emitter's radiance; `shapegroup`s placed by `instance`s share their meshes.
 
+mod checks;
+mod winding;
+
 use super::Builder;
 use super::bsdfs::bsdf;
 use super::transform::transform;
@@ -12,7 +15,7 @@ use crate::scene::desc::{MaterialDesc, MeshData, ObjectDesc, ShapeDesc};
 use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::obj::ObjRef;
 use crate::scene::round_shapes::{cylinder_mesh, disk_mesh};
-use crate::scene::shapes::{box_mesh, quad_mesh};
+use crate::scene::shapes::{mitsuba_cube_mesh, quad_mesh};
 use glam::{DAffine3, DVec3};
 use std::sync::Arc;
 
@@ -87,6 +90,8 @@ impl Builder<'_> {
                     scene: &file.file,
                     item: file.describe(),
                     line: Line(Some(file.line)),
+                    // Mitsuba's OBJ reader ignores `mtllib` and `usemtl`.
+                    read_mtl: false,
                 };
                 let (_, models) =
                     self.meshes.models(&mesh_ref, Some(!face_normals), self.warnings)?;
@@ -96,10 +101,11 @@ impl Builder<'_> {
                 models
                     .into_iter()
                     .map(|m| {
-                        if !flip || m.mesh.uvs.is_none() {
-                            return ShapeDesc::Mesh(m.mesh);
+                        let wound = winding::wound_as_normals(m.mesh);
+                        if !flip || wound.uvs.is_none() {
+                            return ShapeDesc::Mesh(wound);
                         }
-                        let mut mesh = MeshData::clone(&m.mesh);
+                        let mut mesh = MeshData::clone(&wound);
                         for uv in mesh.uvs.iter_mut().flatten() {
                             uv.y = 1.0 - uv.y;
                         }
@@ -112,12 +118,11 @@ impl Builder<'_> {
                     .map_err(|p| element.error(p))?;
                 vec![ShapeDesc::Mesh(Arc::new(mesh))]
             }
-            "cube" => {
-                let mesh =
-                    box_mesh(DVec3::splat(-1.0), DVec3::ONE).map_err(|p| element.error(p))?;
-                vec![ShapeDesc::Mesh(Arc::new(mesh))]
+            "cube" => vec![ShapeDesc::Mesh(Arc::new(mitsuba_cube_mesh()))],
+            "serialized" => {
+                let mesh = Arc::new(self.serialized(element)?);
+                vec![ShapeDesc::Mesh(winding::wound_as_normals(mesh))]
             }
-            "serialized" => vec![ShapeDesc::Mesh(Arc::new(self.serialized(element)?))],
             "disk" => vec![ShapeDesc::Mesh(Arc::new(disk_mesh()))],
             "cylinder" => {
                 let radius = float(element, "radius")?.unwrap_or(1.0);
@@ -151,6 +156,7 @@ impl Builder<'_> {
                 if !(radius > 0.0) {
                     return Err(element.error(format!("radius is {radius}, but must be > 0")));
                 }
+                checks::sphere_to_world(element, &world_from_object)?;
                 // Mitsuba's sphere is to_world · translate(center) · scale(radius) of the
                 // unit sphere, with u = φ/2π about its z axis and v = θ/π from +z; embray's
                 // measures u = ½ − atan2(z, x)/2π about y. Its frame turned (x, y, z) →
@@ -160,7 +166,7 @@ impl Builder<'_> {
                     * DAffine3::from_scale(DVec3::splat(radius))
                     * DAffine3::from_mat3(mitsuba_from_embray);
                 let shapes = vec![ShapeDesc::Sphere { center: DVec3::ZERO, radius: 1.0 }];
-                self.check_attributes(element, &shapes, material)?;
+                checks::mesh_attributes(element, &shapes, &self.materials[material as usize])?;
                 self.push_objects(&name, shapes, material, world_from_object * own, false);
                 return Ok(());
             }
@@ -171,34 +177,8 @@ impl Builder<'_> {
                 )));
             }
         };
-        self.check_attributes(element, &shapes, material)?;
+        checks::mesh_attributes(element, &shapes, &self.materials[material as usize])?;
         self.push_objects(&name, shapes, material, world_from_object, flip_normals);
-        Ok(())
-    }
-
-    /// Refuses a shape without a mesh attribute its material looks up (as Mitsuba does).
-    fn check_attributes(
-        &self,
-        element: &Element,
-        shapes: &[ShapeDesc],
-        material: u32,
-    ) -> Result<(), SceneError> {
-        for name in self.materials[material as usize].mesh_attributes() {
-            for shape in shapes {
-                let attributes = match shape {
-                    ShapeDesc::Mesh(mesh) => &mesh.attributes[..],
-                    ShapeDesc::Sphere { .. } => &[],
-                };
-                if !attributes.iter().any(|a| a.name == name) {
-                    let has: Vec<&str> = attributes.iter().map(|a| a.name.as_str()).collect();
-                    let has = if has.is_empty() { "none".to_owned() } else { has.join(", ") };
-                    return Err(element.error(format!(
-                        "its BSDF looks up the mesh attribute `{name}`, which the shape does not \
-                         have (it has: {has})"
-                    )));
-                }
-            }
-        }
         Ok(())
     }
 

@@ -1,7 +1,7 @@
 //! `<spectrum>` → linear sRGB as Mitsuba 3's RGB variants convert it: a constant is grey (an
 //! emitter's is D65's white); a wavelength:value list is integrated against the CIE 1931
-//! observer (times D65 unless it is emission), converted from XYZ and clamped. (A spectrum
-//! file arrives here as such a list: `spd`.)
+//! observer (times D65 unless it is emission), converted from XYZ and clamped. Its values are
+//! range-checked as a constant's are. (A spectrum file arrives here as such a list: `spd`.)
 
 use super::cie::{D65, MAX_NM, MIN_NM, SAMPLES, X_BAR, Y_BAR, Z_BAR};
 use super::scalars::{ColorUse, numbers};
@@ -47,12 +47,34 @@ pub(super) fn to_rgb(element: &Element, usage: ColorUse) -> Result<DVec3, SceneE
     if wavelengths.len() < 2 {
         return Err(element.error("a spectrum needs at least two wavelength:value pairs"));
     }
+    refuse_out_of_range(element, usage, &wavelengths, &values)?;
     let (bounded, d65) = match usage {
         ColorUse::Reflectance => (true, true),
         ColorUse::Unbounded => (false, true),
         ColorUse::Emission => (false, false),
     };
     Ok(list_to_srgb(&wavelengths, &values, bounded, d65))
+}
+
+/// Refuses a value a constant of the same use would be refused for (a reflectance outside
+/// [0, 1], negative emission), rather than let the conversion clamp it unseen as Mitsuba
+/// does (with a warning). A conductor's index is not checked, as its constant is not.
+fn refuse_out_of_range(
+    element: &Element,
+    usage: ColorUse,
+    wavelengths: &[f64],
+    values: &[f64],
+) -> Result<(), SceneError> {
+    let (bounds, within): (&str, fn(f64) -> bool) = match usage {
+        ColorUse::Reflectance => ("in [0, 1] (a reflectance)", |v| (0.0..=1.0).contains(&v)),
+        ColorUse::Emission => (">= 0 (emission)", |v| v >= 0.0),
+        ColorUse::Unbounded => return Ok(()),
+    };
+    let Some((nm, value)) = wavelengths.iter().zip(values).find(|(_, v)| !within(**v)) else {
+        return Ok(());
+    };
+    let name = crate::excerpt::excerpt(element.attr("name").unwrap_or("the spectrum"));
+    Err(element.error(format!("`{name}` is {value} at {nm} nm, but must be {bounds}")))
 }
 
 /// A table of `SAMPLES` values over [MIN_NM, MAX_NM] at `nm`, interpolated (0 outside).

@@ -41,8 +41,53 @@ fn rotate(op: &Element) -> Result<DAffine3, SceneError> {
         [degrees] => degrees.to_radians(),
         _ => return Err(op.error("`angle` must be one number (degrees)")),
     };
-    let axis = axis.try_normalize().ok_or_else(|| op.error("the rotation axis is zero"))?;
-    Ok(DAffine3::from_axis_angle(axis, angle))
+    if axis == DVec3::ZERO {
+        return Err(op.error("the rotation axis is zero"));
+    }
+    Ok(DAffine3::from_mat3(mitsuba_rotation(axis, angle)))
+}
+
+/// Mitsuba's rotation matrix about `axis`, `radians` (Dr.Jit's `rotate`, fused multiply-adds
+/// as there). Mitsuba does not normalise the axis: one not of unit length scales and shears
+/// along with the turn, and embray reproduces that matrix (`axis_warnings` says so).
+fn mitsuba_rotation(axis: DVec3, radians: f64) -> DMat3 {
+    let (sin, cos) = radians.sin_cos();
+    let one_minus_cos = 1.0 - cos;
+    let a = axis;
+    let (shuf1, shuf2) = (DVec3::new(a.y, a.z, a.x), DVec3::new(a.z, a.x, a.y));
+    let fmadd = |x: DVec3, y: f64, z: DVec3| {
+        DVec3::new(x.x.mul_add(y, z.x), x.y.mul_add(y, z.y), x.z.mul_add(y, z.z))
+    };
+    let tmp0 = fmadd(a * a, one_minus_cos, DVec3::splat(cos));
+    let tmp1 = fmadd(a * shuf1, one_minus_cos, shuf2 * sin);
+    let tmp2 = fmadd(a * shuf2, one_minus_cos, -(shuf1 * sin));
+    DMat3::from_cols(
+        DVec3::new(tmp0.x, tmp1.x, tmp2.x),
+        DVec3::new(tmp2.y, tmp0.y, tmp1.y),
+        DVec3::new(tmp1.z, tmp2.z, tmp0.z),
+    )
+}
+
+/// A warning for each `<rotate>` under `root` whose axis is not of unit length: Mitsuba's
+/// matrix (and so embray's) then scales and shears, which is rarely what was meant.
+pub(super) fn axis_warnings(root: &Element, warnings: &mut Vec<String>) {
+    for child in &root.children {
+        if child.tag == "rotate" {
+            if let Ok(axis) = vec3(child, Some(0.0)) {
+                if axis != DVec3::ZERO && (axis.length() - 1.0).abs() > 1e-6 {
+                    warnings.push(format!(
+                        "{}: line {}: the rotation axis {axis} is not of unit length: Mitsuba's \
+                         matrix (which embray reproduces) then scales and shears as well as \
+                         rotating; normalise the axis for a pure rotation",
+                        child.file.display(),
+                        child.line
+                    ));
+                }
+            }
+        } else {
+            axis_warnings(child, warnings);
+        }
+    }
 }
 
 /// A 4×4 (or 3×3) matrix, row by row.

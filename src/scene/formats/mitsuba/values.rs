@@ -86,8 +86,8 @@ pub(super) fn string<'a>(
     }
 }
 
-/// The `<boolean>` property `name` (Mitsuba writes `true` or `false`); anything else is
-/// refused rather than read as false.
+/// The `<boolean>` property `name` (`true` or `false` in any case, as Mitsuba reads them);
+/// anything else is refused rather than read as false.
 pub(super) fn boolean(plugin: &Element, name: &str) -> Result<Option<bool>, SceneError> {
     match plugin.children.iter().find(|c| c.attr("name") == Some(name)) {
         None => Ok(None),
@@ -137,9 +137,10 @@ pub(super) fn refuse_second(parent: &Element, tag: &str, owner: &str) -> Result<
 pub(super) fn property_value(element: &Element, usage: ColorUse) -> Result<Value, SceneError> {
     Ok(match element.tag.as_str() {
         "integer" | "float" => Value::Number(number_attr(element, "value")?),
-        "boolean" => match element.required("value")?.trim() {
-            "true" => Value::Bool(true),
-            "false" => Value::Bool(false),
+        // As Mitsuba's parser compares them: ignoring case, not spaces.
+        "boolean" => match element.required("value")? {
+            v if v.eq_ignore_ascii_case("true") => Value::Bool(true),
+            v if v.eq_ignore_ascii_case("false") => Value::Bool(false),
             other => {
                 return Err(element
                     .error(format!("'{}' is not true or false", crate::excerpt::excerpt(other))));

@@ -15,7 +15,7 @@ pub(crate) use mtl_notes::MtlNotes;
 
 use crate::scene::desc::MeshData;
 use crate::scene::error::{Line, SceneError};
-use crate::scene::formats::obj::scan::{ScanProblem, scan_mtl, scan_obj};
+use crate::scene::formats::obj::scan::{ScanProblem, scan_mtl, scan_obj, without_bom};
 use glam::{DVec3, Vec2};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -32,6 +32,9 @@ pub(crate) struct ObjRef<'a> {
     pub item: String,
     /// Line of the `file` field in the scene.
     pub line: Line,
+    /// Whether the OBJ's material libraries are read (and their absence said): not for a
+    /// Mitsuba scene, whose OBJ reader never reads them.
+    pub read_mtl: bool,
 }
 
 impl ObjRef<'_> {
@@ -65,14 +68,17 @@ pub(crate) struct LoadedObj {
 }
 
 /// Loads the OBJ file; a missing MTL file adds a warning and leaves its materials undefined.
+/// Without `read_mtl`, no MTL file is opened and the models have no material.
 pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<LoadedObj, SceneError> {
     let obj = obj_ref.obj.as_path();
-    let text = crate::input_file::read_text(obj).map_err(|error| SceneError::ObjRead {
-        obj: obj.to_path_buf(),
-        scene: obj_ref.scene.to_path_buf(),
-        item: obj_ref.item.clone(),
-        error,
-        line: obj_ref.line,
+    let text = crate::input_file::read_text(obj).map(without_bom).map_err(|error| {
+        SceneError::ObjRead {
+            obj: obj.to_path_buf(),
+            scene: obj_ref.scene.to_path_buf(),
+            item: obj_ref.item.clone(),
+            error,
+            line: obj_ref.line,
+        }
     })?;
     let scan = scan_obj(&text).map_err(|p| obj_ref.scan_error(obj, p))?;
     for warning in &scan.warnings {
@@ -86,8 +92,11 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     // Parallel to tobj's list of materials (every library's, in the order it reads them).
     let sources: RefCell<Vec<ObjMaterial>> = RefCell::new(Vec::new());
     let material_loader = |mtl_name: &Path| -> tobj::MTLLoadResult {
+        if !obj_ref.read_mtl {
+            return Ok((Vec::new(), Default::default()));
+        }
         let mtl = obj_dir.join(mtl_name);
-        let mtl_text = match crate::input_file::read_text(&mtl) {
+        let mtl_text = match crate::input_file::read_text(&mtl).map(without_bom) {
             Ok(text) => text,
             // A missing library is a warning (exporters often name one they do not ship);
             // one that exists but cannot be read (a device, too large) is an error.
@@ -174,7 +183,7 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     };
     // An undefined material would silently fall back to the default; say so (unless the
     // whole library is missing, which is already said).
-    if missing_mtl.is_empty() {
+    if missing_mtl.is_empty() && obj_ref.read_mtl {
         for (name, line) in &scan.usemtl {
             if !materials.iter().any(|m| &m.name == name) {
                 warnings.push(format!(

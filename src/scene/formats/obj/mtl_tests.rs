@@ -16,6 +16,7 @@ fn obj_ref() -> ObjRef<'static> {
         scene: Path::new("s.toml"),
         item: "objects[0]".into(),
         line: Line(Some(4)),
+        read_mtl: true,
     }
 }
 

@@ -23,6 +23,57 @@ pub(crate) struct ObjScan {
     pub usemtl: Vec<(String, usize)>,
 }
 
+/// `text` without a leading UTF-8 byte order mark, which some Windows tools write: tobj
+/// would read it as part of the first statement's keyword and drop that statement.
+pub(crate) fn without_bom(mut text: String) -> String {
+    if text.starts_with('\u{feff}') {
+        text.drain(..'\u{feff}'.len_utf8());
+    }
+    text
+}
+
+/// Statements of the OBJ format that tobj reads or that embray leaves out on purpose
+/// (points, lines, smoothing groups, free-form geometry, display attributes); anything else
+/// is most likely a typo (`vv 1 -1 0`), whose data would be lost without a word.
+const KNOWN_STATEMENTS: [&str; 36] = [
+    "v",
+    "vt",
+    "vn",
+    "vp",
+    "f",
+    "fo",
+    "l",
+    "p",
+    "o",
+    "g",
+    "s",
+    "mg",
+    "usemtl",
+    "mtllib",
+    "cstype",
+    "deg",
+    "bmat",
+    "step",
+    "curv",
+    "curv2",
+    "surf",
+    "parm",
+    "trim",
+    "hole",
+    "scrv",
+    "sp",
+    "end",
+    "con",
+    "bevel",
+    "c_interp",
+    "d_interp",
+    "lod",
+    "usemap",
+    "maplib",
+    "shadow_obj",
+    "trace_obj",
+];
+
 /// How many numbers each vertex statement takes (tobj's rules): `v` x y z [w | r g b],
 /// `vt` u v [w], `vn` x y z.
 const COUNTS: [&[usize]; 3] = [&[3, 4, 6], &[2, 3], &[3]];
@@ -39,6 +90,8 @@ pub(crate) fn scan_obj(text: &str) -> Result<ObjScan, ScanProblem> {
     }
     let mut seen = [0usize; 3];
     let mut scan = ObjScan::default();
+    // (line of the first, count)
+    let mut unknown: Option<(usize, usize)> = None;
     for (n, line) in text.lines().enumerate() {
         let problem = |message: String| ScanProblem { line: n + 1, message };
         let mut words = line.split_whitespace();
@@ -64,6 +117,10 @@ pub(crate) fn scan_obj(text: &str) -> Result<ObjScan, ScanProblem> {
             }
             Some(keyword) => {
                 let Some(kind) = kind_of(keyword) else {
+                    if !keyword.starts_with('#') && !KNOWN_STATEMENTS.contains(&keyword) {
+                        let (_, count) = unknown.get_or_insert((n + 1, 0));
+                        *count += 1;
+                    }
                     continue;
                 };
                 seen[kind] += 1;
@@ -71,6 +128,14 @@ pub(crate) fn scan_obj(text: &str) -> Result<ObjScan, ScanProblem> {
             }
             None => {}
         }
+    }
+    if let Some((line, count)) = unknown {
+        let first = text.lines().nth(line - 1).and_then(|l| l.split_whitespace().next());
+        let message = format!(
+            "{count} statement(s) of no OBJ kind are ignored, the first '{}'",
+            crate::excerpt::excerpt(first.unwrap_or(""))
+        );
+        scan.warnings.push(ScanProblem { line, message });
     }
     Ok(scan)
 }
@@ -244,6 +309,17 @@ mod tests {
         let scan = scan_obj("v 0 0 0\nv 1 0 0\nusemtl red paint\nf 1 2\n").unwrap();
         assert_eq!(scan.warnings[0].line, 4);
         assert_eq!(scan.usemtl, [("red paint".to_owned(), 3)]);
+    }
+
+    #[test]
+    fn unknown_statements_are_counted_once_and_a_bom_is_skipped() {
+        let scan = scan_obj("v 0 0 0\nvv 1 -1 0\ns off\n#c\nvv 2 0 0\nxyz\n").unwrap();
+        assert_eq!(scan.warnings.len(), 1, "{:?}", scan.warnings);
+        assert_eq!(scan.warnings[0].line, 2);
+        assert!(scan.warnings[0].message.starts_with("3 statement(s)"), "{:?}", scan.warnings);
+        assert!(scan.warnings[0].message.contains("'vv'"), "{:?}", scan.warnings);
+        assert_eq!(without_bom("\u{feff}v 0 0 0\n".to_owned()), "v 0 0 0\n");
+        assert_eq!(without_bom("v\u{feff}".to_owned()), "v\u{feff}");
     }
 
     #[test]

@@ -30,6 +30,7 @@ pub(super) fn mesh_ref<'c>(
         scene: ctx.file,
         item: path.to_string(),
         line: ctx.line(&path.key("file")),
+        read_mtl: true,
     }
 }
 

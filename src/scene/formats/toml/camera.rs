@@ -1,6 +1,8 @@
 //! The `[camera]` and `[render]` tables → `CameraDesc` and `RenderSettings`, validated.
 
-use crate::scene::desc::{CameraDesc, IntegratorKind, LensShape, RenderSettings};
+use crate::scene::desc::{
+    CameraDesc, IntegratorKind, LensShape, MAX_LENS_EXTENT, RenderSettings, lens_extent_requirement,
+};
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::format::{CameraToml, IntegratorToml, LensToml, RenderToml};
 use crate::scene::formats::toml::source_map::FieldPath;
@@ -56,8 +58,21 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
         )?;
     }
     let aperture = aperture(cam, ctx)?;
-    let focus_distance =
-        cam.focus_distance.map(|d| ctx.positive(&path.key("focus_distance"), d)).transpose()?;
+    let lens_limit = lens_extent_requirement();
+    let focus_distance = match cam.focus_distance {
+        Some(d) => {
+            let field = path.key("focus_distance");
+            ctx.positive(&field, d)?;
+            ctx.require(d <= MAX_LENS_EXTENT, &field, d, &lens_limit)?;
+            Some(d)
+        }
+        None => None,
+    };
+    let shift = cam.shift.unwrap_or([0.0; 2]);
+    for (i, &s) in shift.iter().enumerate() {
+        let requirement = format!("in [-{MAX_LENS_EXTENT:e}, {MAX_LENS_EXTENT:e}]");
+        ctx.require(s.abs() <= MAX_LENS_EXTENT, &path.key("shift").index(i), s, &requirement)?;
+    }
     let clip = cam.clip.unwrap_or([0.0, f64::INFINITY]);
     let [near, far] = clip;
     let clip_ok = near >= 0.0 && near.is_finite() && far > near;
@@ -77,7 +92,7 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
             None | Some(LensToml::Disk) => LensShape::Disk,
             Some(LensToml::Square) => LensShape::Square,
         },
-        shift: DVec2::from_array(cam.shift.unwrap_or([0.0; 2])),
+        shift: DVec2::from_array(shift),
         pixel_aspect: match cam.pixel_aspect {
             Some(a) => {
                 let field = path.key("pixel_aspect");
@@ -95,7 +110,12 @@ fn aperture(cam: &CameraToml, ctx: &Ctx) -> Result<f64, SceneError> {
     match (cam.aperture, cam.f_number, cam.focal_length) {
         (Some(_), Some(_), _) => Err(ctx.conflict(&path, "camera", "aperture", "f_number")),
         (Some(_), None, Some(_)) => Err(ctx.conflict(&path, "camera", "aperture", "focal_length")),
-        (Some(aperture), None, None) => ctx.non_negative(&path.key("aperture"), aperture),
+        (Some(aperture), None, None) => {
+            let field = path.key("aperture");
+            ctx.non_negative(&field, aperture)?;
+            ctx.require(aperture <= MAX_LENS_EXTENT, &field, aperture, &lens_extent_requirement())?;
+            Ok(aperture)
+        }
         (None, Some(f_number), focal_length) => {
             let min = crate::limits::MIN_F_NUMBER;
             let requirement = format!("at least {min} (a faster lens is an infinite aperture)");
@@ -105,11 +125,15 @@ fn aperture(cam: &CameraToml, ctx: &Ctx) -> Result<f64, SceneError> {
                 ctx.required(&path.key("f_number"), item, "focal_length", focal_length)?;
             let focal_length = ctx.positive(&path.key("focal_length"), focal_length)?;
             let aperture = focal_length / f_number;
+            let requirement = format!(
+                "large enough that the lens diameter focal_length / f_number is at most \
+                 {MAX_LENS_EXTENT:e} (the supported coordinate range around the camera)"
+            );
             ctx.require(
-                aperture.is_finite(),
+                aperture <= MAX_LENS_EXTENT,
                 &path.key("f_number"),
                 f_number,
-                "large enough that focal_length / f_number is finite",
+                &requirement,
             )?;
             Ok(aperture)
         }

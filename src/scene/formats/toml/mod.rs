@@ -14,6 +14,7 @@ mod repeat;
 pub(crate) mod source_map;
 pub(crate) mod transform_list;
 pub(crate) mod validate;
+mod whitted;
 pub mod write;
 
 use crate::excerpt::excerpt;
@@ -85,6 +86,10 @@ pub(crate) fn scene_desc(
         // default render space (cameraworld) measures it, which no --offset changes. The
         // render checks again in its render space (world space measures from the origin).
         let path = FieldPath::root("objects").index(i);
+        if settings.integrator == crate::scene::desc::IntegratorKind::Whitted {
+            let placed = &builder.objects[first..];
+            whitted::check_objects(ctx, i, placed, &builder.materials, &builder.named)?;
+        }
         for placed in &builder.objects[first..] {
             let from_camera =
                 crate::scene::budget::object_reach_from(placed, &mut bounds, camera.lookfrom);

@@ -3,7 +3,7 @@
 
 use super::super::ior::conductor_ior;
 use super::super::tree::Element;
-use super::super::values::{ColorUse, color, property};
+use super::super::values::{ColorUse, color, string};
 use super::{MICROFACET, Roughness, check_properties, microfacet, reflectance};
 use crate::scene::desc::{MaterialDesc, Specular};
 use crate::scene::error::SceneError;
@@ -20,6 +20,7 @@ pub(super) fn conductor(
         known.extend(MICROFACET);
     }
     check_properties(element, &known)?;
+    // A textured tint is refused by `reflectance`: embray's conductors take a constant one.
     let reflectance = reflectance(element, "specular_reflectance")?.unwrap_or(Vec3::ONE);
     let r = if rough { microfacet(element)? } else { Roughness::SMOOTH };
     let none = MaterialDesc {
@@ -28,7 +29,7 @@ pub(super) fn conductor(
         roughness_v: r.alpha_v,
         ..none
     };
-    let named = property(element, "string", "material");
+    let named = string(element, "material")?;
     let find = |name: &str| element.children.iter().find(|c| c.attr("name") == Some(name));
     let material = named.map_or(Ok("none"), |m| m.required("value"))?;
     let (eta, k) = if find("eta").is_some() || material == "none" {

@@ -41,8 +41,12 @@ pub(super) fn relative_ior(element: &Element, interior: &str) -> Result<f32, Sce
         };
         match element.children.iter().find(|c| c.attr("name") == Some(name)) {
             None => named(element, default),
-            Some(p) if p.tag == "float" => super::super::values::number_attr(p, "value"),
-            Some(p) => named(p, p.required("value")?),
+            Some(p) if matches!(p.tag.as_str(), "float" | "integer") => {
+                super::super::values::number_attr(p, "value")
+            }
+            Some(p) if p.tag == "string" => named(p, p.required("value")?),
+            // Mitsuba reads an index as a number or a name only (a texture is not read).
+            Some(p) => Err(p.error(format!("`{name}` must be a <float> or a <string>"))),
         }
     };
     let (inside, outside) = (ior("int_ior", interior)?, ior("ext_ior", "air")?);

@@ -9,13 +9,11 @@ mod plastic;
 mod principled;
 mod range;
 mod texture;
+mod wrappers;
 
 use super::tree::{Element, FileResolver};
-use super::values::{ColorUse, color, float, property};
-use crate::limits::MAX_BLEND_MATERIALS;
-use crate::scene::desc::{
-    BumpMapDesc, BumpScale, Distribution, MaterialDesc, Opacity, TextureDesc,
-};
+use super::values::{ColorUse, color, float, string};
+use crate::scene::desc::{Distribution, MaterialDesc, TextureDesc};
 use crate::scene::error::SceneError;
 use glam::{DVec3, Vec3};
 pub(super) use texture::refuse_rgbe;
@@ -35,108 +33,11 @@ pub(super) fn bsdf(
     let name = element.attr("id").unwrap_or(kind).to_owned();
     let none = MaterialDesc { name, albedo: Vec3::ZERO, one_sided: true, ..Default::default() };
     match kind {
-        "twosided" => {
-            const PARAMETERS: [&str; 1] = ["allow_transmission"];
-            check_properties(element, &PARAMETERS)?;
-            let allowed = super::values::boolean(element, "allow_transmission")?;
-            let inner = nested_bsdf(
-                element,
-                &PARAMETERS,
-                ids,
-                files,
-                "twosided takes one nested <bsdf> (two are not supported)",
-            )?;
-            if transmits(&inner) {
-                // As Mitsuba ("Only materials without a transmission component can be
-                // nested!"): the back would be shaded as a second front. Mitsuba's
-                // allow_transmission renders that; embray does not.
-                let why = match allowed {
-                    Some(true) => "allow_transmission is not supported: ",
-                    _ => "",
-                };
-                return Err(element.error(format!(
-                    "{why}twosided cannot hold a transmitting BSDF (dielectric, \
-                     roughdielectric, mask, principledthin, or principled with spec_trans)"
-                )));
-            }
-            Ok(MaterialDesc { name: none.name, ..two_sided(inner) })
-        }
-        "blendbsdf" => {
-            check_properties(element, &["weight"])?;
-            let parts = nested_bsdfs(element, &["weight"], ids, files)?;
-            let [first, second] = <[MaterialDesc; 2]>::try_from(parts)
-                .map_err(|_| element.error("blendbsdf takes two nested <bsdf>s"))?;
-            let weight = number_or_texture(element, "weight", None, ids, files)?;
-            if [&first, &second].iter().any(|m| m.normal_map.is_some() || m.bump_map.is_some()) {
-                // Each would shade with its own normal: one frame serves the mixture.
-                return Err(
-                    element.error("a normal or bump map inside a blendbsdf is not supported")
-                );
-            }
-            let blend = crate::scene::desc::BlendDesc { weight, materials: [first, second] };
-            let material = MaterialDesc { blend: Some(Box::new(blend)), ..none };
-            // Checked at every blend, so that its parts are in bounds and a chain whose
-            // links name one `id` twice stops doubling at the limit.
-            let count = material.blend_materials();
-            if count > MAX_BLEND_MATERIALS {
-                return Err(element.error(format!(
-                    "{count} materials in one blendbsdf, counting each as often as it is \
-                     named (at most {MAX_BLEND_MATERIALS})"
-                )));
-            }
-            Ok(material)
-        }
-        "mask" => {
-            check_properties(element, &["opacity"])?;
-            let inner =
-                nested_bsdf(element, &["opacity"], ids, files, "mask takes one nested <bsdf>")?;
-            if inner.opacity.is_some() {
-                return Err(element.error("a mask inside a mask is not supported"));
-            }
-            let opacity = number_or_texture(element, "opacity", Some(0.5), ids, files)?;
-            Ok(MaterialDesc { name: none.name, opacity: Some(opacity), ..inner })
-        }
-        "normalmap" => {
-            check_properties(element, &["normalmap"])?;
-            let only = "normalmap takes one nested <bsdf>";
-            let inner = nested_bsdf(element, &["normalmap"], ids, files, only)?;
-            let map = reflectance_texture(element, "normalmap", ids, files)?
-                .ok_or_else(|| element.error("normalmap needs a <texture name=\"normalmap\">"))?;
-            if inner.normal_map.is_some() || inner.bump_map.is_some() {
-                return Err(element.error("a normal or bump map inside another is not supported"));
-            }
-            let bump_shadowing = true;
-            Ok(MaterialDesc { name: none.name, normal_map: Some(map), bump_shadowing, ..inner })
-        }
-        "bumpmap" => {
-            // Its texture under any name, as its BSDF: told apart by what a reference is.
-            let is_texture = |c: &Element| match c.tag.as_str() {
-                "texture" => true,
-                "ref" => ids.resolve(c).is_ok_and(|target| target.tag != "bsdf"),
-                _ => false,
-            };
-            let textures: Vec<&str> = element
-                .children
-                .iter()
-                .filter(|c| is_texture(c))
-                .filter_map(|c| c.attr("name"))
-                .collect();
-            let [name] = textures[..] else {
-                return Err(element.error("bumpmap takes one height <texture>"));
-            };
-            check_properties(element, &["scale", name])?;
-            let only = "bumpmap takes one nested <bsdf>";
-            let inner = nested_bsdf(element, &["scale", name], ids, files, only)?;
-            let texture = float_texture(element, name, range::ANY, ids, files)?
-                .ok_or_else(|| element.error("bumpmap needs a height <texture>"))?;
-            if inner.normal_map.is_some() || inner.bump_map.is_some() {
-                return Err(element.error("a normal or bump map inside another is not supported"));
-            }
-            let factor = float(element, "scale")?.unwrap_or(1.0) as f32;
-            let bump = BumpMapDesc { texture, factor, scale: BumpScale::Scene };
-            let bump_shadowing = true;
-            Ok(MaterialDesc { name: none.name, bump_map: Some(bump), bump_shadowing, ..inner })
-        }
+        "twosided" => wrappers::twosided(element, none, ids, files),
+        "blendbsdf" => wrappers::blendbsdf(element, none, ids, files),
+        "mask" => wrappers::mask(element, none, ids, files),
+        "normalmap" => wrappers::normalmap(element, none, ids, files),
+        "bumpmap" => wrappers::bumpmap(element, none, ids, files),
         "diffuse" => {
             let mut material = MaterialDesc { albedo: Vec3::splat(0.5), ..none };
             check_properties(element, &["reflectance"])?;
@@ -164,111 +65,40 @@ pub(super) fn bsdf(
     }
 }
 
-/// The one `<bsdf>` (or reference to one) inside a wrapper such as `twosided` or `mask`.
-fn nested_bsdf(
-    element: &Element,
-    parameters: &[&str],
-    ids: &super::Ids,
-    files: &FileResolver,
-    otherwise: &str,
-) -> Result<MaterialDesc, SceneError> {
-    let mut inner = nested_bsdfs(element, parameters, ids, files)?;
-    match inner.len() {
-        1 => Ok(inner.remove(0)),
-        _ => Err(element.error(otherwise)),
-    }
-}
-
-/// The `<bsdf>`s (or references to them) inside `element`, in order. As in Mitsuba, a
-/// wrapper takes its BSDFs under any name, or none: every reference not by the name of one
-/// of its `parameters` must be to a BSDF.
-fn nested_bsdfs(
-    element: &Element,
-    parameters: &[&str],
-    ids: &super::Ids,
-    files: &FileResolver,
-) -> Result<Vec<MaterialDesc>, SceneError> {
-    let parameter = |c: &Element| c.attr("name").is_some_and(|n| parameters.contains(&n));
-    ids.nested(element, || {
-        element
-            .children
-            .iter()
-            .filter(|c| c.tag == "bsdf" || (c.tag == "ref" && !parameter(c)))
-            .map(|one| bsdf(ids.bsdf(one)?, ids, files))
-            .collect()
-    })
-}
-
-/// Whether `material` lets light through (Mitsuba's transmission flags, its mask's null
-/// component too), itself or in a blend.
-fn transmits(material: &MaterialDesc) -> bool {
-    matches!(material.specular, crate::scene::desc::Specular::Dielectric { .. })
-        || material.opacity.is_some()
-        || material.principled.as_ref().is_some_and(|p| p.transmits())
-        || material.blend.as_ref().is_some_and(|b| b.materials.iter().any(transmits))
-}
-
-/// `material` scattering on both sides (`twosided`), a blend's materials too.
-fn two_sided(material: MaterialDesc) -> MaterialDesc {
-    let blend = material.blend.map(|b| {
-        let [first, second] = b.materials;
-        Box::new(crate::scene::desc::BlendDesc {
-            materials: [two_sided(first), two_sided(second)],
-            ..*b
-        })
-    });
-    MaterialDesc { one_sided: false, blend, ..material }
-}
-
-/// A number in [0, 1] (`default` where it may be left out) or a texture read as one: a
-/// mask's opacity, a blend's weight.
-fn number_or_texture(
-    element: &Element,
-    name: &str,
-    default: Option<f64>,
-    ids: &super::Ids,
-    files: &FileResolver,
-) -> Result<Opacity, SceneError> {
-    if let Some(texture) = float_texture(element, name, range::UNIT, ids, files)? {
-        return Ok(Opacity::Texture(texture));
-    }
-    let value = float(element, name)?
-        .or(default)
-        .ok_or_else(|| element.error(format!("the property `{name}` is missing")))?;
-    if !(0.0..=1.0).contains(&value) {
-        return Err(element.error(format!("{name} is {value}, but must be in [0, 1]")));
-    }
-    Ok(Opacity::Constant(value as f32))
-}
-
 /// Refuses a parameter (a property, a texture or a reference by `name`) the BSDF does not
 /// read, so that nothing in the file is silently ignored.
 fn check_properties(element: &Element, known: &[&str]) -> Result<(), SceneError> {
-    let wrapper = matches!(
-        element.attr("type"),
-        Some("twosided" | "mask" | "normalmap" | "bumpmap" | "blendbsdf")
-    );
+    let kind = element.attr("type");
+    let wrapper = matches!(kind, Some("twosided" | "mask" | "normalmap" | "bumpmap" | "blendbsdf"));
     for child in &element.children {
         let parameter = child.attr("name").is_some_and(|n| known.contains(&n));
-        if wrapper && matches!(child.tag.as_str(), "bsdf" | "ref") && !parameter {
+        let nested = match child.tag.as_str() {
             // A nested BSDF, whatever its name (Mitsuba takes every nested object), or a
-            // reference that `nested_bsdfs` requires to be one.
+            // reference that the wrapper requires to be one (or a bumpmap's texture).
+            "bsdf" | "ref" => wrapper && !parameter,
+            // A bumpmap's height, whatever its name: `wrappers::bumpmap` takes exactly one.
+            "texture" => kind == Some("bumpmap"),
+            _ => false,
+        };
+        if nested {
             continue;
         }
-        if let Some(name) = child.attr("name") {
-            if !known.contains(&name) {
+        match child.attr("name") {
+            Some(name) if !known.contains(&name) => {
                 return Err(child.error(format!(
                     "{} does not take `{name}` (it takes: {})",
                     element.describe(),
                     known.join(", ")
                 )));
             }
-        } else if !(wrapper && matches!(child.tag.as_str(), "bsdf" | "ref")) {
-            return Err(child.error(format!(
-                "{} does not take a <{}>",
-                element.describe(),
-                child.tag
-            )));
+            Some(_) => {}
+            None => {
+                return Err(child.error(format!(
+                    "{} does not take a <{}>",
+                    element.describe(),
+                    child.tag
+                )));
+            }
         }
     }
     Ok(())
@@ -293,7 +123,7 @@ impl Roughness {
 /// The distribution and its α (Mitsuba's defaults: Beckmann, 0.1), or `alpha_u` and
 /// `alpha_v`; a textured α is refused.
 fn microfacet(element: &Element) -> Result<Roughness, SceneError> {
-    let distribution = match property(element, "string", "distribution") {
+    let distribution = match string(element, "distribution")? {
         None => Distribution::Beckmann,
         Some(d) => match d.required("value")?.to_ascii_lowercase().as_str() {
             "beckmann" => Distribution::Beckmann,
@@ -370,14 +200,19 @@ fn roughness_textures(
     }
 }
 
-/// The constant reflectance named `name` (anything but a texture: what is not a colour is
-/// refused by `color`), each component in [0, 1].
+/// The constant reflectance named `name`, each component in [0, 1]. A texture by that name
+/// is refused (callers that take one look for it first): passed over, it would leave the
+/// default in its place unseen.
 fn reflectance(element: &Element, name: &str) -> Result<Option<Vec3>, SceneError> {
-    let found = element
-        .children
-        .iter()
-        .find(|c| c.attr("name") == Some(name) && !matches!(c.tag.as_str(), "texture" | "ref"));
-    let Some(found) = found else { return Ok(None) };
+    let Some(found) = element.children.iter().find(|c| c.attr("name") == Some(name)) else {
+        return Ok(None);
+    };
+    if matches!(found.tag.as_str(), "texture" | "ref") {
+        return Err(found.error(format!(
+            "a textured `{name}` is not supported in {} (only a colour)",
+            element.describe()
+        )));
+    }
     let rgb = color(found, ColorUse::Reflectance)?;
     if !rgb.cmpge(DVec3::ZERO).all() || !rgb.cmple(DVec3::ONE).all() {
         return Err(found.error(format!("a reflectance must be in [0, 1], not {rgb}")));
@@ -388,15 +223,15 @@ fn reflectance(element: &Element, name: &str) -> Result<Option<Vec3>, SceneError
 /// Refuses a `specular_reflectance`/`specular_transmittance` other than 1 (not modelled).
 fn unit_only(element: &Element, names: &[&str]) -> Result<(), SceneError> {
     for name in names {
-        if reflectance(element, name)?.is_some_and(|r| r != Vec3::ONE) {
-            return Err(element.error(format!("{name} other than 1 is not supported")));
-        }
         let textured = element
             .children
             .iter()
             .any(|c| c.attr("name") == Some(name) && matches!(c.tag.as_str(), "texture" | "ref"));
         if textured {
             return Err(element.error(format!("a textured {name} is not supported")));
+        }
+        if reflectance(element, name)?.is_some_and(|r| r != Vec3::ONE) {
+            return Err(element.error(format!("{name} other than 1 is not supported")));
         }
     }
     Ok(())

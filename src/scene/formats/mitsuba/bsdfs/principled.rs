@@ -81,6 +81,12 @@ pub(super) fn principled(
         rates.clearcoat = rate("clearcoat_sampling_rate")?;
         rates.diffuse_reflectance = rate("diffuse_reflectance_sampling_rate")?;
     }
+    if desc.sampling_rates.samples_nothing(thin) {
+        return Err(element.error(
+            "every *_sampling_rate is 0: at least one lobe must be sampled (the image would \
+             be dark without a word)",
+        ));
+    }
 
     let mut material = MaterialDesc { albedo: Vec3::splat(0.5), ..none };
     if let Some(texture) = reflectance_texture(element, "base_color", ids, files)? {

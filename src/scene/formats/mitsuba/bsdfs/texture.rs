@@ -45,17 +45,38 @@ fn texture(
     files: &FileResolver,
     as_number: Option<Range>,
 ) -> Result<Option<TextureDesc>, SceneError> {
-    let Some(texture) = element
+    let found = element
         .children
         .iter()
-        .find(|c| matches!(c.tag.as_str(), "texture" | "ref") && c.attr("name") == Some(name))
-    else {
-        return Ok(None);
-    };
-    let used_as = name;
+        .find(|c| matches!(c.tag.as_str(), "texture" | "ref") && c.attr("name") == Some(name));
+    found.map(|texture| read(texture, name, ids, files, as_number)).transpose()
+}
+
+/// The `<texture>` (or reference to one) `texture`, read as a number in `range` (a bump
+/// map's height, which Mitsuba takes under any name or none); `used_as` names it in
+/// messages.
+pub(super) fn float_texture_of(
+    texture: &Element,
+    used_as: &str,
+    range: Range,
+    ids: &super::super::Ids,
+    files: &FileResolver,
+) -> Result<TextureDesc, SceneError> {
+    read(texture, used_as, ids, files, Some(range))
+}
+
+/// The texture `texture` is (or refers to), looked up as `fn texture` describes; `used_as`
+/// names it in messages.
+fn read(
+    texture: &Element,
+    used_as: &str,
+    ids: &super::super::Ids,
+    files: &FileResolver,
+    as_number: Option<Range>,
+) -> Result<TextureDesc, SceneError> {
     let texture = ids.resolve(texture)?;
     if texture.tag != "texture" {
-        return Err(texture.error(format!("`{name}` must be a colour or a <texture>")));
+        return Err(texture.error(format!("`{used_as}` must be a colour or a <texture>")));
     }
     let kind = texture.required("type")?;
     let known: &[&str] = match kind {
@@ -171,11 +192,7 @@ fn texture(
         }
     };
     let pattern = uv_mapped(texture, pattern)?;
-    Ok(Some(TextureDesc {
-        pattern,
-        mode: TextureMode::Replace,
-        texture_from_object: DAffine3::IDENTITY,
-    }))
+    Ok(TextureDesc { pattern, mode: TextureMode::Replace, texture_from_object: DAffine3::IDENTITY })
 }
 
 /// Refuses a Radiance RGBE (`.hdr`) file named by the `<string name="filename">` `file`
@@ -219,7 +236,13 @@ fn uv_mapped(texture: &Element, pattern: Pattern) -> Result<Pattern, SceneError>
         Some("mirror") => Wrap::Mirror,
         _ => Wrap::Clamp,
     };
-    let Some(to_uv) = property(texture, "transform", "to_uv") else {
+    let to_uv = match texture.children.iter().find(|c| c.attr("name") == Some("to_uv")) {
+        Some(other) if other.tag != "transform" => {
+            return Err(other.error("`to_uv` must be a <transform>"));
+        }
+        found => found,
+    };
+    let Some(to_uv) = to_uv else {
         return Ok(match wrap {
             Wrap::Repeat => pattern,
             _ => Pattern::UvMapped(Box::new(UvMapped {

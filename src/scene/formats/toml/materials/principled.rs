@@ -156,5 +156,15 @@ pub(super) fn principled(
     }
     rates.diffuse_reflectance =
         rate("diffuse_reflectance_sampling_rate", t.diffuse_reflectance_sampling_rate)?;
+    if rates.samples_nothing(thin) {
+        // Named at the last rate the model reads, which every model has.
+        let field = path.key("diffuse_reflectance_sampling_rate");
+        let others = if thin { &THIN[1..4] } else { &SOLID[4..6] };
+        let requirement = format!(
+            "> 0 where {} are 0 too: at least one lobe must be sampled",
+            others.join(" and ")
+        );
+        return Err(ctx.out_of_range(&field, 0, &requirement));
+    }
     Ok(desc)
 }

@@ -213,6 +213,17 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
         });
     }
     let s = &scene.settings;
+    if let Some(aovs) = s.aovs {
+        // The TOML format has no AOV setting: without this, the converted scene would
+        // render other channels than its source, unsaid.
+        return Err(TomlWriteError::Unsupported {
+            item: "the render settings".to_owned(),
+            problem: format!(
+                "the scene asks for the AOVs '{aovs}' (Mitsuba's aov integrator; `render \
+                 --aovs {aovs}` gives them)"
+            ),
+        });
+    }
     let integrator = match s.integrator {
         IntegratorKind::Path => "path",
         IntegratorKind::Whitted => "whitted",
