@@ -208,7 +208,7 @@ pub(crate) fn render_tile(
         let radiance = radiance * weight;
         sums.add_sample(radiance, sample.depth, sample.normal, sample.albedo);
         // Whether the sums held it whole (a light of 10¹⁶ seen directly does not).
-        u64::from(radiance.abs().max_element() >= crate::sample_sums::LARGEST_SAMPLE)
+        u64::from(radiance.abs().max_element() > crate::sample_sums::LARGEST_SAMPLE)
     };
     let batched = match tracer {
         Tracer::Path(path) if options.paths == PathBatching::Batched => Some(path),

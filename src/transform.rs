@@ -96,6 +96,11 @@ pub fn nearest_rotation(m: DMat3) -> Option<DMat3> {
     if !(is_orthonormal(m) && m.determinant() > 0.0) {
         return None;
     }
+    if (m.transpose() * m - DMat3::IDENTITY).to_cols_array().iter().all(|e| e.abs() <= 1e-15) {
+        // Already a rotation to the last bit or so: kept as written, so that a rotation
+        // read twice (a Mitsuba scene converted to TOML and read back) stays the same.
+        return Some(m);
+    }
     let mut rotation = m;
     // Newton's iteration R ← (R + R⁻ᵀ) / 2 converges quadratically from this close.
     for _ in 0..6 {

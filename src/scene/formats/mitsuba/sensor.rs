@@ -155,16 +155,23 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         -offset("principal_point_offset_y")? * x_extent / aspect,
     );
     // A lens beyond the coordinate range around the camera puts ray origins beyond it.
-    let beyond = |name: &str, value: f64| {
+    let beyond_as = |name: &str, value: f64, requirement: String| {
         let at = element.children.iter().find(|c| c.attr("name") == Some(name));
-        at.unwrap_or(element)
-            .error(format!("{name} is {value}, but must be {}", lens_extent_requirement()))
+        at.unwrap_or(element).error(format!("{name} is {value}, but must be {requirement}"))
     };
-    for (name, shift) in
-        [("principal_point_offset_x", camera.shift.x), ("principal_point_offset_y", camera.shift.y)]
-    {
-        if !(shift.abs() <= MAX_LENS_EXTENT) {
-            return Err(beyond(name, offset(name)?));
+    let beyond = |name: &str, value: f64| beyond_as(name, value, lens_extent_requirement());
+    // An offset is in film widths (heights): its shift is the offset times the film's size
+    // at unit distance.
+    let widths =
+        [("principal_point_offset_x", x_extent), ("principal_point_offset_y", x_extent / aspect)];
+    for (name, film_size) in widths {
+        let value = offset(name)?;
+        if !((value * film_size).abs() <= MAX_LENS_EXTENT) {
+            let bound = MAX_LENS_EXTENT / film_size;
+            let requirement = format!(
+                "at most {bound:e} in size (a shift of {MAX_LENS_EXTENT:e}, the supported coordinate range around the camera)"
+            );
+            return Err(beyond_as(name, value, requirement));
         }
     }
     if kind == "thinlens" {

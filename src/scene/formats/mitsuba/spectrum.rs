@@ -56,9 +56,14 @@ pub(super) fn to_rgb(element: &Element, usage: ColorUse) -> Result<DVec3, SceneE
     Ok(list_to_srgb(&wavelengths, &values, bounded, d65))
 }
 
+/// How far past its range a spectrum's sample may lie: a measurement's noise.
+const NOISE: f64 = 1e-3;
+
 /// Refuses a value a constant of the same use would be refused for (a reflectance outside
 /// [0, 1], negative emission), rather than let the conversion clamp it unseen as Mitsuba
-/// does (with a warning). A conductor's index is not checked, as its constant is not.
+/// does (with a warning). Only the wavelengths the conversion reads count, and a
+/// measurement's noise (1e-3) is let through. A conductor's index is not checked, as its
+/// constant is not.
 fn refuse_out_of_range(
     element: &Element,
     usage: ColorUse,
@@ -66,11 +71,15 @@ fn refuse_out_of_range(
     values: &[f64],
 ) -> Result<(), SceneError> {
     let (bounds, within): (&str, fn(f64) -> bool) = match usage {
-        ColorUse::Reflectance => ("in [0, 1] (a reflectance)", |v| (0.0..=1.0).contains(&v)),
-        ColorUse::Emission => (">= 0 (emission)", |v| v >= 0.0),
+        ColorUse::Reflectance => {
+            ("in [0, 1] (a reflectance)", |v| (-NOISE..=1.0 + NOISE).contains(&v))
+        }
+        ColorUse::Emission => (">= 0 (emission)", |v| v >= -NOISE),
         ColorUse::Unbounded => return Ok(()),
     };
-    let Some((nm, value)) = wavelengths.iter().zip(values).find(|(_, v)| !within(**v)) else {
+    let read = |(nm, _): &(&f64, &f64)| (MIN_NM..=MAX_NM).contains(*nm);
+    let mut samples = wavelengths.iter().zip(values).filter(read);
+    let Some((nm, value)) = samples.find(|(_, v)| !within(**v)) else {
         return Ok(());
     };
     let name = crate::excerpt::excerpt(element.attr("name").unwrap_or("the spectrum"));

@@ -9,10 +9,9 @@ use crate::scene::error::SceneError;
 use glam::{DAffine3, DMat3};
 
 /// How far (relative) the squared scales of a sphere's `to_world` may differ and still be
-/// one scale: Mitsuba warns past 1e-6 between its single-precision singular values, which
-/// rotations written to six digits already reach; 1e-5 keeps those and refuses any scale a
-/// user meant to be uneven.
-const UNEVEN_SCALE: f64 = 1e-5;
+/// one scale: Mitsuba's `is_similarity` tolerance (relative 1e-3), which rotations written
+/// to a few digits, or about an axis just off unit length, stay within.
+const UNEVEN_SCALE: f64 = 1e-3;
 
 /// Refuses a sphere whose `to_world` is not a rotation times one positive scale. Mitsuba
 /// keeps only the scale of its x axis (a sphere where embray would draw an ellipsoid), and
