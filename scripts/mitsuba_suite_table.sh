@@ -49,7 +49,7 @@ for scene in "$suite"/*/*.xml; do
     ref="$(dirname "$scene")/refs/${stem%_*}"
     row "$scene" "$ref" "\`$(basename "$(dirname "$scene")")/$stem.xml\`"
 done
-for name in rough_gold shapes emitters thinlens materials; do
+for name in rough_gold shapes emitters thinlens materials textured_emitters; do
     row "tests/data/mitsuba/$name.xml" "tests/data/mitsuba/${name}_48" "\`tests/data/mitsuba/$name.xml\`"
 done
 for name in cbox cbox-rgb; do

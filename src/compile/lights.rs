@@ -3,12 +3,12 @@
 //! triangles that form a parallelogram, else one per primitive).
 
 use crate::light::{
-    Ellipsoid, Emitter, EmitterShape, InstanceEmitters, LightDesc, LightParts, LightSet,
-    SphereShape,
+    Ellipsoid, EmissionMap, Emitter, EmitterShape, InstanceEmitters, LightDesc, LightParts,
+    LightSet, SphereShape, UvSource,
 };
 use crate::render_scene::{Geometry, Instance, Placement, Prototype};
 use crate::shading::material::Material;
-use glam::{DAffine3, Vec3};
+use glam::{DAffine3, Mat3, Vec2, Vec3};
 
 /// The two triangles as the quad v0 v1 v2 v3 of `EmitterShape::Quad` ((v0, v1, v3) and
 /// (v2, v3, v1)), if they share an edge, have the same winding and form a parallelogram.
@@ -44,18 +44,36 @@ fn emitters_of_instance(
         Placement::Moving { .. } => return None,
     };
     let two_sided = material.two_sided_emission;
+    let texture = material.emission_texture.as_ref();
+    let mean = texture.map_or(Vec3::ONE, |t| t.mean_over_unit_square());
+    let map = |uvs: UvSource| texture.map(|t| EmissionMap { texture: t.clone(), mean, uvs });
+    let emitter =
+        |shape, uvs| Emitter::new(geom_id, shape, material.emission, two_sided).textured(map(uvs));
     match &prototype.geometry {
         Geometry::Triangles(mesh) => {
+            // Sampled normals must face where hit normals do (see `place_mesh`).
+            let mirrored = transform.is_some_and(|m| m.matrix3.determinant() < 0.0);
             let triangle = |prim: u32| {
                 let mut tri = mesh.triangle(prim);
                 if let Some(m) = transform {
                     tri = tri.map(|p| m.transform_point3(p));
-                    // Sampled normals must face where hit normals do (see `place_mesh`).
-                    if m.matrix3.determinant() < 0.0 {
+                    if mirrored {
                         tri.swap(1, 2);
                     }
                 }
                 tri
+            };
+            // Each corner's texture coordinates, in the order of `triangle`'s (a hit on a
+            // mesh without them has its barycentrics as coordinates).
+            let corner_uvs = |prim: u32| {
+                let mut uvs = match &mesh.uvs {
+                    Some(uvs) => mesh.indices[prim as usize].map(|i| uvs[i as usize]),
+                    None => [Vec2::ZERO, Vec2::X, Vec2::Y],
+                };
+                if mirrored {
+                    uvs.swap(1, 2);
+                }
+                uvs
             };
             let count = mesh.indices.len() as u32;
             let mut emitters = Vec::new();
@@ -64,7 +82,11 @@ fn emitters_of_instance(
             while prim < count {
                 let tri = triangle(prim);
                 let index = emitters.len() as u32;
-                let quad = (prim + 1 < count).then(|| as_quad(&tri, &triangle(prim + 1))).flatten();
+                // A textured emitter's coordinates are interpolated per triangle.
+                let quad = (prim + 1 < count && texture.is_none())
+                    .then(|| as_quad(&tri, &triangle(prim + 1)))
+                    .flatten();
+                let uvs = UvSource::Triangle { vertices: tri, uvs: corner_uvs(prim) };
                 let shape = match quad {
                     Some(quad) => {
                         of_prim.extend([index, index]);
@@ -77,18 +99,34 @@ fn emitters_of_instance(
                         EmitterShape::triangle(tri)
                     }
                 };
-                emitters.push(Emitter::new(geom_id, shape, material.emission, two_sided));
+                emitters.push(emitter(shape, uvs));
             }
             Some((emitters, of_prim))
         }
         Geometry::Sphere(s) => {
-            let shape = match transform {
-                None => EmitterShape::Sphere(SphereShape { center: s.center, radius: s.radius }),
-                Some(m) => {
-                    EmitterShape::Ellipsoid(Box::new(Ellipsoid::new(s.center, s.radius, m)?))
+            // The frame a hit's texture coordinates are measured in (see `interaction`).
+            let (shape, uvs) = match (transform, &instance.placement) {
+                (None, placement) => {
+                    let object_from_render = match placement {
+                        Placement::Baked { object_from_render } => object_from_render.matrix3,
+                        _ => glam::Mat3A::IDENTITY,
+                    };
+                    let uvs = UvSource::Sphere {
+                        center: s.center,
+                        object_from_render: Mat3::from(object_from_render),
+                    };
+                    (EmitterShape::Sphere(SphereShape { center: s.center, radius: s.radius }), uvs)
+                }
+                (Some(m), _) => {
+                    let uvs = UvSource::Sphere {
+                        center: m.transform_point3(s.center),
+                        object_from_render: Mat3::from(m.matrix3).inverse(),
+                    };
+                    let ellipsoid = Ellipsoid::new(s.center, s.radius, m)?;
+                    (EmitterShape::Ellipsoid(Box::new(ellipsoid)), uvs)
                 }
             };
-            Some((vec![Emitter::new(geom_id, shape, material.emission, two_sided)], vec![0]))
+            Some((vec![emitter(shape, uvs)], vec![0]))
         }
     }
 }

@@ -54,7 +54,12 @@ pub struct AreaSample {
 impl LightSet {
     /// The scene's emitter, if it has exactly one and it is flat and emits.
     pub fn lone_emitter(&self) -> Option<LoneEmitter> {
+        // The lanes take one radiance for all of an emitter: a textured one is sampled by
+        // `sample_emitter`, which looks its texture up.
         let [emitter] = &self.emitters[..] else { return None };
+        if emitter.emission_map.is_some() {
+            return None;
+        }
         let probability = self.emitter_probability(0);
         if !(probability > 0.0 && emitter.area > 0.0) {
             return None;

@@ -4,6 +4,7 @@
 //! the same way but never hit.
 
 mod ellipsoid;
+mod emission_map;
 mod emitter;
 mod env_mapping;
 mod environment;
@@ -15,6 +16,7 @@ mod sphere_shape;
 mod tests;
 
 pub use ellipsoid::Ellipsoid;
+pub use emission_map::{EmissionMap, UvSource};
 pub use emitter::EmitterShape;
 pub use env_mapping::EnvironmentMapping;
 pub use environment::{EnvironmentLight, EnvironmentSample, TexelLookup};
@@ -79,11 +81,31 @@ pub struct Emitter {
     pub area: f32,
     /// Emits on both sides (the course's area lights), not only where its normal points.
     pub two_sided: bool,
+    /// The texture `emission` is multiplied by, and where on the emitter it is looked up.
+    pub emission_map: Option<Box<EmissionMap>>,
 }
 
 impl Emitter {
     pub fn new(geom_id: u32, shape: EmitterShape, emission: Vec3, two_sided: bool) -> Self {
-        Emitter { geom_id, area: shape.area(), shape, emission, two_sided }
+        Emitter { geom_id, area: shape.area(), shape, emission, two_sided, emission_map: None }
+    }
+
+    /// This emitter with its emission textured by `map`.
+    pub fn textured(self, map: Option<EmissionMap>) -> Self {
+        Emitter { emission_map: map.map(Box::new), ..self }
+    }
+
+    /// The radiance it emits at `point`, a point on it.
+    pub fn emission_at(&self, point: Vec3) -> Vec3 {
+        match &self.emission_map {
+            None => self.emission,
+            Some(map) => map.radiance(self.emission, point),
+        }
+    }
+
+    /// Its emission averaged over its texture's coordinates (for choosing among emitters).
+    fn mean_emission(&self) -> Vec3 {
+        self.emission * self.emission_map.as_ref().map_or(Vec3::ONE, |m| m.mean)
     }
 }
 
@@ -183,7 +205,7 @@ impl LightSet {
     fn build_selection(&mut self) {
         let powers = self.emitters.iter().map(|e| {
             let sides = if e.two_sided { 2.0 } else { 1.0 };
-            sides * e.area as f64 * luminance(e.emission) as f64
+            sides * e.area as f64 * luminance(e.mean_emission()) as f64
         });
         self.selection = AliasTable::new(powers);
         if self.selection.is_none() {
@@ -260,7 +282,7 @@ impl LightSet {
             point: sample.point,
             error: sample.error,
             normal: sample.normal,
-            emission: emitter.emission,
+            emission: emitter.emission_at(sample.point),
             pdf,
             geom_id: emitter.geom_id,
             visible: emitter.geom_id != NO_GEOMETRY,

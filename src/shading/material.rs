@@ -23,6 +23,8 @@ pub struct Material {
     pub emission: Vec3,
     /// Emits on both sides (`MaterialDesc::two_sided_emission`).
     pub two_sided_emission: bool,
+    /// What `emission` is multiplied by at each point (`MaterialDesc::emission_texture`).
+    pub emission_texture: Option<std::sync::Arc<Texture>>,
     pub specular: Specular,
     /// Microfacet α of the specular lobe (the path tracer), along the shading frame's
     /// tangent where `ggx_alpha_v` differs.
@@ -78,6 +80,7 @@ impl Default for Material {
             albedo: Vec3::splat(0.8),
             emission: Vec3::ZERO,
             two_sided_emission: false,
+            emission_texture: None,
             specular: Specular::None,
             ggx_alpha: 0.0,
             ggx_alpha_v: 0.0,
@@ -138,6 +141,10 @@ impl Material {
             albedo: desc.albedo,
             emission: desc.emission,
             two_sided_emission: desc.two_sided_emission,
+            emission_texture: desc
+                .emission_texture
+                .as_ref()
+                .map(|t| std::sync::Arc::new(Texture::from_desc(t))),
             specular: desc.specular,
             // The scene's one roughness means a GGX α to the path tracer and the side of the
             // perturbation square to the course's Whitted model.
@@ -233,9 +240,18 @@ impl Material {
         self.emission.max_element() > 0.0
     }
 
-    /// What it emits towards a ray that met it on its front (`front_face`) or back.
-    pub fn emission_seen(&self, front_face: bool) -> Vec3 {
-        if front_face || self.two_sided_emission { self.emission } else { Vec3::ZERO }
+    /// What it emits at texture coordinates `uv`, on the side it emits to.
+    #[inline]
+    pub fn emission_at(&self, uv: glam::Vec2) -> Vec3 {
+        match &self.emission_texture {
+            None => self.emission,
+            Some(texture) => self.emission * texture.eval(Vec3::ZERO, uv),
+        }
+    }
+
+    /// What it emits at `uv` towards a ray that met it on its front (`front_face`) or back.
+    pub fn emission_seen(&self, front_face: bool, uv: glam::Vec2) -> Vec3 {
+        if front_face || self.two_sided_emission { self.emission_at(uv) } else { Vec3::ZERO }
     }
 
     pub fn is_dielectric(&self) -> bool {

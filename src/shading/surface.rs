@@ -29,7 +29,7 @@ pub struct SurfaceInteraction {
 /// Texture coordinates of the point with unit normal `n` (in the sphere's own frame) on a
 /// sphere: u grows eastwards seen from outside (so that images are not mirrored), v from
 /// the +Y pole (the image's top row) down. The course's sphere mapping.
-fn sphere_uv(n: Vec3) -> Vec2 {
+pub(crate) fn sphere_uv(n: Vec3) -> Vec2 {
     Vec2::new(
         0.5 - n.z.atan2(n.x) / std::f32::consts::TAU,
         n.y.clamp(-1.0, 1.0).acos() / std::f32::consts::PI,

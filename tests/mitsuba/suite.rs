@@ -132,11 +132,13 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 /// instances of a shapegroup; a projector, a textured spot light and hidden emitters; a
 /// thin lens; a principal point offset on a non-square film, a blendbsdf weighted by a
 /// checkerboard on an analytic sphere (Mitsuba's uv), a Beckmann gold, a bitmap mapped by
-/// to_uv and mirrored, a spectrum file.
+/// to_uv and mirrored, a spectrum file; area emitters whose radiance is a bitmap or a
+/// checkerboard (a rectangle, an analytic sphere, a serialized mesh).
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
-    for name in ["rough_gold", "shapes", "emitters", "thinlens", "materials"] {
+    let names = ["rough_gold", "shapes", "emitters", "thinlens", "materials", "textured_emitters"];
+    for name in names {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();
         let reference = refs.join(format!("{name}_48_ref_rgb.exr"));
         let variance = refs.join(format!("{name}_48_ref_rgb_var.exr"));

@@ -309,7 +309,7 @@ impl PathTracer<'_> {
             } else {
                 self.emission_weight(state.from, &si, state.pdf_bsdf)
             };
-            result.radiance += state.throughput * material.emission * weight;
+            result.radiance += state.throughput * material.emission_at(si.uv) * weight;
         }
         if self.ends_at(depth) {
             return Scattered::End;

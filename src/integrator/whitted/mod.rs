@@ -186,7 +186,7 @@ impl<'a> WhittedTracer<'a> {
         // The course shades every surface but the inside of a dielectric, dielectrics too
         // (their ambient, diffuse and specular terms are usually zero, but not always:
         // scienceTree's glass has them).
-        let mut base = material.emission_seen(si.front_face);
+        let mut base = material.emission_seen(si.front_face, si.uv);
         if si.front_face || !material.is_dielectric() {
             base += self.local_shading(&si, wo, ray.time, stream, stats);
         }

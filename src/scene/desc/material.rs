@@ -14,6 +14,9 @@ pub struct MaterialDesc {
     pub emission: Vec3,
     /// Emits on both sides, not only where the normal points (`two_sided` lights).
     pub two_sided_emission: bool,
+    /// A pattern of texture coordinates that `emission` is multiplied by, point by point
+    /// (Mitsuba's area emitter with a textured radiance); uv-mapped patterns only.
+    pub emission_texture: Option<TextureDesc>,
     pub specular: Specular,
     /// Roughness α of the specular part (0 = perfectly smooth); along ∂p/∂u where
     /// `roughness_v` is given.
@@ -70,7 +73,7 @@ impl MaterialDesc {
     /// The images its textures look up (for the memory estimate).
     pub fn images(&self) -> impl Iterator<Item = &std::sync::Arc<crate::texels::TextureImage>> {
         let opacity = self.opacity.as_ref().and_then(Opacity::texture);
-        [&self.texture, &self.specular_texture, &self.normal_map]
+        [&self.texture, &self.specular_texture, &self.normal_map, &self.emission_texture]
             .into_iter()
             .flatten()
             .chain(self.bump_map.as_ref().map(|b| &b.texture))
@@ -146,6 +149,7 @@ impl Default for MaterialDesc {
             albedo: Vec3::splat(0.8),
             emission: Vec3::ZERO,
             two_sided_emission: false,
+            emission_texture: None,
             specular: Specular::None,
             roughness: 0.0,
             roughness_v: None,

@@ -87,6 +87,18 @@ impl Texture {
         }
     }
 
+    /// The mean colour over the unit square of texture coordinates, from a 128 × 128 grid of
+    /// lookups at cell centres: what a textured emitter emits on average (its share of the
+    /// light samples; any positive share keeps them unbiased).
+    pub fn mean_over_unit_square(&self) -> Vec3 {
+        const CELLS: u32 = 128;
+        let at = |i: u32| (i as f32 + 0.5) / CELLS as f32;
+        let sum: glam::DVec3 = (0..CELLS * CELLS)
+            .map(|i| self.eval(Vec3::ZERO, Vec2::new(at(i % CELLS), at(i / CELLS))).as_dvec3())
+            .sum();
+        (sum / f64::from(CELLS * CELLS)).as_vec3()
+    }
+
     /// The mesh attribute this texture shows and its scale, if it is a `mesh_attribute`
     /// texture.
     pub fn mesh_attribute(&self) -> Option<(&str, f32)> {

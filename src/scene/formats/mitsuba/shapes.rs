@@ -9,7 +9,7 @@ use super::Builder;
 use super::bsdfs::bsdf;
 use super::transform::transform;
 use super::tree::Element;
-use super::values::{ColorUse, color, vec3};
+use super::values::vec3;
 use super::values::{boolean, float, property};
 use crate::scene::desc::{MaterialDesc, MeshData, ObjectDesc, ShapeDesc};
 use crate::scene::error::{Line, SceneError};
@@ -322,23 +322,8 @@ impl Builder<'_> {
             if emitter.required("type")? != "area" {
                 return Err(emitter.error("a shape's emitter must be of type area"));
             }
-            // A textured radiance (or anything else) would otherwise be dropped unseen.
-            let constant_radiance = |c: &&Element| {
-                super::values::PROPERTY_TAGS.contains(&c.tag.as_str())
-                    && c.attr("name") == Some("radiance")
-            };
-            if let Some(other) = emitter.children.iter().find(|c| !constant_radiance(c)) {
-                return Err(other.error(
-                    "an area emitter takes only a constant radiance (an <rgb>, <spectrum> or \
-                     <float> named radiance)",
-                ));
-            }
-            let radiance = emitter.children.first();
-            let radiance = radiance.map_or(Ok(DVec3::ONE), |r| color(r, ColorUse::Emission))?;
-            if !radiance.cmpge(DVec3::ZERO).all() {
-                return Err(emitter.error("radiance must be >= 0"));
-            }
-            material.emission = radiance.as_vec3();
+            (material.emission, material.emission_texture) =
+                super::bsdfs::area_radiance(emitter, &self.ids, self.files)?;
         }
         self.materials.push(material);
         let index = (self.materials.len() - 1) as u32;

@@ -7,7 +7,7 @@ use super::ObjRef;
 use super::mtl_mapping::Lobe;
 use super::mtl_material::{Given, Problem, Statement, statements};
 use super::mtl_notes::{MtlNotes, Note};
-use super::mtl_texture::{MapAt, MapStatement, colour, data, looks_like_normal_map, mean_colour};
+use super::mtl_texture::{MapAt, MapStatement, colour, data, looks_like_normal_map};
 use crate::scene::desc::{BumpMapDesc, BumpScale, MaterialDesc, Opacity};
 use crate::scene::error::{Line, SceneError};
 use glam::Vec3;
@@ -114,13 +114,9 @@ impl<E: Fn(Problem) -> SceneError> Textures<'_, '_, E> {
         }
         if let Some(st) = &given.map_ke {
             let map = self.parse(st, false)?;
-            let mean = mean_colour(&self.at(st), map.file)?;
-            material.emission = mean * given.ke.map_or(Vec3::ONE, |ke| ke.value);
-            self.note(
-                st.line,
-                "map_Ke (a textured emission) is not supported: its mean colour times Ke is \
-                 emitted everywhere",
-            );
+            // The image times Ke (times 1 without a Ke, as the image is then the radiance).
+            material.emission_texture = Some(colour(&self.at(st), map.file)?);
+            material.emission = given.ke.map_or(Vec3::ONE, |ke| ke.value);
         }
         if let Some(st) = &given.map_d {
             let map = self.parse(st, false)?;

@@ -257,15 +257,10 @@ fn maps_become_textures_of_their_fields() {
     let bump = m.bump_map.as_ref().unwrap();
     assert_eq!((bump.factor, bump.scale), (0.02, BumpScale::Scene));
     assert_eq!(texels(&bump.texture), [Vec3::ZERO, Vec3::ONE]);
-    assert_close(m.emission.x, 1.0);
-    assert_eq!((m.emission.y, m.emission.z), (0.0, 0.0));
-    assert_notes(
-        &warnings,
-        &[
-            ("map_d options '-imfchan m' are not supported", 2),
-            ("map_Ke (a textured emission) is not supported", 4),
-        ],
-    );
+    // The image (sRGB decoded) times Ke.
+    assert_eq!(m.emission, Vec3::splat(2.0));
+    assert_eq!(texels(m.emission_texture.as_ref().unwrap()), [Vec3::X, Vec3::ZERO]);
+    assert_notes(&warnings, &[("map_d options '-imfchan m' are not supported", 2)]);
     // Exporters' normal maps given as bump maps are normal maps; `norm` is one.
     let (m, warnings) = mapped_in(&dir, "map_Bump normals.png").unwrap();
     assert!(m.bump_map.is_none());

@@ -8,7 +8,7 @@ use crate::scene::texture_image::{
     DataImage, ImageRef, RAW_FULL_SCALE, load, load_data, with_rows_flipped,
 };
 use crate::scene::{Interpolation, Pattern, TextureDesc, TextureMode};
-use glam::{DAffine3, Vec3};
+use glam::DAffine3;
 use std::path::Path;
 
 /// A texture statement's options and file.
@@ -130,13 +130,6 @@ pub(super) fn data(
     Ok((image_texture(std::sync::Arc::clone(&data.image), RAW_FULL_SCALE), data))
 }
 
-/// The mean linear colour of an image (`map_Ke`, whose texture embray cannot emit).
-pub(super) fn mean_colour(at: &MapAt, file: &str) -> Result<Vec3, SceneError> {
-    let image = load(&at.image_ref(file), true)?;
-    let sum: glam::DVec3 = image.texels.iter().map(|t| t.as_dvec3()).sum();
-    Ok((sum / image.texels.len().max(1) as f64).as_vec3())
-}
-
 /// Whether an image given as a bump map is a tangent-space normal map: exporters (Blender,
 /// Sponza's) write normal maps as `map_Bump`. A height field is grey; a normal map's mean is
 /// near (0.5, 0.5, 1), blue above the red and green that average half their range.
@@ -153,6 +146,7 @@ pub(super) fn looks_like_normal_map(data: &DataImage) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     #[test]
     fn options_are_split_from_the_file() {

@@ -3,6 +3,7 @@
 //! two-sided by nature). Other BSDFs are refused with their type, file and line: none is
 //! silently replaced.
 
+mod area_radiance;
 mod conductor;
 mod dielectric;
 mod plastic;
@@ -15,6 +16,7 @@ use super::tree::{Element, FileResolver};
 use super::values::{ColorUse, color, float, string};
 use crate::scene::desc::{Distribution, MaterialDesc, TextureDesc};
 use crate::scene::error::SceneError;
+pub(super) use area_radiance::area_radiance;
 use glam::{DVec3, Vec3};
 pub(super) use texture::refuse_rgbe;
 use texture::{float_texture, reflectance_texture};

@@ -65,6 +65,15 @@ pub(super) fn float_texture_of(
     read(texture, used_as, ids, files, Some(range))
 }
 
+/// The `<texture>` (or reference to one) `texture`, an area emitter's radiance.
+pub(super) fn radiance_texture(
+    texture: &Element,
+    ids: &super::super::Ids,
+    files: &FileResolver,
+) -> Result<TextureDesc, SceneError> {
+    read(texture, "radiance", ids, files, None)
+}
+
 /// The texture `texture` is (or refers to), looked up as `fn texture` describes; `used_as`
 /// names it in messages.
 fn read(

@@ -68,6 +68,8 @@ pub(crate) struct MaterialToml {
     #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub emission: Option<Vec3>,
     pub two_sided_emission: Option<bool>,
+    /// What `emission` is multiplied by per point (a pattern of texture coordinates).
+    pub emission_texture: Option<TextureToml>,
     #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub reflectance: Option<Vec3>,
     pub roughness: Option<RoughnessToml>,

@@ -15,10 +15,11 @@ use std::path::Path;
 
 /// The fields of every material a blend takes: what belongs to the surface, not to how it
 /// scatters.
-pub(super) const BLEND_COMMON: [&str; 7] = [
+pub(super) const BLEND_COMMON: [&str; 8] = [
     "type",
     "emission",
     "two_sided_emission",
+    "emission_texture",
     "opacity",
     "normal_map",
     "bump_map",

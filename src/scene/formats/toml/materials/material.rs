@@ -14,11 +14,12 @@ use glam::DAffine3;
 use std::path::Path;
 
 /// Fields every material type takes.
-pub(super) const COMMON: [&str; 13] = [
+pub(super) const COMMON: [&str; 14] = [
     "type",
     "albedo",
     "emission",
     "two_sided_emission",
+    "emission_texture",
     "texture",
     "specular_texture",
     "normal_map",
@@ -141,7 +142,14 @@ pub(crate) fn material(
         _ => 0.0,
     };
     let albedo = ctx.color(&path.key("albedo"), m.albedo.unwrap_or([default_albedo; 3]), true)?;
-    let emission = ctx.color(&path.key("emission"), m.emission.unwrap_or([0.0; 3]), false)?;
+    let emission_texture = m
+        .emission_texture
+        .as_ref()
+        .map(|t| texture_desc(&path.key("emission_texture"), t, Use::Emission, ctx, base_dir))
+        .transpose()?;
+    // A texture alone is the radiance: what it multiplies is 1 unless given.
+    let unset = if emission_texture.is_some() { 1.0 } else { 0.0 };
+    let emission = ctx.color(&path.key("emission"), m.emission.unwrap_or([unset; 3]), false)?;
     let field = path.key("roughness");
     let alpha = |r: f64| -> Result<f32, SceneError> {
         ctx.non_negative(&field, r)?;
@@ -267,6 +275,7 @@ pub(crate) fn material(
         albedo,
         emission,
         two_sided_emission: m.two_sided_emission.unwrap_or(false),
+        emission_texture,
         specular,
         roughness,
         roughness_v,

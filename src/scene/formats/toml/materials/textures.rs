@@ -29,6 +29,9 @@ pub(super) enum Use {
     /// A principled material's weight or η: no `mode`; colours may be above 1 (its mean
     /// channel is the number); images are data, `raw` unless told otherwise.
     Param,
+    /// `emission_texture`: no `mode`; uv patterns only (an emitter sampled for light knows
+    /// its point's texture coordinates, not its object-space point); colours may be above 1.
+    Emission,
 }
 
 /// `[render] background_texture`: an image or a 2-D checkerboard over the image plane.
@@ -38,10 +41,6 @@ pub(crate) fn background_texture(
     base_dir: &Path,
 ) -> Result<TextureDesc, SceneError> {
     let path = FieldPath::root("render").key("background_texture");
-    if !matches!(t.kind, TextureKind::Image | TextureKind::Checker2d) {
-        let requirement = "a pattern with texture coordinates (image or checker2d)";
-        return Err(ctx.out_of_range(&path.key("type"), kind_name_of(t), requirement));
-    }
     texture_desc(&path, t, Use::Background, ctx, base_dir)
 }
 
@@ -66,6 +65,11 @@ pub(super) fn texture_desc(
     ctx: &Ctx,
     base_dir: &Path,
 ) -> Result<TextureDesc, SceneError> {
+    let uv_only = matches!(usage, Use::Background | Use::Emission);
+    if uv_only && !matches!(t.kind, TextureKind::Image | TextureKind::Checker2d) {
+        let requirement = "a pattern with texture coordinates (image or checker2d)";
+        return Err(ctx.out_of_range(&path.key("type"), kind_name_of(t), requirement));
+    }
     let (kind_name, own): (&str, &[&str]) = match t.kind {
         TextureKind::Checker2d => ("checker2d", &["scale", "even", "odd"]),
         TextureKind::Checker3d => ("checker3d", &["scale", "even", "odd"]),
@@ -112,7 +116,8 @@ pub(super) fn texture_desc(
         ctx.f32(&field, scale)
     };
     let color = |ctx: &Ctx, name: &str, value: Option<Vec3>, default: f64| {
-        ctx.color(&path.key(name), value.unwrap_or([default; 3]), usage != Use::Param)
+        let in_unit_range = !matches!(usage, Use::Param | Use::Emission);
+        ctx.color(&path.key(name), value.unwrap_or([default; 3]), in_unit_range)
     };
     let pattern = match t.kind {
         TextureKind::Checker2d | TextureKind::Checker3d => {

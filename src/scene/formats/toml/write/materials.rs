@@ -54,12 +54,7 @@ pub(super) fn write_material(
     let kind = super::principled::kind(m).unwrap_or(kind);
     let _ = writeln!(out, "type = \"{kind}\"\nalbedo = {}", c3(m.albedo));
     super::principled::write(m, out)?;
-    if m.emission != Vec3::ZERO {
-        let _ = writeln!(out, "emission = {}", c3(m.emission));
-    }
-    if m.two_sided_emission {
-        let _ = writeln!(out, "two_sided_emission = true");
-    }
+    write_emission(out, m)?;
     match m.specular {
         Specular::None => {}
         Specular::Mirror { reflectance } => {
@@ -172,6 +167,21 @@ pub(super) fn write_material(
     Ok(())
 }
 
+/// A material's emission, its sides and its texture, where it emits.
+fn write_emission(out: &mut String, m: &MaterialDesc) -> Result<(), TomlWriteError> {
+    // Written whenever there is a texture: without it, a texture's emission reads back as 1.
+    if m.emission != Vec3::ZERO || m.emission_texture.is_some() {
+        let _ = writeln!(out, "emission = {}", c3(m.emission));
+    }
+    if m.two_sided_emission {
+        let _ = writeln!(out, "two_sided_emission = true");
+    }
+    if let Some(t) = &m.emission_texture {
+        let _ = writeln!(out, "emission_texture = {}", texture_toml(t, false)?);
+    }
+    Ok(())
+}
+
 /// `key = number` or `key = { texture }`, if there is one.
 fn write_number_or_texture(
     out: &mut String,
@@ -202,12 +212,7 @@ fn write_blend(
     let _ = writeln!(out, "\n[materials.{}]\ntype = \"blend\"", quoted(name));
     write_number_or_texture(out, "weight", Some(&blend.weight))?;
     let _ = writeln!(out, "materials = [{}, {}]", quoted(&parts[0]), quoted(&parts[1]));
-    if m.emission != Vec3::ZERO {
-        let _ = writeln!(out, "emission = {}", c3(m.emission));
-    }
-    if m.two_sided_emission {
-        let _ = writeln!(out, "two_sided_emission = true");
-    }
+    write_emission(out, m)?;
     write_number_or_texture(out, "opacity", m.opacity.as_ref())?;
     if m.normal_map.is_some() || m.bump_map.is_some() {
         let problem = "a blend's mapped normals have no TOML form yet".to_owned();
