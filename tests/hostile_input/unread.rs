@@ -1,5 +1,5 @@
 //! What the second and third probes of the binary found: input that panicked, or that was
-//! dropped without a word (a textured radiance read as none, a light scaled out of f32's
+//! dropped without a word (an area emitter's scale read as none, a light scaled out of f32's
 //! range, a thin lens focused nowhere, a second integrator, a film parameter misspelt), now
 //! refused with the file, line and field.
 
@@ -45,8 +45,10 @@ refused_cases! {
         => ["s.xml", "the box filter does not take it", "its parameters: none", "line 5"];
     film_crop_past_u32: ["s.xml" => mitsuba(PERSPECTIVE, r#"<integer name="crop_width" value="99999999999"/>"#, "")], ["render", "s.xml"]
         => ["s.xml", "crop_width is 99999999999, but must be 0 to 4294967295"];
-    textured_area_radiance: ["s.xml" => mitsuba(PERSPECTIVE, "", r#"<shape type="sphere"><emitter type="area"><texture type="checkerboard" name="radiance"/></emitter></shape>"#)], ["render", "s.xml"]
-        => ["s.xml", "only a constant radiance", "<texture", "line 10"];
+    scaled_area_radiance: ["s.xml" => mitsuba(PERSPECTIVE, "", r#"<shape type="sphere"><emitter type="area"><float name="scale" value="2"/></emitter></shape>"#)], ["render", "s.xml"]
+        => ["s.xml", "an area emitter takes only its radiance", "line 10"];
+    mesh_attribute_area_radiance: ["s.xml" => mitsuba(PERSPECTIVE, "", r#"<shape type="sphere"><emitter type="area"><texture type="mesh_attribute" name="radiance"><string name="name" value="vertex_color"/></texture></emitter></shape>"#)], ["render", "s.xml"]
+        => ["s.xml", "cannot be a mesh_attribute", "line 10"];
     textured_constant_sky: ["s.xml" => mitsuba(PERSPECTIVE, "", "").replace(r#"<emitter type="constant"/>"#, r#"<emitter type="constant"><texture type="checkerboard" name="radiance"/></emitter>"#)], ["render", "s.xml"]
         => ["s.xml", "does not take a <texture> named `radiance`", "line 9"];
     pinhole_focus_not_a_number: ["s.xml" => mitsuba(r#"<sensor type="perspective"><float name="focus_distance" value="abc"/>"#, "", "")], ["render", "s.xml"]
