@@ -28,12 +28,13 @@ fn as_quad(a: &[Vec3; 3], b: &[Vec3; 3]) -> Option<EmitterShape> {
 
 /// The emitters of one emissive instance (a triangle per mesh primitive, one quad per pair
 /// of consecutive triangles that form a parallelogram, or its sphere) and each primitive's
-/// emitter among them; `None` if the instance is not sampled.
+/// emitter among them; `None` if the instance is not sampled. `texture_mean` is the mean of
+/// the material's emission texture (`Texture::mean_over_unit_square`), if it has one.
 fn emitters_of_instance(
     geom_id: u32,
     prototype: &Prototype,
     instance: &Instance,
-    material: &Material,
+    (material, texture_mean): (&Material, Vec3),
 ) -> Option<(Vec<Emitter>, Vec<u32>)> {
     // Emitters that really move are not sampled: their emission is counted where rays hit
     // them (an emitter "moving" from a pose to the same pose is static).
@@ -45,8 +46,9 @@ fn emitters_of_instance(
     };
     let two_sided = material.two_sided_emission;
     let texture = material.emission_texture.as_ref();
-    let mean = texture.map_or(Vec3::ONE, |t| t.mean_over_unit_square());
-    let map = |uvs: UvSource| texture.map(|t| EmissionMap { texture: t.clone(), mean, uvs });
+    let map = |uvs: UvSource| {
+        texture.map(|t| EmissionMap { texture: t.clone(), mean: texture_mean, uvs })
+    };
     let emitter =
         |shape, uvs| Emitter::new(geom_id, shape, material.emission, two_sided).textured(map(uvs));
     match &prototype.geometry {
@@ -143,6 +145,11 @@ pub(super) fn compile_lights(
     for light in descs {
         light.compile(render_from_world, &mut parts);
     }
+    // Once a material: a lookup grid over each texture, however many instances use it.
+    let texture_means: Vec<Vec3> = materials
+        .iter()
+        .map(|m| m.emission_texture.as_ref().map_or(Vec3::ONE, |t| t.mean_over_unit_square()))
+        .collect();
     let mut instance_emitters = InstanceEmitters::default();
     for (geom_id, instance) in instances.iter().enumerate() {
         let material = &materials[instance.material as usize];
@@ -150,7 +157,8 @@ pub(super) fn compile_lights(
             .is_emissive()
             .then(|| {
                 let prototype = &prototypes[instance.prototype as usize];
-                emitters_of_instance(geom_id as u32, prototype, instance, material)
+                let mean = texture_means[instance.material as usize];
+                emitters_of_instance(geom_id as u32, prototype, instance, (material, mean))
             })
             .flatten()
             .map(|(emitters, of_prim)| {
