@@ -23,8 +23,8 @@ pub enum CompareError {
     NothingFinite { a: usize, b: usize },
     #[error(
         "variance image '{}': pixel ({x}, {y}) has {channel} = {value}, but a variance must be \
-         a finite number >= 0 (the test divides by it: an infinite one passes any image, and \
-         a NaN or negative one is no variance)",
+         a finite number (the test divides by it: an infinite one passes any image, and a NaN \
+         is no variance)",
         .path.display()
     )]
     Variance { path: PathBuf, x: u32, y: u32, channel: char, value: f32 },

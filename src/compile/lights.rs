@@ -90,6 +90,8 @@ fn emitters_of_instance(
             };
             Some((vec![Emitter::new(geom_id, shape, material.emission, two_sided)], vec![0]))
         }
+        // Refused by the readers (as in Mitsuba, a grid has no area to sample).
+        Geometry::SdfGrid(_) => None,
     }
 }
 
