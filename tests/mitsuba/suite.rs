@@ -136,7 +136,7 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
-    for name in ["rough_gold", "shapes", "emitters", "thinlens", "materials"] {
+    for name in ["rough_gold", "shapes", "emitters", "thinlens", "materials", "sdfgrid"] {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();
         let reference = refs.join(format!("{name}_48_ref_rgb.exr"));
         let variance = refs.join(format!("{name}_48_ref_rgb_var.exr"));
