@@ -180,3 +180,81 @@ fn tight_box(f: &[f32; 8]) -> (Vec3, Vec3) {
     // A voxel whose corners are all zero (or NaN) keeps its whole box.
     if lo.cmpgt(hi).any() { (Vec3::ZERO, Vec3::ONE) } else { (lo, hi) }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::splitmix::SplitMix64;
+
+    /// A grid of `n`³ samples of `f` at the grid's corners (grid units).
+    fn sampled(n: u32, normals: SdfNormals, f: impl Fn(Vec3) -> f32) -> SdfGrid {
+        let mut values = Vec::new();
+        for z in 0..n {
+            for y in 0..n {
+                for x in 0..n {
+                    values.push(f(Vec3::new(x as f32, y as f32, z as f32)));
+                }
+            }
+        }
+        let data = SdfGridData { resolution: [n; 3], values, normals };
+        SdfGrid::new(Arc::new(data)).unwrap()
+    }
+
+    /// On a linear field every voxel has the field's gradient, so both normals are it.
+    #[test]
+    fn a_plane_has_its_normal_everywhere() {
+        let a = Vec3::new(0.3, -0.5, 0.8);
+        let grid = sampled(6, SdfNormals::Smooth, |q| a.dot(q) - 1.2);
+        let mut rng = SplitMix64(3);
+        for _ in 0..200 {
+            let q = rng.vec3(0.0, 5.0);
+            let prim = rng.next_u64() as u32 % grid.voxels.len() as u32;
+            let v = Vec3::from_array(grid.voxels[prim as usize].map(|c| c as f32));
+            let q_in = v + (q - q.floor());
+            for n in [grid.geometric_normal(prim, q_in), grid.smooth_normal(q)] {
+                assert!((n.normalize() - a.normalize()).length() < 1e-4, "{n} at {q}");
+            }
+        }
+    }
+
+    /// The smooth normal is continuous across voxel faces (the analytic one need not be).
+    #[test]
+    fn the_smooth_normal_is_continuous_across_voxels() {
+        let centre = Vec3::splat(4.0);
+        let grid = sampled(9, SdfNormals::Smooth, |q| (q - centre).length() - 2.7);
+        let mut rng = SplitMix64(9);
+        for _ in 0..200 {
+            let mut q = rng.vec3(1.0, 7.0);
+            let axis = (rng.next_u64() % 3) as usize;
+            q[axis] = q[axis].round();
+            let (mut below, mut above) = (q, q);
+            below[axis] -= 1e-4;
+            above[axis] += 1e-4;
+            let (a, b) = (grid.smooth_normal(below).normalize(), grid.smooth_normal(above).normalize());
+            assert!((a - b).length() < 2e-3, "{a} and {b} across {q}");
+        }
+    }
+
+    /// Each primitive's box holds every point of its voxel where the trilinear function is
+    /// (nearly) zero.
+    #[test]
+    fn boxes_hold_the_surface_of_their_voxels() {
+        let centre = Vec3::new(3.2, 2.9, 3.5);
+        let grid = sampled(7, SdfNormals::Analytic, |q| (q - centre).length() - 1.9);
+        let mut rng = SplitMix64(4);
+        let mut checked = 0;
+        for (prim, &(lo, hi)) in grid.boxes.iter().enumerate() {
+            let v = Vec3::from_array(grid.voxels[prim].map(|c| c as f32));
+            for _ in 0..2000 {
+                let q = v + rng.vec3(0.0, 1.0);
+                // Within 0.01 of the surface (the gradient is about 1): within 0.02 of the box.
+                if grid.value_at(q).abs() < 1e-2 {
+                    checked += 1;
+                    let inside = q.cmpge(lo - 2e-2).all() && q.cmple(hi + 2e-2).all();
+                    assert!(inside, "{q} outside {lo}..{hi}");
+                }
+            }
+        }
+        assert!(checked > 1000, "{checked} points near the surface");
+    }
+}

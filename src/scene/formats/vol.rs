@@ -71,8 +71,9 @@ pub fn parse(bytes: &[u8]) -> Result<VolGrid, String> {
     Ok(VolGrid { size, channels, values })
 }
 
-/// The bytes of a `.vol` file holding `values` (one channel), for tests.
-pub fn write_single_channel(size: [u32; 3], values: &[f32]) -> Vec<u8> {
+/// The bytes of a `.vol` file holding `values` (one channel).
+#[cfg(test)]
+fn write_single_channel(size: [u32; 3], values: &[f32]) -> Vec<u8> {
     let mut bytes = b"VOL\x03".to_vec();
     for word in [1, size[0] as i32, size[1] as i32, size[2] as i32, 1] {
         bytes.extend(word.to_le_bytes());
