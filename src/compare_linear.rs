@@ -81,11 +81,7 @@ pub fn compare_films(a: &Film, b: &Film) -> Result<LinearComparison, CompareErro
 /// E[x]²), and its test, as `mitsuba_rule`, raises every variance to at least 1e-4.
 pub fn check_variance(variance: &Film, path: &Path) -> Result<(), CompareError> {
     for (i, texel) in variance.color.iter().enumerate() {
-        let bad = texel
-            .to_array()
-            .into_iter()
-            .zip(['R', 'G', 'B'])
-            .find(|(v, _)| !v.is_finite());
+        let bad = texel.to_array().into_iter().zip(['R', 'G', 'B']).find(|(v, _)| !v.is_finite());
         if let Some((value, channel)) = bad {
             let width = variance.width.max(1);
             let (x, y) = (i as u32 % width, i as u32 / width);

@@ -66,7 +66,11 @@ fn quadratic_roots(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
 }
 
 /// The root of the cubic in `[a, b]`, where its values `fa`, `fb` have opposite signs.
-fn bracketed_root(cubic: [f64; 4], (mut a, mut b): (f64, f64), (mut fa, mut fb): (f64, f64)) -> f64 {
+fn bracketed_root(
+    cubic: [f64; 4],
+    (mut a, mut b): (f64, f64),
+    (mut fa, mut fb): (f64, f64),
+) -> f64 {
     let mut kept = 0i8;
     for _ in 0..MAX_STEPS {
         let mut m = (a * fb - b * fa) / (fb - fa);
@@ -244,8 +248,17 @@ mod tests {
         let t = intersect_voxel(Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 0.0, 10.0, [0, 0, 0], &f);
         assert_eq!(t, Some(1.25));
         // Beyond tmax, behind tmin, or outside the voxel: no hit.
-        assert_eq!(intersect_voxel(Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 0.0, 1.0, [0, 0, 0], &f), None);
-        assert_eq!(intersect_voxel(Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 1.5, 9.0, [0, 0, 0], &f), None);
-        assert_eq!(intersect_voxel(Vec3::new(-1.0, 1.5, 0.5), Vec3::X, 0.0, 9.0, [0, 0, 0], &f), None);
+        assert_eq!(
+            intersect_voxel(Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 0.0, 1.0, [0, 0, 0], &f),
+            None
+        );
+        assert_eq!(
+            intersect_voxel(Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 1.5, 9.0, [0, 0, 0], &f),
+            None
+        );
+        assert_eq!(
+            intersect_voxel(Vec3::new(-1.0, 1.5, 0.5), Vec3::X, 0.0, 9.0, [0, 0, 0], &f),
+            None
+        );
     }
 }

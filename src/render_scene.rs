@@ -158,10 +158,11 @@ impl Geometry {
                 (lo, hi)
             }
             Geometry::Sphere(s) => (s.center - s.radius, s.center + s.radius),
-            Geometry::SdfGrid(grid) => grid.boxes.iter().fold(
-                (Vec3::INFINITY, Vec3::NEG_INFINITY),
-                |(lo, hi), (a, b)| (lo.min(*a), hi.max(*b)),
-            ),
+            Geometry::SdfGrid(grid) => {
+                grid.boxes.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (a, b)| {
+                    (lo.min(*a), hi.max(*b))
+                })
+            }
         }
     }
 }

@@ -75,7 +75,9 @@ impl SdfGrid {
         let cell = q.floor().min((top - 1.0).max(Vec3::ZERO));
         let local = q - cell;
         let c = cell.as_ivec3();
-        let f = |dx, dy, dz| self.data.value(i64::from(c.x + dx), i64::from(c.y + dy), i64::from(c.z + dz));
+        let f = |dx, dy, dz| {
+            self.data.value(i64::from(c.x + dx), i64::from(c.y + dy), i64::from(c.z + dz))
+        };
         let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
         let x00 = lerp(f(0, 0, 0), f(1, 0, 0), local.x);
         let x10 = lerp(f(0, 1, 0), f(1, 1, 0), local.x);
@@ -234,7 +236,8 @@ mod tests {
             let (mut below, mut above) = (q, q);
             below[axis] -= 1e-4;
             above[axis] += 1e-4;
-            let (a, b) = (grid.smooth_normal(below).normalize(), grid.smooth_normal(above).normalize());
+            let (a, b) =
+                (grid.smooth_normal(below).normalize(), grid.smooth_normal(above).normalize());
             assert!((a - b).length() < 2e-3, "{a} and {b} across {q}");
         }
     }

@@ -64,7 +64,8 @@ fn backends_find_the_hits_a_scan_of_every_voxel_finds() {
         .map(|_| {
             // From around the camera towards the two tori (render space is camera-centred).
             let origin = rng.vec3(-1.0, 1.0);
-            let target = Vec3::new(0.0, 6.0, -3.0) + rng.between(Vec3::new(-3.0, -1.5, -1.5), Vec3::new(3.0, 1.5, 1.5));
+            let target = Vec3::new(0.0, 6.0, -3.0)
+                + rng.between(Vec3::new(-3.0, -1.5, -1.5), Vec3::new(3.0, 1.5, 1.5));
             Ray::new(origin, target - origin, f32::INFINITY)
         })
         .collect();

@@ -90,8 +90,8 @@ fn local_hit(
         }
         Geometry::SdfGrid(grid) => {
             let point = origin + dir * hit.t;
-            let error = (origin.abs() + (dir * hit.t).abs()) * gamma(3)
-                + Vec3::splat(SDF_POINT_ERROR);
+            let error =
+                (origin.abs() + (dir * hit.t).abs()) * gamma(3) + Vec3::splat(SDF_POINT_ERROR);
             let geometric = grid.geometric_normal(hit.prim_id, point).normalize_or_zero();
             // A voxel flat along the ray (a zero gradient) faces the ray.
             let geometric = if geometric == Vec3::ZERO { -dir.normalize() } else { geometric };

@@ -51,7 +51,11 @@ fn a_good_grid_is_read() {
 #[test]
 fn a_truncated_vol_is_refused() {
     let vol = plane();
-    refused_with(&vol[..vol.len() - 3], "", &["g.vol", "2×2×2 values", "the file has 77 bytes", "line 3"]);
+    refused_with(
+        &vol[..vol.len() - 3],
+        "",
+        &["g.vol", "2×2×2 values", "the file has 77 bytes", "line 3"],
+    );
     refused_with(&vol[..20], "", &["g.vol", "shorter than a .vol header"]);
 }
 
@@ -75,26 +79,50 @@ fn a_grid_that_is_not_one_channel_of_floats_is_refused() {
     let mut half = plane();
     half[4..8].copy_from_slice(&2i32.to_le_bytes());
     refused_with(&half, "", &["g.vol", "encoding 2"]);
-    refused_with(b"not a volume at all, but long enough for a header...", "", &["g.vol", "not a .vol file"]);
+    refused_with(
+        b"not a volume at all, but long enough for a header...",
+        "",
+        &["g.vol", "not a .vol file"],
+    );
 }
 
 #[test]
 fn grids_without_a_surface_or_with_bad_values_are_refused() {
-    refused_with(&write_single_channel([2, 2, 2], &[1.0; 8]), "", &["g.vol", "no voxel", "same sign"]);
+    refused_with(
+        &write_single_channel([2, 2, 2], &[1.0; 8]),
+        "",
+        &["g.vol", "no voxel", "same sign"],
+    );
     let mut nan = [1.0f32; 8];
     nan[3] = f32::NAN;
     refused_with(&write_single_channel([2, 2, 2], &nan), "", &["g.vol", "value 3 is NaN"]);
-    refused_with(&write_single_channel([1, 2, 2], &[1.0, -1.0, 1.0, -1.0]), "", &["g.vol", "1×2×2", "at least 2"]);
+    refused_with(
+        &write_single_channel([1, 2, 2], &[1.0, -1.0, 1.0, -1.0]),
+        "",
+        &["g.vol", "1×2×2", "at least 2"],
+    );
 }
 
 #[test]
 fn what_a_grid_cannot_be_is_refused_by_name() {
     let emitting = "<emitter type=\"area\"/>";
     refused_with(&plane(), emitting, &["s.xml", "cannot be an area emitter", "line 3"]);
-    refused_with(&plane(), "<string name=\"normals\" value=\"flat\"/>", &["normals is 'flat'", "analytic"]);
-    refused_with(&plane(), "<boolean name=\"flip_normals\" value=\"true\"/>", &["does not take `flip_normals`"]);
+    refused_with(
+        &plane(),
+        "<string name=\"normals\" value=\"flat\"/>",
+        &["normals is 'flat'", "analytic"],
+    );
+    refused_with(
+        &plane(),
+        "<boolean name=\"flip_normals\" value=\"true\"/>",
+        &["does not take `flip_normals`"],
+    );
     let scratch = Scratch::new();
     scratch.write("s.xml", grid_scene(""));
     scratch.write("g.vol", plane());
-    refused_in(&scratch, &["convert", "s.xml", "-o", "out.toml"], &["signed distance grid", "no TOML form"]);
+    refused_in(
+        &scratch,
+        &["convert", "s.xml", "-o", "out.toml"],
+        &["signed distance grid", "no TOML form"],
+    );
 }

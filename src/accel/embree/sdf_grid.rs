@@ -62,7 +62,8 @@ unsafe extern "C" fn bounds(args: *const ffi::RTCBoundsFunctionArguments) {
 unsafe extern "C" fn intersect(args: *const ffi::RTCIntersectFunctionNArguments) {
     // SAFETY: Embree passes arguments valid for the call; the user pointer is the grid
     // registered in `sdf_grid_geometry`.
-    let (args, voxel) = unsafe { (&*args, grid((*args).geometryUserPtr).prim_corners((*args).primID)) };
+    let (args, voxel) =
+        unsafe { (&*args, grid((*args).geometryUserPtr).prim_corners((*args).primID)) };
     // SAFETY: these are the arguments of the running intersect callback.
     unsafe {
         intersect_lanes(args, |ray| {
@@ -77,7 +78,8 @@ unsafe extern "C" fn intersect(args: *const ffi::RTCIntersectFunctionNArguments)
 
 unsafe extern "C" fn occluded(args: *const ffi::RTCOccludedFunctionNArguments) {
     // SAFETY: as in `intersect`.
-    let (args, voxel) = unsafe { (&*args, grid((*args).geometryUserPtr).prim_corners((*args).primID)) };
+    let (args, voxel) =
+        unsafe { (&*args, grid((*args).geometryUserPtr).prim_corners((*args).primID)) };
     // SAFETY: these are the arguments of the running occluded callback.
     unsafe {
         occluded_lanes(args, |ray| {

@@ -7,6 +7,6 @@ pub mod mitsuba;
 pub(crate) mod obj;
 pub(crate) mod ply;
 pub(crate) mod serialized;
-pub mod vol;
 pub mod toml;
+pub mod vol;
 pub mod xml;

@@ -49,10 +49,7 @@ impl Builder<'_> {
         let problem = |what: String| file.error(format!("'{}': {what}", path.display()));
         let grid = vol::parse(&bytes).map_err(problem)?;
         if grid.channels != 1 {
-            return Err(problem(format!(
-                "{} channels, but an SDF grid has 1",
-                grid.channels
-            )));
+            return Err(problem(format!("{} channels, but an SDF grid has 1", grid.channels)));
         }
         let count = grid.size.iter().map(|&n| u64::from(n)).product::<u64>();
         if grid.size.iter().any(|&n| n < 2) || count > MAX_VALUES {
