@@ -62,8 +62,8 @@ impl Builder<'_> {
         if let Some(i) = grid.values.iter().position(|v| !v.is_finite()) {
             return Err(problem(format!("value {i} is {}, not a finite number", grid.values[i])));
         }
-        let data = SdfGridData { resolution: grid.size, values: grid.values, normals };
-        if crate::sdf_grid::SdfGrid::new(Arc::new(data.clone())).is_none() {
+        let data = Arc::new(SdfGridData { resolution: grid.size, values: grid.values, normals });
+        if crate::sdf_grid::SdfGrid::new(Arc::clone(&data)).is_none() {
             return Err(problem(
                 "no voxel of the grid holds the surface (every value has the same sign)".into(),
             ));
@@ -84,6 +84,6 @@ impl Builder<'_> {
                 element.line
             ));
         }
-        Ok(ShapeDesc::SdfGrid(Arc::new(data)))
+        Ok(ShapeDesc::SdfGrid(data))
     }
 }
