@@ -125,13 +125,25 @@ impl SdfGrid {
     pub fn smooth_normal(&self, q: Vec3) -> Vec3 {
         let nearest = q.round().as_ivec3();
         let base = nearest - IVec3::ONE;
+        // A voxel's gradient along an axis depends on its coordinate on that axis alone
+        // (`voxel_gradient`: the interpolant on its two faces, at `q`'s other coordinates),
+        // so three planes an axis serve all eight voxels: 9 lookups instead of 48.
+        let planes: [[f32; 3]; 3] = std::array::from_fn(|axis| {
+            std::array::from_fn(|k| {
+                let mut at = q;
+                at[axis] = (base[axis] + k as i32) as f32;
+                self.value_at(at)
+            })
+        });
         let mut normals = [Vec3::ZERO; 8];
         let mut inside = [false; 8];
         for (c, (normal, inside)) in normals.iter_mut().zip(&mut inside).enumerate() {
-            let v = base + IVec3::from_array(corner_offset(c).map(|o| o as i32));
+            let o = corner_offset(c).map(|o| o as usize);
+            let v = base + IVec3::from_array(o.map(|o| o as i32));
             *inside = v.cmpge(IVec3::ZERO).all();
             if *inside {
-                *normal = self.voxel_gradient(q, v).normalize_or_zero();
+                let across = |axis: usize| planes[axis][o[axis] + 1] - planes[axis][o[axis]];
+                *normal = Vec3::new(across(0), across(1), across(2)).normalize_or_zero();
             }
         }
         let mut w = q - nearest.as_vec3() + 0.5;
@@ -219,6 +231,35 @@ mod tests {
             let q_in = v + (q - q.floor());
             for n in [grid.geometric_normal(prim, q_in), grid.smooth_normal(q)] {
                 assert!((n.normalize() - a.normalize()).length() < 1e-4, "{n} at {q}");
+            }
+        }
+    }
+
+    /// The smooth normal's shared planes give each voxel's `voxel_gradient`, bit for bit.
+    #[test]
+    fn shared_planes_are_each_voxels_gradient() {
+        let centre = Vec3::new(3.3, 4.1, 3.7);
+        let grid = sampled(8, SdfNormals::Smooth, |q| (q - centre).length() - 2.2);
+        let mut rng = SplitMix64(8);
+        for _ in 0..300 {
+            let q = rng.vec3(0.0, 7.0);
+            let nearest = q.round().as_ivec3();
+            let w = q - nearest.as_vec3() + 0.5;
+            let mut expected = Vec3::ZERO;
+            for c in 0..8 {
+                let o = IVec3::from_array(corner_offset(c).map(|o| o as i32));
+                let v = nearest - IVec3::ONE + o;
+                let n = if v.cmpge(IVec3::ZERO).all() {
+                    grid.voxel_gradient(q, v).normalize_or_zero()
+                } else {
+                    Vec3::ZERO
+                };
+                let weight = |axis: usize| if o[axis] == 1 { w[axis] } else { 1.0 - w[axis] };
+                expected += n * weight(0) * weight(1) * weight(2);
+            }
+            // Only inside the grid's lower faces are the weights those above.
+            if nearest.cmpge(IVec3::ONE).all() {
+                assert_eq!(grid.smooth_normal(q), expected, "at {q}");
             }
         }
     }
