@@ -284,19 +284,20 @@ fn compare_refuses_a_variance_or_spp_that_would_pass_any_image() {
     for (name, bad, shown) in [
         ("inf.exr", Vec3::new(0.01, f32::INFINITY, 0.01), "G = inf"),
         ("nan.exr", Vec3::new(f32::NAN, 0.01, 0.01), "R = NaN"),
-        ("neg.exr", Vec3::new(0.01, 0.01, -1.0), "B = -1"),
     ] {
         film.color[8 + 3] = bad;
         embray::output::write_exr(&film, &scratch.path(name)).unwrap();
-        refused_in(
-            &scratch,
-            &judge(name, "4"),
-            &[name, "pixel (3, 1)", shown, "finite number >= 0"],
-        );
+        refused_in(&scratch, &judge(name, "4"), &[name, "pixel (3, 1)", shown, "finite number"]);
     }
-    let run = Run::from(scratch.command(&judge("var.exr", "4")).output().unwrap());
-    assert_eq!(run.code, Some(1), "{}", run.stderr);
-    assert!(run.stdout.contains("FAIL"), "{}", run.stdout);
+    // A negative variance (Mitsuba's own references hold some) is raised to 1e-4, as
+    // Mitsuba's test raises it: the image still fails.
+    film.color[8 + 3] = Vec3::new(0.01, 0.01, -1.0);
+    embray::output::write_exr(&film, &scratch.path("neg.exr")).unwrap();
+    for variance in ["var.exr", "neg.exr"] {
+        let run = Run::from(scratch.command(&judge(variance, "4")).output().unwrap());
+        assert_eq!(run.code, Some(1), "{}", run.stderr);
+        assert!(run.stdout.contains("FAIL"), "{}", run.stdout);
+    }
 }
 
 /// `embray slurm SCENE` of two sample-range parts into `job/`, with fake Slurm commands
