@@ -17,6 +17,7 @@ pub enum Reader {
     Mtl,
     Ply,
     Serialized,
+    SdfVol,
     Texture,
     RadianceMap,
     CompareImage,
@@ -27,7 +28,7 @@ pub enum Reader {
 }
 
 impl Reader {
-    pub const ALL: [Reader; 14] = [
+    pub const ALL: [Reader; 15] = [
         Reader::TomlScene,
         Reader::CourseXml,
         Reader::MitsubaXml,
@@ -35,6 +36,7 @@ impl Reader {
         Reader::Mtl,
         Reader::Ply,
         Reader::Serialized,
+        Reader::SdfVol,
         Reader::Texture,
         Reader::RadianceMap,
         Reader::CompareImage,
@@ -54,6 +56,7 @@ impl Reader {
             Reader::Mtl => "mtl",
             Reader::Ply => "ply",
             Reader::Serialized => "serialized",
+            Reader::SdfVol => "sdf_vol",
             Reader::Texture => "texture",
             Reader::RadianceMap => "radiance_map",
             Reader::CompareImage => "compare_image",
@@ -78,6 +81,7 @@ impl Reader {
             Reader::Mtl => "fuzz.mtl",
             Reader::Ply => "fuzz.ply",
             Reader::Serialized => "fuzz.serialized",
+            Reader::SdfVol => "fuzz.vol",
             Reader::Texture => "fuzz_texture.img",
             Reader::RadianceMap => "fuzz_radiance.img",
             Reader::CompareImage => "fuzz_compare.img",
@@ -141,10 +145,11 @@ impl Reader {
                     .map(drop)
                     .map_err(|e| err(&e))
             }
-            Reader::Serialized => {
+            Reader::Serialized | Reader::SdfVol => {
+                let kind = if self == Reader::SdfVol { "sdfgrid" } else { "serialized" };
                 let scene = format!(
                     "<scene version=\"3.0.0\"><sensor type=\"perspective\"/>\
-                     <shape type=\"serialized\"><string name=\"filename\" value=\"{}\"/>\
+                     <shape type=\"{kind}\"><string name=\"filename\" value=\"{}\"/>\
                      </shape></scene>",
                     self.file_name()
                 );

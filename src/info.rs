@@ -30,7 +30,7 @@ pub fn describe(scene: &SceneDesc) -> String {
         scene.settings.seed,
         if scene.settings.jitter { "" } else { ", samples at stratum centres (not jittered)" }
     );
-    let (mut meshes, mut triangles, mut spheres) = (0, 0, 0);
+    let (mut meshes, mut triangles, mut spheres, mut grids) = (0, 0, 0, 0);
     for object in &scene.objects {
         match &object.shape {
             ShapeDesc::Mesh(m) => {
@@ -38,6 +38,7 @@ pub fn describe(scene: &SceneDesc) -> String {
                 triangles += m.indices.len();
             }
             ShapeDesc::Sphere { .. } => spheres += 1,
+            ShapeDesc::SdfGrid(_) => grids += 1,
         }
     }
     let emissive = scene
@@ -45,7 +46,11 @@ pub fn describe(scene: &SceneDesc) -> String {
         .iter()
         .filter(|o| scene.materials[o.material as usize].emission.max_element() > 0.0)
         .count();
-    out += &format!("objects: {meshes} meshes ({triangles} triangles), {spheres} spheres\n");
+    out += &format!("objects: {meshes} meshes ({triangles} triangles), {spheres} spheres");
+    if grids > 0 {
+        out += &format!(", {grids} signed distance grids");
+    }
+    out += "\n";
     out += &format!("materials: {}\n", scene.materials.len());
     // Each kind once, in the order the scene first names it.
     let mut counts: Vec<(&str, usize)> = Vec::new();

@@ -138,6 +138,8 @@ pub struct Sphere {
 pub enum Geometry {
     Triangles(TriangleMesh),
     Sphere(Sphere),
+    /// A signed distance grid in grid units (always placed by a transform).
+    SdfGrid(std::sync::Arc<crate::sdf_grid::SdfGrid>),
 }
 
 impl Geometry {
@@ -156,6 +158,11 @@ impl Geometry {
                 (lo, hi)
             }
             Geometry::Sphere(s) => (s.center - s.radius, s.center + s.radius),
+            Geometry::SdfGrid(grid) => {
+                grid.boxes.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (a, b)| {
+                    (lo.min(*a), hi.max(*b))
+                })
+            }
         }
     }
 }

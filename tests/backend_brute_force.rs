@@ -100,6 +100,7 @@ fn brute_force(scene: &RenderScene, ray: &Ray) -> Option<Hit> {
                     best = Some(Hit { t, geom_id: geom_id as u32, prim_id: 0, u: 0.0, v: 0.0 });
                 }
             }
+            Geometry::SdfGrid(_) => unreachable!("no grids in these scenes"),
         }
     }
     best

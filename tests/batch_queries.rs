@@ -116,6 +116,10 @@ fn t_on_primitive(scene: &RenderScene, ray: &Ray, hit: &Hit) -> Option<f32> {
         Geometry::Sphere(s) => {
             intersect_sphere(origin, dir, 0.0, f32::INFINITY, s.center, s.radius)
         }
+        Geometry::SdfGrid(grid) => {
+            let (voxel, corners) = grid.prim_corners(hit.prim_id)?;
+            embray::intersect_sdf::intersect_voxel(origin, dir, 0.0, f32::INFINITY, voxel, &corners)
+        }
     }
 }
 
@@ -324,7 +328,7 @@ fn ties_on_a_shared_edge_are_broken_as_single_rays_do() {
         .filter(|r| {
             let tri = |i: usize| match &scene.prototypes[0].geometry {
                 Geometry::Triangles(mesh) => mesh.triangle(i as u32),
-                Geometry::Sphere(_) => unreachable!("a mesh"),
+                Geometry::Sphere(_) | Geometry::SdfGrid(_) => unreachable!("a mesh"),
             };
             let a = intersect_triangle(r.origin, r.dir, 0.0, 9.0, &tri(0));
             let b = intersect_triangle(r.origin, r.dir, 0.0, 9.0, &tri(1));

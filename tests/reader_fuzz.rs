@@ -180,6 +180,7 @@ fuzz_readers! {
     mtl_files_load_or_name_the_file: Reader::Mtl;
     ply_meshes_load_or_name_the_file: Reader::Ply;
     serialized_meshes_load_or_name_the_file: Reader::Serialized;
+    sdf_grids_load_or_name_the_file: Reader::SdfVol;
     textures_load_or_name_the_file: Reader::Texture;
     radiance_maps_load_or_name_the_file: Reader::RadianceMap;
     compared_images_read_or_name_the_file: Reader::CompareImage;

@@ -134,6 +134,7 @@ fn triangles(scene: &RenderScene) -> usize {
         .map(|i| match &scene.prototypes[i.prototype as usize].geometry {
             crate::render_scene::Geometry::Triangles(m) => m.indices.len(),
             crate::render_scene::Geometry::Sphere(_) => 0,
+            crate::render_scene::Geometry::SdfGrid(_) => 0,
         })
         .sum()
 }

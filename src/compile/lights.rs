@@ -130,6 +130,8 @@ fn emitters_of_instance(
             };
             Some((vec![emitter(shape, uvs)], vec![0]))
         }
+        // Refused by the readers (as in Mitsuba, a grid has no area to sample).
+        Geometry::SdfGrid(_) => None,
     }
 }
 

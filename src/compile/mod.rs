@@ -26,6 +26,8 @@ pub enum CompileError {
     /// An object that cannot move as asked (`transform::motion_problem`).
     #[error("{0}: {1}")]
     Motion(String, String),
+    #[error("{0}: the signed distance grid has no voxel the surface passes through")]
+    EmptySdfGrid(String),
 }
 
 /// Whether effects are decided by the scene or all forced on.

@@ -5,7 +5,8 @@
 
 use super::CompileError;
 use crate::render_scene::{Geometry, Instance, Placement, Prototype, Sphere, TriangleMesh, Trs};
-use crate::scene::{MeshData, ObjectDesc, ShapeDesc};
+use crate::scene::{MeshData, ObjectDesc, SdfGridData, ShapeDesc};
+use crate::sdf_grid::SdfGrid;
 use crate::transform::{invertible_in_f32, motion_parts, normal_matrix, uniform_scale};
 use glam::{Affine3A, DAffine3, DMat4, DQuat, DVec3, Vec3};
 use std::collections::HashMap;
@@ -69,6 +70,8 @@ pub(super) struct Placer {
     mesh_users: HashMap<*const MeshData, usize>,
     /// The prototype of each mesh placed by transforms.
     shared_prototypes: HashMap<*const MeshData, u32>,
+    /// The prototype of each signed distance grid.
+    shared_grids: HashMap<*const SdfGridData, u32>,
     pub(super) prototypes: Vec<Prototype>,
     pub(super) instances: Vec<Instance>,
 }
@@ -90,6 +93,7 @@ impl Placer {
             force_motion,
             mesh_users,
             shared_prototypes: HashMap::new(),
+            shared_grids: HashMap::new(),
             prototypes: Vec::new(),
             instances: Vec::with_capacity(objects.len()),
         }
@@ -110,10 +114,14 @@ impl Placer {
         }
         let moving = object.is_moving() || self.force_motion;
         let render_from_world = self.render_from_world;
-        let transformed = || -> Result<Placement, CompileError> {
+        // `object_from_prototype` maps the prototype's own space (a grid's units) to the
+        // object's.
+        let transformed = |object_from_prototype: DAffine3| -> Result<Placement, CompileError> {
+            let render_from_object = render_from_object * object_from_prototype;
             if moving {
                 let end = render_from_world
-                    * object.world_from_object_end.unwrap_or(object.world_from_object);
+                    * object.world_from_object_end.unwrap_or(object.world_from_object)
+                    * object_from_prototype;
                 if !end.is_finite() || !invertible_in_f32(&end) {
                     return Err(CompileError::SingularTransform(name.clone()));
                 }
@@ -148,7 +156,7 @@ impl Placer {
                             index
                         }
                     };
-                    (index, transformed()?)
+                    (index, transformed(DAffine3::IDENTITY)?)
                 }
             }
             ShapeDesc::Sphere { center, radius } => {
@@ -169,10 +177,27 @@ impl Placer {
                     None => {
                         // Ellipsoids and moving spheres: an object-space sphere, transformed.
                         let sphere = Sphere { center: center.as_vec3(), radius: *radius as f32 };
-                        let placement = transformed()?;
+                        let placement = transformed(DAffine3::IDENTITY)?;
                         (self.push_prototype(Geometry::Sphere(sphere), name), placement)
                     }
                 }
+            }
+            ShapeDesc::SdfGrid(data) => {
+                // Always placed by a transform: the grid's prototype is in grid units (every
+                // voxel a unit cube), scaled onto the object's [0, 1]³.
+                let key = Arc::as_ptr(data);
+                let index = match self.shared_grids.get(&key) {
+                    Some(&index) => index,
+                    None => {
+                        let grid = SdfGrid::new(data.clone())
+                            .ok_or_else(|| CompileError::EmptySdfGrid(name.clone()))?;
+                        let index = self.push_prototype(Geometry::SdfGrid(Arc::new(grid)), name);
+                        self.shared_grids.insert(key, index);
+                        index
+                    }
+                };
+                let voxels = DVec3::from_array(data.voxels().map(f64::from));
+                (index, transformed(DAffine3::from_scale(voxels.recip()))?)
             }
         };
         self.instances.push(Instance {

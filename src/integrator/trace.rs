@@ -91,7 +91,8 @@ impl SceneTracer<'_> {
             crate::render_scene::Geometry::Triangles(mesh) => {
                 mesh.attribute(name, si.prim_id, si.barycentric).unwrap_or(Vec3::ZERO)
             }
-            crate::render_scene::Geometry::Sphere(_) => Vec3::ZERO,
+            crate::render_scene::Geometry::Sphere(_)
+            | crate::render_scene::Geometry::SdfGrid(_) => Vec3::ZERO,
         }
     }
 

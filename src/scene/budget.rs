@@ -85,6 +85,7 @@ impl std::fmt::Display for MemoryEstimate {
 pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) -> MemoryEstimate {
     let pixels = u64::from(desc.camera.width) * u64::from(desc.camera.height);
     let mut meshes = HashSet::new();
+    let mut grids = HashSet::new();
     let mut triangles = 0u64;
     for object in &desc.objects {
         if let ShapeDesc::Mesh(mesh) = &object.shape {
@@ -93,6 +94,13 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
                 // has three); a mesh of more vertices than that costs as a soup of them.
                 let soup = (mesh.positions.len() as u64).div_ceil(3);
                 triangles += (mesh.indices.len() as u64).max(soup);
+            }
+        }
+        // A grid's voxels are primitives with a box each, as a triangle is: at most one a
+        // value.
+        if let ShapeDesc::SdfGrid(grid) = &object.shape {
+            if grids.insert(Arc::as_ptr(grid)) {
+                triangles += grid.values.len() as u64;
             }
         }
     }
@@ -186,6 +194,7 @@ pub fn object_reach_from(object: &ObjectDesc, bounds: &mut MeshBounds, origin: D
 fn world_bounds(object: &ObjectDesc, bounds: &mut MeshBounds) -> Vec<(DVec3, DVec3)> {
     let (lo, hi) = match &object.shape {
         ShapeDesc::Sphere { center, radius } => (*center - *radius, *center + *radius),
+        ShapeDesc::SdfGrid(_) => (DVec3::ZERO, DVec3::ONE),
         ShapeDesc::Mesh(mesh) => {
             *bounds.0.entry(std::sync::Arc::as_ptr(mesh)).or_insert_with(|| {
                 mesh.positions.iter().fold(

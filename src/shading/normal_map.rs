@@ -62,6 +62,8 @@ pub fn uv_derivatives(
             let linear = placement.render_from_object(time).map(|m| Mat3::from(m.matrix3));
             (dpdu, dpdv, linear)
         }
+        // No texture coordinates, so nothing to differentiate.
+        Geometry::SdfGrid(_) => return None,
         Geometry::Sphere(s) => match placement {
             Placement::Baked { object_from_render } => {
                 let to_own = Mat3::from(object_from_render.matrix3);

@@ -2,7 +2,7 @@
 //! incoming ray, material and texture coordinates. Computed from the backend's `Hit` the same
 //! way for every backend.
 
-use crate::float_error::{sphere_point, transform_point_with_error, triangle_hit_point};
+use crate::float_error::{gamma, sphere_point, transform_point_with_error, triangle_hit_point};
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{Geometry, Placement, RenderScene};
 use crate::shading::spawn::SurfacePoint;
@@ -35,6 +35,12 @@ pub(crate) fn sphere_uv(n: Vec3) -> Vec2 {
         n.y.clamp(-1.0, 1.0).acos() / std::f32::consts::PI,
     )
 }
+
+/// The error (grid units) of a point on a signed distance grid beyond the rounding of
+/// `origin + t dir`: the root is found in f64, far below this, but the spawned ray is
+/// transformed back into grid units and re-enters the voxel; a ten-thousandth of a voxel
+/// keeps it off the surface it leaves, and is far below what shading could show.
+const SDF_POINT_ERROR: f32 = 1e-4;
 
 struct LocalHit {
     point: Vec3,
@@ -81,6 +87,17 @@ fn local_hit(
                 None => sphere_uv(n),
             };
             LocalHit { point, error, geometric: n, shading: n, uv }
+        }
+        Geometry::SdfGrid(grid) => {
+            let point = origin + dir * hit.t;
+            let error =
+                (origin.abs() + (dir * hit.t).abs()) * gamma(3) + Vec3::splat(SDF_POINT_ERROR);
+            let geometric = grid.geometric_normal(hit.prim_id, point).normalize_or_zero();
+            // A voxel flat along the ray (a zero gradient) faces the ray.
+            let geometric = if geometric == Vec3::ZERO { -dir.normalize() } else { geometric };
+            let shading = grid.shading_normal(hit.prim_id, point).normalize_or_zero();
+            // As Mitsuba's sdfgrid: no texture coordinates.
+            LocalHit { point, error, geometric, shading, uv: Vec2::ZERO }
         }
     }
 }

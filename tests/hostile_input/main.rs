@@ -20,6 +20,7 @@ mod numbers;
 mod outputs;
 mod process;
 mod scenes;
+mod sdfgrid;
 mod texture_values;
 mod tools_and_environment;
 mod unread;

@@ -193,10 +193,13 @@ fn errors_name_the_plugin_the_file_and_the_line() {
         &[],
     );
     assert_contains(&message, &["does not take `roughness`", "(it takes: reflectance)"]);
-    let fragment = "<scene version=\"3.0.0\">\n\n<shape type=\"sdfgrid\"/>\n</scene>";
+    let fragment = "<scene version=\"3.0.0\">\n\n<shape type=\"bsplinecurve\"/>\n</scene>";
     let message =
         error("mitsuba-fragment", scene("<include filename=\"f.xml\"/>"), &[("f.xml", fragment)]);
-    assert_contains(&message, &["f.xml", "the shape 'sdfgrid' is not supported yet", "(line 3)"]);
+    assert_contains(
+        &message,
+        &["f.xml", "the shape 'bsplinecurve' is not supported yet", "(line 3)"],
+    );
     // A boolean is true or false, not read as false when it is anything else.
     let message = error(
         "mitsuba-boolean",

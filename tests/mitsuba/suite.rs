@@ -137,7 +137,15 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
-    let names = ["rough_gold", "shapes", "emitters", "thinlens", "materials", "textured_emitters"];
+    let names = [
+        "rough_gold",
+        "shapes",
+        "emitters",
+        "thinlens",
+        "materials",
+        "textured_emitters",
+        "sdfgrid",
+    ];
     for name in names {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();
         let reference = refs.join(format!("{name}_48_ref_rgb.exr"));

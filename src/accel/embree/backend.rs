@@ -5,6 +5,7 @@ use super::device::Device;
 use super::ffi;
 use super::geometry_handle::GeometryHandle;
 use super::scene::{CommittedScene, Scene};
+use super::sdf_grid::sdf_grid_geometry;
 use super::sphere::sphere_geometry;
 use super::user_triangles::user_triangle_geometry;
 use crate::accel::{
@@ -261,6 +262,7 @@ fn prototype_geometry(
             GeometryHandle::triangles(device, &mesh.positions, &mesh.indices)
         }
         render_scene::Geometry::Sphere(sphere) => sphere_geometry(device, *sphere),
+        render_scene::Geometry::SdfGrid(grid) => sdf_grid_geometry(device, grid.clone()),
     }
 }
 

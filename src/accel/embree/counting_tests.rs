@@ -212,6 +212,7 @@ fn counts_lie_between_boxes_before_the_hit_and_boxes_on_the_ray() {
                 })
                 .collect(),
             render_scene::Geometry::Sphere(s) => vec![(s.center - s.radius, s.center + s.radius)],
+            render_scene::Geometry::SdfGrid(g) => g.boxes.clone(),
         })
         .collect();
     let rays = random_rays(4000);
@@ -275,7 +276,7 @@ fn count_triangles(scene: &RenderScene) -> usize {
         .iter()
         .map(|p| match &p.geometry {
             render_scene::Geometry::Triangles(m) => m.indices.len(),
-            render_scene::Geometry::Sphere(_) => 0,
+            render_scene::Geometry::Sphere(_) | render_scene::Geometry::SdfGrid(_) => 0,
         })
         .sum()
 }

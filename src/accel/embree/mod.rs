@@ -28,6 +28,7 @@ mod library;
 mod ray;
 mod rayn;
 mod scene;
+mod sdf_grid;
 mod sphere;
 #[cfg(test)]
 mod test_scenes;

@@ -147,6 +147,7 @@ pub(super) fn brute_force(scene: &RenderScene, ray: &Ray) -> Option<Hit> {
                     best = Some(Hit { t, geom_id: g as u32, prim_id: 0, u: 0.0, v: 0.0 });
                 }
             }
+            render_scene::Geometry::SdfGrid(_) => unreachable!("grids are never baked"),
         }
     }
     best

@@ -20,6 +20,7 @@
 mod blas;
 mod edge_test;
 mod node_test;
+mod sdf_blas;
 mod tie_break;
 mod triangle_block;
 mod wide_bvh;
@@ -43,6 +44,7 @@ const NODE_RAY_BACKOFF: f32 = 1e-3;
 enum Blas {
     Mesh(MeshBlas),
     Sphere(Sphere),
+    SdfGrid(sdf_blas::SdfBlas),
 }
 
 /// How rays reach an instance's prototype.
@@ -117,6 +119,9 @@ impl ObvhsAccel {
                             Blas::Mesh(build_mesh_blas(mesh_triangles(mesh, 0).collect(), quality))
                         }
                         Geometry::Sphere(s) => Blas::Sphere(*s),
+                        Geometry::SdfGrid(grid) => {
+                            Blas::SdfGrid(sdf_blas::SdfBlas::build(grid.clone(), quality))
+                        }
                     });
                     bounds.push(aabb);
                     tlas_instances.push(index as u32);
@@ -229,6 +234,10 @@ impl ObvhsAccel {
                 *tmax = t;
                 Some((t, 0, 0.0, 0.0))
             }
+            Some(Blas::SdfGrid(grid)) => {
+                let hit = grid.intersect::<COUNT>((origin, dir), ray.tmin, tmax, counters, any_hit);
+                hit.map(|(t, prim)| (t, prim, 0.0, 0.0))
+            }
             // Every instance in the top level has its prototype's BVH (see `build`).
             None => None,
         }
@@ -327,6 +336,7 @@ impl Accel for ObvhsAccel {
         let blases = self.blases.iter().flatten().map(|b| match b {
             Blas::Mesh(m) => mesh(m),
             Blas::Sphere(_) => size_of::<Sphere>(),
+            Blas::SdfGrid(grid) => grid.memory_bytes(),
         });
         Some(
             blases.sum::<usize>()

@@ -25,6 +25,8 @@ pub enum ShapeDesc {
         center: DVec3,
         radius: f64,
     },
+    /// A signed distance grid over [0, 1]³ (shared, as meshes are, by its placements).
+    SdfGrid(std::sync::Arc<super::SdfGridData>),
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -8,4 +8,5 @@ pub(crate) mod obj;
 pub(crate) mod ply;
 pub(crate) mod serialized;
 pub mod toml;
+pub mod vol;
 pub mod xml;

@@ -63,7 +63,7 @@ fn instances_share_their_prototype() {
     let terrain = grid(71); // 10,082 triangles
     let triangles = match &terrain {
         render_scene::Geometry::Triangles(m) => m.indices.len(),
-        render_scene::Geometry::Sphere(_) => unreachable!(),
+        render_scene::Geometry::Sphere(_) | render_scene::Geometry::SdfGrid(_) => unreachable!(),
     };
     // Warm up: Embree's thread pool and first allocations are not the instances' cost.
     drop(EmbreeAccel::build(&crate::accel::embree::test_scenes::random_scene(), &NORMAL).unwrap());

@@ -113,5 +113,6 @@ fn reference_t(scene: &RenderScene, ray: &Ray, hit: &Hit) -> f64 {
             let t = f64::from(hit.t);
             if (roots[0] - t).abs() < (roots[1] - t).abs() { roots[0] } else { roots[1] }
         }
+        render_scene::Geometry::SdfGrid(_) => f64::from(hit.t),
     }
 }

@@ -3,6 +3,7 @@
 //! emitter's radiance; `shapegroup`s placed by `instance`s share their meshes.
 
 mod checks;
+mod sdfgrid;
 mod winding;
 
 use super::Builder;
@@ -42,6 +43,7 @@ impl Builder<'_> {
             }
             "sphere" => &["center", "radius", "flip_normals", "to_world"],
             "cylinder" => &["p0", "p1", "radius", "flip_normals", "to_world"],
+            "sdfgrid" => &["filename", "normals", "to_world"],
             _ => &["flip_normals", "to_world"],
         };
         for child in &element.children {
@@ -124,6 +126,7 @@ impl Builder<'_> {
                 vec![ShapeDesc::Mesh(winding::wound_as_normals(mesh))]
             }
             "disk" => vec![ShapeDesc::Mesh(Arc::new(disk_mesh()))],
+            "sdfgrid" => vec![self.sdf_grid(element, &world_from_object)?],
             "cylinder" => {
                 let radius = float(element, "radius")?.unwrap_or(1.0);
                 let point = |name: &str, default: DVec3| {
@@ -173,7 +176,7 @@ impl Builder<'_> {
             other => {
                 return Err(element.error(format!(
                     "the shape '{other}' is not supported yet (obj, ply, serialized, rectangle, \
-                     cube, sphere, disk, cylinder, shapegroup, instance are)"
+                     cube, sphere, disk, cylinder, sdfgrid, shapegroup, instance are)"
                 )));
             }
         };

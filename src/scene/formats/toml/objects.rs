@@ -74,7 +74,7 @@ impl Builder<'_> {
     ) -> Result<(), SceneError> {
         let attributes = match shape {
             ShapeDesc::Mesh(mesh) => &mesh.attributes[..],
-            ShapeDesc::Sphere { .. } => &[],
+            ShapeDesc::Sphere { .. } | ShapeDesc::SdfGrid(_) => &[],
         };
         let material = &self.materials[material as usize];
         let Some(missing) = material

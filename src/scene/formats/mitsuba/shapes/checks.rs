@@ -58,7 +58,7 @@ pub(in super::super) fn mesh_attributes(
         for shape in shapes {
             let attributes = match shape {
                 ShapeDesc::Mesh(mesh) => &mesh.attributes[..],
-                ShapeDesc::Sphere { .. } => &[],
+                ShapeDesc::Sphere { .. } | ShapeDesc::SdfGrid(_) => &[],
             };
             let Some(attribute) = attributes.iter().find(|a| a.name == name) else {
                 let has: Vec<&str> = attributes.iter().map(|a| a.name.as_str()).collect();

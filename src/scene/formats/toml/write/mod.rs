@@ -146,6 +146,12 @@ impl TomlWriter {
                         f(*radius)
                     );
                 }
+                ShapeDesc::SdfGrid(_) => {
+                    return Err(TomlWriteError::Unsupported {
+                        item: object.name.clone(),
+                        problem: "a signed distance grid (sdfgrid) has no TOML form".into(),
+                    });
+                }
             }
             let _ = writeln!(out, "material = {}", quoted(&names[object.material as usize]));
             if object.world_from_object != DAffine3::IDENTITY {
