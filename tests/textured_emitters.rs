@@ -1,8 +1,8 @@
 //! Textured area emitters (`emission_texture`, Mitsuba's area emitter with a textured
 //! radiance): light sampling must find the radiance a ray that hits the sampled point finds,
 //! on every shape and placement an emitter can have (a baked quad, a mirrored one, boxes
-//! placed as instances and mirrored, a rotated sphere, spheres placed as instances); and the
-//! image is the same on both backends.
+//! placed as instances and mirrored, a rotated sphere, spheres placed as instances, a mesh
+//! without texture coordinates); and the image is the same on both backends.
 
 mod common;
 
@@ -103,11 +103,22 @@ center = [0, 0, 0]
 radius = 0.35
 transform = [{ rotate = { axis = [0, 0, 1], degrees = -35 } }, { translate = [-2, 2.8, -1] }]
 repeat = { count = [1, 1, 2], spacing = [0, 0, 1.1] }
+
+[[objects]]
+type = "mesh"
+material = "lamp"
+file = "tetrahedron.obj"
+transform = [{ translate = [1.5, 2.5, 1.8] }]
 "#;
+
+/// A mesh without texture coordinates: a hit's are its barycentrics.
+const TETRAHEDRON: &str =
+    "v 0 0 0\nv 0.8 0 0\nv 0 0.8 0\nv 0 0 0.8\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 
 fn scene(name: &str) -> (common::command::TempDir, embray::scene::SceneDesc) {
     let dir = common::command::temp_dir(name);
     write_ramp(&dir.join("ramp.exr"));
+    std::fs::write(dir.join("tetrahedron.obj"), TETRAHEDRON).unwrap();
     let path = dir.join("lamps.toml");
     std::fs::write(&path, SCENE).unwrap();
     let scene = embray::scene::load(&path).unwrap();
@@ -121,8 +132,9 @@ fn light_samples_find_the_radiance_a_ray_finds_there() {
     let scene =
         embray::compile::to_render_scene(&desc, space, embray::compile::EffectsMode::Auto).unwrap();
     let textured = scene.lights.emitters.iter().filter(|e| e.emission_map.is_some()).count();
-    // Two triangles a quad (quads are not merged when textured), 12 a box, 1 a sphere.
-    assert_eq!(textured, 2 + 2 + 2 * 12 + 1 + 2, "{} emitters", scene.lights.emitters.len());
+    // Two triangles a quad (quads are not merged when textured), 12 a box, 1 a sphere, 4
+    // the tetrahedron.
+    assert_eq!(textured, 2 + 2 + 2 * 12 + 1 + 2 + 4, "{} emitters", scene.lights.emitters.len());
     let accel = embray::accel::build(BackendKind::Obvhs, &scene, &AccelOptions::default()).unwrap();
     let camera = desc.camera.lookfrom.as_vec3();
     let mut rng = SplitMix64(5);
@@ -158,8 +170,9 @@ fn light_samples_find_the_radiance_a_ray_finds_there() {
         compared += 1;
         geoms.insert(hit.geom_id);
     }
-    // Every emissive instance (two quads, two boxes, three spheres) was compared, often.
-    assert_eq!(geoms.len(), 7, "{geoms:?}");
+    // Every emissive instance (two quads, two boxes, three spheres, the tetrahedron) was
+    // compared, often.
+    assert_eq!(geoms.len(), 8, "{geoms:?}");
     assert!(compared > 5_000, "{compared}");
 }
 

@@ -34,7 +34,8 @@ fn emitters_of_instance(
     geom_id: u32,
     prototype: &Prototype,
     instance: &Instance,
-    (material, texture_mean): (&Material, Vec3),
+    material: &Material,
+    texture_mean: Vec3,
 ) -> Option<(Vec<Emitter>, Vec<u32>)> {
     // Emitters that really move are not sampled: their emission is counted where rays hit
     // them (an emitter "moving" from a pose to the same pose is static).
@@ -109,9 +110,13 @@ fn emitters_of_instance(
             // The frame a hit's texture coordinates are measured in (see `interaction`).
             let (shape, uvs) = match (transform, &instance.placement) {
                 (None, placement) => {
+                    // (Only a baked sphere has no transform: its own frame turned into render
+                    // space.)
                     let object_from_render = match placement {
                         Placement::Baked { object_from_render } => object_from_render.matrix3,
-                        _ => glam::Mat3A::IDENTITY,
+                        Placement::Static { .. } | Placement::Moving { .. } => {
+                            glam::Mat3A::IDENTITY
+                        }
                     };
                     let uvs = UvSource::Sphere {
                         center: s.center,
@@ -147,7 +152,7 @@ pub(super) fn compile_lights(
     for light in descs {
         light.compile(render_from_world, &mut parts);
     }
-    // Once a material: a lookup grid over each texture, however many instances use it.
+    // Each emission texture's mean, computed once a material rather than once an instance.
     let texture_means: Vec<Vec3> = materials
         .iter()
         .map(|m| m.emission_texture.as_ref().map_or(Vec3::ONE, |t| t.mean_over_unit_square()))
@@ -160,7 +165,7 @@ pub(super) fn compile_lights(
             .then(|| {
                 let prototype = &prototypes[instance.prototype as usize];
                 let mean = texture_means[instance.material as usize];
-                emitters_of_instance(geom_id as u32, prototype, instance, (material, mean))
+                emitters_of_instance(geom_id as u32, prototype, instance, material, mean)
             })
             .flatten()
             .map(|(emitters, of_prim)| {

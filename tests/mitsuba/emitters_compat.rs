@@ -238,3 +238,31 @@ fn spot_and_projector_without_to_world_shine_from_the_origin_along_z() {
     close(projector.direction, DVec3::Z);
     close(projector.up, DVec3::Y);
 }
+
+/// An area emitter's radiance as a texture: a checkerboard's colours are radiances (above 1
+/// taken, below 0 refused), and a `rawconstant` is a constant radiance, not a texture.
+#[test]
+fn an_area_emitters_textured_radiance_is_read_as_a_radiance() {
+    let lamp = |radiance: &str| {
+        scene_text(
+            "",
+            &format!("<shape type=\"sphere\"><emitter type=\"area\">{radiance}</emitter></shape>"),
+        )
+    };
+    let checker = r#"<texture type="checkerboard" name="radiance"><rgb name="color0" value="10, 8, 6"/></texture>"#;
+    let (scene, _) = load("checker_lamp.xml", &lamp(checker)).unwrap();
+    let lamp_material = &scene.materials[scene.objects[0].material as usize];
+    assert_eq!(lamp_material.emission, Vec3::ONE);
+    let texture = lamp_material.emission_texture.as_ref().expect("a textured radiance");
+    let embray::scene::Pattern::Checker2d { even, odd, .. } = texture.pattern else {
+        panic!("{:?}", texture.pattern)
+    };
+    assert_eq!((even, odd), (Vec3::new(10.0, 8.0, 6.0), Vec3::splat(0.2)));
+    let negative = checker.replace("10, 8, 6", "-1, 0, 0");
+    assert_contains(&refused("negative_lamp.xml", &lamp(&negative)), &["radiance must be >= 0"]);
+    let constant = r#"<texture type="rawconstant" name="radiance"><rgb name="value" value="3, 2, 1"/></texture>"#;
+    let (scene, _) = load("constant_lamp.xml", &lamp(constant)).unwrap();
+    let lamp_material = &scene.materials[scene.objects[0].material as usize];
+    assert_eq!(lamp_material.emission, Vec3::new(3.0, 2.0, 1.0));
+    assert!(lamp_material.emission_texture.is_none());
+}

@@ -36,13 +36,18 @@ pub(in super::super) fn area_radiance(
     };
     if matches!(given.tag.as_str(), "texture" | "ref") {
         let texture = radiance_texture(given, ids, files)?;
-        if matches!(texture.pattern, Pattern::MeshAttribute { .. }) {
-            return Err(given.error(
+        return match texture.pattern {
+            Pattern::MeshAttribute { .. } => Err(given.error(
                 "an area emitter's radiance cannot be a mesh_attribute (a bitmap, \
                  checkerboard or rawconstant can)",
-            ));
-        }
-        return Ok((Vec3::ONE, Some(texture)));
+            )),
+            // The same everywhere: a constant radiance (sampled as one, written as one).
+            Pattern::Constant(value) if value.cmpge(Vec3::ZERO).all() => Ok((value, None)),
+            Pattern::Constant(value) => {
+                Err(given.error(format!("a radiance must be >= 0, not {value}")))
+            }
+            _ => Ok((Vec3::ONE, Some(texture))),
+        };
     }
     let radiance = color(given, ColorUse::Emission)?;
     if !radiance.cmpge(DVec3::ZERO).all() {

@@ -20,7 +20,7 @@ pub(super) fn float_texture(
     ids: &super::super::Ids,
     files: &FileResolver,
 ) -> Result<Option<TextureDesc>, SceneError> {
-    texture(element, name, ids, files, Some(range))
+    texture(element, name, ids, files, LookedUp::Number(range))
 }
 
 /// A `<texture name="…">` (bitmap or checkerboard) for the reflectance `name`.
@@ -30,7 +30,18 @@ pub(super) fn reflectance_texture(
     ids: &super::super::Ids,
     files: &FileResolver,
 ) -> Result<Option<TextureDesc>, SceneError> {
-    texture(element, name, ids, files, None)
+    texture(element, name, ids, files, LookedUp::Reflectance)
+}
+
+/// What a texture's values stand for, which decides how its constants are checked.
+#[derive(Clone, Copy)]
+enum LookedUp {
+    /// A colour in [0, 1].
+    Reflectance,
+    /// An emitter's radiance: a colour >= 0, without an upper bound.
+    Radiance,
+    /// A number in a range (a roughness, an opacity, a height).
+    Number(Range),
 }
 
 /// The texture `name`, looked up as a number in a range (`as_number`) or a colour: Mitsuba's
@@ -43,13 +54,13 @@ fn texture(
     name: &str,
     ids: &super::super::Ids,
     files: &FileResolver,
-    as_number: Option<Range>,
+    looked_up: LookedUp,
 ) -> Result<Option<TextureDesc>, SceneError> {
     let found = element
         .children
         .iter()
         .find(|c| matches!(c.tag.as_str(), "texture" | "ref") && c.attr("name") == Some(name));
-    found.map(|texture| read(texture, name, ids, files, as_number)).transpose()
+    found.map(|texture| read(texture, name, ids, files, looked_up)).transpose()
 }
 
 /// The `<texture>` (or reference to one) `texture`, read as a number in `range` (a bump
@@ -62,7 +73,7 @@ pub(super) fn float_texture_of(
     ids: &super::super::Ids,
     files: &FileResolver,
 ) -> Result<TextureDesc, SceneError> {
-    read(texture, used_as, ids, files, Some(range))
+    read(texture, used_as, ids, files, LookedUp::Number(range))
 }
 
 /// The `<texture>` (or reference to one) `texture`, an area emitter's radiance.
@@ -71,7 +82,7 @@ pub(super) fn radiance_texture(
     ids: &super::super::Ids,
     files: &FileResolver,
 ) -> Result<TextureDesc, SceneError> {
-    read(texture, "radiance", ids, files, None)
+    read(texture, "radiance", ids, files, LookedUp::Radiance)
 }
 
 /// The texture `texture` is (or refers to), looked up as `fn texture` describes; `used_as`
@@ -81,8 +92,12 @@ fn read(
     used_as: &str,
     ids: &super::super::Ids,
     files: &FileResolver,
-    as_number: Option<Range>,
+    looked_up: LookedUp,
 ) -> Result<TextureDesc, SceneError> {
+    let as_number = match looked_up {
+        LookedUp::Number(range) => Some(range),
+        LookedUp::Reflectance | LookedUp::Radiance => None,
+    };
     let texture = ids.resolve(texture)?;
     if texture.tag != "texture" {
         return Err(texture.error(format!("`{used_as}` must be a colour or a <texture>")));
@@ -136,16 +151,18 @@ fn read(
             {
                 return Err(nested.error("a checkerboard of textures is not supported"));
             }
-            // A colour or a number, in [0, 1] for a colour and in the number's range for a
-            // number (a roughness, a principled weight) either way.
+            // A colour or a number, in [0, 1] for a reflectance, >= 0 for a radiance and in
+            // the number's range for a number (a roughness, a principled weight) either way.
             let color_of = |name: &str, default: f32| -> Result<Vec3, SceneError> {
-                let Some(range) = as_number else {
-                    return Ok(reflectance(texture, name)?.unwrap_or(Vec3::splat(default)));
+                let child = texture.children.iter().find(|c| c.attr("name") == Some(name));
+                let range = match looked_up {
+                    LookedUp::Reflectance => {
+                        return Ok(reflectance(texture, name)?.unwrap_or(Vec3::splat(default)));
+                    }
+                    LookedUp::Radiance => return radiance(child, default),
+                    LookedUp::Number(range) => range,
                 };
-                let Some(child) = texture.children.iter().find(|c| c.attr("name") == Some(name))
-                else {
-                    return Ok(Vec3::splat(default));
-                };
+                let Some(child) = child else { return Ok(Vec3::splat(default)) };
                 let rgb = color(child, ColorUse::Reflectance)?;
                 if let Some(bad) = rgb.to_array().into_iter().find(|v| !range.contains(*v)) {
                     return Err(child.error(format!(
@@ -202,6 +219,16 @@ fn read(
     };
     let pattern = uv_mapped(texture, pattern)?;
     Ok(TextureDesc { pattern, mode: TextureMode::Replace, texture_from_object: DAffine3::IDENTITY })
+}
+
+/// A checkerboard's colour `child` as a radiance (`default` where it is not given).
+fn radiance(child: Option<&Element>, default: f32) -> Result<Vec3, SceneError> {
+    let Some(child) = child else { return Ok(Vec3::splat(default)) };
+    let rgb = color(child, ColorUse::Emission)?;
+    if !rgb.cmpge(DVec3::ZERO).all() {
+        return Err(child.error(format!("a radiance must be >= 0, not {rgb}")));
+    }
+    Ok(rgb.as_vec3())
 }
 
 /// Refuses a Radiance RGBE (`.hdr`) file named by the `<string name="filename">` `file`

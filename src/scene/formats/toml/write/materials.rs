@@ -1,7 +1,7 @@
 //! Materials and their textures as TOML tables.
 
 use super::TomlWriteError;
-use super::textures::texture_toml;
+use super::textures::{texture_table, texture_toml};
 use super::values::{c3, f, quoted};
 use crate::choice::Choice;
 use crate::scene::desc::{BlendDesc, CourseBrdf, Distribution, MaterialDesc, Opacity, Specular};
@@ -177,7 +177,8 @@ fn write_emission(out: &mut String, m: &MaterialDesc) -> Result<(), TomlWriteErr
         let _ = writeln!(out, "two_sided_emission = true");
     }
     if let Some(t) = &m.emission_texture {
-        let _ = writeln!(out, "emission_texture = {}", texture_toml(t, false)?);
+        // A radiance has no upper bound.
+        let _ = writeln!(out, "emission_texture = {}", texture_table(t, false, false)?);
     }
     Ok(())
 }
