@@ -99,6 +99,31 @@ fn a_mesh_faces_the_side_of_its_vertex_normals_whatever_its_winding() {
     }
 }
 
+/// Shapes that name one OBJ share its mesh as Mitsuba reads it (rewound to its vertex
+/// normals, its v flipped): one copy, whatever their number (each had its own).
+#[test]
+fn shapes_naming_one_mesh_file_share_one_prepared_mesh() {
+    let shape = |x: f64| {
+        format!(
+            "<shape type=\"obj\"><string name=\"filename\" value=\"away.obj\"/><transform \
+             name=\"to_world\"><translate x=\"{x}\"/></transform></shape>"
+        )
+    };
+    let obj = format!("vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n{}", quad_obj("1/1/1 4/4/1 3/3/1 2/2/1"));
+    let body = format!("{}{}{}", shape(-2.0), shape(0.0), shape(2.0));
+    let (scene, _) = load("m-shared-prepared", &body, &[("away.obj", &obj)]).unwrap();
+    let ShapeDesc::Mesh(first) = &scene.objects[0].shape else { panic!() };
+    for object in &scene.objects[1..] {
+        let ShapeDesc::Mesh(mesh) = &object.shape else { panic!() };
+        assert!(std::sync::Arc::ptr_eq(first, mesh), "{}", object.name);
+    }
+    // Rewound and flipped all the same: v of the first vertex (vt 0 0) is 1.
+    assert_eq!(first.uvs.as_ref().unwrap()[0], Vec2::Y);
+    let p = |i: u32| first.positions[i as usize];
+    let [a, b, c] = first.indices[0];
+    assert!((p(b) - p(a)).cross(p(c) - p(a)).z > 0.0, "wound as its normals");
+}
+
 /// Mitsuba keeps one scale of a sphere's to_world (warning) and turns a mirrored sphere
 /// inside out: embray drew an ellipsoid, and an outward sphere; both are refused by name.
 #[test]

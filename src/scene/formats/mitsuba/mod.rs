@@ -119,6 +119,9 @@ struct Builder<'a> {
     files: &'a FileResolver,
     ids: Ids,
     meshes: MeshCache,
+    /// Each mesh file's model as Mitsuba reads it (`shapes::winding::Prepared`), made once
+    /// however many shapes name it, so that they share it.
+    prepared: shapes::Prepared,
     warnings: &'a mut Vec<String>,
     materials: Vec<MaterialDesc>,
     /// The material made for each BSDF id, for shapes that share it.
@@ -166,6 +169,7 @@ pub fn load(
         files: &files,
         ids: Ids { by_id, nesting: Cell::new(0) },
         meshes: MeshCache::default(),
+        prepared: shapes::Prepared::default(),
         warnings: &mut warnings,
         materials: Vec::new(),
         shared_materials: HashMap::new(),

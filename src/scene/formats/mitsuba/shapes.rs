@@ -6,6 +6,8 @@ mod checks;
 mod sdfgrid;
 mod winding;
 
+pub(super) use winding::Prepared;
+
 use super::Builder;
 use super::bsdfs::bsdf;
 use super::transform::transform;
@@ -100,20 +102,7 @@ impl Builder<'_> {
                 // Mitsuba turns an OBJ's v upside down (flip_tex_coords, on by default), so
                 // that v = 0 is the image's top row as for every other texture lookup.
                 let flip = kind == "obj" && boolean(element, "flip_tex_coords")?.unwrap_or(true);
-                models
-                    .into_iter()
-                    .map(|m| {
-                        let wound = winding::wound_as_normals(m.mesh);
-                        if !flip || wound.uvs.is_none() {
-                            return ShapeDesc::Mesh(wound);
-                        }
-                        let mut mesh = MeshData::clone(&wound);
-                        for uv in mesh.uvs.iter_mut().flatten() {
-                            uv.y = 1.0 - uv.y;
-                        }
-                        ShapeDesc::Mesh(Arc::new(mesh))
-                    })
-                    .collect()
+                models.into_iter().map(|m| ShapeDesc::Mesh(self.prepared.mesh(m.mesh, flip))).collect()
             }
             "rectangle" => {
                 let mesh = quad_mesh(DVec3::new(-1.0, -1.0, 0.0), 2.0 * DVec3::X, 2.0 * DVec3::Y)

@@ -6,7 +6,36 @@
 
 use crate::scene::desc::MeshData;
 use glam::DVec3;
+use std::collections::HashMap;
 use std::sync::Arc;
+
+/// A mesh file's models as Mitsuba reads them (wound as their vertex normals, v flipped for
+/// an OBJ), each made once: shapes that name one file share one mesh (an instance each),
+/// as they share the file's models.
+#[derive(Default)]
+pub(in super::super) struct Prepared(HashMap<(*const MeshData, bool), [Arc<MeshData>; 2]>);
+
+impl Prepared {
+    /// `mesh` wound as its normals, its v flipped if `flip_v` (and it has uvs).
+    pub(super) fn mesh(&mut self, mesh: Arc<MeshData>, flip_v: bool) -> Arc<MeshData> {
+        // The source is kept beside what is made of it, so its address stays its own.
+        let key = (Arc::as_ptr(&mesh), flip_v);
+        let [_, made] = self.0.entry(key).or_insert_with(|| {
+            let wound = wound_as_normals(Arc::clone(&mesh));
+            let made = if !flip_v || wound.uvs.is_none() {
+                wound
+            } else {
+                let mut flipped = MeshData::clone(&wound);
+                for uv in flipped.uvs.iter_mut().flatten() {
+                    uv.y = 1.0 - uv.y;
+                }
+                Arc::new(flipped)
+            };
+            [mesh, made]
+        });
+        Arc::clone(made)
+    }
+}
 
 /// `mesh` with every triangle whose vertex normals point against its winding's normal
 /// wound the other way round; the same `Arc` (shared with other objects) when none does or
