@@ -59,9 +59,8 @@ impl SdfGrid {
     /// check, made before the memory budget has counted what the grid will hold.
     pub fn has_surface(data: &SdfGridData) -> bool {
         let [vx, vy, vz] = data.voxels();
-        (0..vz).any(|z| {
-            (0..vy).any(|y| (0..vx).any(|x| may_hold_surface(&corners(data, [x, y, z]))))
-        })
+        (0..vz)
+            .any(|z| (0..vy).any(|y| (0..vx).any(|x| may_hold_surface(&corners(data, [x, y, z])))))
     }
 
     /// The corner values of primitive `prim`'s voxel (zeros for an unknown primitive).

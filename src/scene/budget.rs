@@ -2,8 +2,9 @@
 //! coordinate range and the memory the render will need against the memory the machine has.
 
 use crate::limits::{
-    BASE_BYTES, BYTES_PER_GRID_VALUE, BYTES_PER_GRID_VOXEL, BYTES_PER_HDR_TEXEL, BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL,
-    BYTES_PER_TEXEL, BYTES_PER_THREAD, MAX_COORDINATE, MAX_WORLD_COORDINATE, memory_available,
+    BASE_BYTES, BYTES_PER_GRID_VALUE, BYTES_PER_GRID_VOXEL, BYTES_PER_HDR_TEXEL, BYTES_PER_OBJECT,
+    BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL, BYTES_PER_TEXEL, BYTES_PER_THREAD, MAX_COORDINATE,
+    MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc};

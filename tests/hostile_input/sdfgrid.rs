@@ -137,8 +137,9 @@ fn what_a_grid_cannot_be_is_refused_by_name() {
 #[test]
 fn a_grid_larger_than_the_memory_budget_is_refused_before_it_is_built() {
     let n = 64u32;
-    let values: Vec<f32> =
-        (0..n * n * n).map(|i| if (i % n + i / n % n + i / (n * n)) % 2 == 0 { 1.0 } else { -1.0 }).collect();
+    let values: Vec<f32> = (0..n * n * n)
+        .map(|i| if (i % n + i / n % n + i / (n * n)).is_multiple_of(2) { 1.0 } else { -1.0 })
+        .collect();
     let scratch = Scratch::new();
     scratch.write("s.xml", grid_scene(""));
     scratch.write("g.vol", write_single_channel([n; 3], &values));
