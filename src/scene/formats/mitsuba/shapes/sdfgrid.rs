@@ -13,7 +13,8 @@ use glam::DAffine3;
 use std::sync::Arc;
 
 /// Grids whose header declares more values than this are refused by `vol::parse` before
-/// any is read (a short file whose header claims more is named for its size). A file that
+/// any is read or the file's length compared (a short file whose header claims more is
+/// refused with this limit, not a length mismatch). A file that
 /// held this many (4 GiB) would be refused first by the input cap (2 GiB, about 2²⁹
 /// values); whether a grid the cap lets through fits the machine is the memory budget's
 /// call (`crate::scene::budget`), made before the grid's voxels are built.
