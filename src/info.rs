@@ -94,7 +94,15 @@ pub fn describe(scene: &SceneDesc) -> String {
         mib(crate::accel::BackendKind::Obvhs),
         needed(0)
     );
-    match to_render_scene(scene, RenderSpace::Cameraworld, EffectsMode::Auto) {
+    // Compiling builds the scene (a grid's voxels, baked meshes): not when the estimate of
+    // that alone (no BVH) is more memory than there is.
+    let compiled = crate::scene::budget::check_memory(scene, 0, threads)
+        .map_err(|e| e.to_string())
+        .and_then(|()| {
+            to_render_scene(scene, RenderSpace::Cameraworld, EffectsMode::Auto)
+                .map_err(|e| e.to_string())
+        });
+    match compiled {
         Ok(render_scene) => {
             out += &format!(
                 "prototypes: {}, instances: {}\neffects: {}\n",
@@ -103,7 +111,7 @@ pub fn describe(scene: &SceneDesc) -> String {
                 FeatureList(features(&render_scene))
             );
         }
-        Err(e) => out += &format!("effects: cannot prepare the scene: {e}\n"),
+        Err(e) => out += &format!("effects: not prepared: {e}\n"),
     }
     out
 }
@@ -124,9 +132,10 @@ pub fn features(scene: &RenderScene) -> Vec<&'static str> {
         (used(&|m| m.is_dielectric()), "refraction"),
         (used(&|m| m.principled.is_some()), "principled BSDF"),
         (used(&|m| m.texture.is_some()), "textures"),
+        (has_instancing(scene), "instancing"),
         (
-            scene.instances.iter().any(|i| !matches!(i.placement, Placement::Baked { .. })),
-            "instancing",
+            scene.prototypes.iter().any(|p| matches!(p.geometry, Geometry::SdfGrid(_))),
+            "signed distance grids",
         ),
         (
             scene
@@ -137,6 +146,26 @@ pub fn features(scene: &RenderScene) -> Vec<&'static str> {
         ),
     ];
     all.iter().filter(|(on, _)| *on).map(|(_, name)| *name).collect()
+}
+
+/// Whether any instance is placed by a transform as instancing is. A grid is always placed
+/// by one (its prototype is in grid units), so a grid counts only when its prototype is
+/// shared by several instances.
+fn has_instancing(scene: &RenderScene) -> bool {
+    let mut uses = vec![0u32; scene.prototypes.len()];
+    for instance in &scene.instances {
+        if let Some(n) = uses.get_mut(instance.prototype as usize) {
+            *n = n.saturating_add(1);
+        }
+    }
+    scene.instances.iter().any(|i| {
+        let prototype = i.prototype as usize;
+        let grid = matches!(
+            scene.prototypes.get(prototype).map(|p| &p.geometry),
+            Some(Geometry::SdfGrid(_))
+        );
+        !matches!(i.placement, Placement::Baked { .. }) && (!grid || uses[prototype] > 1)
+    })
 }
 
 /// `features` joined for one line of text ("none" when empty).

@@ -112,6 +112,10 @@ pub fn intersect_voxel(
     voxel: [u32; 3],
     f: &[f32; 8],
 ) -> Option<f32> {
+    // NaN or crossed bounds (as a NaN `tmin` from a callback) bound nothing.
+    if !(tmin <= tmax) {
+        return None;
+    }
     let (o, d) = (origin.as_dvec3(), dir.as_dvec3());
     let lo = DVec3::from_array(voxel.map(f64::from));
     let (mut t0, mut t1) = (f64::from(tmin), f64::from(tmax));
@@ -127,7 +131,9 @@ pub fn intersect_voxel(
         t0 = t0.max(near.min(far));
         t1 = t1.min(near.max(far));
     }
-    if !(t0 <= t1) {
+    // A span with an infinite end (a ray with no finite `tmax` along an axis it does not
+    // cross) or NaN ends (a NaN ray) has no voxel-sized piece to search.
+    if !(t0 <= t1) || !t0.is_finite() || !t1.is_finite() {
         return None;
     }
     // Measured from where the ray enters, so the coefficients stay of the voxel's size.
@@ -136,8 +142,10 @@ pub fn intersect_voxel(
     let span = t1 - t0;
     let mut ends = [0.0, span, span, span];
     if let Some((r0, r1)) = quadratic_roots(3.0 * poly[3], 2.0 * poly[2], poly[1]) {
-        ends[1] = r0.clamp(0.0, span);
-        ends[2] = r1.clamp(0.0, span);
+        // `max`/`min`, not `clamp`: this runs in Embree's `extern "C"` callbacks, where a
+        // panic (clamp's, on a NaN bound) would abort.
+        ends[1] = r0.max(0.0).min(span);
+        ends[2] = r1.max(0.0).min(span);
     }
     let mut found = None;
     for piece in ends.windows(2) {
@@ -155,7 +163,7 @@ pub fn intersect_voxel(
         }
     }
     let t = (t0 + found?) as f32;
-    Some(t.clamp(tmin, tmax))
+    Some(t.max(tmin).min(tmax))
 }
 
 #[cfg(test)]
@@ -260,5 +268,29 @@ mod tests {
             intersect_voxel(Vec3::new(-1.0, 1.5, 0.5), Vec3::X, 0.0, 9.0, [0, 0, 0], &f),
             None
         );
+    }
+
+    /// Rays with infinite or NaN parts find nothing, and do not panic (Embree's callbacks
+    /// call this, and a panic there would abort).
+    #[test]
+    fn infinite_and_nan_rays_are_misses() {
+        let f = [-0.25, 0.75, -0.25, 0.75, -0.25, 0.75, -0.25, 0.75];
+        let (inf, nan) = (f32::INFINITY, f32::NAN);
+        let cases = [
+            // Along an axis the voxel spans, from infinitely far: t0 = t1 = -inf.
+            (Vec3::new(-inf, 0.5, 0.5), Vec3::X, 0.0, inf),
+            (Vec3::new(-inf, 0.5, 0.5), Vec3::X, -inf, inf),
+            (Vec3::new(-1.0, 0.5, 0.5), Vec3::X, -inf, -inf),
+            (Vec3::new(-1.0, 0.5, 0.5), Vec3::X, inf, inf),
+            (Vec3::new(-1.0, 0.5, 0.5), Vec3::X, nan, 10.0),
+            (Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 0.0, nan),
+            (Vec3::new(nan, 0.5, 0.5), Vec3::X, 0.0, inf),
+            (Vec3::new(-1.0, 0.5, 0.5), Vec3::new(nan, 0.0, 0.0), 0.0, 10.0),
+            (Vec3::new(-1.0, 0.5, 0.5), Vec3::new(inf, 0.0, 0.0), 0.0, 10.0),
+        ];
+        for (origin, dir, tmin, tmax) in cases {
+            let t = intersect_voxel(origin, dir, tmin, tmax, [0, 0, 0], &f);
+            assert_eq!(t, None, "{origin} {dir} [{tmin}, {tmax}]");
+        }
     }
 }

@@ -92,6 +92,13 @@ pub const BYTES_PER_TEXEL: u64 = 20;
 /// Bytes per texel of an EXR image: the texels and, while loading, its channels as
 /// decoded (measured: 25 for a map with R, G, B, Z and normals, as embray writes them).
 pub const BYTES_PER_HDR_TEXEL: u64 = 30;
+/// Bytes per value of a signed distance grid: the f32 it is held as.
+pub const BYTES_PER_GRID_VALUE: u64 = 4;
+/// Bytes per voxel of a signed distance grid, beyond its share of the BVH (counted as a
+/// triangle's, `BYTES_PER_TRIANGLE_*`): its corner (12) and box (24) if it is a primitive.
+/// Counted from the types, not measured; every voxel is counted as a primitive, which
+/// bounds a grid whose voxels are not yet built.
+pub const BYTES_PER_GRID_VOXEL: u64 = 36;
 /// Bytes per texel of an environment map's sampling table, beyond the texel itself
 /// (measured: 22).
 pub const BYTES_PER_SAMPLED_TEXEL: u64 = 24;

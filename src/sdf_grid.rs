@@ -42,7 +42,7 @@ impl SdfGrid {
             for y in 0..vy {
                 for x in 0..vx {
                     let f = corners(&data, [x, y, z]);
-                    if f.iter().all(|&v| v > 0.0) || f.iter().all(|&v| v < 0.0) {
+                    if !may_hold_surface(&f) {
                         continue;
                     }
                     let (lo, hi) = tight_box(&f);
@@ -53,6 +53,14 @@ impl SdfGrid {
             }
         }
         (!voxels.is_empty()).then_some(SdfGrid { data, voxels, boxes })
+    }
+
+    /// Whether [`SdfGrid::new`] would find a primitive, without allocating: the reader's
+    /// check, made before the memory budget has counted what the grid will hold.
+    pub fn has_surface(data: &SdfGridData) -> bool {
+        let [vx, vy, vz] = data.voxels();
+        (0..vz)
+            .any(|z| (0..vy).any(|y| (0..vx).any(|x| may_hold_surface(&corners(data, [x, y, z])))))
     }
 
     /// The corner values of primitive `prim`'s voxel (zeros for an unknown primitive).
@@ -123,6 +131,9 @@ impl SdfGrid {
     /// are not: their gradient across that face is zero (the clamped lookups' difference).
     /// A surface so near the grid's top face is rare, and Mitsuba draws it so.
     pub fn smooth_normal(&self, q: Vec3) -> Vec3 {
+        // Into the grid first (as `value_at` clamps), so the corner indices below stay
+        // small: a huge `q` would overflow i32 in `base + k`.
+        let q = q.clamp(Vec3::ZERO, self.extent());
         let nearest = q.round().as_ivec3();
         let base = nearest - IVec3::ONE;
         // A voxel's gradient along an axis depends on its coordinate on that axis alone
@@ -164,6 +175,12 @@ impl SdfGrid {
             })
             .sum()
     }
+}
+
+/// Whether a voxel with corner values `f` may hold the surface: its corners are not all
+/// of one strict sign. The one criterion for a primitive.
+fn may_hold_surface(f: &[f32; 8]) -> bool {
+    !(f.iter().all(|&v| v > 0.0) || f.iter().all(|&v| v < 0.0))
 }
 
 /// The values at the eight corners of voxel `v` (corner order as [`corner_offset`]).
@@ -214,6 +231,27 @@ mod tests {
         }
         let data = SdfGridData { resolution: [n; 3], values, normals };
         SdfGrid::new(Arc::new(data)).unwrap()
+    }
+
+    /// `has_surface` agrees with `new`; a far or NaN point gets a finite smooth normal.
+    #[test]
+    fn has_surface_agrees_with_the_primitives_and_far_points_are_safe() {
+        let flat = |v: f32| SdfGridData {
+            resolution: [3, 2, 2],
+            values: vec![v; 12],
+            normals: SdfNormals::Smooth,
+        };
+        for data in [flat(1.0), flat(-1.0), flat(0.0)] {
+            let built = SdfGrid::new(Arc::new(data.clone())).is_some();
+            assert_eq!(SdfGrid::has_surface(&data), built);
+        }
+        let mut one = flat(1.0);
+        one.values[11] = -1.0;
+        assert!(SdfGrid::has_surface(&one));
+        let grid = sampled(4, SdfNormals::Smooth, |q| q.x - 1.5);
+        for q in [Vec3::splat(3e9), Vec3::splat(-3e9), Vec3::splat(f32::MAX), Vec3::NAN] {
+            assert!(grid.smooth_normal(q).is_finite(), "{q}");
+        }
     }
 
     /// On a linear field every voxel has the field's gradient, so both normals are it.

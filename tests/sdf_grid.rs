@@ -130,3 +130,28 @@ fn both_backends_render_a_grid_alike() {
     assert!(error.relative_mse < 1e-6, "{error:?}");
     assert!(error.fraction_off < 1e-3, "{error:?}");
 }
+
+/// A grid's placement composes its 1/voxels scale into the object's transform; a transform
+/// invertible in f32 alone but singular once composed is refused, not placed.
+#[test]
+fn a_grid_singular_once_scaled_to_its_voxels_is_refused() {
+    let mut desc = sdf_scene(8);
+    desc.objects.retain(|o| matches!(o.shape, ShapeDesc::SdfGrid(_)));
+    desc.objects.truncate(1);
+    // Determinant 2e-38, a normal f32; over the grid's voxels it is subnormal.
+    let squashed = glam::DVec3::new(1e-19, 1e-19, 2.0);
+    desc.objects[0].world_from_object = glam::DAffine3::from_scale(squashed);
+    let error = to_render_scene(&desc, RenderSpace::Cameraworld, EffectsMode::Auto).unwrap_err();
+    assert!(error.to_string().contains(&desc.objects[0].name), "{error}");
+}
+
+/// `embray info` lists grids, and a grid placed once (always by a transform) is not
+/// instancing.
+#[test]
+fn info_lists_grids_and_a_lone_grid_is_not_instancing() {
+    let desc = sdf_scene(8);
+    let scene = to_render_scene(&desc, RenderSpace::Cameraworld, EffectsMode::Auto).unwrap();
+    let features = embray::info::features(&scene);
+    assert!(features.contains(&"signed distance grids"), "{features:?}");
+    assert!(!features.contains(&"instancing"), "{features:?}");
+}

@@ -118,6 +118,11 @@ impl Placer {
         // object's.
         let transformed = |object_from_prototype: DAffine3| -> Result<Placement, CompileError> {
             let render_from_object = render_from_object * object_from_prototype;
+            // Checked again with the prototype's map composed in (a grid's 1/voxels scale
+            // can make an invertible transform singular in f32), at both shutter ends.
+            if !render_from_object.is_finite() || !invertible_in_f32(&render_from_object) {
+                return Err(CompileError::SingularTransform(name.clone()));
+            }
             if moving {
                 let end = render_from_world
                     * object.world_from_object_end.unwrap_or(object.world_from_object)

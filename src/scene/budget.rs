@@ -2,8 +2,9 @@
 //! coordinate range and the memory the render will need against the memory the machine has.
 
 use crate::limits::{
-    BASE_BYTES, BYTES_PER_HDR_TEXEL, BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL,
-    BYTES_PER_TEXEL, BYTES_PER_THREAD, MAX_COORDINATE, MAX_WORLD_COORDINATE, memory_available,
+    BASE_BYTES, BYTES_PER_GRID_VALUE, BYTES_PER_GRID_VOXEL, BYTES_PER_HDR_TEXEL, BYTES_PER_OBJECT,
+    BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL, BYTES_PER_TEXEL, BYTES_PER_THREAD, MAX_COORDINATE,
+    MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc};
@@ -17,7 +18,8 @@ pub enum LimitError {
     #[error(
         "{}: rendering it needs about {} of memory ({}), but only {} are \
          available; lower camera.resolution (or the CENG795 ImageResolution), the number of \
-         objects and repeat copies, the size of the textures, or --threads",
+         objects and repeat copies, the size of the textures or signed distance grids, or \
+         --threads",
         .file.display(), size(.estimate.bytes), .estimate, size(*.available)
     )]
     Memory { file: std::path::PathBuf, estimate: MemoryEstimate, available: u64 },
@@ -53,6 +55,9 @@ pub struct MemoryEstimate {
     pub pixels: u64,
     pub objects: u64,
     pub triangles: u64,
+    /// Values of signed distance grids, and their voxels (each counted as a primitive).
+    pub grid_values: u64,
+    pub grid_voxels: u64,
     pub texels: u64,
     /// Of those, texels of EXR images (dearer to load).
     pub hdr_texels: u64,
@@ -66,11 +71,13 @@ impl std::fmt::Display for MemoryEstimate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{}x{} pixels, {} object placements, {} mesh triangles, {} texture texels, {} thread{}",
+            "{}x{} pixels, {} object placements, {} mesh triangles, {} grid values, {} texture \
+             texels, {} thread{}",
             self.width,
             self.height,
             self.objects,
             self.triangles,
+            self.grid_values,
             self.texels,
             self.threads,
             if self.threads == 1 { "" } else { "s" }
@@ -86,7 +93,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
     let pixels = u64::from(desc.camera.width) * u64::from(desc.camera.height);
     let mut meshes = HashSet::new();
     let mut grids = HashSet::new();
-    let mut triangles = 0u64;
+    let (mut triangles, mut grid_values, mut grid_voxels) = (0u64, 0u64, 0u64);
     for object in &desc.objects {
         if let ShapeDesc::Mesh(mesh) = &object.shape {
             if meshes.insert(Arc::as_ptr(mesh)) {
@@ -96,11 +103,12 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
                 triangles += (mesh.indices.len() as u64).max(soup);
             }
         }
-        // A grid's voxels are primitives with a box each, as a triangle is: at most one a
-        // value.
+        // Counted here, before placement builds a grid's voxels: its values, and every
+        // voxel as a primitive (its corner and box, and a triangle's share of the BVH).
         if let ShapeDesc::SdfGrid(grid) = &object.shape {
             if grids.insert(Arc::as_ptr(grid)) {
-                triangles += grid.values.len() as u64;
+                grid_values += grid.values.len() as u64;
+                grid_voxels += grid.voxels().iter().map(|&n| u64::from(n)).product::<u64>();
             }
         }
     }
@@ -128,6 +136,8 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         (pixels, BYTES_PER_PIXEL),
         (objects, BYTES_PER_OBJECT),
         (triangles, bytes_per_triangle),
+        (grid_values, BYTES_PER_GRID_VALUE),
+        (grid_voxels, bytes_per_triangle.saturating_add(BYTES_PER_GRID_VOXEL)),
         (texels - hdr_texels, BYTES_PER_TEXEL),
         (hdr_texels, BYTES_PER_HDR_TEXEL),
         (sampled_texels, BYTES_PER_SAMPLED_TEXEL),
@@ -143,6 +153,8 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         pixels,
         objects,
         triangles,
+        grid_values,
+        grid_voxels,
         texels,
         hdr_texels,
         sampled_texels,

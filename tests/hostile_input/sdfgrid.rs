@@ -65,7 +65,11 @@ fn a_header_asking_for_more_than_the_file_holds_is_refused() {
     for (at, value) in [(8, i32::MAX), (12, i32::MAX), (16, i32::MAX)] {
         vol[at..at + 4].copy_from_slice(&value.to_le_bytes());
     }
-    refused_with(&vol, "", &["g.vol", "2147483647×2147483647×2147483647", "the file has 80 bytes"]);
+    let limit = ["g.vol", "2147483647×2147483647×2147483647", "at most 1073741824 values"];
+    refused_with(&vol, "", &limit);
+    let mut longer = plane();
+    longer[16..20].copy_from_slice(&3i32.to_le_bytes());
+    refused_with(&longer, "", &["g.vol", "2×2×3", "the file has 80 bytes"]);
     let mut negative = plane();
     negative[12..16].copy_from_slice(&(-5i32).to_le_bytes());
     refused_with(&negative, "", &["g.vol", "y size is -5"]);
@@ -125,4 +129,37 @@ fn what_a_grid_cannot_be_is_refused_by_name() {
         &["convert", "s.xml", "-o", "out.toml"],
         &["signed distance grid", "no TOML form"],
     );
+}
+
+/// A grid of alternating signs (every voxel a primitive) too large for the memory budget:
+/// refused by the budget, naming the grid's values, before its voxels are built; `info`
+/// says so rather than building them.
+#[test]
+fn a_grid_larger_than_the_memory_budget_is_refused_before_it_is_built() {
+    let n = 64u32;
+    let values: Vec<f32> = (0..n * n * n)
+        .map(|i| if (i % n + i / n % n + i / (n * n)).is_multiple_of(2) { 1.0 } else { -1.0 })
+        .collect();
+    let scratch = Scratch::new();
+    scratch.write("s.xml", grid_scene(""));
+    scratch.write("g.vol", write_single_channel([n; 3], &values));
+    // 24 MiB fixed, 1 MiB of values and 63³ voxels at 36 bytes (9 MiB) before any BVH.
+    let budget = ("EMBRAY_MAX_MEMORY", "31457280");
+    for (args, expected) in [
+        (&["render", "s.xml", "--threads", "1"][..], "262144 grid values"),
+        (&["info", "s.xml"][..], "not prepared"),
+    ] {
+        let before = scratch.snapshot();
+        let run = crate::harness::Run::from(
+            scratch.command(args).env(budget.0, budget.1).output().unwrap(),
+        );
+        run.assert_no_panic();
+        if args[0] == "render" {
+            assert_eq!(run.code, Some(1), "{}", run.stderr);
+            run.assert_says(&["s.xml", expected, "only 30.0 MiB", "signed distance grids"]);
+        } else {
+            assert!(run.stdout.contains(expected), "{}", run.stdout);
+        }
+        assert_eq!(scratch.snapshot(), before);
+    }
 }

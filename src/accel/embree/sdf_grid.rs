@@ -4,7 +4,9 @@
 //! both backends find the same hits.
 //!
 //! The callbacks are `extern "C"`: unwinding out of them would abort, so nothing in them
-//! can panic (float arithmetic, raw-pointer reads, `slice::get`; no indexing or unwraps).
+//! can panic (float arithmetic, raw-pointer reads, `slice::get`; no indexing, unwraps or
+//! `clamp`, which panics on a NaN or crossed bound: `max` then `min` instead), whatever
+//! the ray holds (infinite or NaN parts are a miss, tested in `crate::intersect_sdf`).
 
 use super::callback_data::CallbackData;
 use super::device::Device;

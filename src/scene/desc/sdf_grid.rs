@@ -25,7 +25,9 @@ impl SdfGridData {
     /// lookup with clamping would).
     pub fn value(&self, x: i64, y: i64, z: i64) -> f32 {
         let [nx, ny, nz] = self.resolution.map(i64::from);
-        let (x, y, z) = (x.clamp(0, nx - 1), y.clamp(0, ny - 1), z.clamp(0, nz - 1));
+        // `max` then `min`, not `clamp` (which panics if a side were 0): Embree's
+        // callbacks read corners through this.
+        let (x, y, z) = (x.max(0).min(nx - 1), y.max(0).min(ny - 1), z.max(0).min(nz - 1));
         // In range: the reader checked values.len() == nx·ny·nz.
         self.values.get((x + nx * (y + ny * z)) as usize).copied().unwrap_or(0.0)
     }

@@ -2,8 +2,9 @@
 //! little-endian i32 encoding (1: float32), x, y and z sizes and the channel count, six f32
 //! of bounding box (min, max), and the values, x fastest, each voxel's channels together.
 //!
-//! Every size in the header is checked against the file's length before anything is
-//! allocated, so a hostile header cannot ask for more memory than the file holds.
+//! The header's count of values is checked against the caller's limit and then against
+//! the file's length before anything is allocated, so a hostile header cannot ask for more
+//! memory than the file holds.
 
 /// A grid read from a `.vol` file.
 #[derive(Clone, Debug, PartialEq)]
@@ -22,8 +23,9 @@ fn i32_at(bytes: &[u8], offset: usize) -> i32 {
     i32::from_le_bytes(word)
 }
 
-/// Parses `bytes` as a `.vol` file; the error says what is wrong (the caller names the file).
-pub fn parse(bytes: &[u8]) -> Result<VolGrid, String> {
+/// Parses `bytes` as a `.vol` file of at most `max_values` values (all channels); the
+/// error says what is wrong (the caller names the file).
+pub fn parse(bytes: &[u8], max_values: u64) -> Result<VolGrid, String> {
     if bytes.len() < HEADER_BYTES {
         return Err(format!(
             "{} bytes, shorter than a .vol header ({HEADER_BYTES} bytes)",
@@ -54,6 +56,13 @@ pub fn parse(bytes: &[u8]) -> Result<VolGrid, String> {
         .chain([&channels])
         .try_fold(1u64, |n, &d| n.checked_mul(u64::from(d)))
         .filter(|&n| n <= (usize::MAX / 4) as u64);
+    if count.is_none_or(|n| n > max_values) {
+        let [x, y, z] = size;
+        return Err(format!(
+            "the header says {x}×{y}×{z} values of {channels} channel(s), but a grid holds at \
+             most {max_values} values"
+        ));
+    }
     let expected = count.map(|n| n * 4 + HEADER_BYTES as u64);
     if expected != Some(bytes.len() as u64) {
         let [x, y, z] = size;
@@ -94,12 +103,13 @@ mod tests {
     #[test]
     fn reads_what_it_writes() {
         let values: Vec<f32> = (0..24).map(|i| i as f32 - 3.5).collect();
-        let grid = parse(&write_single_channel([2, 3, 4], &values)).unwrap();
+        let grid = parse(&write_single_channel([2, 3, 4], &values), 24).unwrap();
         assert_eq!((grid.size, grid.channels, grid.values), ([2, 3, 4], 1, values));
     }
 
     #[test]
     fn refuses_sizes_the_file_does_not_hold() {
+        let parse = |bytes: &[u8]| parse(bytes, u64::MAX);
         let mut bytes = write_single_channel([2, 2, 2], &[1.0; 8]);
         assert!(parse(&bytes[..bytes.len() - 1]).unwrap_err().contains("the file has 79 bytes"));
         bytes[8..12].copy_from_slice(&i32::MAX.to_le_bytes());
@@ -113,5 +123,14 @@ mod tests {
         wrong[3] = 3;
         wrong[4] = 2;
         assert!(parse(&wrong).unwrap_err().contains("encoding 2"));
+    }
+
+    /// The limit is checked on the header's count, before the file's length or any value.
+    #[test]
+    fn refuses_a_header_over_the_limit_before_reading() {
+        let bytes = write_single_channel([2, 2, 2], &[1.0; 8]);
+        assert!(parse(&bytes, 7).unwrap_err().contains("at most 7 values"));
+        assert!(parse(&bytes[..HEADER_BYTES], 7).unwrap_err().contains("at most 7 values"));
+        assert_eq!(parse(&bytes, 8).unwrap().values.len(), 8);
     }
 }

@@ -12,8 +12,12 @@ use crate::scene::formats::vol;
 use glam::DAffine3;
 use std::sync::Arc;
 
-/// Grids larger than this many values are refused before any is read: 2³⁰ values are
-/// 4 GiB of file, far beyond a grid one would ray trace voxel by voxel.
+/// Grids whose header declares more values than this are refused by `vol::parse` before
+/// any is read or the file's length compared (a short file whose header claims more is
+/// refused with this limit, not a length mismatch). A file that
+/// held this many (4 GiB) would be refused first by the input cap (2 GiB, about 2²⁹
+/// values); whether a grid the cap lets through fits the machine is the memory budget's
+/// call (`crate::scene::budget`), made before the grid's voxels are built.
 const MAX_VALUES: u64 = 1 << 30;
 
 impl Builder<'_> {
@@ -47,23 +51,22 @@ impl Builder<'_> {
         let bytes = crate::input_file::read_bytes(&path)
             .map_err(|e| file.error(format!("cannot read '{}': {e}", path.display())))?;
         let problem = |what: String| file.error(format!("'{}': {what}", path.display()));
-        let grid = vol::parse(&bytes).map_err(problem)?;
+        let grid = vol::parse(&bytes, MAX_VALUES).map_err(problem)?;
         if grid.channels != 1 {
             return Err(problem(format!("{} channels, but an SDF grid has 1", grid.channels)));
         }
-        let count = grid.size.iter().map(|&n| u64::from(n)).product::<u64>();
-        if grid.size.iter().any(|&n| n < 2) || count > MAX_VALUES {
+        if grid.size.iter().any(|&n| n < 2) {
             let [x, y, z] = grid.size;
             return Err(problem(format!(
-                "a grid of {x}×{y}×{z} values: each side needs at least 2 (one voxel) and the \
-                 grid at most {MAX_VALUES} values"
+                "a grid of {x}×{y}×{z} values: each side needs at least 2 (one voxel)"
             )));
         }
         if let Some(i) = grid.values.iter().position(|v| !v.is_finite()) {
             return Err(problem(format!("value {i} is {}, not a finite number", grid.values[i])));
         }
-        let data = Arc::new(SdfGridData { resolution: grid.size, values: grid.values, normals });
-        if crate::sdf_grid::SdfGrid::new(Arc::clone(&data)).is_none() {
+        let data = SdfGridData { resolution: grid.size, values: grid.values, normals };
+        // Without building the voxels: the budget has not yet counted their memory.
+        if !crate::sdf_grid::SdfGrid::has_surface(&data) {
             return Err(problem(
                 "no voxel of the grid holds the surface (every value has the same sign)".into(),
             ));
@@ -84,6 +87,6 @@ impl Builder<'_> {
                 element.line
             ));
         }
-        Ok(ShapeDesc::SdfGrid(data))
+        Ok(ShapeDesc::SdfGrid(Arc::new(data)))
     }
 }
