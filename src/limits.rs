@@ -74,6 +74,11 @@ pub const BASE_BYTES: u64 = 24 << 20;
 /// Bytes per object placement: the scene description, its render-space instance and its
 /// share of the top-level BVH (measured: 1047 on Embree, 957 on obvhs).
 pub const BYTES_PER_OBJECT: u64 = 1100;
+/// Bytes per emitting primitive of each placement (every triangle of an emissive mesh,
+/// every emissive sphere, once per object: each placement samples its own): the light
+/// sampler's `Emitter` and its index, and a textured one's map (`light::tests` holds the
+/// types to it).
+pub const BYTES_PER_EMITTER: u64 = 256;
 /// Bytes per worker thread beyond the first: its stack as touched, its batch of paths and
 /// their queues (`Wavefront`), and the thread pool's own. Measured as peak RSS over 1 to 256
 /// threads: 296 KiB a thread on the Cornell box of `../shared/peers` (an area light, 256²,

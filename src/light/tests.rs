@@ -243,3 +243,11 @@ fn an_emitter_stays_small() {
     println!("EmitterShape: {size} bytes");
     assert!(size <= 176, "EmitterShape is {size} bytes");
 }
+
+/// The memory estimate's cost of an emitter (`limits::BYTES_PER_EMITTER`) covers one: the
+/// emitter, its index among a primitive's, and a textured one's map.
+#[test]
+fn an_emitter_fits_its_share_of_the_memory_estimate() {
+    let one = size_of::<super::Emitter>() + size_of::<u32>() + size_of::<super::EmissionMap>();
+    assert!(one as u64 <= crate::limits::BYTES_PER_EMITTER, "{one} bytes");
+}

@@ -2,9 +2,9 @@
 //! coordinate range and the memory the render will need against the memory the machine has.
 
 use crate::limits::{
-    BASE_BYTES, BYTES_PER_GRID_VALUE, BYTES_PER_GRID_VOXEL, BYTES_PER_HDR_TEXEL, BYTES_PER_OBJECT,
-    BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL, BYTES_PER_TEXEL, BYTES_PER_THREAD, MAX_COORDINATE,
-    MAX_WORLD_COORDINATE, memory_available,
+    BASE_BYTES, BYTES_PER_EMITTER, BYTES_PER_GRID_VALUE, BYTES_PER_GRID_VOXEL, BYTES_PER_HDR_TEXEL,
+    BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL, BYTES_PER_TEXEL, BYTES_PER_THREAD,
+    MAX_COORDINATE, MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc};
@@ -55,6 +55,8 @@ pub struct MemoryEstimate {
     pub pixels: u64,
     pub objects: u64,
     pub triangles: u64,
+    /// Emitting primitives, counted once a placement (each samples its own).
+    pub emitters: u64,
     /// Values of signed distance grids, and their voxels (each counted as a primitive).
     pub grid_values: u64,
     pub grid_voxels: u64,
@@ -71,12 +73,13 @@ impl std::fmt::Display for MemoryEstimate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{}x{} pixels, {} object placements, {} mesh triangles, {} grid values, {} texture \
-             texels, {} thread{}",
+            "{}x{} pixels, {} object placements, {} mesh triangles, {} emitting primitives, {} \
+             grid values, {} texture texels, {} thread{}",
             self.width,
             self.height,
             self.objects,
             self.triangles,
+            self.emitters,
             self.grid_values,
             self.texels,
             self.threads,
@@ -94,7 +97,19 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
     let mut meshes = HashSet::new();
     let mut grids = HashSet::new();
     let (mut triangles, mut grid_values, mut grid_voxels) = (0u64, 0u64, 0u64);
+    let mut emitters = 0u64;
     for object in &desc.objects {
+        // Each placement of an emissive shape samples its own emitters, shared mesh or not.
+        let emissive = desc
+            .materials
+            .get(object.material as usize)
+            .is_some_and(|m| m.emission.max_element() > 0.0);
+        if emissive {
+            emitters += match &object.shape {
+                ShapeDesc::Mesh(mesh) => mesh.indices.len() as u64,
+                _ => 1,
+            };
+        }
         if let ShapeDesc::Mesh(mesh) = &object.shape {
             if meshes.insert(Arc::as_ptr(mesh)) {
                 // A triangle's cost covers its share of a mesh's vertices (a triangle soup
@@ -135,6 +150,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
     let bytes = [
         (pixels, BYTES_PER_PIXEL),
         (objects, BYTES_PER_OBJECT),
+        (emitters, BYTES_PER_EMITTER),
         (triangles, bytes_per_triangle),
         (grid_values, BYTES_PER_GRID_VALUE),
         (grid_voxels, bytes_per_triangle.saturating_add(BYTES_PER_GRID_VOXEL)),
@@ -153,6 +169,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         pixels,
         objects,
         triangles,
+        emitters,
         grid_values,
         grid_voxels,
         texels,

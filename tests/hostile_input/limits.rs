@@ -155,3 +155,29 @@ fn worker_threads_count_in_the_memory_estimate() {
     let run = render("1");
     assert_eq!(run.code, Some(0), "{}", run.stderr);
 }
+
+/// Every placement of an emissive mesh samples its own emitters (a sampler's record per
+/// triangle, `limits::BYTES_PER_EMITTER`): 400 placements of a 10,000-triangle lamp are four
+/// million of them, about a GiB the estimate did not count (it counted the shared mesh once).
+#[test]
+fn emitters_of_every_placement_count_in_the_memory_estimate() {
+    let scratch = Scratch::new();
+    let faces = "f 1 2 3\n".repeat(10_000);
+    scratch.write("lamp.obj", format!("v 0 0 0\nv 1 0 0\nv 0 1 0\n{faces}"));
+    scratch.write(
+        "s.toml",
+        "[camera]\nlookfrom = [0, 0, 5]\nlookat = [0, 0, 0]\nvfov = 40\nresolution = [8, 8]\n\
+         [materials.lamp]\nemission = [1, 1, 1]\n\
+         [[objects]]\ntype = \"mesh\"\nfile = \"lamp.obj\"\nmaterial = \"lamp\"\n\
+         repeat = { count = [20, 20, 1], spacing = [2, 2, 0] }\n",
+    );
+    let before = scratch.snapshot();
+    let mut command = scratch.command(&["render", "s.toml", "--threads", "1"]);
+    // 24 MiB fixed and a few for the mesh and placements: 200 MiB would pass without them.
+    let run =
+        crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "209715200").output().unwrap());
+    run.assert_no_panic();
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    run.assert_says(&["s.toml", "4000000 emitting primitives", "only 200.0 MiB"]);
+    assert_eq!(scratch.snapshot(), before);
+}

@@ -102,7 +102,10 @@ impl Builder<'_> {
                 // Mitsuba turns an OBJ's v upside down (flip_tex_coords, on by default), so
                 // that v = 0 is the image's top row as for every other texture lookup.
                 let flip = kind == "obj" && boolean(element, "flip_tex_coords")?.unwrap_or(true);
-                models.into_iter().map(|m| ShapeDesc::Mesh(self.prepared.mesh(m.mesh, flip))).collect()
+                models
+                    .into_iter()
+                    .map(|m| ShapeDesc::Mesh(self.prepared.mesh(m.mesh, flip)))
+                    .collect()
             }
             "rectangle" => {
                 let mesh = quad_mesh(DVec3::new(-1.0, -1.0, 0.0), 2.0 * DVec3::X, 2.0 * DVec3::Y)
