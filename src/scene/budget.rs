@@ -22,7 +22,8 @@ pub enum LimitError {
          --threads",
         .file.display(), size(.estimate.bytes), .estimate, size(*.available)
     )]
-    Memory { file: std::path::PathBuf, estimate: MemoryEstimate, available: u64 },
+    /// (The estimate boxed: every render error would otherwise carry its size.)
+    Memory { file: std::path::PathBuf, estimate: Box<MemoryEstimate>, available: u64 },
     #[error(
         "{}: {what} reaches the coordinate {value:e}, beyond the supported range ±{limit:e} \
          ({frame}, after --offset); {advice}",
@@ -188,6 +189,7 @@ pub fn check_memory(
     let estimate = memory_needed(desc, bytes_per_triangle, threads);
     match memory_available() {
         Some(available) if estimate.bytes > available => {
+            let estimate = Box::new(estimate);
             Err(LimitError::Memory { file: desc.source.clone(), estimate, available })
         }
         _ => Ok(()),
