@@ -78,7 +78,7 @@ pub const BYTES_PER_OBJECT: u64 = 1100;
 /// every emissive sphere, once per object: each placement samples its own): the light
 /// sampler's `Emitter` and its index, and a textured one's map (`light::tests` holds the
 /// types to it).
-pub const BYTES_PER_EMITTER: u64 = 320;
+pub const BYTES_PER_EMITTER: u64 = 352;
 /// Bytes per worker thread beyond the first: its stack as touched, its batch of paths and
 /// their queues (`Wavefront`), and the thread pool's own. Measured as peak RSS over 1 to 256
 /// threads: 296 KiB a thread on the Cornell box of `../shared/peers` (an area light, 256²,

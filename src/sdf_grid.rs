@@ -63,6 +63,21 @@ impl SdfGrid {
             .any(|z| (0..vy).any(|y| (0..vx).any(|x| may_hold_surface(&corners(data, [x, y, z])))))
     }
 
+    /// How many primitives [`SdfGrid::new`] will make, without allocating: what the memory
+    /// estimate counts (a closed surface holds a few voxels in a hundred, not all of them).
+    pub fn surface_voxels(data: &SdfGridData) -> u64 {
+        let [vx, vy, vz] = data.voxels();
+        let holds = |x, y, z| may_hold_surface(&corners(data, [x, y, z]));
+        (0..vz)
+            .map(|z| {
+                (0..vy)
+                    .flat_map(|y| (0..vx).map(move |x| (x, y)))
+                    .filter(|&(x, y)| holds(x, y, z))
+                    .count() as u64
+            })
+            .sum()
+    }
+
     /// The corner values of primitive `prim`'s voxel (zeros for an unknown primitive).
     pub fn prim_corners(&self, prim: u32) -> Option<([u32; 3], [f32; 8])> {
         let voxel = *self.voxels.get(prim as usize)?;
@@ -248,6 +263,9 @@ mod tests {
         let mut one = flat(1.0);
         one.values[11] = -1.0;
         assert!(SdfGrid::has_surface(&one));
+        let grid = sampled(6, SdfNormals::Smooth, |q| q.length() - 2.5);
+        assert_eq!(SdfGrid::surface_voxels(&grid.data), grid.voxels.len() as u64);
+        assert!(grid.voxels.len() < 5 * 5 * 5, "{} of 125 voxels", grid.voxels.len());
         let grid = sampled(4, SdfNormals::Smooth, |q| q.x - 1.5);
         for q in [Vec3::splat(3e9), Vec3::splat(-3e9), Vec3::splat(f32::MAX), Vec3::NAN] {
             assert!(grid.smooth_normal(q).is_finite(), "{q}");

@@ -245,9 +245,12 @@ fn an_emitter_stays_small() {
 }
 
 /// The memory estimate's cost of an emitter (`limits::BYTES_PER_EMITTER`) covers one: the
-/// emitter, its index among a primitive's, and a textured one's map.
+/// emitter, its index among a primitive's, its row of the alias table that picks it (two
+/// f64 and a u32) and a textured one's boxed map (with the allocator's header).
 #[test]
 fn an_emitter_fits_its_share_of_the_memory_estimate() {
-    let one = size_of::<super::Emitter>() + size_of::<u32>() + size_of::<super::EmissionMap>();
+    let alias_row = 2 * size_of::<f64>() + size_of::<u32>();
+    let map = size_of::<super::EmissionMap>() + 16;
+    let one = size_of::<super::Emitter>() + size_of::<u32>() + alias_row + map;
     assert!(one as u64 <= crate::limits::BYTES_PER_EMITTER, "{one} bytes");
 }

@@ -119,12 +119,12 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
                 triangles += (mesh.indices.len() as u64).max(soup);
             }
         }
-        // Counted here, before placement builds a grid's voxels: its values, and every
-        // voxel as a primitive (its corner and box, and a triangle's share of the BVH).
+        // Counted here, before placement builds a grid's voxels: its values, and each voxel
+        // that will be a primitive (its corner and box, and a triangle's share of the BVH).
         if let ShapeDesc::SdfGrid(grid) = &object.shape {
             if grids.insert(Arc::as_ptr(grid)) {
                 grid_values += grid.values.len() as u64;
-                grid_voxels += grid.voxels().iter().map(|&n| u64::from(n)).product::<u64>();
+                grid_voxels += crate::sdf_grid::SdfGrid::surface_voxels(grid);
             }
         }
     }
