@@ -39,7 +39,7 @@ fn field_of_another_material_type_is_rejected() {
     assert_contains(
         &err,
         &["scene.toml: materials.white (diffuse) does not take the field `roughness` \
-             (it takes: type, albedo, emission, two_sided_emission, texture, specular_texture, normal_map, bump_map, phong, brdf, opacity, one_sided, bump_shadowing) (line 8)"],
+             (it takes: type, albedo, emission, two_sided_emission, emission_texture, texture, specular_texture, normal_map, bump_map, phong, brdf, opacity, one_sided, bump_shadowing) (line 8)"],
     );
     let err =
         load_err(&format!("{CAMERA}[materials.glass]\ntype = \"dielectric\"\neta = [1, 1, 1]\n"));
