@@ -135,7 +135,8 @@ fn light_samples_find_the_radiance_a_ray_finds_there() {
     // Two triangles a quad (quads are not merged when textured), 12 a box, 1 a sphere, 4
     // the tetrahedron.
     assert_eq!(textured, 2 + 2 + 2 * 12 + 1 + 2 + 4, "{} emitters", scene.lights.emitters.len());
-    let accel = embray::accel::build(BackendKind::Obvhs, &scene, &AccelOptions::default()).unwrap();
+    let backend = common::backends()[0];
+    let accel = embray::accel::build(backend, &scene, &AccelOptions::default()).unwrap();
     let camera = desc.camera.lookfrom.as_vec3();
     let mut rng = SplitMix64(5);
     let mut counters = TraversalCounters::default();
@@ -180,6 +181,10 @@ fn light_samples_find_the_radiance_a_ray_finds_there() {
 /// in their last bits (a path may end differently at an edge), so the images agree to
 /// rounding.
 #[test]
+#[cfg_attr(
+    not(all(feature = "embree", feature = "obvhs")),
+    ignore = "needs both backends compiled in (the default features)"
+)]
 fn both_backends_render_the_same_image() {
     let (_dir, scene) = scene("textured-emitters-backends");
     let render = |backend| {
