@@ -7,7 +7,7 @@
 //! voxels around the corner nearest the hit (Hansson-Söderlund, Evans and Akenine-Möller,
 //! "Ray Tracing of Signed Distance Function Grids", JCGT 11(3), 2022).
 
-use crate::scene::{SdfGridData, SdfNormals};
+use crate::scene::{SdfGridData, SdfNormals, corner_offset, may_hold_surface};
 use glam::{IVec3, Vec3};
 use std::sync::Arc;
 
@@ -25,11 +25,6 @@ pub struct SdfGrid {
     /// and Akenine-Möller's tight bounds (the surface's crossings of the voxel's edges),
     /// which a trilinear surface does not leave.
     pub boxes: Vec<(Vec3, Vec3)>,
-}
-
-/// Corner `c` of a voxel is at offset (c & 1, c >> 1 & 1, c >> 2 & 1).
-fn corner_offset(c: usize) -> [u32; 3] {
-    [(c & 1) as u32, (c >> 1 & 1) as u32, (c >> 2 & 1) as u32]
 }
 
 impl SdfGrid {
@@ -53,29 +48,6 @@ impl SdfGrid {
             }
         }
         (!voxels.is_empty()).then_some(SdfGrid { data, voxels, boxes })
-    }
-
-    /// Whether [`SdfGrid::new`] would find a primitive, without allocating: the reader's
-    /// check, made before the memory budget has counted what the grid will hold.
-    pub fn has_surface(data: &SdfGridData) -> bool {
-        let [vx, vy, vz] = data.voxels();
-        (0..vz)
-            .any(|z| (0..vy).any(|y| (0..vx).any(|x| may_hold_surface(&corners(data, [x, y, z])))))
-    }
-
-    /// How many primitives [`SdfGrid::new`] will make, without allocating: what the memory
-    /// estimate counts (a closed surface holds a few voxels in a hundred, not all of them).
-    pub fn surface_voxels(data: &SdfGridData) -> u64 {
-        let [vx, vy, vz] = data.voxels();
-        let holds = |x, y, z| may_hold_surface(&corners(data, [x, y, z]));
-        (0..vz)
-            .map(|z| {
-                (0..vy)
-                    .flat_map(|y| (0..vx).map(move |x| (x, y)))
-                    .filter(|&(x, y)| holds(x, y, z))
-                    .count() as u64
-            })
-            .sum()
     }
 
     /// The corner values of primitive `prim`'s voxel (zeros for an unknown primitive).
@@ -192,18 +164,9 @@ impl SdfGrid {
     }
 }
 
-/// Whether a voxel with corner values `f` may hold the surface: its corners are not all
-/// of one strict sign. The one criterion for a primitive.
-fn may_hold_surface(f: &[f32; 8]) -> bool {
-    !(f.iter().all(|&v| v > 0.0) || f.iter().all(|&v| v < 0.0))
-}
-
-/// The values at the eight corners of voxel `v` (corner order as [`corner_offset`]).
+/// The values at the eight corners of voxel `v` (`SdfGridData::corners`).
 pub fn corners(data: &SdfGridData, v: [u32; 3]) -> [f32; 8] {
-    std::array::from_fn(|c| {
-        let [ox, oy, oz] = corner_offset(c);
-        data.value(i64::from(v[0] + ox), i64::from(v[1] + oy), i64::from(v[2] + oz))
-    })
+    data.corners(v)
 }
 
 /// The box (voxel-local, within [0, 1]³) around the surface of a voxel with corner values
@@ -258,13 +221,13 @@ mod tests {
         };
         for data in [flat(1.0), flat(-1.0), flat(0.0)] {
             let built = SdfGrid::new(Arc::new(data.clone())).is_some();
-            assert_eq!(SdfGrid::has_surface(&data), built);
+            assert_eq!(data.has_surface(), built);
         }
         let mut one = flat(1.0);
         one.values[11] = -1.0;
-        assert!(SdfGrid::has_surface(&one));
+        assert!(one.has_surface());
         let grid = sampled(6, SdfNormals::Smooth, |q| q.length() - 2.5);
-        assert_eq!(SdfGrid::surface_voxels(&grid.data), grid.voxels.len() as u64);
+        assert_eq!(grid.data.surface_voxels(), grid.voxels.len() as u64);
         assert!(grid.voxels.len() < 5 * 5 * 5, "{} of 125 voxels", grid.voxels.len());
         let grid = sampled(4, SdfNormals::Smooth, |q| q.x - 1.5);
         for q in [Vec3::splat(3e9), Vec3::splat(-3e9), Vec3::splat(f32::MAX), Vec3::NAN] {

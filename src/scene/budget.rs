@@ -124,7 +124,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         if let ShapeDesc::SdfGrid(grid) = &object.shape {
             if grids.insert(Arc::as_ptr(grid)) {
                 grid_values += grid.values.len() as u64;
-                grid_voxels += crate::sdf_grid::SdfGrid::surface_voxels(grid);
+                grid_voxels += grid.surface_voxels();
             }
         }
     }

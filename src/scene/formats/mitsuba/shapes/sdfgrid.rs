@@ -66,7 +66,7 @@ impl Builder<'_> {
         }
         let data = SdfGridData { resolution: grid.size, values: grid.values, normals };
         // Without building the voxels: the budget has not yet counted their memory.
-        if !crate::sdf_grid::SdfGrid::has_surface(&data) {
+        if !data.has_surface() {
             return Err(problem(
                 "no voxel of the grid holds the surface (every value has the same sign)".into(),
             ));
