@@ -210,7 +210,7 @@ impl Params {
                     entry.field.clone()
                 };
                 let requirement = if c >= 0.0 { "small enough for f32" } else { ">= 0" };
-                let (value, requirement) = (c.to_string(), requirement.to_owned());
+                let (value, requirement) = (show_f32_overflow(c), requirement.to_owned());
                 return Err(ParamError::OutOfRange { field, value, requirement, line: entry.line });
             }
         }
@@ -267,6 +267,12 @@ fn show(value: &Value) -> String {
         Value::Bool(b) => b.to_string(),
         Value::Other(text) => text.clone(),
     }
+}
+
+/// `x` as it is shown where it may be past f32's range: in scientific notation there (the
+/// positional form of 1e300 is 301 digits), as written below it.
+fn show_f32_overflow(x: f64) -> String {
+    if x.abs() > f32::MAX as f64 { format!("{x:e}") } else { x.to_string() }
 }
 
 pub fn show_vec(v: DVec3) -> String {

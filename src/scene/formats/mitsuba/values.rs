@@ -17,6 +17,22 @@ pub(super) const PROPERTY_TAGS: [&str; 9] =
 /// number a constant grey, for a reflectance and for emission alike (its `uniform` or
 /// `srgb` texture).
 pub(super) fn color(element: &Element, usage: ColorUse) -> Result<DVec3, SceneError> {
+    f32_sized(element, color_of_any_size(element, usage)?)
+}
+
+/// `value`, refused if a component would not fit an f32: colours and textures are kept as
+/// f32, where a larger value becomes infinite (and the render NaN).
+pub(super) fn f32_sized(element: &Element, value: DVec3) -> Result<DVec3, SceneError> {
+    match value.to_array().into_iter().find(|&c| !(c as f32).is_finite()) {
+        Some(c) => {
+            let name = crate::excerpt::excerpt(element.attr("name").unwrap_or("the value"));
+            Err(element.error(format!("`{name}` is {c:e}, but must be small enough for f32")))
+        }
+        None => Ok(value),
+    }
+}
+
+fn color_of_any_size(element: &Element, usage: ColorUse) -> Result<DVec3, SceneError> {
     match element.tag.as_str() {
         "float" | "integer" => Ok(DVec3::splat(number_attr(element, "value")?)),
         "rgb" | "color" => {

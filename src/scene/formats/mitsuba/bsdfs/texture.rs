@@ -2,7 +2,9 @@
 //! mask's opacity.
 
 use super::super::tree::{Element, FileResolver};
-use super::super::values::{ColorUse, boolean, color, number_attr, property, string, vec3};
+use super::super::values::{
+    ColorUse, boolean, color, f32_sized, number_attr, property, string, vec3,
+};
 use super::range::Range;
 use super::reflectance;
 use crate::scene::desc::{Interpolation, Pattern, TextureDesc, TextureMode, UvMapped, Wrap};
@@ -196,7 +198,7 @@ fn read(
                     return Err(value.error(format!("a rawconstant's value cannot be <{other}>")));
                 }
             };
-            Pattern::Constant(value.as_vec3())
+            Pattern::Constant(f32_sized(texture, value)?.as_vec3())
         }
         "mesh_attribute" => {
             let name = property(texture, "string", "name")
