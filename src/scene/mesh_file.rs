@@ -7,7 +7,7 @@ use crate::scene::desc::MeshData;
 use crate::scene::error::SceneError;
 use crate::scene::formats::obj::{self, ObjMaterial, ObjRef};
 use crate::scene::formats::ply;
-use glam::DVec3;
+use crate::scene::vertex_normals::VertexNormals;
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -34,19 +34,16 @@ struct CachedModel {
 
 impl CachedModel {
     /// `smooth`: `None` keeps what the file has, `Some(true)` gives normals (the file's, or
-    /// area-weighted ones), `Some(false)` none (flat shading).
-    fn mesh(&mut self, smooth: Option<bool>) -> Arc<MeshData> {
+    /// ones computed as `computed` says), `Some(false)` none (flat shading).
+    fn mesh(&mut self, smooth: Option<bool>, computed: VertexNormals) -> Arc<MeshData> {
         let has_normals = self.mesh.normals.is_some();
         if smooth.is_none_or(|smooth| smooth == has_normals) {
             return Arc::clone(&self.mesh);
         }
         let toggled = self.toggled.get_or_insert_with(|| {
             let mut mesh = MeshData::clone(&self.mesh);
-            mesh.normals = if has_normals {
-                None
-            } else {
-                Some(area_weighted_normals(&mesh.positions, &mesh.indices))
-            };
+            mesh.normals =
+                if has_normals { None } else { Some(computed.of(&mesh.positions, &mesh.indices)) };
             Arc::new(mesh)
         });
         Arc::clone(toggled)
@@ -62,9 +59,15 @@ struct CachedFile {
 #[derive(Default)]
 pub(crate) struct MeshCache {
     files: HashMap<PathBuf, CachedFile>,
+    /// How the normals of a smooth mesh without any are computed (one way per format).
+    computed: VertexNormals,
 }
 
 impl MeshCache {
+    pub(crate) fn new(computed: VertexNormals) -> Self {
+        MeshCache { files: HashMap::new(), computed }
+    }
+
     /// The models of the file `mesh_ref` names, loading it on first use. Also returns the
     /// cache key (the canonical path), which identifies the file's MTL materials.
     pub(crate) fn models(
@@ -80,12 +83,13 @@ impl MeshCache {
                 entry.insert(load_file(mesh_ref, warnings)?)
             }
         };
+        let computed = self.computed;
         let models = file
             .models
             .iter_mut()
             .map(|model| Model {
                 name: model.name.clone(),
-                mesh: model.mesh(smooth),
+                mesh: model.mesh(smooth, computed),
                 material: model.material.map(|m| (m, file.materials[m].clone())),
             })
             .collect();
@@ -146,53 +150,11 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
     }
 }
 
-/// Area-weighted vertex normals in one pass: each triangle adds its unnormalised normal
-/// (b − a) × (c − a), whose length is twice its area, to its three vertices; the sums are
-/// then normalised. A vertex whose sum is zero (only degenerate triangles, or none) gets the
-/// zero vector, for which the renderer uses the geometric normal.
-pub fn area_weighted_normals(positions: &[DVec3], indices: &[[u32; 3]]) -> Vec<DVec3> {
-    let mut sums = vec![DVec3::ZERO; positions.len()];
-    for &[a, b, c] in indices {
-        let [pa, pb, pc] = [a, b, c].map(|i| positions[i as usize]);
-        let normal = (pb - pa).cross(pc - pa);
-        if normal.is_finite() {
-            for i in [a, b, c] {
-                sums[i as usize] += normal;
-            }
-        }
-    }
-    sums.into_iter().map(DVec3::normalize_or_zero).collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scene::shapes::box_mesh;
-
-    fn close(a: DVec3, b: DVec3) -> bool {
-        (a - b).length() < 1e-12
-    }
-
-    #[test]
-    fn box_corner_normals_are_area_weighted() {
-        let mesh = box_mesh(DVec3::ZERO, DVec3::ONE).unwrap();
-        let normals = area_weighted_normals(&mesh.positions, &mesh.indices);
-        // Vertices 0 and 7 are in both triangles of each of their three faces.
-        assert!(close(normals[0], -DVec3::ONE / 3f64.sqrt()), "{}", normals[0]);
-        assert!(close(normals[7], DVec3::ONE / 3f64.sqrt()), "{}", normals[7]);
-        // Vertex 1 (max x): both +x triangles, one of the −y face, one of the −z face.
-        assert!(close(normals[1], DVec3::new(2.0, -1.0, -1.0) / 6f64.sqrt()), "{}", normals[1]);
-    }
-
-    #[test]
-    fn degenerate_and_unused_vertices_get_zero() {
-        let positions = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::X * 2.0, DVec3::Z];
-        // A proper triangle, and a degenerate one (0, 1, 3 are collinear).
-        let normals = area_weighted_normals(&positions, &[[0, 1, 2], [0, 1, 3]]);
-        assert_eq!(normals[0], DVec3::Z);
-        assert_eq!(normals[3], DVec3::ZERO);
-        assert_eq!(normals[4], DVec3::ZERO);
-    }
+    use glam::DVec3;
 
     #[test]
     fn smooth_variants_are_made_once() {
@@ -202,11 +164,12 @@ mod tests {
             mesh: Arc::new(box_mesh(DVec3::ZERO, DVec3::ONE).unwrap()),
             toggled: None,
         };
-        let file = model.mesh(None);
-        assert!(Arc::ptr_eq(&file, &model.mesh(Some(false))));
-        let smooth = model.mesh(Some(true));
+        let area = VertexNormals::AreaWeighted;
+        let file = model.mesh(None, area);
+        assert!(Arc::ptr_eq(&file, &model.mesh(Some(false), area)));
+        let smooth = model.mesh(Some(true), area);
         assert!(smooth.normals.is_some());
-        assert!(Arc::ptr_eq(&smooth, &model.mesh(Some(true))));
+        assert!(Arc::ptr_eq(&smooth, &model.mesh(Some(true), area)));
         assert!(!Arc::ptr_eq(&smooth, &file));
     }
 }

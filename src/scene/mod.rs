@@ -18,6 +18,7 @@ mod mesh_file;
 mod round_shapes;
 mod shapes;
 pub mod texture_image;
+mod vertex_normals;
 
 pub use crate::limits::MAX_RESOLUTION;
 pub use error::{Line, SceneError};
@@ -26,7 +27,7 @@ pub use formats::toml::MAX_REPEAT_COPIES;
 pub use formats::toml::materials::with_texture_space;
 pub use formats::toml::write as toml_writer;
 pub use formats::{mitsuba, xml};
-pub use mesh_file::area_weighted_normals;
+pub use vertex_normals::VertexNormals;
 
 use std::io::Write;
 use std::path::Path;

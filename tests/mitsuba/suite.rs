@@ -133,7 +133,8 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 /// thin lens; a principal point offset on a non-square film, a blendbsdf weighted by a
 /// checkerboard on an analytic sphere (Mitsuba's uv), a Beckmann gold, a bitmap mapped by
 /// to_uv and mirrored, a spectrum file; area emitters whose radiance is a bitmap or a
-/// checkerboard (a rectangle, an analytic sphere, a serialized mesh).
+/// checkerboard (a rectangle, an analytic sphere, a serialized mesh); an OBJ, a PLY and a
+/// serialized mesh without normals, smooth (normals weighted by angle, as Mitsuba's).
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
@@ -145,6 +146,7 @@ fn scenes_written_here_pass_mitsubas_rule() {
         "materials",
         "textured_emitters",
         "sdfgrid",
+        "smooth_normals",
     ];
     for name in names {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();

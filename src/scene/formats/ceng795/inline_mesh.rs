@@ -5,7 +5,7 @@
 use super::xml::{Xml, tokens};
 use crate::scene::desc::MeshData;
 use crate::scene::error::SceneError;
-use crate::scene::mesh_file::area_weighted_normals;
+use crate::scene::vertex_normals::VertexNormals;
 use glam::{DVec3, Vec2};
 use roxmltree::Node;
 use std::collections::HashMap;
@@ -91,7 +91,7 @@ pub(super) fn inline_mesh(
             entry(g).map_or_else(|| "out of range".to_owned(), |e| (e + 1).to_string()),
         )),
     };
-    let normals = smooth.then(|| area_weighted_normals(&positions, &indices));
+    let normals = smooth.then(|| VertexNormals::AreaWeighted.of(&positions, &indices));
     let mesh = MeshData { positions, indices, normals, uvs, attributes: Vec::new() };
     Ok(InlineMesh { mesh, no_uvs })
 }

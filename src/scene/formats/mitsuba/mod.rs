@@ -168,7 +168,8 @@ pub fn load(
     let mut builder = Builder {
         files: &files,
         ids: Ids { by_id, nesting: Cell::new(0) },
-        meshes: MeshCache::default(),
+        // Mitsuba's `recompute_vertex_normals`.
+        meshes: MeshCache::new(crate::scene::VertexNormals::AngleWeighted),
         prepared: shapes::Prepared::default(),
         warnings: &mut warnings,
         materials: Vec::new(),

@@ -19,6 +19,7 @@ use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::obj::ObjRef;
 use crate::scene::round_shapes::{cylinder_mesh, disk_mesh};
 use crate::scene::shapes::{mitsuba_cube_mesh, quad_mesh};
+use crate::scene::vertex_normals::VertexNormals;
 use glam::{DAffine3, DVec3};
 use std::sync::Arc;
 
@@ -211,8 +212,14 @@ impl Builder<'_> {
         let face_normals = boolean(element, "face_normals")?.unwrap_or(false);
         let bytes = crate::input_file::read_bytes(&path)
             .map_err(|e| file.error(format!("cannot read '{}': {e}", path.display())))?;
-        crate::scene::formats::serialized::parse(&bytes, index, face_normals)
-            .map_err(|problem| file.error(format!("'{}': {problem}", path.display())))
+        let mut mesh = crate::scene::formats::serialized::parse(&bytes, index, face_normals)
+            .map_err(|problem| file.error(format!("'{}': {problem}", path.display())))?;
+        // Mitsuba computes a smooth mesh's missing normals, as for its OBJ and PLY files.
+        if mesh.normals.is_none() && !face_normals {
+            let normals = VertexNormals::AngleWeighted.of(&mesh.positions, &mesh.indices);
+            mesh.normals = Some(normals);
+        }
+        Ok(mesh)
     }
 
     /// The objects of a `shapegroup`, in the group's own space.
