@@ -12,6 +12,7 @@ use crate::shading::normal_map::{
 };
 use crate::shading::spawn::SpawnMode;
 use crate::shading::surface::SurfaceInteraction;
+use crate::shading::tex_coords::TexCoords;
 use crate::shading::texture::Texture;
 use crate::stats::RenderStats;
 use glam::Vec3;
@@ -107,7 +108,7 @@ impl SceneTracer<'_> {
         } else {
             Vec3::ZERO
         };
-        texture.eval(p_object, si.uv)
+        texture.eval(p_object, si.uv.get())
     }
 
     /// `si` with its shading normal replaced by `material`'s normal map, if it has one.
@@ -167,14 +168,15 @@ impl SceneTracer<'_> {
             (Some(map), _) => mapped_normal(self.texture_color(map, &si, time), n, dpdu, dpdv),
             (None, Some((map, factor, scale))) => {
                 let height = |uv: glam::Vec2| {
-                    let at = SurfaceInteraction { uv, ..si };
+                    let at = SurfaceInteraction { uv: TexCoords::Known(uv), ..si };
                     self.texture_color(map, &at, time).element_sum() / 3.0
                 };
                 let step = map.uv_step();
-                let h = height(si.uv);
+                let uv = si.uv.get();
+                let h = height(uv);
                 let rise = glam::Vec2::new(
-                    height(si.uv + glam::Vec2::new(step.x, 0.0)) - h,
-                    height(si.uv + glam::Vec2::new(0.0, step.y)) - h,
+                    height(uv + glam::Vec2::new(step.x, 0.0)) - h,
+                    height(uv + glam::Vec2::new(0.0, step.y)) - h,
                 );
                 match scale {
                     BumpScale::Scene => bumped_normal(rise / step * *factor, n, dpdu, dpdv, n),

@@ -4,7 +4,7 @@
 //! own frame), then the texture looked up there.
 
 use crate::shading::material::Texture;
-use crate::shading::surface::sphere_uv;
+use crate::shading::tex_coords::sphere_uv;
 use glam::{Mat3, Vec2, Vec3};
 use std::sync::Arc;
 

@@ -1,6 +1,6 @@
 //! Fresnel reflectance of dielectric and conductor interfaces.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// Unpolarised Fresnel reflectance of a dielectric interface; `eta` = n_transmitted /
 /// n_incident, `cos_i` ≥ 0 on the incident side.
@@ -16,23 +16,24 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
     0.5 * (r_parl * r_parl + r_perp * r_perp)
 }
 
-/// Fresnel reflectance of a conductor with complex index `eta + i·k`, per channel.
+/// Fresnel reflectance of a conductor with complex index `eta + i·k`, per channel (the
+/// three channels in one SIMD register: its square roots and divisions take one instruction
+/// each, not three).
 pub fn fresnel_conductor(cos_i: f32, eta: Vec3, k: Vec3) -> Vec3 {
+    let (eta, k) = (Vec3A::from(eta), Vec3A::from(k));
     let cos_i = cos_i.clamp(0.0, 1.0);
     let cos2 = cos_i * cos_i;
     let sin2 = 1.0 - cos2;
     let eta2 = eta * eta;
     let k2 = k * k;
-    let t0 = eta2 - k2 - Vec3::splat(sin2);
-    let a2b2 = (t0 * t0 + 4.0 * eta2 * k2).max(Vec3::ZERO);
-    let a2b2 = Vec3::new(a2b2.x.sqrt(), a2b2.y.sqrt(), a2b2.z.sqrt());
-    let t1 = a2b2 + Vec3::splat(cos2);
-    let a = ((a2b2 + t0) * 0.5).max(Vec3::ZERO);
-    let a = Vec3::new(a.x.sqrt(), a.y.sqrt(), a.z.sqrt());
+    let t0 = eta2 - k2 - Vec3A::splat(sin2);
+    let a2b2 = (t0 * t0 + 4.0 * eta2 * k2).max(Vec3A::ZERO).sqrt();
+    let t1 = a2b2 + Vec3A::splat(cos2);
+    let a = ((a2b2 + t0) * 0.5).max(Vec3A::ZERO).sqrt();
     let t2 = 2.0 * cos_i * a;
     let rs = (t1 - t2) / (t1 + t2);
-    let t3 = cos2 * a2b2 + Vec3::splat(sin2 * sin2);
+    let t3 = cos2 * a2b2 + Vec3A::splat(sin2 * sin2);
     let t4 = t2 * sin2;
     let rp = rs * (t3 - t4) / (t3 + t4);
-    ((rp + rs) * 0.5).clamp(Vec3::ZERO, Vec3::ONE)
+    Vec3::from(((rp + rs) * 0.5).clamp(Vec3A::ZERO, Vec3A::ONE))
 }

@@ -9,6 +9,7 @@ use crate::shading::coating::Coating;
 use crate::shading::course_lobe::LobeAlbedo;
 use crate::shading::microfacet::Microfacet;
 use crate::shading::principled::PrincipledMaterial;
+use crate::shading::tex_coords::TexCoords;
 use glam::Vec3;
 
 /// Below this GGX α a lobe is treated as perfectly smooth (a delta distribution).
@@ -242,15 +243,15 @@ impl Material {
 
     /// What it emits at texture coordinates `uv`, on the side it emits to.
     #[inline]
-    pub fn emission_at(&self, uv: glam::Vec2) -> Vec3 {
+    pub fn emission_at(&self, uv: TexCoords) -> Vec3 {
         match &self.emission_texture {
             None => self.emission,
-            Some(texture) => self.emission * texture.eval(Vec3::ZERO, uv),
+            Some(texture) => self.emission * texture.eval(Vec3::ZERO, uv.get()),
         }
     }
 
     /// What it emits at `uv` towards a ray that met it on its front (`front_face`) or back.
-    pub fn emission_seen(&self, front_face: bool, uv: glam::Vec2) -> Vec3 {
+    pub fn emission_seen(&self, front_face: bool, uv: TexCoords) -> Vec3 {
         if front_face || self.two_sided_emission { self.emission_at(uv) } else { Vec3::ZERO }
     }
 

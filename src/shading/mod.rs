@@ -14,4 +14,5 @@ pub mod normal_map;
 pub mod principled;
 pub mod spawn;
 pub mod surface;
+pub mod tex_coords;
 pub mod texture;

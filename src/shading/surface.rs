@@ -6,6 +6,7 @@ use crate::float_error::{gamma, sphere_point, transform_point_with_error, triang
 use crate::ray::{Hit, Ray};
 use crate::render_scene::{Geometry, Placement, RenderScene};
 use crate::shading::spawn::SurfacePoint;
+pub use crate::shading::tex_coords::TexCoords;
 use glam::{Mat3, Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug)]
@@ -14,7 +15,7 @@ pub struct SurfaceInteraction {
     pub surface: SurfacePoint,
     /// Unit shading normal, in the same hemisphere as the geometric normal.
     pub shading_normal: Vec3,
-    pub uv: Vec2,
+    pub uv: TexCoords,
     pub material: u32,
     pub geom_id: u32,
     pub prim_id: u32,
@@ -24,16 +25,6 @@ pub struct SurfaceInteraction {
     /// The ray arrived on the side the surface's own normal points to (outside, for closed
     /// meshes wound counter-clockwise and for spheres).
     pub front_face: bool,
-}
-
-/// Texture coordinates of the point with unit normal `n` (in the sphere's own frame) on a
-/// sphere: u grows eastwards seen from outside (so that images are not mirrored), v from
-/// the +Y pole (the image's top row) down. The course's sphere mapping.
-pub(crate) fn sphere_uv(n: Vec3) -> Vec2 {
-    Vec2::new(
-        0.5 - n.z.atan2(n.x) / std::f32::consts::TAU,
-        n.y.clamp(-1.0, 1.0).acos() / std::f32::consts::PI,
-    )
 }
 
 /// The error (grid units) of a point on a signed distance grid beyond the rounding of
@@ -47,7 +38,7 @@ struct LocalHit {
     error: Vec3,
     geometric: Vec3,
     shading: Vec3,
-    uv: Vec2,
+    uv: TexCoords,
 }
 
 /// The hit in the space `origin` and `dir` are in. `uv_frame` turns a sphere's normal into
@@ -73,19 +64,19 @@ fn local_hit(
                 Some(normals) => interpolated_normal(normals, corners, hit),
                 None => Vec3::ZERO,
             };
-            let uv = match &mesh.uvs {
+            let uv = TexCoords::Known(match &mesh.uvs {
                 Some(t) => t[i0] * b0 + t[i1] * hit.u + t[i2] * hit.v,
                 None => Vec2::new(hit.u, hit.v),
-            };
+            });
             LocalHit { point, error, geometric, shading, uv }
         }
         Geometry::Sphere(s) => {
             let (point, error) = sphere_point(s.center, s.radius, origin, dir, hit.t);
             let n = ((point - s.center) / s.radius).normalize_or_zero();
-            let uv = match uv_frame {
-                Some(frame) => sphere_uv((frame * n).normalize_or_zero()),
-                None => sphere_uv(n),
-            };
+            let uv = TexCoords::OnSphere(match uv_frame {
+                Some(frame) => (frame * n).normalize_or_zero(),
+                None => n,
+            });
             LocalHit { point, error, geometric: n, shading: n, uv }
         }
         Geometry::SdfGrid(grid) => {
@@ -97,7 +88,7 @@ fn local_hit(
             let geometric = if geometric == Vec3::ZERO { -dir.normalize() } else { geometric };
             let shading = grid.shading_normal(hit.prim_id, point).normalize_or_zero();
             // As Mitsuba's sdfgrid: no texture coordinates.
-            LocalHit { point, error, geometric, shading, uv: Vec2::ZERO }
+            LocalHit { point, error, geometric, shading, uv: TexCoords::Known(Vec2::ZERO) }
         }
     }
 }
