@@ -58,6 +58,20 @@ pub fn sample_visible_normal(wo: Vec3, ax: f32, ay: f32, u: Vec2) -> Vec3 {
     Vec3::new(ax * nh.x, ay * nh.y, nh.z.max(1e-6)).normalize()
 }
 
+/// `d(h)·g2(wo, wi)` and `pdf_reflect(wo, h)` together, D and Λ(wo) computed once for both
+/// (the same numbers, bit for bit: each is the same expression of them).
+pub fn reflect_terms(wo: Vec3, wi: Vec3, h: Vec3, ax: f32, ay: f32) -> (f32, f32) {
+    let d = d(h, ax, ay);
+    let lambda_o = lambda(wo, ax, ay);
+    let d_g2 = d * (1.0 / (1.0 + lambda_o + lambda(wi, ax, ay)));
+    let pdf = if wo.z <= 0.0 || wo.dot(h) <= 0.0 {
+        0.0
+    } else {
+        1.0 / (1.0 + lambda_o) * d / (4.0 * wo.z)
+    };
+    (d_g2, pdf)
+}
+
 /// Density of reflected direction `wi` when sampling visible normals from `wo`.
 pub fn pdf_reflect(wo: Vec3, h: Vec3, ax: f32, ay: f32) -> f32 {
     let wo_h = wo.dot(h);

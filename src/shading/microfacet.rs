@@ -124,6 +124,14 @@ impl Microfacet {
     }
 
     /// Density of the mirror direction about a sampled `h`, seen from `wo`.
+    /// `d(h) * g2(wo, wi)` and `pdf_reflect(wo, h)`, sharing what they have in common.
+    pub fn reflect_terms(&self, wo: Vec3, wi: Vec3, h: Vec3) -> (f32, f32) {
+        match self.distribution {
+            Distribution::Ggx => ggx::reflect_terms(wo, wi, h, self.alpha_x, self.alpha_y),
+            Distribution::Beckmann => (self.d(h) * self.g2(wo, wi), self.pdf_reflect(wo, h)),
+        }
+    }
+
     pub fn pdf_reflect(&self, wo: Vec3, h: Vec3) -> f32 {
         match self.distribution {
             Distribution::Ggx => ggx::pdf_reflect(wo, h, self.alpha_x, self.alpha_y),

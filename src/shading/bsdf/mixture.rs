@@ -187,10 +187,10 @@ impl Mixture {
         let mut pdf = p_diffuse * wi.z * FRAC_1_PI;
         if self.p_specular > 0.0 && !self.delta_specular {
             let h = (wo + wi).normalize();
-            let d = self.microfacet.d(h);
+            let (d_g2, pdf_reflect) = self.microfacet.reflect_terms(wo, wi, h);
             let f = self.specular_tint(wo.dot(h)) * rest_scale;
-            value += f * (d * self.microfacet.g2(wo, wi) / (4.0 * wo.z));
-            pdf += self.p_specular * self.microfacet.pdf_reflect(wo, h);
+            value += f * (d_g2 / (4.0 * wo.z));
+            pdf += self.p_specular * pdf_reflect;
         }
         if let Some((brdf, terms)) = &self.course {
             value += cos_weighted(brdf, terms, Vec3::Z, wi, wo);
