@@ -22,8 +22,9 @@ pub struct ConvergenceRow {
 
 #[derive(Debug, thiserror::Error)]
 pub enum ConvergenceError {
-    #[error("cannot read the reference '{path}': {message}")]
-    Reference { path: String, message: String },
+    /// `role`: what the file is to the command (the reference, the variance, the input).
+    #[error("cannot read the {role} '{path}': {message}")]
+    Reference { role: &'static str, path: String, message: String },
     #[error("the reference '{path}' is {got_w}×{got_h}, the scene renders {want_w}×{want_h}")]
     Size { path: String, got_w: u32, got_h: u32, want_w: u32, want_h: u32 },
     #[error(
@@ -37,8 +38,16 @@ pub enum ConvergenceError {
 
 /// The linear RGB of an EXR (its `R`, `G`, `B` channels) as a film.
 pub fn read_reference(path: &Path) -> Result<Film, ConvergenceError> {
-    let error =
-        |message: String| ConvergenceError::Reference { path: path.display().to_string(), message };
+    read_linear_exr(path, "reference")
+}
+
+/// `read_reference` of a file that is the command's `role` (named in its errors).
+pub fn read_linear_exr(path: &Path, role: &'static str) -> Result<Film, ConvergenceError> {
+    let error = |message: String| ConvergenceError::Reference {
+        role,
+        path: path.display().to_string(),
+        message,
+    };
     // Through the capped reader: only a regular file, of bounded size, recorded as an input
     // so that no output of the run may overwrite it.
     let bytes = crate::input_file::read_bytes(path).map_err(|e| error(e.to_string()))?;

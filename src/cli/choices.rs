@@ -46,10 +46,14 @@ pub struct LookArgs {
 }
 
 impl LookArgs {
-    /// Refuses an exposure that is not a number.
+    /// Refuses an exposure that is not a number or beyond what f32 can scale by.
     pub fn check(&self) -> anyhow::Result<()> {
-        if !self.exposure.is_finite() {
-            anyhow::bail!("--exposure must be a finite number");
+        if !embray::output::exposure_in_range(self.exposure) {
+            anyhow::bail!(
+                "--exposure is {}, but must be a number of stops in [-{max}, {max}]",
+                self.exposure,
+                max = embray::output::MAX_EXPOSURE_STOPS
+            );
         }
         Ok(())
     }

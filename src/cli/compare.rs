@@ -103,8 +103,9 @@ fn is_exr(path: &Path) -> bool {
 }
 
 fn compare_linear(a: &Path, b: &Path) -> Result<()> {
-    use embray::bench::convergence::read_reference;
-    let c = embray::compare_linear::compare_films(&read_reference(a)?, &read_reference(b)?)?;
+    use embray::bench::convergence::read_linear_exr;
+    let (first, second) = (read_linear_exr(a, "first image")?, read_linear_exr(b, "second image")?);
+    let c = embray::compare_linear::compare_films(&first, &second)?;
     let [ra, ga, ba] = c.mean_a.to_array();
     let [rb, gb, bb] = c.mean_b.to_array();
     out(format!(
@@ -135,9 +136,12 @@ fn compare_linear(a: &Path, b: &Path) -> Result<()> {
 /// Mitsuba's pass rule for `a` (rendered at `spp`) against the reference `b` and its
 /// per-sample `variance`; a failing image is an exit status of 1.
 fn mitsuba_rule(a: &Path, b: &Path, variance: &Path, spp: u32) -> Result<()> {
-    use embray::bench::convergence::read_reference;
-    let (image, reference, variance_film) =
-        (read_reference(a)?, read_reference(b)?, read_reference(variance)?);
+    use embray::bench::convergence::read_linear_exr;
+    let (image, reference, variance_film) = (
+        read_linear_exr(a, "image")?,
+        read_linear_exr(b, "reference")?,
+        read_linear_exr(variance, "variance")?,
+    );
     embray::compare_linear::check_variance(&variance_film, variance)?;
     let variance = variance_film;
     let size = |f: &embray::film::Film| (f.width, f.height);

@@ -36,7 +36,7 @@ pub fn run(args: &TonemapArgs) -> Result<()> {
     let hint = "tonemap writes a tone-mapped PNG or JPEG (.png, .jpg or .jpeg)";
     let format =
         ImageFormat::display_of_path(&args.output, "-o", hint).map_err(anyhow::Error::msg)?;
-    let film = embray::bench::convergence::read_reference(&args.input)?;
+    let film = embray::bench::convergence::read_linear_exr(&args.input, "input")?;
     // Showing non-finite pixels is this command's job, but never as a silent black image.
     if let Some(bad) = film.non_finite() {
         let input = args.input.display();

@@ -29,8 +29,12 @@ impl PngSettings {
     /// `--tonemap`, `--exposure`, `--key`, `--burn-out`, `--saturation` and `--gamma`.
     pub fn look(&self) -> Result<(ToneMap, f32, Photographic), String> {
         let curve: ToneMap = self.curve.parse().map_err(|e| format!("{e}"))?;
-        if !self.exposure.is_finite() {
-            return Err(format!("the exposure must be a finite number, not {}", self.exposure));
+        if !crate::output::exposure_in_range(self.exposure) {
+            return Err(format!(
+                "the exposure must be a number of stops in [-{max}, {max}], not {}",
+                self.exposure,
+                max = crate::output::MAX_EXPOSURE_STOPS
+            ));
         }
         let [key, burn_out, saturation, gamma] = self.photographic;
         let photographic = Photographic { key, burn_out, saturation, gamma };

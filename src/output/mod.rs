@@ -29,7 +29,8 @@ pub use naming::{camera_outputs, image_name_key, image_name_problem};
 pub use photographic::Photographic;
 pub use plan::OutputPlan;
 pub use png::{
-    DisplayLook, encode_display, encode_png, encode_png_graded, encode_rgb8, to_srgb8, write_png,
+    DisplayLook, MAX_EXPOSURE_STOPS, encode_display, encode_png, encode_png_graded, encode_rgb8,
+    exposure_in_range, to_srgb8, write_png,
 };
 pub use target::{NAME_MAX, Target};
 pub use tonemap::ToneMap;

@@ -8,6 +8,15 @@ use crate::film::Film;
 use glam::Vec3;
 use std::path::Path;
 
+/// The largest exposure adjustment, in stops either way: 2^128 is past f32's range, where a
+/// black pixel times the infinite scale becomes NaN (and white); 2^64 brightens 1e-19 to 1.
+pub const MAX_EXPOSURE_STOPS: f32 = 64.0;
+
+/// Whether `exposure` (stops) is one `to_srgb8` takes: finite, within `MAX_EXPOSURE_STOPS`.
+pub fn exposure_in_range(exposure: f32) -> bool {
+    exposure.abs() <= MAX_EXPOSURE_STOPS
+}
+
 /// 8-bit sRGB pixels of `film` after exposure (in stops) and tone mapping. NaN becomes 0.
 /// With `ToneMap::Clamp255` the pixels are the values themselves, clamped to [0, 255] and
 /// truncated (no sRGB encoding). With `ToneMap::Photographic`, `photographic` maps the

@@ -104,7 +104,14 @@ impl SpawnMode {
             .strip_prefix("epsilon=")
             .ok_or_else(|| format!("expected 'robust' or 'epsilon=VALUE', got '{text}'"))?;
         match value.parse::<f32>() {
-            Ok(eps) if eps.is_finite() && eps >= 0.0 => Ok(SpawnMode::Epsilon(eps)),
+            // An offset past the coordinate range puts every ray outside the scene.
+            Ok(eps) if (0.0..=crate::limits::MAX_COORDINATE as f32).contains(&eps) => {
+                Ok(SpawnMode::Epsilon(eps))
+            }
+            Ok(eps) if eps > 0.0 => Err(format!(
+                "'{value}' is beyond the coordinate range: an offset must be at most {:e}",
+                crate::limits::MAX_COORDINATE
+            )),
             _ => Err(format!("'{value}' is not a non-negative number")),
         }
     }

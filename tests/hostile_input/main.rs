@@ -10,6 +10,7 @@ mod ceng795;
 mod collisions;
 #[path = "../common/mod.rs"]
 mod common;
+mod fourth_probe;
 mod harness;
 mod inflating;
 mod limits;

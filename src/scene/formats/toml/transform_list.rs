@@ -78,13 +78,21 @@ fn matrix_transform(rows: &[[f64; 4]; 4]) -> Result<DAffine3, String> {
     let det = matrix3.determinant();
     // Judged on unit columns, so that a rank-deficient matrix with rounding noise in its
     // entries is caught whatever its scale.
-    let unit_columns = [column(0), column(1), column(2)].map(DVec3::try_normalize);
+    // (Each scaled by its largest entry first: a column of 1e200 or 1e-200 has a direction
+    // even where its squared length overflows or underflows.)
+    let unit = |c: DVec3| (c / c.abs().max_element()).try_normalize();
+    let unit_columns = [column(0), column(1), column(2)].map(unit);
     let unit_det = match unit_columns {
         [Some(a), Some(b), Some(c)] => DMat3::from_cols(a, b, c).determinant(),
         _ => 0.0,
     };
     if det == 0.0 || unit_det.abs() <= 1e-12 {
-        return Err(format!("matrix is singular (determinant {det})"));
+        let why = if det == 0.0 {
+            "determinant 0".to_owned()
+        } else {
+            format!("determinant {det:e}, but its columns are nearly parallel")
+        };
+        return Err(format!("matrix is singular ({why})"));
     }
     Ok(DAffine3 { matrix3, translation: column(3) })
 }

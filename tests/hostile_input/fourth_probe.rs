@@ -1,0 +1,48 @@
+//! What the fourth probe of the binary found: an exposure past f32's range that turned black
+//! pixels white, a spawn offset that put every ray outside the scene, a variance file named
+//! as the reference, and a near-singular matrix reported with its determinant as 335 digits
+//! (or a regular one of columns far apart in size as singular, "determinant 1"), now refused or named as they are.
+
+use crate::harness::{Run, Scratch, accepted_in, refused_cases, refused_in, scene};
+
+const NEAR_SINGULAR: &str = "[[1e200, 0, 0, 0], [0, 1e-200, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]";
+
+refused_cases! {
+    exposure_past_f32: ["s.toml" => scene("")], ["render", "s.toml", "-o", "s.png", "--exposure", "128"]
+        => ["--exposure is 128", "[-64, 64]"];
+    tonemap_exposure_past_f32: ["s.toml" => scene("")], ["render", "s.toml", "-o", "s.png", "--exposure", "-1e30"]
+        => ["--exposure is -1", "[-64, 64]"];
+    matrix_of_columns_far_apart_in_size: ["s.toml" => scene("").replace("v = [2.0, 0.0, 0.0]", &format!("v = [2.0, 0.0, 0.0]\ntransform = [{{ matrix = {NEAR_SINGULAR} }}]"))], ["render", "s.toml"]
+        => ["s.toml", "the composed transform is singular in f32"];
+    matrix_of_nearly_parallel_columns: ["s.toml" => scene("").replace("v = [2.0, 0.0, 0.0]", "v = [2.0, 0.0, 0.0]\ntransform = [{ matrix = [[1, 1, 0, 0], [0, 1e-14, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]] }]")], ["render", "s.toml"]
+        => ["s.toml", "matrix is singular (determinant 1e-14, but its columns are nearly parallel)"];
+    first_image_unreadable: ["a.exr" => "not an image", "b.exr" => "not an image"], ["compare", "a.exr", "b.exr"]
+        => ["cannot read the first image 'a.exr'"];
+}
+
+/// An offset past the coordinate range is a usage error (exit 2, as every option clap
+/// refuses), named with the range.
+#[test]
+fn a_spawn_offset_past_the_coordinate_range_is_refused() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    let run = Run::from(
+        scratch.command(&["render", "s.toml", "--spawn", "epsilon=1e30"]).output().unwrap(),
+    );
+    run.assert_no_panic();
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    run.assert_says(&["'1e30' is beyond the coordinate range", "at most 1e8"]);
+    assert!(!scratch.path("s.exr").exists());
+}
+
+/// Each file of a Mitsuba-rule comparison is named by its role when it cannot be read.
+#[test]
+fn an_unreadable_variance_is_named_as_the_variance() {
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    accepted_in(&scratch, &["render", "s.toml", "-o", "a.exr"]);
+    scratch.write("v.exr", "not an image");
+    let args = ["compare", "a.exr", "a.exr", "--variance", "v.exr", "--spp", "1"];
+    refused_in(&scratch, &args, &["cannot read the variance 'v.exr'"]);
+    refused_in(&scratch, &["tonemap", "v.exr", "-o", "t.png"], &["cannot read the input 'v.exr'"]);
+}
