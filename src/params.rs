@@ -275,6 +275,13 @@ fn show_f32_overflow(x: f64) -> String {
     if x.abs() > f32::MAX as f64 { format!("{x:e}") } else { x.to_string() }
 }
 
+/// `v` as `[x, y, z]`, each component in scientific notation from 1e16 up (where the
+/// positional form runs to dozens of digits).
+pub fn show_large_vec(v: Vec3) -> String {
+    let show = |x: f32| if x.abs() >= 1e16 { format!("{x:e}") } else { x.to_string() };
+    format!("[{}, {}, {}]", show(v.x), show(v.y), show(v.z))
+}
+
 pub fn show_vec(v: DVec3) -> String {
     format!("[{}, {}, {}]", v.x, v.y, v.z)
 }

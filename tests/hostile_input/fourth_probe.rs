@@ -16,6 +16,8 @@ refused_cases! {
         => ["s.toml", "the composed transform is singular in f32"];
     matrix_of_nearly_parallel_columns: ["s.toml" => scene("").replace("v = [2.0, 0.0, 0.0]", "v = [2.0, 0.0, 0.0]\ntransform = [{ matrix = [[1, 1, 0, 0], [0, 1e-14, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]] }]")], ["render", "s.toml"]
         => ["s.toml", "matrix is singular (determinant 1e-14, but its columns are nearly parallel)"];
+    constant_sky_past_f32_over_the_sphere: ["s.toml" => scene("[[lights]]\ntype = \"environment\"\nradiance = [1e38, 1e38, 1e38]\n")], ["render", "s.toml"]
+        => ["s.toml", "radiance is [1e38, 1e38, 1e38]", "4π × scale × radiance"];
     first_image_unreadable: ["a.exr" => "not an image", "b.exr" => "not an image"], ["compare", "a.exr", "b.exr"]
         => ["cannot read the first image 'a.exr'"];
 }

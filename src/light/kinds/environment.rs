@@ -4,7 +4,7 @@
 
 use super::{LightKind, LightParts};
 use crate::light::{EnvironmentLight, EnvironmentMapping, TexelLookup};
-use crate::params::{ParamError, ParamSink, Params, Resources};
+use crate::params::{ParamError, ParamSink, Params, Resources, show_large_vec};
 use crate::texels::TextureImage;
 use crate::transform::nearest_rotation;
 use glam::{DAffine3, DMat3, Vec3};
@@ -76,9 +76,23 @@ impl LightKind for Environment {
             EnvironmentMap::Constant(radiance) => *radiance,
             EnvironmentMap::Image(image) => image.texels.iter().fold(Vec3::ZERO, |a, t| a.max(*t)),
         };
-        let finite = (brightest * scale).is_finite();
-        let requirement = "small enough that scale × radiance stays within f32's range";
-        p.require(finite, "scale", format!("{scale}"), requirement)?;
+        // Its importance distribution sums luminance × solid angle in f32, up to the
+        // brightest texel's 4π: past f32's range that total becomes infinite and the map's
+        // sampling wrong (a 1e38 texel lit a scene 20× less than a 1e37 one).
+        let sphere = 4.0 * std::f32::consts::PI;
+        let finite = (brightest * scale.max(Vec3::ONE) * sphere).is_finite();
+        let requirement =
+            "small enough that 4π × scale × radiance stays within f32's range (3.4e38)";
+        // Named where the size comes from: the scale, or else the radiance or image itself.
+        let (field, value) = match &map {
+            _ if scale.max_element() > 1.0 => ("scale", show_large_vec(scale)),
+            EnvironmentMap::Constant(_) => ("radiance", show_large_vec(brightest)),
+            EnvironmentMap::Image(_) => {
+                let brightest = show_large_vec(brightest);
+                ("file", format!("an image whose brightest texel is {brightest}"))
+            }
+        };
+        p.require(finite, field, value, requirement)?;
         let mapping = p.opt_choice("mapping", &MAPPINGS)?;
         p.require(mapping.is_none() || p.has("file"), "mapping", "given", "given only with file")?;
         let world_from_map = match p.numbers::<9>("to_world")? {
