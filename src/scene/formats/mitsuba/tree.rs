@@ -228,6 +228,15 @@ impl Reader {
             match child.tag.as_str() {
                 "default" => {
                     let name = child.required("name")?.to_owned();
+                    // Only a name `$name` can spell is one a value can refer to.
+                    let spellable = |c: char| c.is_ascii_alphanumeric() || c == '_';
+                    if name.is_empty() || !name.chars().all(spellable) {
+                        return Err(child.error(format!(
+                            "a <default>'s name must be letters, digits and _ (as `$name` \
+                             refers to it), not '{}'",
+                            excerpt(&name)
+                        )));
+                    }
                     let value = child.required("value")?.to_owned();
                     self.named.insert(name.clone());
                     // A `-D` value stays, and so does the first `<default>`, as in Mitsuba.
@@ -313,6 +322,11 @@ impl Reader {
                 .chars()
                 .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
                 .collect();
+            if name.is_empty() {
+                return Err(element.error(
+                    "a `$` must be followed by a parameter's name (letters, digits and _)",
+                ));
+            }
             let Some(replacement) = self.params.get(&name) else {
                 let known: Vec<&str> = self.params.keys().map(String::as_str).collect();
                 return Err(element.error(format!(
