@@ -5,16 +5,7 @@
 //! `<default>` without a name and a `$` without one, now refused or named as they are.
 
 use crate::harness::{Run, Scratch, accepted_in, refused_cases, refused_in, scene};
-
-/// An 8×8 Mitsuba scene: a sphere under a constant sky.
-const MITSUBA: &str = r#"<scene version="3.0.0">
-    <sensor type="perspective">
-        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
-    </sensor>
-    <shape type="sphere"/>
-    <emitter type="constant"/>
-</scene>
-"#;
+use crate::scenes::MITSUBA_WITH_SPP;
 
 const NEAR_SINGULAR: &str = "[[1e200, 0, 0, 0], [0, 1e-200, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]";
 
@@ -29,10 +20,10 @@ refused_cases! {
         => ["s.toml", "matrix is singular (determinant 1e-14, but its columns are nearly parallel)"];
     constant_sky_past_f32_over_the_sphere: ["s.toml" => scene("[[lights]]\ntype = \"environment\"\nradiance = [1e38, 1e38, 1e38]\n")], ["render", "s.toml"]
         => ["s.toml", "radiance is [1e38, 1e38, 1e38]", "4π × scale × radiance"];
-    mitsuba_default_without_a_name: ["s.xml" => MITSUBA.replace("<scene version=\"3.0.0\">", "<scene version=\"3.0.0\"><default name=\"\" value=\"8\"/>")], ["render", "s.xml"]
-        => ["s.xml", "a <default>'s name must be letters, digits and _", "line 1"];
-    mitsuba_dollar_without_a_name: ["s.xml" => MITSUBA.replace("value=\"8\"", "value=\"$$f\"")], ["render", "s.xml"]
-        => ["s.xml", "a `$` must be followed by a parameter's name", "line 3"];
+    mitsuba_default_without_a_name: ["s.xml" => MITSUBA_WITH_SPP.replace("name=\"spp\"", "name=\"\"")], ["render", "s.xml"]
+        => ["s.xml", "a <default>'s name must be letters, digits and _", "line 2"];
+    mitsuba_dollar_without_a_name: ["s.xml" => MITSUBA_WITH_SPP.replace("$spp", "$$spp")], ["render", "s.xml"]
+        => ["s.xml", "a `$` must be followed by a parameter's name", "line 4"];
     first_image_unreadable: ["a.exr" => "not an image", "b.exr" => "not an image"], ["compare", "a.exr", "b.exr"]
         => ["cannot read the first image 'a.exr'"];
 }

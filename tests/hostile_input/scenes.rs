@@ -177,7 +177,7 @@ fn a_scene_that_is_a_folder_is_refused() {
 }
 
 /// A Mitsuba scene whose one parameter is `spp`.
-const MITSUBA_WITH_SPP: &str = r#"<scene version="3.0.0">
+pub(crate) const MITSUBA_WITH_SPP: &str = r#"<scene version="3.0.0">
     <default name="spp" value="1"/>
     <sensor type="perspective">
         <sampler type="independent"><integer name="sample_count" value="$spp"/></sampler>
