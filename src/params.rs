@@ -278,8 +278,12 @@ fn show_f32_overflow(x: f64) -> String {
 /// `v` as `[x, y, z]`, each component in scientific notation from 1e16 up (where the
 /// positional form runs to dozens of digits).
 pub fn show_large_vec(v: Vec3) -> String {
-    let show = |x: f32| if x.abs() >= 1e16 { format!("{x:e}") } else { x.to_string() };
-    format!("[{}, {}, {}]", show(v.x), show(v.y), show(v.z))
+    format!("[{}, {}, {}]", show_large(v.x), show_large(v.y), show_large(v.z))
+}
+
+/// `x`, in scientific notation from 1e16 up.
+pub fn show_large(x: f32) -> String {
+    if x.abs() >= 1e16 { format!("{x:e}") } else { x.to_string() }
 }
 
 pub fn show_vec(v: DVec3) -> String {

@@ -51,7 +51,7 @@ impl LookArgs {
         if !embray::output::exposure_in_range(self.exposure) {
             anyhow::bail!(
                 "--exposure is {}, but must be a number of stops in [-{max}, {max}]",
-                self.exposure,
+                embray::params::show_large(self.exposure),
                 max = embray::output::MAX_EXPOSURE_STOPS
             );
         }

@@ -32,7 +32,7 @@ impl PngSettings {
         if !crate::output::exposure_in_range(self.exposure) {
             return Err(format!(
                 "the exposure must be a number of stops in [-{max}, {max}], not {}",
-                self.exposure,
+                crate::params::show_large(self.exposure),
                 max = crate::output::MAX_EXPOSURE_STOPS
             ));
         }

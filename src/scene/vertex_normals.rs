@@ -3,8 +3,10 @@
 //! the triangle's angle at the vertex (Mitsuba's `recompute_vertex_normals`, after Thürmer and
 //! Wüthrich, "Computing vertex normals from polygonal facets", JGT 1998). Angle weights do not
 //! depend on how a face is cut into triangles: a cube's corner gets the diagonal either way.
+//! A vertex whose weighted normals cancel gets none (the geometric normal is used there), where
+//! Mitsuba writes an arbitrary (1, 0, 0) with a warning.
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 /// How the triangles around a vertex are weighted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -39,6 +41,32 @@ impl VertexNormals {
             }
         }
         sums.into_iter().map(DVec3::normalize_or_zero).collect()
+    }
+}
+
+/// Whether `linear` keeps angles (a rotation, a mirror and a uniform scale): only then are
+/// angle-weighted normals the same computed before or after it.
+pub fn keeps_angles(linear: DMat3) -> bool {
+    let [x, y, z] = [linear.x_axis, linear.y_axis, linear.z_axis];
+    let scale = x.length_squared();
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * scale;
+    close(y.length_squared(), scale)
+        && close(z.length_squared(), scale)
+        && close(x.dot(y), 0.0)
+        && close(y.dot(z), 0.0)
+        && close(z.dot(x), 0.0)
+}
+
+impl VertexNormals {
+    /// `of` the mesh as `linear` places it (Mitsuba computes them after `to_world`), turned
+    /// back into the mesh's own space, where the renderer's normal transform takes them to the
+    /// placed ones. Each faces the side the object-space triangles around it face, as `of`'s
+    /// do (a mirror's turn of the winding undone).
+    pub fn of_placed(self, positions: &[DVec3], indices: &[[u32; 3]], linear: DMat3) -> Vec<DVec3> {
+        let placed: Vec<DVec3> = positions.iter().map(|&p| linear * p).collect();
+        let side = linear.determinant().signum();
+        let back = linear.transpose() * side;
+        self.of(&placed, indices).into_iter().map(|n| (back * n).normalize_or_zero()).collect()
     }
 }
 
@@ -121,6 +149,33 @@ mod tests {
         assert!(close(by_angle[0], diagonal), "{}", by_angle[0]);
         let by_area = VertexNormals::AreaWeighted.of(&positions, &indices);
         assert!((by_area[0] - diagonal).length() > 0.1, "{}", by_area[0]);
+    }
+
+    #[test]
+    fn normals_placed_by_a_stretch_are_weighted_where_placed() {
+        // A cube stretched tenfold along z: its corners' angles stay right, so Mitsuba's
+        // normals (computed on the stretched cube) are the stretched cube's corner
+        // diagonals; computed before the stretch and carried through it they lean to z.
+        let mesh = box_mesh(DVec3::ZERO, DVec3::ONE).unwrap();
+        let stretch = DMat3::from_diagonal(DVec3::new(1.0, 1.0, 10.0));
+        let placed =
+            VertexNormals::AngleWeighted.of_placed(&mesh.positions, &mesh.indices, stretch);
+        let unplaced = VertexNormals::AngleWeighted.of(&mesh.positions, &mesh.indices);
+        let carried = |n: DVec3| (stretch.inverse().transpose() * n).normalize();
+        for ((p, n), m) in mesh.positions.iter().zip(&placed).zip(&unplaced) {
+            let diagonal = (*p - DVec3::splat(0.5)).signum() / 3f64.sqrt();
+            assert!(close(carried(*n), diagonal), "at {p}: {}", carried(*n));
+            assert!((carried(*m) - diagonal).length() > 0.5, "at {p}: {}", carried(*m));
+        }
+        // Under a mirror too, each normal still faces the object's own outside.
+        let mirror = DMat3::from_diagonal(DVec3::new(-1.0, 1.0, 10.0));
+        let mirrored =
+            VertexNormals::AngleWeighted.of_placed(&mesh.positions, &mesh.indices, mirror);
+        for (p, n) in mesh.positions.iter().zip(&mirrored) {
+            assert!(n.dot(*p - DVec3::splat(0.5)) > 0.0, "at {p}: {n}");
+        }
+        assert!(keeps_angles(DMat3::from_diagonal(DVec3::splat(-2.0))));
+        assert!(!keeps_angles(stretch));
     }
 
     #[test]

@@ -17,8 +17,7 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
 }
 
 /// Fresnel reflectance of a conductor with complex index `eta + i·k`, per channel (the
-/// three channels in one SIMD register: its square roots and divisions take one instruction
-/// each, not three).
+/// three channels in one SIMD register: each division is one instruction, not three).
 pub fn fresnel_conductor(cos_i: f32, eta: Vec3, k: Vec3) -> Vec3 {
     let (eta, k) = (Vec3A::from(eta), Vec3A::from(k));
     let cos_i = cos_i.clamp(0.0, 1.0);

@@ -123,7 +123,6 @@ impl Microfacet {
         }
     }
 
-    /// Density of the mirror direction about a sampled `h`, seen from `wo`.
     /// `d(h) * g2(wo, wi)` and `pdf_reflect(wo, h)`, sharing what they have in common.
     pub fn reflect_terms(&self, wo: Vec3, wi: Vec3, h: Vec3) -> (f32, f32) {
         match self.distribution {
@@ -132,6 +131,7 @@ impl Microfacet {
         }
     }
 
+    /// Density of the mirror direction about a sampled `h`, seen from `wo`.
     pub fn pdf_reflect(&self, wo: Vec3, h: Vec3) -> f32 {
         match self.distribution {
             Distribution::Ggx => ggx::pdf_reflect(wo, h, self.alpha_x, self.alpha_y),

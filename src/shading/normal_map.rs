@@ -21,7 +21,7 @@ fn triangle_derivatives(p: [Vec3; 3], uv: [Vec2; 3]) -> Option<(Vec3, Vec3)> {
 }
 
 /// ∂p/∂u and ∂p/∂v on a sphere of radius `r` at the point with unit normal `n` (the
-/// sphere's own frame; see `surface::sphere_uv`).
+/// sphere's own frame; see `tex_coords::sphere_uv`).
 fn sphere_derivatives(n: Vec3, r: f32) -> (Vec3, Vec3) {
     use std::f32::consts::{PI, TAU};
     let sin_theta = (n.x * n.x + n.z * n.z).sqrt();

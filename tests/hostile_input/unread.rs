@@ -42,9 +42,9 @@ refused_cases! {
     principal_point_beyond_the_coordinate_range: ["s.xml" => mitsuba(r#"<sensor type="perspective"><float name="principal_point_offset_x" value="1e20"/>"#, "", "")], ["render", "s.xml"]
         => ["s.xml", "principal_point_offset_x is 100000000000000000000", "a shift of 1e8", "line 2"];
     area_radiance_past_f32: ["s.xml" => mitsuba(PERSPECTIVE, "", r#"<shape type="sphere"><emitter type="area"><rgb name="radiance" value="1e39, 1, 1"/></emitter></shape>"#)], ["render", "s.xml"]
-        => ["s.xml", "`radiance` is 1e39, but must be small enough for f32", "line 10"];
+        => ["s.xml", "`radiance` is 1e39, but must be within f32's range (±3.4e38)", "line 10"];
     rawconstant_reflectance_past_f32: ["s.xml" => mitsuba(PERSPECTIVE, "", r#"<shape type="sphere"><bsdf type="roughconductor"><texture type="rawconstant" name="alpha"><float name="value" value="-1e300"/></texture></bsdf></shape>"#)], ["render", "s.xml"]
-        => ["s.xml", "`alpha` is -1e300, but must be small enough for f32", "line 10"];
+        => ["s.xml", "`alpha` is -1e300, but must be within f32's range (±3.4e38)", "line 10"];
     projector_scaled_past_f32: ["s.xml" => mitsuba(PERSPECTIVE, "", r#"<emitter type="projector"><float name="scale" value="1e300"/></emitter>"#)], ["render", "s.xml"]
         => ["s.xml", "scale is 3.14159", "e300, but must be small enough for f32", "line 10"];
     box_filter_given_a_radius: ["s.xml" => mitsuba(PERSPECTIVE, r#"<rfilter type="box"><float name="radius" value="3"/></rfilter>"#, "")], ["render", "s.xml"]

@@ -76,11 +76,11 @@ impl LightKind for Environment {
             EnvironmentMap::Constant(radiance) => *radiance,
             EnvironmentMap::Image(image) => image.texels.iter().fold(Vec3::ZERO, |a, t| a.max(*t)),
         };
-        // Its importance distribution sums luminance × solid angle in f32, up to the
-        // brightest texel's 4π: past f32's range that total becomes infinite and the map's
-        // sampling wrong (a 1e38 texel lit a scene 20× less than a 1e37 one).
+        // Its importance distribution sums the scaled texels' luminance × solid angle in f32,
+        // up to the brightest one's 4π: past f32's range that total becomes infinite and the
+        // map's sampling wrong (a 1e38 texel lit a scene 20× less than a 1e37 one).
         let sphere = 4.0 * std::f32::consts::PI;
-        let finite = (brightest * scale.max(Vec3::ONE) * sphere).is_finite();
+        let finite = (brightest * scale * sphere).is_finite();
         let requirement =
             "small enough that 4π × scale × radiance stays within f32's range (3.4e38)";
         // Named where the size comes from: the scale, or else the radiance or image itself.

@@ -19,8 +19,8 @@ use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::obj::ObjRef;
 use crate::scene::round_shapes::{cylinder_mesh, disk_mesh};
 use crate::scene::shapes::{mitsuba_cube_mesh, quad_mesh};
-use crate::scene::vertex_normals::VertexNormals;
-use glam::{DAffine3, DVec3};
+use crate::scene::vertex_normals::{VertexNormals, keeps_angles};
+use glam::{DAffine3, DMat3, DVec3};
 use std::sync::Arc;
 
 impl Builder<'_> {
@@ -98,8 +98,17 @@ impl Builder<'_> {
                     // Mitsuba's OBJ reader ignores `mtllib` and `usemtl`.
                     read_mtl: false,
                 };
-                let (_, models) =
-                    self.meshes.models(&mesh_ref, Some(!face_normals), self.warnings)?;
+                // Mitsuba computes a smooth mesh's missing normals after `to_world`: the same
+                // as before it (the cache's shared variant) unless `to_world` bends angles.
+                let linear = world_from_object.matrix3;
+                let placed = !face_normals && !keeps_angles(linear);
+                let smooth = if placed { None } else { Some(!face_normals) };
+                let (_, mut models) = self.meshes.models(&mesh_ref, smooth, self.warnings)?;
+                if placed {
+                    for model in &mut models {
+                        model.mesh = with_normals_placed(Arc::clone(&model.mesh), linear);
+                    }
+                }
                 // Mitsuba turns an OBJ's v upside down (flip_tex_coords, on by default), so
                 // that v = 0 is the image's top row as for every other texture lookup.
                 let flip = kind == "obj" && boolean(element, "flip_tex_coords")?.unwrap_or(true);
@@ -115,7 +124,7 @@ impl Builder<'_> {
             }
             "cube" => vec![ShapeDesc::Mesh(Arc::new(mitsuba_cube_mesh()))],
             "serialized" => {
-                let mesh = Arc::new(self.serialized(element)?);
+                let mesh = Arc::new(self.serialized(element, world_from_object.matrix3)?);
                 vec![ShapeDesc::Mesh(winding::wound_as_normals(mesh))]
             }
             "disk" => vec![ShapeDesc::Mesh(Arc::new(disk_mesh()))],
@@ -202,7 +211,7 @@ impl Builder<'_> {
     }
 
     /// The mesh of a `serialized` shape.
-    fn serialized(&self, element: &Element) -> Result<MeshData, SceneError> {
+    fn serialized(&self, element: &Element, linear: DMat3) -> Result<MeshData, SceneError> {
         let file = property(element, "string", "filename")
             .ok_or_else(|| element.error("the property `filename` is missing"))?;
         let path = self.files.resolve(file.required("value")?);
@@ -214,9 +223,11 @@ impl Builder<'_> {
             .map_err(|e| file.error(format!("cannot read '{}': {e}", path.display())))?;
         let mut mesh = crate::scene::formats::serialized::parse(&bytes, index, face_normals)
             .map_err(|problem| file.error(format!("'{}': {problem}", path.display())))?;
-        // Mitsuba computes a smooth mesh's missing normals, as for its OBJ and PLY files.
+        // Mitsuba computes a smooth mesh's missing normals (after `to_world`), as for its OBJ
+        // and PLY files.
         if mesh.normals.is_none() && !face_normals {
-            let normals = VertexNormals::AngleWeighted.of(&mesh.positions, &mesh.indices);
+            let normals =
+                VertexNormals::AngleWeighted.of_placed(&mesh.positions, &mesh.indices, linear);
             mesh.normals = Some(normals);
         }
         Ok(mesh)
@@ -358,4 +369,15 @@ fn mesh_type_matches(file: &Element, kind: &str) -> Result<(), SceneError> {
         )));
     }
     Ok(())
+}
+
+/// `mesh` with Mitsuba's normals computed where `linear` places it, if it has none.
+fn with_normals_placed(mesh: Arc<MeshData>, linear: DMat3) -> Arc<MeshData> {
+    if mesh.normals.is_some() {
+        return mesh;
+    }
+    let mut placed = MeshData::clone(&mesh);
+    let normals = VertexNormals::AngleWeighted.of_placed(&mesh.positions, &mesh.indices, linear);
+    placed.normals = Some(normals);
+    Arc::new(placed)
 }

@@ -228,14 +228,8 @@ impl Reader {
             match child.tag.as_str() {
                 "default" => {
                     let name = child.required("name")?.to_owned();
-                    // Only a name `$name` can spell is one a value can refer to.
-                    let spellable = |c: char| c.is_ascii_alphanumeric() || c == '_';
-                    if name.is_empty() || !name.chars().all(spellable) {
-                        return Err(child.error(format!(
-                            "a <default>'s name must be letters, digits and _ (as `$name` \
-                             refers to it), not '{}'",
-                            excerpt(&name)
-                        )));
+                    if name.is_empty() {
+                        return Err(child.error("a <default> needs a name (it is empty)"));
                     }
                     let value = child.required("value")?.to_owned();
                     self.named.insert(name.clone());
@@ -309,44 +303,64 @@ impl Reader {
         Ok(())
     }
 
-    /// `value` with every `$name` replaced by its parameter.
+    /// `value` with every `$name` replaced by its parameter, as Mitsuba 3 substitutes: the
+    /// longest names first (with `res` and `res_x` both defined, `$res_x` is the latter; with
+    /// only `res`, `48_x`), an occurrence after a backslash left alone; a `$` left unescaped
+    /// after that names an undefined parameter; `\$` then becomes `$`.
     fn substitute(&mut self, element: &Element, value: &str) -> Result<String, SceneError> {
         if !value.contains('$') {
             return Ok(value.to_owned());
         }
-        let mut out = String::new();
-        let mut rest = value;
-        while let Some(at) = rest.find('$') {
-            out += &rest[..at];
-            let name: String = rest[at + 1..]
+        let mut names: Vec<String> = self.params.keys().cloned().collect();
+        names.sort_by(|a, b| b.len().cmp(&a.len()).then_with(|| a.cmp(b)));
+        let escaped = |text: &str, at: usize| at > 0 && text.as_bytes()[at - 1] == b'\\';
+        let mut value = value.to_owned();
+        for name in names {
+            let key = format!("${name}");
+            let replacement = &self.params[&name];
+            let mut from = 0;
+            while let Some(found) = value[from..].find(&key) {
+                let at = from + found;
+                if escaped(&value, at) {
+                    from = at + key.len();
+                    continue;
+                }
+                value.replace_range(at..at + key.len(), replacement);
+                if value.len() > MAX_XML_VALUE {
+                    // Defaults made of defaults double at each: 2^n bytes from n lines.
+                    let limit =
+                        format!("a value grows past {MAX_XML_VALUE} bytes as $names are replaced");
+                    return Err(element.error(limit));
+                }
+                from = at + replacement.len();
+                self.named.insert(name.clone());
+            }
+        }
+        let mut from = 0;
+        while let Some(found) = value[from..].find('$') {
+            let at = from + found;
+            if escaped(&value, at) {
+                from = at + 1;
+                continue;
+            }
+            let name: String = value[at + 1..]
                 .chars()
                 .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
                 .collect();
             if name.is_empty() {
                 return Err(element.error(
-                    "a `$` must be followed by a parameter's name (letters, digits and _)",
+                    "a `$` must be followed by a parameter's name (write `\\$` for a dollar sign)",
                 ));
             }
-            let Some(replacement) = self.params.get(&name) else {
-                let known: Vec<&str> = self.params.keys().map(String::as_str).collect();
-                return Err(element.error(format!(
-                    "${} is not a parameter (give it with -D {}=VALUE or a <default>; known: {})",
-                    excerpt(&name),
-                    excerpt(&name),
-                    if known.is_empty() { "none".to_owned() } else { known.join(", ") }
-                )));
-            };
-            out += replacement;
-            if out.len() > MAX_XML_VALUE {
-                // Defaults made of defaults double at each: 2^n bytes from n lines.
-                let limit =
-                    format!("a value grows past {MAX_XML_VALUE} bytes as $names are replaced");
-                return Err(element.error(limit));
-            }
-            rest = &rest[at + 1 + name.len()..];
-            self.named.insert(name);
+            let known: Vec<&str> = self.params.keys().map(String::as_str).collect();
+            return Err(element.error(format!(
+                "${} is not a parameter (give it with -D {}=VALUE or a <default>; known: {})",
+                excerpt(&name),
+                excerpt(&name),
+                if known.is_empty() { "none".to_owned() } else { known.join(", ") }
+            )));
         }
-        Ok(out + rest)
+        Ok(value.replace("\\$", "$"))
     }
 
     /// A folder named in `element`'s file, relative to that file's folder.

@@ -26,7 +26,8 @@ pub(super) fn f32_sized(element: &Element, value: DVec3) -> Result<DVec3, SceneE
     match value.to_array().into_iter().find(|&c| !(c as f32).is_finite()) {
         Some(c) => {
             let name = crate::excerpt::excerpt(element.attr("name").unwrap_or("the value"));
-            Err(element.error(format!("`{name}` is {c:e}, but must be small enough for f32")))
+            Err(element
+                .error(format!("`{name}` is {c:e}, but must be within f32's range (±3.4e38)")))
         }
         None => Ok(value),
     }
