@@ -18,6 +18,17 @@ pub(crate) fn quad_mesh(corner: DVec3, u: DVec3, v: DVec3) -> Result<MeshData, S
             fmt_vec(&v.to_array())
         ));
     }
+    // Render space keeps it in f32, where a triangle's area (half of this) below f32's
+    // smallest normal number is 0: the quad, and the light it may be, would vanish unseen.
+    let area = u.cross(v).length();
+    if area < 2.0 * f64::from(f32::MIN_POSITIVE) {
+        return Err(format!(
+            "u {} and v {} span an area of {area:e}, too small for f32 (at least {:e})",
+            fmt_vec(&u.to_array()),
+            fmt_vec(&v.to_array()),
+            2.0 * f64::from(f32::MIN_POSITIVE)
+        ));
+    }
     let positions = vec![corner, corner + u, corner + u + v, corner + v];
     if !positions.iter().all(|p| p.is_finite()) {
         return Err("a corner of the quad overflows".to_owned());

@@ -47,7 +47,10 @@ fn sphere_light_needs_a_positive_radius() {
     let err = load_err(&format!("{light}radius = 0\n"));
     assert_contains(
         &err,
-        &["lights[0].radius is 0, but must be > 0 and at least 1.1754944e-38", "(line 10)"],
+        &[
+            "lights[0].radius is 0, but must be > 0 and at least 1.0842021724855044e-19",
+            "(line 10)",
+        ],
     );
     let err = load_err(&format!("{light}radius = 0.5\ntransform = [{{ scale = 0 }}]\n"));
     assert_contains(&err, &["lights[0].transform[0]: scale [0, 0, 0] is singular"]);

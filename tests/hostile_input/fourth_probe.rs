@@ -2,7 +2,8 @@
 //! pixels white, a spawn offset that put every ray outside the scene, a variance file named
 //! as the reference, and a near-singular matrix reported with its determinant as 335 digits
 //! (or a regular one of columns far apart in size as singular, "determinant 1"), a Mitsuba
-//! `<default>` without a name and a `$` without one, now refused or named as they are.
+//! `<default>` without a name and a `$` without one, and lights too small for f32 to hold
+//! their area (they rendered as nothing), now refused or named as they are.
 
 use crate::harness::{Run, Scratch, accepted_in, refused_cases, refused_in, scene};
 use crate::scenes::MITSUBA_WITH_SPP;
@@ -22,6 +23,10 @@ refused_cases! {
         => ["s.xml", "a <default> needs a name (it is empty)", "line 2"];
     mitsuba_dollar_without_a_name: ["s.xml" => MITSUBA_WITH_SPP.replace("$spp", "$")], ["render", "s.xml"]
         => ["s.xml", "a `$` must be followed by a parameter's name", "line 4"];
+    quad_too_small_for_f32: ["s.toml" => scene("").replace("u = [0.0, 2.0, 0.0]", "u = [0.0, 1e-30, 0.0]").replace("v = [2.0, 0.0, 0.0]", "v = [1e-30, 0.0, 0.0]")], ["render", "s.toml"]
+        => ["s.toml", "span an area of 1.0000000000000001e-60, too small for f32"];
+    sphere_light_too_small_for_f32: ["s.toml" => scene("[[lights]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1e-37\nemission = [1.0, 1.0, 1.0]\n")], ["render", "s.toml"]
+        => ["s.toml", "lights[1].radius is", "but must be > 0 and at least 1.0842021724855044e-19"];
     first_image_unreadable: ["a.exr" => "not an image", "b.exr" => "not an image"], ["compare", "a.exr", "b.exr"]
         => ["cannot read the first image 'a.exr'"];
 }

@@ -103,7 +103,7 @@ impl Builder<'_> {
             EmissiveShapeKind::Sphere => {
                 let center = ctx.required(&path, &item, "center", l.center)?;
                 let radius = ctx.required(&path, &item, "radius", l.radius)?;
-                let radius = ctx.positive_length(&path.key("radius"), radius)?;
+                let radius = ctx.positive_radius(&path.key("radius"), radius)?;
                 let emission = emission(ctx)?;
                 let world_from_object = self.transform(&path, "transform", l.transform.as_ref())?;
                 let material = self.light_material(&item, emission, two_sided);

@@ -178,7 +178,7 @@ impl Builder<'_> {
                 // for ellipsoids.
                 let center = ctx.required(&path, &item, "center", o.center)?;
                 let radius = ctx.required(&path, &item, "radius", o.radius)?;
-                let radius = ctx.positive_length(&path.key("radius"), radius)?;
+                let radius = ctx.positive_radius(&path.key("radius"), radius)?;
                 ShapeDesc::Sphere { center: dvec(center), radius }
             }
             ObjectKind::Box => {

@@ -49,12 +49,15 @@ impl Ctx<'_> {
         Ok(value)
     }
 
-    /// A length that render space holds in f32: > 0 there too (1e-300 rounds to 0).
-    pub(crate) fn positive_length(&self, path: &FieldPath, value: f64) -> Result<f64, SceneError> {
+    /// A sphere's radius that render space holds in f32 with its square (the ray–sphere
+    /// test and the area take r²: below about 1.08e-19 it is subnormal or 0 in f32, and the
+    /// sphere, or the light it is, vanishes without a word).
+    pub(crate) fn positive_radius(&self, path: &FieldPath, value: f64) -> Result<f64, SceneError> {
+        let least = f64::from(f32::MIN_POSITIVE).sqrt();
         let requirement =
-            format!("> 0 and at least {:e} (f32's smallest normal number)", f32::MIN_POSITIVE);
-        // (Too large a length is the coordinate limit's to refuse, with its own message.)
-        self.require(value >= f64::from(f32::MIN_POSITIVE), path, value, &requirement)?;
+            format!("> 0 and at least {least:e} (its square is f32's smallest normal number)");
+        // (Too large a radius is the coordinate limit's to refuse, with its own message.)
+        self.require(value >= least, path, value, &requirement)?;
         Ok(value)
     }
 
