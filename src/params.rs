@@ -210,7 +210,7 @@ impl Params {
                     entry.field.clone()
                 };
                 let requirement = if c >= 0.0 { "small enough for f32" } else { ">= 0" };
-                let (value, requirement) = (show_f32_overflow(c), requirement.to_owned());
+                let (value, requirement) = (show_large(c), requirement.to_owned());
                 return Err(ParamError::OutOfRange { field, value, requirement, line: entry.line });
             }
         }
@@ -269,21 +269,18 @@ fn show(value: &Value) -> String {
     }
 }
 
-/// `x` as it is shown where it may be past f32's range: in scientific notation there (the
-/// positional form of 1e300 is 301 digits), as written below it.
-fn show_f32_overflow(x: f64) -> String {
-    if x.abs() > f32::MAX as f64 { format!("{x:e}") } else { x.to_string() }
-}
-
-/// `v` as `[x, y, z]`, each component in scientific notation from 1e16 up (where the
-/// positional form runs to dozens of digits).
+/// `v` as `[x, y, z]`, each component as `show_large` shows it.
 pub fn show_large_vec(v: Vec3) -> String {
     format!("[{}, {}, {}]", show_large(v.x), show_large(v.y), show_large(v.z))
 }
 
-/// `x`, in scientific notation from 1e16 up.
-pub fn show_large(x: f32) -> String {
-    if x.abs() >= 1e16 { format!("{x:e}") } else { x.to_string() }
+/// `x` in scientific notation from 1e16 up, where the positional form runs to dozens of
+/// digits (1e300 to 301), else as written.
+pub fn show_large<T>(x: T) -> String
+where
+    T: Copy + std::fmt::Display + std::fmt::LowerExp + Into<f64>,
+{
+    if x.into().abs() >= 1e16 { format!("{x:e}") } else { x.to_string() }
 }
 
 pub fn show_vec(v: DVec3) -> String {

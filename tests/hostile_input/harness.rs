@@ -116,6 +116,27 @@ pub fn refused_in(scratch: &Scratch, args: &[&str], expected: &[&str]) -> Run {
     run
 }
 
+/// Runs `args` in `scratch` under a memory budget of `budget_bytes` (`EMBRAY_MAX_MEMORY`); as
+/// `refused_in`, the run must fail with exit 1, say every one of `expected`, not panic, and
+/// change no file.
+#[track_caller]
+pub fn refused_under_memory(
+    scratch: &Scratch,
+    args: &[&str],
+    budget_bytes: u64,
+    expected: &[&str],
+) -> Run {
+    let before = scratch.snapshot();
+    let mut command = scratch.command(args);
+    let run =
+        Run::from(command.env("EMBRAY_MAX_MEMORY", budget_bytes.to_string()).output().unwrap());
+    run.assert_no_panic();
+    assert_eq!(run.code, Some(1), "should fail:\n{}", run.stderr);
+    run.assert_says(expected);
+    assert_eq!(scratch.snapshot(), before, "files changed:\n{}", run.stderr);
+    run
+}
+
 /// As `refused_in`, in a fresh folder holding `files`.
 #[track_caller]
 pub fn refused(files: &[(&str, &str)], args: &[&str], expected: &[&str]) -> Run {

@@ -1,7 +1,9 @@
 //! Counts, memory and inputs with documented limits: refused with the limit and the option
 //! or field, before anything large is allocated or anything blocks.
 
-use crate::harness::{Scratch, refused_cases, refused_in, scene, with_mesh};
+use crate::harness::{
+    Run, Scratch, refused_cases, refused_in, refused_under_memory, scene, with_mesh,
+};
 
 refused_cases! {
     spp_zero: ["s.toml" => scene("")], ["render", "s.toml", "--spp", "0"] => ["--spp is 0", "between 1 and"];
@@ -26,20 +28,13 @@ refused_cases! {
 fn a_render_needing_more_memory_than_there_is_is_refused() {
     let scratch = Scratch::new();
     scratch.write("s.toml", scene("").replace("[8, 8]", "[8192, 8192]"));
-    let before = scratch.snapshot();
-    let mut command = scratch.command(&["render", "s.toml", "--threads", "1"]);
-    let run =
-        crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "1073741824").output().unwrap());
-    run.assert_no_panic();
-    assert_eq!(run.code, Some(1), "{}", run.stderr);
-    run.assert_says(&[
-        "s.toml",
-        "18.8 GiB of memory",
-        "8192x8192",
-        "only 1.0 GiB",
-        "lower camera.resolution",
-    ]);
-    assert_eq!(scratch.snapshot(), before);
+    let args = ["render", "s.toml", "--threads", "1"];
+    refused_under_memory(
+        &scratch,
+        &args,
+        1 << 30,
+        &["s.toml", "18.8 GiB of memory", "8192x8192", "only 1.0 GiB", "lower camera.resolution"],
+    );
 }
 
 /// A symbolic link in the scratch folder to a special file.
@@ -111,22 +106,16 @@ fn texture_texels_count_in_the_memory_estimate() {
         "albedo = [0.5, 0.5, 0.5]\ntexture = { type = \"image\", file = \"t.png\" }",
     );
     scratch.write("s.toml", textured);
-    let before = scratch.snapshot();
     // 24 MiB fixed, 20 MiB of texels: refused under a 40 MiB budget (one thread, which
     // adds nothing, on any machine).
-    let mut command = scratch.command(&["render", "s.toml", "--threads", "1"]);
-    let run =
-        crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "41943040").output().unwrap());
-    run.assert_no_panic();
-    assert_eq!(run.code, Some(1), "{}", run.stderr);
-    run.assert_says(&[
+    let expected = [
         "s.toml",
         "needs about 44.0 MiB",
         "1048576 texture texels",
         "only 40.0 MiB",
         "size of the textures",
-    ]);
-    assert_eq!(scratch.snapshot(), before);
+    ];
+    refused_under_memory(&scratch, &["render", "s.toml", "--threads", "1"], 40 << 20, &expected);
 }
 
 /// Worker threads count in the estimate (they did not: each holds its stack and its batch of
@@ -135,24 +124,14 @@ fn texture_texels_count_in_the_memory_estimate() {
 fn worker_threads_count_in_the_memory_estimate() {
     let scratch = Scratch::new();
     scratch.write("s.toml", scene(""));
-    let before = scratch.snapshot();
-    let render = |threads: &str| {
-        let mut command = scratch.command(&["render", "s.toml", "--threads", threads, "-q"]);
-        // 100 MiB: 24 MiB and 64 pixels fit; 1023 more threads add 320 MiB.
-        crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "104857600").output().unwrap())
-    };
-    let run = render("1024");
-    run.assert_no_panic();
-    assert_eq!(run.code, Some(1), "{}", run.stderr);
-    run.assert_says(&[
-        "s.toml",
-        "needs about 343.7 MiB",
-        "1024 threads",
-        "only 100.0 MiB",
-        "--threads",
-    ]);
-    assert_eq!(scratch.snapshot(), before);
-    let run = render("1");
+    let render = |threads| ["render", "s.toml", "--threads", threads, "-q"];
+    // 100 MiB: 24 MiB and 64 pixels fit; 1023 more threads add 320 MiB.
+    let budget = 100 << 20;
+    let expected =
+        ["s.toml", "needs about 343.7 MiB", "1024 threads", "only 100.0 MiB", "--threads"];
+    refused_under_memory(&scratch, &render("1024"), budget, &expected);
+    let mut command = scratch.command(&render("1"));
+    let run = Run::from(command.env("EMBRAY_MAX_MEMORY", budget.to_string()).output().unwrap());
     assert_eq!(run.code, Some(0), "{}", run.stderr);
 }
 
@@ -171,13 +150,7 @@ fn emitters_of_every_placement_count_in_the_memory_estimate() {
          [[objects]]\ntype = \"mesh\"\nfile = \"lamp.obj\"\nmaterial = \"lamp\"\n\
          repeat = { count = [20, 20, 1], spacing = [2, 2, 0] }\n",
     );
-    let before = scratch.snapshot();
-    let mut command = scratch.command(&["render", "s.toml", "--threads", "1"]);
     // 24 MiB fixed and a few for the mesh and placements: 200 MiB would pass without them.
-    let run =
-        crate::harness::Run::from(command.env("EMBRAY_MAX_MEMORY", "209715200").output().unwrap());
-    run.assert_no_panic();
-    assert_eq!(run.code, Some(1), "{}", run.stderr);
-    run.assert_says(&["s.toml", "4000000 emitting primitives", "only 200.0 MiB"]);
-    assert_eq!(scratch.snapshot(), before);
+    let expected = ["s.toml", "4000000 emitting primitives", "only 200.0 MiB"];
+    refused_under_memory(&scratch, &["render", "s.toml", "--threads", "1"], 200 << 20, &expected);
 }
