@@ -42,20 +42,20 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
     let mut writer = TomlWriter::new(mesh_dir);
     // Every TOML and OBJ text is produced first, then all are checked and committed together.
     let mut texts = Vec::new();
-    for camera in &cameras {
-        let path: PathBuf = if cameras.len() == 1 {
-            args.output.clone()
-        } else {
-            let image = Path::new(&camera.image_name).file_stem().unwrap_or_default();
-            dir.join(format!("{stem}_{}.toml", image.to_string_lossy()))
-        };
+    let images: Vec<&str> = cameras.iter().map(|c| c.image_name.as_str()).collect();
+    let paths = match images.len() {
+        1 => vec![args.output.clone()],
+        _ => camera_toml_names(&stem, &images).into_iter().map(|name| dir.join(name)).collect(),
+    };
+    for (k, (camera, path)) in cameras.iter().zip(paths).enumerate() {
         let provenance = format!(
             "Converted by embray from '{}' (camera '{}').",
             args.input.display(),
             camera.image_name
         );
         let text = writer.toml(&camera.scene, &path, &provenance)?;
-        texts.push(("a TOML file".to_owned(), path, text));
+        let what = format!("the TOML file of camera {} ('{}')", k + 1, camera.image_name);
+        texts.push((what, path, text));
     }
     for (mesh, text) in writer.take_pending_meshes() {
         texts.push(("an OBJ file".to_owned(), mesh, text));
@@ -69,7 +69,7 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
         files.write(&target, |w| w.write_all(text.as_bytes()))?;
     }
     files.commit()?;
-    for (_, path, _) in texts.iter().filter(|(what, ..)| what == "a TOML file") {
+    for (_, path, _) in texts.iter().filter(|(what, ..)| what.starts_with("the TOML file")) {
         note(format!("wrote {}", path.display()));
     }
     let meshes = writer.mesh_files();
@@ -78,4 +78,34 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
         note(format!("wrote {} mesh file(s) in {}", meshes.len(), folder.display()));
     }
     Ok(())
+}
+
+/// The TOML file names of a file's cameras, rendering `images`: `{stem}_{image stem}.toml`,
+/// and where two images share a stem (`a.png`, `sub/a.png`, `a.exr`), each of those with
+/// its camera's number too, so that no camera's scene overwrites another's.
+fn camera_toml_names(stem: &str, images: &[&str]) -> Vec<String> {
+    let image_stem = |image: &str| {
+        Path::new(image).file_stem().unwrap_or_default().to_string_lossy().into_owned()
+    };
+    let stems: Vec<String> = images.iter().map(|image| image_stem(image)).collect();
+    stems
+        .iter()
+        .enumerate()
+        .map(|(k, image)| match stems.iter().filter(|other| *other == image).count() {
+            1 => format!("{stem}_{image}.toml"),
+            _ => format!("{stem}_{image}_camera{}.toml", k + 1),
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::camera_toml_names;
+
+    #[test]
+    fn cameras_whose_images_share_a_stem_get_their_numbers() {
+        let names = camera_toml_names("o", &["a.png", "b.png", "sub/a.png", "a.exr"]);
+        assert_eq!(names, ["o_a_camera1.toml", "o_b.toml", "o_a_camera3.toml", "o_a_camera4.toml"]);
+        assert_eq!(camera_toml_names("o", &["x.png", "y.png"]), ["o_x.toml", "o_y.toml"]);
+    }
 }

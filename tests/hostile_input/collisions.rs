@@ -90,3 +90,18 @@ fn convergence_csv_over_its_reference_is_refused() {
         &["--csv 'ref.exr'", "the reference 'ref.exr'", "never overwrites"],
     );
 }
+
+/// Two cameras whose images share a stem (`a.png`, `sub/a.png`) are converted to two TOML
+/// files, each numbered by its camera, each rendering its own image: not refused as one file
+/// colliding with itself.
+#[test]
+fn convert_of_cameras_whose_images_share_a_stem_writes_each() {
+    let scratch = Scratch::new();
+    scratch.write("s.xml", crate::harness::xml_scene(&["a.png", "sub/a.png"], ""));
+    crate::harness::accepted_in(&scratch, &["convert", "s.xml", "-o", "o.toml"]);
+    for (k, image) in [(1, "a.png"), (2, "sub/a.png")] {
+        let toml = std::fs::read_to_string(scratch.path(&format!("o_a_camera{k}.toml"))).unwrap();
+        assert!(toml.contains(&format!("(camera '{image}')")), "{toml}");
+    }
+    assert!(!scratch.path("o_a.toml").exists());
+}
