@@ -263,6 +263,12 @@ pub fn render_passes(
     let units = (all_tiles.len() * passes.len()) as u64;
     let progress = Progress::new(options.progress, units, spp_total);
     let stop = || options.stop.as_ref().and_then(|s| s.requested());
+    // From here a first signal stops the render with the passes done; before (reading the
+    // scene, its tables, the acceleration structure) there is nothing to keep, and it quits
+    // at once.
+    if let Some(stop) = &options.stop {
+        stop.watch();
+    }
     let mut done = Passes {
         sums: FilmSums::new(camera.width, camera.height),
         stats: RenderStats::default(),

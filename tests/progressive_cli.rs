@@ -12,6 +12,11 @@ use std::time::Duration;
 /// Starts `embray render s.toml --spp 1000000 -o out.exr` in `dir`, lets it render for a
 /// while, sends `signal`, and returns the exit code and standard error.
 fn interrupted(dir: &std::path::Path, signal: i32) -> (Option<i32>, String) {
+    interrupted_after(dir, signal, Duration::from_millis(1500))
+}
+
+/// `interrupted`, the signal sent after `wait`.
+fn interrupted_after(dir: &std::path::Path, signal: i32, wait: Duration) -> (Option<i32>, String) {
     let child = Command::new(env!("CARGO_BIN_EXE_embray"))
         .args(["render", "s.toml", "--spp", "1000000", "-o", "out.exr"])
         .current_dir(dir)
@@ -20,7 +25,7 @@ fn interrupted(dir: &std::path::Path, signal: i32) -> (Option<i32>, String) {
         .spawn()
         .unwrap();
     // Passes of 1, 1, 2, 4, … spp of 192 pixels: many are done within a second.
-    std::thread::sleep(Duration::from_millis(1500));
+    std::thread::sleep(wait);
     // SAFETY: the pid is our own child, still running (it renders a million spp).
     assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
     let out = child.wait_with_output().unwrap();
@@ -151,4 +156,32 @@ fn limits_and_checkpoints_are_refused_for_parts_and_bad_values() {
         (&["--checkpoint-every", "nan"], "--checkpoint-every is NaN"),
     ];
     common::command::assert_render_refusals(&dir, &cases);
+}
+
+/// A signal before the first tile (here while 2,000 rough plastics' coating tables are
+/// integrated: 15 ms each on one core) quits at once, with 128 + its number: there is no
+/// image to keep yet. (It used to wait for the tables and the acceleration structure, then
+/// stop with nothing to write.)
+#[test]
+fn a_signal_while_the_scene_is_prepared_quits_at_once() {
+    let dir = temp_dir("interrupt-preparing");
+    let mut scene = GOOD_SCENE.to_owned();
+    for i in 0..2000 {
+        let roughness = 0.1 + i as f64 * 1e-5;
+        let z = 2.0 + i as f64 * 1e-4;
+        scene += &format!(
+            "[materials.p{i}]\ntype = \"plastic\"\nroughness = {roughness}\n\
+             [[objects]]\ntype = \"sphere\"\ncenter = [0.0, 0.0, {z}]\nradius = 0.01\n\
+             material = \"p{i}\"\n"
+        );
+    }
+    std::fs::write(dir.join("s.toml"), scene).unwrap();
+    let started = std::time::Instant::now();
+    let (exit, stderr) = interrupted_after(&dir, libc::SIGINT, Duration::from_millis(300));
+    let took = started.elapsed();
+    assert_eq!(exit, Some(130), "{stderr}");
+    assert!(!stderr.contains("stopping:"), "{stderr}");
+    assert!(!dir.join("out.exr").exists() && !dir.join("out.png").exists());
+    // The tables alone take 15 s of one core's time.
+    assert!(took < Duration::from_secs(5), "quit after {took:?}: {stderr}");
 }

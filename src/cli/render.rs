@@ -84,8 +84,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             args.look.photographic.check_curve(args.tonemap.resolve(&job.scene.settings))?;
         }
     }
+    // Watched from the first tile on (`render_passes`), unwatched after the last camera.
     let stop = Stop::new(args.time_limit.map(|s| started + Duration::from_secs_f64(s)));
-    stop.watch();
     let scene_files = embray::scene::files_read().split_off(read_before_scene);
     let scene_hash = embray::distributed::hash_files(&scene_files)?;
     let rendered = render_jobs(args, &scene_hash, &jobs, &stop, lut.as_ref(), stats_json.as_ref());
@@ -172,7 +172,12 @@ fn render_jobs(
         };
         let output = render_with(&job.scene, &options, &mut on_pass)?;
         if let (Some(reason), 0) = (output.stopped, output.spp_done) {
-            bail!("{reason} before the first pass over the image ended: no image written");
+            if k == 0 {
+                bail!("{reason} before the first pass over the image ended: no image written");
+            }
+            // Stopped before this camera's first pass ended: the cameras before it are kept,
+            // this one is skipped with the rest.
+            return Ok((files, reports, Some(stop_in(jobs, reason, k - 1, k))));
         }
         for warning in output.warnings.iter().filter(|_| !args.quiet) {
             super::console::note(format!("warning: {warning}"));
@@ -215,13 +220,17 @@ fn render_jobs(
         }
         reports.push((line, table));
         if let Some(reason) = output.stopped {
-            let label = |job: &Job| job.camera.clone().unwrap_or_else(|| "the scene".into());
-            let skipped = jobs[k + 1..].iter().map(|job| (label(job), job_paths(job))).collect();
-            let stopped_in = job.camera.clone();
-            return Ok((files, reports, Some(Stopped { reason, stopped_in, skipped })));
+            return Ok((files, reports, Some(stop_in(jobs, reason, k, k + 1))));
         }
     }
     Ok((files, reports, None))
+}
+
+/// A stop in camera `stopped_in` of `jobs`, the cameras from `first_skipped` on not rendered.
+fn stop_in(jobs: &[Job], reason: StopReason, stopped_in: usize, first_skipped: usize) -> Stopped {
+    let label = |job: &Job| job.camera.clone().unwrap_or_else(|| "the scene".into());
+    let skipped = jobs[first_skipped..].iter().map(|job| (label(job), job_paths(job))).collect();
+    Stopped { reason, stopped_in: jobs[stopped_in].camera.clone(), skipped }
 }
 
 /// Adds an image's EXR and display image (where wanted) to `files`.

@@ -56,7 +56,9 @@ pub fn to_render_scene(
         placer.place(object)?;
     }
     let placement::Placer { prototypes, instances, .. } = placer;
-    let materials: Vec<Material> = desc.materials.iter().map(Material::from_desc).collect();
+    let mut coatings = crate::shading::coating::CoatingTables::default();
+    let materials: Vec<Material> =
+        desc.materials.iter().map(|m| Material::from_desc_sharing(m, &mut coatings)).collect();
     let lights = lights::compile_lights(
         &desc.lights,
         &render_from_world,

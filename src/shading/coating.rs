@@ -6,8 +6,11 @@
 //! `roughplastic` tabulates them (64 angles, linear in cos θ).
 
 use super::microfacet::Microfacet;
+use crate::scene::Distribution;
 use crate::shading::fresnel::fresnel_dielectric;
 use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+use std::collections::HashMap;
 
 /// Angles of the table, evenly spaced in cos θ over [0, 1].
 const ANGLES: usize = 64;
@@ -32,13 +35,19 @@ impl Coating {
             let internal_reflectance = diffuse_fresnel_reflectance(1.0 / eta);
             return Coating { eta, rough_transmittance: None, internal_reflectance };
         };
-        let cosines = (0..ANGLES).map(|i| (i as f32 / (ANGLES - 1) as f32).max(1e-6));
+        // The angles in parallel (about 15 ms a table on one core), summed in order.
+        let at_angle = |i: usize| {
+            let cos = (i as f32 / (ANGLES - 1) as f32).max(1e-6);
+            let w = Vec3::new((1.0 - cos * cos).max(0.0).sqrt(), 0.0, cos);
+            let enters = seen_through(&microfacet, w, eta, Passage::Enters);
+            (enters, seen_through(&microfacet, w, 1.0 / eta, Passage::Reflected) * cos)
+        };
+        let angles: Vec<(f32, f32)> = (0..ANGLES).into_par_iter().map(at_angle).collect();
         let mut table = [0.0; ANGLES];
         let mut internal = 0.0;
-        for (i, cos) in cosines.enumerate() {
-            let w = Vec3::new((1.0 - cos * cos).max(0.0).sqrt(), 0.0, cos);
-            table[i] = seen_through(&microfacet, w, eta, Passage::Enters);
-            internal += seen_through(&microfacet, w, 1.0 / eta, Passage::Reflected) * cos;
+        for (i, (enters, reflected)) in angles.into_iter().enumerate() {
+            table[i] = enters;
+            internal += reflected;
         }
         // Mitsuba's rule: twice the mean of R(μ)·μ over the table's angles.
         let internal_reflectance = 2.0 * internal / ANGLES as f32;
@@ -56,6 +65,25 @@ impl Coating {
                 table[i] * (1.0 - t) + table[i + 1] * t
             }
         }
+    }
+}
+
+/// Coatings already integrated, by their index and roughness: the materials that share one
+/// (a scene's plastics of one roughness in many colours) integrate it once.
+#[derive(Default)]
+pub struct CoatingTables {
+    made: HashMap<(u32, Option<(Distribution, u32, u32)>), Coating>,
+}
+
+impl CoatingTables {
+    /// `Coating::new(eta, microfacet)`, integrated the first time it is asked for.
+    pub fn get(&mut self, eta: f32, microfacet: Option<Microfacet>) -> Coating {
+        let roughness =
+            microfacet.map(|m| (m.distribution, m.alpha_x.to_bits(), m.alpha_y.to_bits()));
+        *self
+            .made
+            .entry((eta.to_bits(), roughness))
+            .or_insert_with(|| Coating::new(eta, microfacet))
     }
 }
 
@@ -131,7 +159,6 @@ fn diffuse_fresnel_reflectance(eta: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Distribution;
 
     /// The hemispherical mean 2∫F(μ)μ dμ by a fine midpoint rule.
     fn exact_diffuse_reflectance(eta: f32) -> f32 {
@@ -174,5 +201,21 @@ mod tests {
         let (normal, grazing) = (coating.transmittance(1.0), coating.transmittance(0.1));
         assert!(normal > 0.9 && normal < 0.97, "{normal}");
         assert!(grazing < normal - 0.2, "{grazing} vs {normal}");
+    }
+
+    /// A table is integrated once per index and roughness, and is the one `new` makes.
+    #[test]
+    fn tables_are_shared_by_index_and_roughness() {
+        let rough = |alpha| Some(Microfacet::isotropic(Distribution::Ggx, alpha));
+        let mut tables = CoatingTables::default();
+        let first = tables.get(1.5, rough(0.2));
+        assert_eq!(first, Coating::new(1.5, rough(0.2)));
+        assert_eq!(tables.get(1.5, rough(0.2)), first);
+        assert_ne!(tables.get(1.5, rough(0.3)), first);
+        assert_ne!(tables.get(1.4, rough(0.2)), first);
+        let beckmann = Some(Microfacet::isotropic(Distribution::Beckmann, 0.2));
+        assert_ne!(tables.get(1.5, beckmann), first);
+        assert_eq!(tables.get(1.5, None), Coating::new(1.5, None));
+        assert_eq!(tables.made.len(), 5);
     }
 }

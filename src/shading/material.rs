@@ -5,7 +5,7 @@
 
 pub use super::texture::Texture;
 use crate::scene::{Distribution, MaterialDesc, Opacity, PhongDesc, Specular};
-use crate::shading::coating::Coating;
+use crate::shading::coating::{Coating, CoatingTables};
 use crate::shading::course_lobe::LobeAlbedo;
 use crate::shading::microfacet::Microfacet;
 use crate::shading::principled::PrincipledMaterial;
@@ -119,11 +119,11 @@ fn mask_opacity(opacity: &Opacity) -> MaskOpacity {
     }
 }
 
-/// The coating table of a plastic (integrated once per material, not per hit).
-fn coating(material: &Material) -> Option<Box<Coating>> {
+/// The coating table of a plastic (integrated once per scene and roughness, not per hit).
+fn coating(material: &Material, tables: &mut CoatingTables) -> Option<Box<Coating>> {
     let Specular::Plastic { ior, .. } = material.specular else { return None };
     let microfacet = material.is_rough().then(|| material.microfacet());
-    Some(Box::new(Coating::new(ior, microfacet)))
+    Some(Box::new(tables.get(ior, microfacet)))
 }
 
 impl Material {
@@ -133,11 +133,16 @@ impl Material {
     }
 
     pub fn from_desc(desc: &MaterialDesc) -> Self {
-        let material = Self::from_desc_without_coating(desc);
-        Material { coating: coating(&material), ..material }
+        Self::from_desc_sharing(desc, &mut CoatingTables::default())
     }
 
-    fn from_desc_without_coating(desc: &MaterialDesc) -> Self {
+    /// `from_desc`, its coating table taken from `tables` (made there if new).
+    pub fn from_desc_sharing(desc: &MaterialDesc, tables: &mut CoatingTables) -> Self {
+        let material = Self::from_desc_without_coating(desc, tables);
+        Material { coating: coating(&material, tables), ..material }
+    }
+
+    fn from_desc_without_coating(desc: &MaterialDesc, tables: &mut CoatingTables) -> Self {
         Material {
             albedo: desc.albedo,
             emission: desc.emission,
@@ -174,8 +179,8 @@ impl Material {
                 Box::new(Blend {
                     weight: mask_opacity(&b.weight),
                     materials: [
-                        Material::from_desc(&b.materials[0]),
-                        Material::from_desc(&b.materials[1]),
+                        Material::from_desc_sharing(&b.materials[0], tables),
+                        Material::from_desc_sharing(&b.materials[1], tables),
                     ],
                 })
             }),

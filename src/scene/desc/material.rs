@@ -218,7 +218,7 @@ pub enum Specular {
 }
 
 /// A microfacet distribution of normals, by its roughness α.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Distribution {
     /// Trowbridge–Reitz: long tails.
     #[default]

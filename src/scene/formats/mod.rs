@@ -3,6 +3,7 @@
 //! back as TOML (with OBJ meshes) for `embray convert`.
 
 pub mod ceng795;
+mod line_index;
 pub mod mitsuba;
 pub(crate) mod obj;
 pub(crate) mod ply;

@@ -8,6 +8,7 @@ use crate::limits::{
     MAX_XML_BYTES, MAX_XML_ELEMENTS, MAX_XML_INCLUDES, MAX_XML_NESTING, MAX_XML_VALUE,
 };
 use crate::scene::error::{Line, SceneError};
+use crate::scene::formats::line_index::LineIndex;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -161,7 +162,8 @@ impl Reader {
         })?;
         let file = Arc::new(path.to_path_buf());
         let root = doc.root_element();
-        let mut element = self.element(root, &file, &doc, (depth, level))?;
+        let lines = LineIndex::new(text);
+        let mut element = self.element(root, &file, &lines, (depth, level))?;
         if element.tag != "scene" {
             return Err(element.error("the root element of a Mitsuba 3 file must be <scene>"));
         }
@@ -189,10 +191,10 @@ impl Reader {
         &mut self,
         node: roxmltree::Node,
         file: &Arc<PathBuf>,
-        doc: &roxmltree::Document,
+        lines: &LineIndex,
         (depth, level): (usize, usize),
     ) -> Result<Element, SceneError> {
-        let line = doc.text_pos_at(node.range().start).row as usize;
+        let line = lines.line_at(node.range().start);
         let raw = Element {
             tag: node.tag_name().name().to_owned(),
             attrs: node.attributes().map(|a| (a.name().to_owned(), a.value().to_owned())).collect(),
@@ -224,7 +226,7 @@ impl Reader {
             if level + 1 > MAX_XML_NESTING {
                 return Err(element.error(format!("elements nest deeper than {MAX_XML_NESTING}")));
             }
-            let child = self.element(child, file, doc, (depth, level + 1))?;
+            let child = self.element(child, file, lines, (depth, level + 1))?;
             match child.tag.as_str() {
                 "default" => {
                     let name = child.required("name")?.to_owned();

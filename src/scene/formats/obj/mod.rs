@@ -18,7 +18,7 @@ use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::obj::scan::{ScanProblem, scan_mtl, scan_obj, without_bom};
 use glam::{DVec3, Vec2};
 use std::cell::RefCell;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -140,12 +140,13 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
                     return Err(tobj::LoadError::MaterialParseError);
                 }
                 let text: Arc<str> = Arc::from(mtl_text);
-                for (m, line) in materials.iter().zip(lines) {
+                for (m, (line, offset)) in materials.iter().zip(lines) {
                     sources.borrow_mut().push(ObjMaterial {
                         name: m.name.clone(),
                         mtl: mtl.clone(),
                         text: Arc::clone(&text),
                         line,
+                        offset,
                     });
                 }
             }
@@ -184,8 +185,10 @@ pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<Loade
     // An undefined material would silently fall back to the default; say so (unless the
     // whole library is missing, which is already said).
     if missing_mtl.is_empty() && obj_ref.read_mtl {
+        // A set: a search of the list per `usemtl` made n materials cost n².
+        let defined: HashSet<&str> = materials.iter().map(|m| m.name.as_str()).collect();
         for (name, line) in &scan.usemtl {
-            if !materials.iter().any(|m| &m.name == name) {
+            if !defined.contains(name.as_str()) {
                 warnings.push(format!(
                     "{}: usemtl '{}' names no material of the MTL file; the default is used \
                      (line {line})",

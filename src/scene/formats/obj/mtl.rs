@@ -21,15 +21,24 @@ pub(crate) struct ObjMaterial {
     pub mtl: PathBuf,
     /// The MTL file's text (shared by its materials).
     pub text: Arc<str>,
-    /// The line (from 1) of its `newmtl`.
+    /// The line (from 1) of its `newmtl`, and where that line begins in `text`.
     pub line: usize,
+    pub offset: usize,
 }
 
-/// The lines (from 1) of the `newmtl` statements of an MTL text: one per material, in the
-/// order tobj reads them.
-pub(super) fn newmtl_lines(text: &str) -> Vec<usize> {
+/// The lines (from 1) of the `newmtl` statements of an MTL text, and the byte offsets where
+/// they begin: one per material, in the order tobj reads them.
+pub(super) fn newmtl_lines(text: &str) -> Vec<(usize, usize)> {
     let newmtl = |line: &str| line.split_whitespace().next() == Some("newmtl");
-    text.lines().enumerate().filter(|(_, line)| newmtl(line)).map(|(i, _)| i + 1).collect()
+    let mut offset = 0;
+    let mut found = Vec::new();
+    for (i, line) in text.split_inclusive('\n').enumerate() {
+        if newmtl(line) {
+            found.push((i + 1, offset));
+        }
+        offset += line.len();
+    }
+    found
 }
 
 /// The scene material `m` describes (named by the caller); notes go to `notes`, bad values
@@ -43,7 +52,7 @@ pub(crate) fn material_desc(
         let problem = format!("material '{}': {problem}", crate::excerpt::excerpt(&m.name));
         obj_ref.error(&m.mtl, problem, Line(Some(line)))
     };
-    let statements = statements(&m.text, m.line);
+    let statements = statements(&m.text, m.line, m.offset);
     let mut own = Vec::new();
     let given = Given::read(&statements, &mut own).map_err(error)?;
     let (mut material, lobe) = given.material(&mut own).map_err(error)?;

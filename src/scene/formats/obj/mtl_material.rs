@@ -15,13 +15,15 @@ pub(super) struct Statement<'a> {
     pub line: usize,
 }
 
-/// The statements of the material whose `newmtl` is on line `newmtl_line` (from 1), up to the
-/// next `newmtl`; comments and blank lines left out.
-pub(super) fn statements(text: &str, newmtl_line: usize) -> Vec<Statement<'_>> {
-    text.lines()
+/// The statements of the material whose `newmtl` is on line `newmtl_line` (from 1), which
+/// begins at byte `offset`, up to the next `newmtl`; comments and blank lines left out. (Read
+/// from the offset: skipping the lines before it made a file of n materials cost n².)
+pub(super) fn statements(text: &str, newmtl_line: usize, offset: usize) -> Vec<Statement<'_>> {
+    text[offset..]
+        .lines()
         .enumerate()
-        .skip(newmtl_line)
-        .map(|(i, line)| (i + 1, line.trim()))
+        .skip(1)
+        .map(|(i, line)| (newmtl_line + i, line.trim()))
         .take_while(|(_, line)| line.split_whitespace().next() != Some("newmtl"))
         .filter_map(|(line, text)| {
             let keyword = text.split_whitespace().next()?;

@@ -27,6 +27,7 @@ fn mapped_in(dir: &Path, block: &str) -> Result<(MaterialDesc, Vec<String>), Str
         mtl: dir.join("m.mtl"),
         text: Arc::from(format!("newmtl m\n{block}\nnewmtl other\nKs 1 0 0\n")),
         line: 1,
+        offset: 0,
     };
     let mut notes = MtlNotes::default();
     let material = material_desc(&m, &obj_ref(), &mut notes).map_err(|e| e.to_string())?;
@@ -63,10 +64,17 @@ fn assert_notes(warnings: &[String], expected: &[(&str, usize)]) {
 #[test]
 fn blocks_end_at_the_next_material() {
     let text = "# lib\nnewmtl a\nKd 1 1 1\n  # note\n\nnewmtl b c\n  Ks 0 0 0\n";
-    assert_eq!(newmtl_lines(text), [2, 6]);
-    let a: Vec<_> = statements(text, 2).iter().map(|s| (s.keyword, s.value, s.line)).collect();
+    assert_eq!(newmtl_lines(text), [(2, 6), (6, 34)]);
+    assert!(text[34..].starts_with("newmtl b"));
+    let a: Vec<_> = statements(text, 2, 6).iter().map(|s| (s.keyword, s.value, s.line)).collect();
     assert_eq!(a, [("Kd", "1 1 1", 3)]);
-    assert_eq!(statements(text, 6)[0].line, 7);
+    assert_eq!(statements(text, 6, 34)[0].line, 7);
+    // Line breaks of either kind.
+    let crlf = text.replace('\n', "\r\n");
+    let lines = newmtl_lines(&crlf);
+    assert_eq!(lines, [(2, 7), (6, 39)]);
+    let (line, offset) = lines[1];
+    assert_eq!(statements(&crlf, line, offset)[0].line, 7);
 }
 
 #[test]
