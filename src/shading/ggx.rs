@@ -58,12 +58,23 @@ pub fn sample_visible_normal(wo: Vec3, ax: f32, ay: f32, u: Vec2) -> Vec3 {
     Vec3::new(ax * nh.x, ay * nh.y, nh.z.max(1e-6)).normalize()
 }
 
-/// `d(h)·g2(wo, wi)` and `pdf_reflect(wo, h)` together, D and Λ(wo) computed once for both
-/// (the same numbers, bit for bit: each is the same expression of them).
-pub fn reflect_terms(wo: Vec3, wi: Vec3, h: Vec3, ax: f32, ay: f32) -> (f32, f32) {
+/// `d(h)·G₂(wo, wi)` and `pdf_reflect(wo, h)` together, D and Λ(wo) computed once for both
+/// (the same numbers, bit for bit: each is the same expression of them); G₂ height-correlated
+/// (`g2`), or with `separable` the product of the two G₁.
+pub fn reflect_terms(
+    wo: Vec3,
+    wi: Vec3,
+    h: Vec3,
+    (ax, ay): (f32, f32),
+    separable: bool,
+) -> (f32, f32) {
     let d = d(h, ax, ay);
     let lambda_o = lambda(wo, ax, ay);
-    let d_g2 = d * (1.0 / (1.0 + lambda_o + lambda(wi, ax, ay)));
+    let lambda_i = lambda(wi, ax, ay);
+    let d_g2 = match separable {
+        false => d * (1.0 / (1.0 + lambda_o + lambda_i)),
+        true => d * (1.0 / (1.0 + lambda_o) * (1.0 / (1.0 + lambda_i))),
+    };
     let pdf = if wo.z <= 0.0 || wo.dot(h) <= 0.0 {
         0.0
     } else {

@@ -4,7 +4,7 @@
 //! pattern are the scene's own types.
 
 pub use super::texture::Texture;
-use crate::scene::{Distribution, MaterialDesc, Opacity, PhongDesc, Specular};
+use crate::scene::{Distribution, MaterialDesc, Opacity, PhongDesc, Shadowing, Specular};
 use crate::shading::coating::{Coating, CoatingTables};
 use crate::shading::course_lobe::LobeAlbedo;
 use crate::shading::microfacet::Microfacet;
@@ -38,6 +38,8 @@ pub struct Material {
     pub roughness_textures: Option<Box<[Texture; 2]>>,
     /// The distribution `ggx_alpha` is the α of.
     pub distribution: Distribution,
+    /// The rough mirror's or conductor's masking-shadowing term.
+    pub shadowing: Shadowing,
     /// What a plastic's coating lets through (set by `from_desc` for plastics).
     pub coating: Option<Box<Coating>>,
     /// Fraction of the light that meets the surface; the rest passes through.
@@ -87,6 +89,7 @@ impl Default for Material {
             ggx_alpha_v: 0.0,
             roughness_textures: None,
             distribution: Distribution::Ggx,
+            shadowing: Shadowing::HeightCorrelated,
             coating: None,
             opacity: None,
             one_sided: false,
@@ -161,6 +164,7 @@ impl Material {
                 .as_deref()
                 .map(|[u, v]| Box::new([Texture::from_desc(u), Texture::from_desc(v)])),
             distribution: desc.distribution,
+            shadowing: desc.shadowing,
             coating: None,
             opacity: desc.opacity.as_ref().map(mask_opacity),
             one_sided: desc.one_sided,

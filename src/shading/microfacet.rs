@@ -5,7 +5,7 @@
 //! from the exact erf form). Isotropic roughness keeps the isotropic arithmetic.
 
 use super::{beckmann, ggx};
-use crate::scene::Distribution;
+use crate::scene::{Distribution, Shadowing};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -123,11 +123,20 @@ impl Microfacet {
         }
     }
 
-    /// `d(h) * g2(wo, wi)` and `pdf_reflect(wo, h)`, sharing what they have in common.
-    pub fn reflect_terms(&self, wo: Vec3, wi: Vec3, h: Vec3) -> (f32, f32) {
-        match self.distribution {
-            Distribution::Ggx => ggx::reflect_terms(wo, wi, h, self.alpha_x, self.alpha_y),
-            Distribution::Beckmann => (self.d(h) * self.g2(wo, wi), self.pdf_reflect(wo, h)),
+    /// `d(h) · G₂(wo, wi)` (as `shadowing` has it) and `pdf_reflect(wo, h)`, sharing what
+    /// they have in common.
+    pub fn reflect_terms(&self, wo: Vec3, wi: Vec3, h: Vec3, shadowing: Shadowing) -> (f32, f32) {
+        let separable = shadowing == Shadowing::Separable;
+        match (self.distribution, separable) {
+            (Distribution::Ggx, _) => {
+                ggx::reflect_terms(wo, wi, h, (self.alpha_x, self.alpha_y), separable)
+            }
+            (Distribution::Beckmann, false) => {
+                (self.d(h) * self.g2(wo, wi), self.pdf_reflect(wo, h))
+            }
+            (Distribution::Beckmann, true) => {
+                (self.d(h) * (self.g1(wo) * self.g1(wi)), self.pdf_reflect(wo, h))
+            }
         }
     }
 
@@ -175,6 +184,36 @@ mod tests {
             }
         }
         sum * std::f64::consts::TAU / (n as f64 * 64.0)
+    }
+
+    /// Separable shadowing is G₁(wo)·G₁(wi), height-correlated 1 / (1 + Λo + Λi): the
+    /// product is never the larger (1 + Λo + Λi ≤ (1 + Λo)(1 + Λi)), and both densities are
+    /// the same.
+    #[test]
+    fn separable_shadowing_is_the_product_of_the_two_g1() {
+        // Grazing, where Λ is not negligible (Beckmann's fit is 0 above a = 1.6).
+        let (wo, wi) = (Vec3::new(0.96, 0.0, 0.28), Vec3::new(-0.9, 0.3, 0.3162).normalize());
+        let h = (wo + wi).normalize();
+        let mut checked = 0;
+        for m in distributions() {
+            if m.d(h) < 1e-6 {
+                // A narrow lobe far from h: D underflows towards subnormals.
+                continue;
+            }
+            checked += 1;
+            let (correlated, pdf) = m.reflect_terms(wo, wi, h, Shadowing::HeightCorrelated);
+            let (separable, same_pdf) = m.reflect_terms(wo, wi, h, Shadowing::Separable);
+            let product = m.d(h) * m.g1(wo) * m.g1(wi);
+            assert!((separable - product).abs() <= 1e-5 * product, "{m:?}: {separable}, {product}");
+            assert!((correlated - m.d(h) * m.g2(wo, wi)).abs() <= 1e-5 * correlated, "{m:?}");
+            assert!(separable <= correlated, "{m:?}: {separable} > {correlated}");
+            if m.alpha_x.min(m.alpha_y) >= 0.3 {
+                // Where Λ is not negligible, strictly darker.
+                assert!(separable < 0.999 * correlated, "{m:?}: {separable}, {correlated}");
+            }
+            assert_eq!(pdf, same_pdf);
+        }
+        assert!(checked >= 4, "{checked}");
     }
 
     #[test]

@@ -8,7 +8,7 @@
 use super::BsdfSample;
 use super::coupling::{Coupling, Energy};
 use crate::color::luminance;
-use crate::scene::{CourseBrdf, Specular};
+use crate::scene::{CourseBrdf, Shadowing, Specular};
 use crate::shading::course_brdf::{CourseTerms, cos_weighted};
 use crate::shading::course_lobe;
 use crate::shading::fresnel::{fresnel_conductor, fresnel_dielectric};
@@ -42,6 +42,7 @@ pub struct Mixture {
     /// How the course's lobe and the other lobes share what arrives (`coupling`).
     coupling: Option<Coupling>,
     microfacet: Microfacet,
+    shadowing: Shadowing,
     delta_specular: bool,
     /// Whether the incoming ray arrived on the side the surface normal points to.
     front_face: bool,
@@ -130,6 +131,7 @@ impl Mixture {
             specular: material.specular,
             coupling,
             microfacet,
+            shadowing: material.shadowing,
             delta_specular: material.specular_is_delta(),
             front_face,
             p_specular,
@@ -187,7 +189,7 @@ impl Mixture {
         let mut pdf = p_diffuse * wi.z * FRAC_1_PI;
         if self.p_specular > 0.0 && !self.delta_specular {
             let h = (wo + wi).normalize();
-            let (d_g2, pdf_reflect) = self.microfacet.reflect_terms(wo, wi, h);
+            let (d_g2, pdf_reflect) = self.microfacet.reflect_terms(wo, wi, h, self.shadowing);
             let f = self.specular_tint(wo.dot(h)) * rest_scale;
             value += f * (d_g2 / (4.0 * wo.z));
             pdf += self.p_specular * pdf_reflect;

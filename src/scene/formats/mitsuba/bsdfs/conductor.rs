@@ -5,7 +5,7 @@ use super::super::ior::conductor_ior;
 use super::super::tree::Element;
 use super::super::values::{ColorUse, color, string};
 use super::{MICROFACET, Roughness, check_properties, microfacet, reflectance};
-use crate::scene::desc::{MaterialDesc, Specular};
+use crate::scene::desc::{MaterialDesc, Shadowing, Specular};
 use crate::scene::error::SceneError;
 use glam::{DVec3, Vec3};
 
@@ -27,6 +27,8 @@ pub(super) fn conductor(
         distribution: r.distribution,
         roughness: r.alpha,
         roughness_v: r.alpha_v,
+        // Mitsuba's microfacet G is G₁(ωi)·G₁(ωo) (`MicrofacetDistribution::G`).
+        shadowing: Shadowing::Separable,
         ..none
     };
     let named = string(element, "material")?;

@@ -74,6 +74,9 @@ pub(crate) struct MaterialToml {
     pub reflectance: Option<Vec3>,
     pub roughness: Option<RoughnessToml>,
     pub distribution: Option<DistributionToml>,
+    /// A rough mirror's or conductor's masking-shadowing: "height-correlated" or
+    /// "separable".
+    pub shadowing: Option<String>,
     pub nonlinear: Option<bool>,
     pub opacity: Option<OpacityToml>,
     pub one_sided: Option<bool>,

@@ -2,7 +2,7 @@
 
 use super::course::{brdf, phong};
 use super::textures::{Use, number_or_texture, texture_desc};
-use crate::scene::desc::{Distribution, MaterialDesc, PhongDesc, Specular};
+use crate::scene::desc::{Distribution, MaterialDesc, PhongDesc, Shadowing, Specular};
 use crate::scene::error::SceneError;
 use crate::scene::formats::toml::format::{
     BumpHeightsToml, DistributionToml, MaterialKind, MaterialToml, MetalPreset, RoughnessToml,
@@ -88,10 +88,13 @@ pub(crate) fn material(
     let kind = m.kind.unwrap_or_default();
     let (kind_name, own): (&str, &[&str]) = match kind {
         MaterialKind::Diffuse => ("diffuse", &[]),
-        MaterialKind::Mirror => ("mirror", &["reflectance", "roughness", "distribution"]),
-        MaterialKind::Conductor => {
-            ("conductor", &["eta", "k", "preset", "reflectance", "roughness", "distribution"])
+        MaterialKind::Mirror => {
+            ("mirror", &["reflectance", "roughness", "distribution", "shadowing"])
         }
+        MaterialKind::Conductor => (
+            "conductor",
+            &["eta", "k", "preset", "reflectance", "roughness", "distribution", "shadowing"],
+        ),
         MaterialKind::Dielectric => {
             ("dielectric", &["ior", "absorption", "roughness", "distribution"])
         }
@@ -124,6 +127,7 @@ pub(crate) fn material(
         ("ior", m.ior.is_some()),
         ("absorption", m.absorption.is_some()),
         ("distribution", m.distribution.is_some()),
+        ("shadowing", m.shadowing.is_some()),
         ("nonlinear", m.nonlinear.is_some()),
         ("weight", m.weight.is_some()),
         ("materials", m.materials.is_some()),
@@ -220,6 +224,17 @@ pub(crate) fn material(
         None | Some(DistributionToml::Ggx) => Distribution::Ggx,
         Some(DistributionToml::Beckmann) => Distribution::Beckmann,
     };
+    let shadowing = match &m.shadowing {
+        None => Shadowing::HeightCorrelated,
+        Some(name) => {
+            use crate::choice::Choice;
+            let field = path.key("shadowing");
+            Shadowing::from_name(name).map_err(|e| {
+                let expected = e.expected.join(" or ");
+                ctx.out_of_range(&field, format!("'{}'", e.given), &format!("must be {expected}"))
+            })?
+        }
+    };
     let opacity = m
         .opacity
         .as_ref()
@@ -281,6 +296,7 @@ pub(crate) fn material(
         roughness_v,
         roughness_textures,
         distribution,
+        shadowing,
         opacity,
         one_sided: m.one_sided.unwrap_or(false),
         texture,

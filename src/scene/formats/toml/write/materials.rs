@@ -4,7 +4,9 @@ use super::TomlWriteError;
 use super::textures::{texture_table, texture_toml};
 use super::values::{c3, f, quoted};
 use crate::choice::Choice;
-use crate::scene::desc::{BlendDesc, CourseBrdf, Distribution, MaterialDesc, Opacity, Specular};
+use crate::scene::desc::{
+    BlendDesc, CourseBrdf, Distribution, MaterialDesc, Opacity, Shadowing, Specular,
+};
 use glam::Vec3;
 use std::fmt::Write as _;
 
@@ -97,6 +99,10 @@ pub(super) fn write_material(
         };
         if m.distribution != Distribution::Ggx {
             let _ = writeln!(out, "distribution = \"{}\"", m.distribution.name());
+        }
+        let shadows = matches!(m.specular, Specular::Mirror { .. } | Specular::Conductor { .. });
+        if shadows && m.shadowing != Shadowing::HeightCorrelated {
+            let _ = writeln!(out, "shadowing = \"{}\"", m.shadowing.name());
         }
     }
     if m.one_sided {
