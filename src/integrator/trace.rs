@@ -160,10 +160,22 @@ impl SceneTracer<'_> {
         let n = si.shading_normal;
         let mapped = match (&material.normal_map, &material.bump_map) {
             (Some(map), _) if material.bump_shadowing => {
-                // Mitsuba's tangent frame: ∂p/∂u made orthogonal to the normal, and n × it.
-                let tangent = (dpdu - n.dot(dpdu) * n).normalize_or_zero();
+                // Mitsuba's tangent frame: ∂p/∂u made orthogonal to the outward normal, and
+                // that normal × it, whichever side the ray is on (built on the normal facing
+                // the ray, the bitangent turned round and the map seen mirrored from behind).
+                let side = if si.front_face { 1.0 } else { -1.0 };
+                let outward = side * n;
+                let tangent = (dpdu - outward.dot(dpdu) * outward).normalize_or_zero();
+                let bitangent = outward.cross(tangent);
                 let color = self.texture_color(map, &si, time);
-                mapped_normal(color, n, tangent, n.cross(tangent))
+                if material.is_dielectric() {
+                    // From inside a glass: the normal it has from outside, reversed.
+                    side * mapped_normal(color, outward, tangent, bitangent)
+                } else {
+                    // From behind a two-sided surface, which Mitsuba's `twosided` shades as
+                    // its front seen in a mirror: the mapped normal mirrored in the surface.
+                    mapped_normal(color, n, tangent, bitangent)
+                }
             }
             (Some(map), _) => mapped_normal(self.texture_color(map, &si, time), n, dpdu, dpdv),
             (None, Some((map, factor, scale))) => {

@@ -14,6 +14,7 @@ pub use desc::*;
 mod error;
 pub mod formats;
 pub use crate::input_file::{MAX_INPUT_BYTES, files_read, read_bytes as read_input_bytes};
+mod image_cache;
 mod mesh_file;
 mod round_shapes;
 mod shapes;

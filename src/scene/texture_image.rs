@@ -1,6 +1,7 @@
 //! Reading a texture's image (PNG, JPEG or BMP, through the `image` crate) into `TextureImage`,
 //! its size checked against `MAX_TEXTURE_TEXELS` before any texel is decoded.
 
+use super::image_cache::{Reading, shared};
 use crate::scene::desc::TextureImage;
 use crate::scene::error::{Line, SceneError};
 use std::path::{Path, PathBuf};
@@ -20,7 +21,7 @@ pub struct ImageRef<'a> {
 }
 
 impl ImageRef<'_> {
-    fn error(&self, problem: impl Into<String>) -> SceneError {
+    pub(super) fn error(&self, problem: impl Into<String>) -> SceneError {
         SceneError::Image {
             image: self.image.clone(),
             scene: self.scene.to_path_buf(),
@@ -36,10 +37,9 @@ fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
 }
 
-/// The image `at` names, decoded (its size checked first).
-fn decode(at: &ImageRef) -> Result<image::DynamicImage, SceneError> {
-    let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
-    let checked = || crate::image_decode::reader(&bytes).map_err(|e| at.error(e));
+/// The image `at` names, whose file holds `bytes`, decoded (its size checked first).
+fn decode(at: &ImageRef, bytes: &[u8]) -> Result<image::DynamicImage, SceneError> {
+    let checked = || crate::image_decode::reader(bytes).map_err(|e| at.error(e));
     let (width, height) = checked()?.into_dimensions().map_err(|e| at.error(e.to_string()))?;
     let texels = u64::from(width) * u64::from(height);
     if texels == 0 || texels > MAX_TEXTURE_TEXELS {
@@ -79,7 +79,14 @@ fn units_per_raw_unit(decoded: &image::DynamicImage) -> f32 {
 /// otherwise they run from 0 to `RAW_FULL_SCALE` (a 16-bit file's values divided by 257,
 /// keeping their fractions).
 pub fn load(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
-    let decoded = decode(at)?;
+    let reading = Reading::Colour { srgb: decode_srgb };
+    let (image, _) = shared(at, reading, |bytes| Ok((colour(at, bytes, decode_srgb)?, false)))?;
+    Ok(image)
+}
+
+/// `load` of the file's `bytes`.
+fn colour(at: &ImageRef, bytes: &[u8], decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
+    let decoded = decode(at, bytes)?;
     let (width, height) = (decoded.width(), decoded.height());
     let per_raw_unit = units_per_raw_unit(&decoded);
     // Straight from the decoded channels to linear texels: no f32 copy of the image between
@@ -125,7 +132,13 @@ pub struct DataImage {
 /// an alpha channel gives its alpha, as grey: a coverage mask is the alpha of a PNG more
 /// often than its colour.
 pub fn load_data(at: &ImageRef, alpha: bool) -> Result<DataImage, SceneError> {
-    let decoded = decode(at)?;
+    let (image, alpha) = shared(at, Reading::Data { alpha }, |bytes| data(at, bytes, alpha))?;
+    Ok(DataImage { image, alpha })
+}
+
+/// `load_data` of the file's `bytes`: the image, and whether it is the alpha channel.
+fn data(at: &ImageRef, bytes: &[u8], alpha: bool) -> Result<(Arc<TextureImage>, bool), SceneError> {
+    let decoded = decode(at, bytes)?;
     let (width, height) = (decoded.width(), decoded.height());
     let per_raw_unit = units_per_raw_unit(&decoded);
     let alpha = alpha && decoded.color().has_alpha();
@@ -149,7 +162,7 @@ pub fn load_data(at: &ImageRef, alpha: bool) -> Result<DataImage, SceneError> {
         hdr: false,
         rows_flipped: false,
     });
-    Ok(DataImage { image, alpha })
+    Ok((image, alpha))
 }
 
 /// `image` upside down (`TextureImage::rows_flipped`): for texture coordinates whose v runs
@@ -183,19 +196,28 @@ const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 /// images), or a PNG/JPEG read as `load` reads textures. Non-finite values are refused;
 /// negative ones (left by some HDR tools' filtering) become 0.
 pub fn load_radiance(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
-    let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
+    let reading = Reading::Radiance { srgb: decode_srgb };
+    let (image, _) = shared(at, reading, |bytes| Ok((radiance(at, bytes, decode_srgb)?, false)))?;
+    Ok(image)
+}
+
+/// `load_radiance` of the file's `bytes`.
+fn radiance(
+    at: &ImageRef,
+    bytes: &[u8],
+    decode_srgb: bool,
+) -> Result<Arc<TextureImage>, SceneError> {
     if !bytes.starts_with(&EXR_MAGIC) {
-        return load(at, decode_srgb);
+        return colour(at, bytes, decode_srgb);
     }
-    let (width, height) = crate::exr_rgb::size(&bytes).map_err(|e| at.error(e))?;
+    let (width, height) = crate::exr_rgb::size(bytes).map_err(|e| at.error(e))?;
     let texels = width * height;
     if texels == 0 || texels > MAX_TEXTURE_TEXELS {
         return Err(at.error(format!(
             "{width} × {height} texels; a radiance map takes 1 to {MAX_TEXTURE_TEXELS} texels"
         )));
     }
-    let (_, _, mut texels) = crate::exr_rgb::read(&bytes).map_err(|e| at.error(e))?;
-    drop(bytes);
+    let (_, _, mut texels) = crate::exr_rgb::read(bytes).map_err(|e| at.error(e))?;
     for (i, c) in texels.iter_mut().enumerate() {
         if !c.is_finite() {
             let (x, y) = (i as u64 % width, i as u64 / width);

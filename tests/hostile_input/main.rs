@@ -10,6 +10,7 @@ mod ceng795;
 mod collisions;
 #[path = "../common/mod.rs"]
 mod common;
+mod fifth_probe;
 mod fourth_probe;
 mod harness;
 mod inflating;

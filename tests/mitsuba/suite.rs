@@ -136,7 +136,9 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 /// checkerboard (a rectangle, an analytic sphere, a serialized mesh); an OBJ, a PLY and a
 /// serialized mesh without normals, smooth (normals weighted by angle, as Mitsuba's); a
 /// rough mirror of GGX α 0.8 in a white furnace (Mitsuba's separable G₁·G₁ shadowing: with
-/// embray's height-correlated one, 4 % brighter on the sphere).
+/// embray's height-correlated one, 4 % brighter on the sphere); a normal map seen from
+/// behind a twosided rectangle and from inside a glass sphere (Mitsuba's frame on the
+/// outward normal: the map was mirrored).
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
@@ -150,6 +152,7 @@ fn scenes_written_here_pass_mitsubas_rule() {
         "sdfgrid",
         "smooth_normals",
         "rough_furnace",
+        "normalmap_sides",
     ];
     for name in names {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();

@@ -1,0 +1,55 @@
+//! Images decoded once while they are in use: a file that many textures name (40 materials
+//! of one PNG, a Mitsuba `<texture>` that many BSDFs `<ref>`) was decoded, and held, once per
+//! texture: 40 copies of a 2048² image took 2 GB before the memory estimate was made (which
+//! then counted them 40 times). The decoded images are shared instead, by the file, its
+//! bytes' SHA-256 (a file rewritten between two scenes of one process is read again) and
+//! the way it was read.
+
+use super::texture_image::ImageRef;
+use crate::scene::error::SceneError;
+use crate::texels::TextureImage;
+use sha2::{Digest, Sha256};
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex, PoisonError, Weak};
+
+/// How an image's file was read into texels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) enum Reading {
+    Colour { srgb: bool },
+    Data { alpha: bool },
+    Radiance { srgb: bool },
+}
+
+type Key = (PathBuf, [u8; 32], Reading);
+
+/// The images decoded and still held somewhere, with the flag their reading gave (a data
+/// image's: whether it is the file's alpha).
+type Decoded = HashMap<Key, (Weak<TextureImage>, bool)>;
+
+static DECODED: Mutex<Option<Decoded>> = Mutex::new(None);
+
+/// The image `at` names as `reading` reads it: the one decoded already if it is still held,
+/// else `decode` of the file's bytes.
+pub(crate) fn shared(
+    at: &ImageRef,
+    reading: Reading,
+    decode: impl FnOnce(&[u8]) -> Result<(Arc<TextureImage>, bool), SceneError>,
+) -> Result<(Arc<TextureImage>, bool), SceneError> {
+    let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
+    let key: Key = (at.image.clone(), Sha256::digest(&bytes).into(), reading);
+    let held = |decoded: &mut Option<Decoded>| {
+        let (image, flag) = decoded.get_or_insert_default().get(&key)?;
+        Some((image.upgrade()?, *flag))
+    };
+    if let Some(found) = held(&mut DECODED.lock().unwrap_or_else(PoisonError::into_inner)) {
+        return Ok(found);
+    }
+    let (image, flag) = decode(&bytes)?;
+    let mut decoded = DECODED.lock().unwrap_or_else(PoisonError::into_inner);
+    let decoded = decoded.get_or_insert_default();
+    // Images no longer held are forgotten as others are added.
+    decoded.retain(|_, (image, _)| image.strong_count() > 0);
+    decoded.insert(key, (Arc::downgrade(&image), flag));
+    Ok((image, flag))
+}
