@@ -5,11 +5,11 @@
 //! bytes' SHA-256 (a file rewritten between two scenes of one process is read again) and
 //! the way it was read.
 
-use super::texture_image::ImageRef;
 use crate::scene::error::SceneError;
 use crate::texels::TextureImage;
 use sha2::{Digest, Sha256};
 use std::collections::HashMap;
+use std::path::Path;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, PoisonError, Weak};
 
@@ -29,15 +29,15 @@ type Decoded = HashMap<Key, (Weak<TextureImage>, bool)>;
 
 static DECODED: Mutex<Option<Decoded>> = Mutex::new(None);
 
-/// The image `at` names as `reading` reads it: the one decoded already if it is still held,
-/// else `decode` of the file's bytes.
+/// The image of `file`, which holds `bytes`, as `reading` reads it: the one decoded already
+/// if it is still held, else `decode` of the bytes.
 pub(crate) fn shared(
-    at: &ImageRef,
+    file: &Path,
+    bytes: &[u8],
     reading: Reading,
     decode: impl FnOnce(&[u8]) -> Result<(Arc<TextureImage>, bool), SceneError>,
 ) -> Result<(Arc<TextureImage>, bool), SceneError> {
-    let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
-    let key: Key = (at.image.clone(), Sha256::digest(&bytes).into(), reading);
+    let key: Key = (file.to_path_buf(), Sha256::digest(bytes).into(), reading);
     let held = |decoded: &mut Option<Decoded>| {
         let (image, flag) = decoded.get_or_insert_default().get(&key)?;
         Some((image.upgrade()?, *flag))
@@ -45,7 +45,7 @@ pub(crate) fn shared(
     if let Some(found) = held(&mut DECODED.lock().unwrap_or_else(PoisonError::into_inner)) {
         return Ok(found);
     }
-    let (image, flag) = decode(&bytes)?;
+    let (image, flag) = decode(bytes)?;
     let mut decoded = DECODED.lock().unwrap_or_else(PoisonError::into_inner);
     let decoded = decoded.get_or_insert_default();
     // Images no longer held are forgotten as others are added.

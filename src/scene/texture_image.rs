@@ -1,7 +1,7 @@
 //! Reading a texture's image (PNG, JPEG or BMP, through the `image` crate) into `TextureImage`,
 //! its size checked against `MAX_TEXTURE_TEXELS` before any texel is decoded.
 
-use super::image_cache::{Reading, shared};
+use super::image_cache::Reading;
 use crate::scene::desc::TextureImage;
 use crate::scene::error::{Line, SceneError};
 use std::path::{Path, PathBuf};
@@ -21,7 +21,7 @@ pub struct ImageRef<'a> {
 }
 
 impl ImageRef<'_> {
-    pub(super) fn error(&self, problem: impl Into<String>) -> SceneError {
+    fn error(&self, problem: impl Into<String>) -> SceneError {
         SceneError::Image {
             image: self.image.clone(),
             scene: self.scene.to_path_buf(),
@@ -30,6 +30,17 @@ impl ImageRef<'_> {
             line: self.line,
         }
     }
+}
+
+/// The image `at` names as `reading` reads it, decoded by `decode` from the file's bytes
+/// unless it is held already (`image_cache`).
+fn shared(
+    at: &ImageRef,
+    reading: Reading,
+    decode: impl FnOnce(&[u8]) -> Result<(Arc<TextureImage>, bool), SceneError>,
+) -> Result<(Arc<TextureImage>, bool), SceneError> {
+    let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
+    super::image_cache::shared(&at.image, &bytes, reading, decode)
 }
 
 /// sRGB's transfer function, from an encoded value in [0, 1] to linear.

@@ -68,11 +68,14 @@ impl Coating {
     }
 }
 
+/// A coating's index and roughness (α along and across, as bits), as `CoatingTables` keys it.
+type CoatingKey = (u32, Option<(Distribution, u32, u32)>);
+
 /// Coatings already integrated, by their index and roughness: the materials that share one
 /// (a scene's plastics of one roughness in many colours) integrate it once.
 #[derive(Default)]
 pub struct CoatingTables {
-    made: HashMap<(u32, Option<(Distribution, u32, u32)>), Coating>,
+    made: HashMap<CoatingKey, Coating>,
 }
 
 impl CoatingTables {
