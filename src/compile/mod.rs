@@ -74,7 +74,9 @@ pub fn to_render_scene(
             motion_blur: instances.iter().any(|i| i.placement.is_moving()),
         },
     };
-    let pixel_filter = FilterSampler::new(desc.settings.filter, camera.width, camera.height);
+    let settings = &desc.settings;
+    let pixel_filter =
+        FilterSampler::new(settings.filter, camera.width, camera.height, settings.filter_edges);
     Ok(RenderScene {
         camera,
         prototypes,
@@ -108,7 +110,8 @@ pub fn baked_scene(
     }
     let lights =
         lights::compile_lights(&[], &DAffine3::IDENTITY, &prototypes, &instances, &materials);
-    let pixel_filter = FilterSampler::new(Default::default(), camera.width, camera.height);
+    let pixel_filter =
+        FilterSampler::new(Default::default(), camera.width, camera.height, Default::default());
     RenderScene {
         camera,
         prototypes,

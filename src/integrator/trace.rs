@@ -15,7 +15,7 @@ use crate::shading::surface::SurfaceInteraction;
 use crate::shading::tex_coords::TexCoords;
 use crate::shading::texture::Texture;
 use crate::stats::RenderStats;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// A scene, the backend built over it, and how rays leave surfaces.
 pub(crate) struct SceneTracer<'a> {
@@ -179,22 +179,32 @@ impl SceneTracer<'_> {
             }
             (Some(map), _) => mapped_normal(self.texture_color(map, &si, time), n, dpdu, dpdv),
             (None, Some((map, factor, scale))) => {
-                let height = |uv: glam::Vec2| {
+                let height = |uv: Vec2| {
                     let at = SurfaceInteraction { uv: TexCoords::Known(uv), ..si };
                     self.texture_color(map, &at, time).element_sum() / 3.0
                 };
                 let step = map.uv_step();
                 let uv = si.uv.get();
-                let h = height(uv);
-                let rise = glam::Vec2::new(
-                    height(uv + glam::Vec2::new(step.x, 0.0)) - h,
-                    height(uv + glam::Vec2::new(0.0, step.y)) - h,
-                );
+                let rise = || {
+                    let h = height(uv);
+                    let next = |offset| height(uv + offset) - h;
+                    Vec2::new(next(Vec2::new(step.x, 0.0)), next(Vec2::new(0.0, step.y)))
+                };
                 match scale {
-                    BumpScale::Scene => bumped_normal(rise / step * *factor, n, dpdu, dpdv, n),
+                    BumpScale::Scene => {
+                        // Mitsuba's image slopes are exact in the cell the point is in; one
+                        // texel's difference reaches into the next cell (a slope half a
+                        // texel off, smoothed).
+                        let mean = |slope: Vec3| slope.element_sum() / 3.0;
+                        let slopes = match map.uv_slopes(uv) {
+                            Some([along_u, along_v]) => Vec2::new(mean(along_u), mean(along_v)),
+                            None => rise() / step,
+                        };
+                        bumped_normal(slopes * *factor, n, dpdu, dpdv, n)
+                    }
                     // Texel differences in the image's 0–255 units.
                     BumpScale::CourseTexels => {
-                        course_bumped_normal(rise * map.value_scale() * *factor, n, &derivatives)
+                        course_bumped_normal(rise() * map.value_scale() * *factor, n, &derivatives)
                     }
                 }
             }

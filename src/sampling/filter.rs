@@ -131,7 +131,8 @@ struct Window {
     ends: Vec<(f32, f32)>,
     /// Chooses a cell by its mass (the mean of its ends' values).
     table: Piecewise1D,
-    /// ∫ f over [lo, hi].
+    /// What the weights are normalised by: ∫ f over [lo, hi], or over the whole filter
+    /// (`FilterEdges::Cut`).
     integral: f64,
     /// `PixelFilter::floor`.
     floor: f32,
@@ -225,15 +226,19 @@ struct Axis {
 }
 
 impl Axis {
-    fn new(filter: PixelFilter, size: u32) -> Self {
+    fn new(filter: PixelFilter, size: u32, edges: FilterEdges) -> Self {
         let r = filter.radius();
+        let whole = Window::new(filter, -r, r);
         let window = |pixel: u32| {
             let lo = (-r).max(-(pixel as f32 + 0.5));
             let hi = r.min(size as f32 - pixel as f32 - 0.5);
-            Window::new(filter, lo, hi)
+            let window = Window::new(filter, lo, hi);
+            match edges {
+                FilterEdges::Renormalised => window,
+                FilterEdges::Cut => Window { integral: whole.integral, ..window },
+            }
         };
         let reach = ((r - 0.5).max(0.0).ceil() as u32).min(size);
-        let whole = Window::new(filter, -r, r);
         if 2 * reach >= size {
             let small = (0..size).map(window).collect();
             return Axis { size, reach, whole, ends: Vec::new(), small };
@@ -256,6 +261,20 @@ impl Axis {
     }
 }
 
+/// What becomes of the part of a pixel's filter beyond the image's edges, which has no
+/// samples.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FilterEdges {
+    /// The rest of the filter is normalised to 1, as Mitsuba's film does (its path tracers'
+    /// images): an edge pixel is the mean of what the image holds under its filter.
+    #[default]
+    Renormalised,
+    /// The part beyond is lost: an edge pixel is ∫ f·L over the image / ∫ f, darker by the
+    /// part of the filter it lacks. Mitsuba's light tracer (`ptracer`) splats its samples so,
+    /// with no weights to divide by.
+    Cut,
+}
+
 /// Draws positions in a pixel from a filter.
 #[derive(Clone, Debug)]
 pub struct FilterSampler {
@@ -265,10 +284,10 @@ pub struct FilterSampler {
 }
 
 impl FilterSampler {
-    /// For an image of `width` × `height` pixels.
-    pub fn new(filter: PixelFilter, width: u32, height: u32) -> Self {
-        let axes = (filter != PixelFilter::Box)
-            .then(|| [Axis::new(filter, width.max(1)), Axis::new(filter, height.max(1))]);
+    /// For an image of `width` × `height` pixels, its edges as `edges` says.
+    pub fn new(filter: PixelFilter, width: u32, height: u32, edges: FilterEdges) -> Self {
+        let axis = |size: u32| Axis::new(filter, size.max(1), edges);
+        let axes = (filter != PixelFilter::Box).then(|| [axis(width), axis(height)]);
         FilterSampler { filter, axes }
     }
 

@@ -22,7 +22,7 @@ fn weighted_samples_have_the_filters_moments() {
         (mitchell_third(), second_moment(mitchell_third()), 2.5e-3, 4e-3),
         (lanczos, second_moment(lanczos), 2e-3, 4e-3),
     ] {
-        let sampler = FilterSampler::new(filter, 64, 64);
+        let sampler = FilterSampler::new(filter, 64, 64, FilterEdges::Renormalised);
         let side = 2048;
         let (mut weight, mut moment) = (0.0f64, 0.0f64);
         for i in 0..side * side {
@@ -53,7 +53,7 @@ fn weights_are_constant_where_the_filter_is_positive() {
         (PixelFilter::Tent { radius: 1.0 }, 32, 64),
         (PixelFilter::Tent { radius: 1.5 }, 1, 64),
     ] {
-        let sampler = FilterSampler::new(filter, size, size);
+        let sampler = FilterSampler::new(filter, size, size, FilterEdges::Renormalised);
         let n = 1 << 16;
         let (mut sum, mut sum_sq, mut worst) = (0.0f64, 0.0f64, 0.0f64);
         for i in 0..n {
@@ -76,7 +76,12 @@ fn weights_are_constant_where_the_filter_is_positive() {
 /// the samples near them (not 0: a sample's light lost).
 #[test]
 fn a_sample_at_the_filters_edge_keeps_its_weight() {
-    let sampler = FilterSampler::new(PixelFilter::Gaussian { stddev: 0.5 }, 64, 64);
+    let sampler = FilterSampler::new(
+        PixelFilter::Gaussian { stddev: 0.5 },
+        64,
+        64,
+        FilterEdges::Renormalised,
+    );
     let (_, centre) = sampler.sample((32, 32), Vec2::splat(0.5));
     for u in [0.0, 1.0f32.next_down()] {
         let (p, w) = sampler.sample((32, 32), Vec2::new(u, 0.5));
@@ -119,17 +124,40 @@ fn the_cubics_take_their_known_values() {
 
 #[test]
 fn the_box_keeps_the_position_and_weight_one() {
-    let sampler = FilterSampler::new(PixelFilter::Box, 8, 8);
+    let sampler = FilterSampler::new(PixelFilter::Box, 8, 8, FilterEdges::Renormalised);
     assert_eq!(sampler.sample((0, 7), Vec2::new(0.25, 0.75)), (Vec2::new(0.25, 0.75), 1.0));
 }
 
 /// Near the image's edges the filter is cut where the image ends: no sample leaves it,
-/// and the weights still average 1 over the part that is left.
+/// and the weights still average 1 over the part that is left (renormalised), or the
+/// fraction of the filter that part is (cut, as a light tracer's splats).
 #[test]
 fn pixels_at_the_edges_sample_only_the_image() {
     let filter = PixelFilter::Gaussian { stddev: 0.5 };
-    for (size, pixel) in [(48, 0), (48, 1), (48, 46), (48, 47), (3, 1), (1, 0)] {
-        let sampler = FilterSampler::new(filter, size, size);
+    // The share of Mitsuba's Gaussian over [-0.5, 2] of its [-2, 2] (one axis), and over
+    // [-1.5, 2]: by a fine midpoint rule.
+    let share = |lo: f64| {
+        let n = 100_000;
+        let part = |a: f64, b: f64| -> f64 {
+            let at = |i: usize| a + (b - a) * (i as f64 + 0.5) / n as f64;
+            (0..n).map(|i| f64::from(filter.eval(at(i) as f32))).sum::<f64>() * (b - a)
+        };
+        part(lo, 2.0) / part(-2.0, 2.0)
+    };
+    let cases = [
+        (48, 0, 1.0, 1.0),
+        (48, 1, 1.0, 1.0),
+        (48, 46, 1.0, 1.0),
+        (48, 47, 1.0, 1.0),
+        (3, 1, 1.0, 1.0),
+        (1, 0, 1.0, 1.0),
+        (48, 0, share(-0.5), share(-0.5)),
+        (48, 1, share(-1.5), share(-1.5)),
+        (48, 2, 1.0, 1.0),
+    ];
+    for (k, (size, pixel, x_share, y_share)) in cases.into_iter().enumerate() {
+        let edges = if k < 6 { FilterEdges::Renormalised } else { FilterEdges::Cut };
+        let sampler = FilterSampler::new(filter, size, size, edges);
         let side = 1024;
         let mut weight = 0.0f64;
         for i in 0..side * side {
@@ -140,6 +168,10 @@ fn pixels_at_the_edges_sample_only_the_image() {
             weight += f64::from(w);
         }
         let weight = weight / f64::from(side * side);
-        assert!((weight - 1.0).abs() < 1e-3, "size {size}, pixel {pixel}: mean weight {weight}");
+        let expected = x_share * y_share;
+        assert!(
+            (weight - expected).abs() < 1e-3,
+            "{edges:?}, size {size}, pixel {pixel}: mean weight {weight}, not {expected}"
+        );
     }
 }

@@ -138,7 +138,8 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 /// rough mirror of GGX α 0.8 in a white furnace (Mitsuba's separable G₁·G₁ shadowing: with
 /// embray's height-correlated one, 4 % brighter on the sphere); a normal map seen from
 /// behind a twosided rectangle and from inside a glass sphere (Mitsuba's frame on the
-/// outward normal: the map was mirrored).
+/// outward normal: the map was mirrored); a 32² height map's bumps (slopes exact in each
+/// cell between texel centres, as Mitsuba's `eval_1_grad`).
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
@@ -153,6 +154,7 @@ fn scenes_written_here_pass_mitsubas_rule() {
         "smooth_normals",
         "rough_furnace",
         "normalmap_sides",
+        "bump_lowres",
     ];
     for name in names {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();

@@ -48,6 +48,8 @@ pub struct RenderSettings {
     pub background_texture: Option<TextureDesc>,
     /// How samples are weighted into pixels (the box: each pixel averages its own).
     pub filter: crate::sampling::filter::PixelFilter,
+    /// What the filter does at the image's edges.
+    pub filter_edges: crate::sampling::filter::FilterEdges,
     /// Camera rays do not see lights (emitters, the environment, the background): they
     /// only light the scene (Mitsuba's `hide_emitters`).
     pub hide_emitters: bool,
@@ -82,6 +84,7 @@ impl Default for RenderSettings {
             tonemap: None,
             background_texture: None,
             filter: Default::default(),
+            filter_edges: Default::default(),
             hide_emitters: false,
             aovs: None,
             rr_depth: DEFAULT_RR_DEPTH,

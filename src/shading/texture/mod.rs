@@ -74,6 +74,31 @@ impl Texture {
         }
     }
 
+    /// The exact derivatives of the value along u and along v at `uv`, for an image looked
+    /// up as Mitsuba does (centred bilinear, maybe through a `to_uv`, whose linear part the
+    /// chain rule takes); `None` for other patterns (a caller takes differences).
+    pub fn uv_slopes(&self, uv: Vec2) -> Option<[Vec3; 2]> {
+        let centred = |pattern: &Pattern, at: Vec2| match pattern {
+            Pattern::Image { image, interpolation, normalizer }
+                if *interpolation == crate::scene::Interpolation::BilinearCentered =>
+            {
+                Some(image.centred_bilinear_slopes(at).map(|s| s / *normalizer))
+            }
+            _ => None,
+        };
+        match &self.pattern {
+            Pattern::UvMapped(mapped) => {
+                let [along_u, along_v] = centred(&mapped.inner, mapped_uv(mapped, uv))?;
+                let m = mapped.uv_from_surface.matrix2;
+                Some([
+                    along_u * m.x_axis.x + along_v * m.x_axis.y,
+                    along_u * m.y_axis.x + along_v * m.y_axis.y,
+                ])
+            }
+            pattern => centred(pattern, uv),
+        }
+    }
+
     /// What one unit of this texture's value is in the image's own units (its
     /// normalizer, 255 for 8-bit images by default); 1 for patterns.
     pub fn value_scale(&self) -> f32 {
@@ -250,5 +275,22 @@ mod tests {
         let shifted =
             glam::Affine2::from_scale_angle_translation(Vec2::splat(2.0), 0.0, Vec2::new(0.5, 0.0));
         close(at(shifted, Wrap::Repeat, 0.1), 2.3);
+        // The ramp rises 4 a unit of u between texel centres; through the map, twice that.
+        let texture = |uv_from_surface| Texture {
+            pattern: Pattern::UvMapped(Box::new(UvMapped {
+                uv_from_surface,
+                wrap: Wrap::Repeat,
+                inner: image.clone(),
+            })),
+            mode: TextureMode::Replace,
+            texture_from_object: glam::Affine3A::IDENTITY,
+        };
+        let slopes = |t: &Texture| t.uv_slopes(Vec2::new(0.4, 0.5)).unwrap().map(|s| s.x);
+        assert_eq!(slopes(&texture(same)), [4.0, 0.0]);
+        assert_eq!(slopes(&texture(shifted)), [8.0, 0.0]);
+        // A quarter turn: u of the surface runs along the image's v, where nothing changes.
+        let turned = glam::Affine2::from_angle(std::f32::consts::FRAC_PI_2);
+        let [along_u, along_v] = slopes(&texture(turned));
+        assert!(along_u.abs() < 1e-5 && (along_v + 4.0).abs() < 1e-5, "{along_u} {along_v}");
     }
 }

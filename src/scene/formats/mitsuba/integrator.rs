@@ -36,6 +36,10 @@ pub(super) fn integrator(
                     element.line
                 ));
             }
+            if kind == "ptracer" {
+                // Its splats lose the part of an edge pixel's filter beyond the image.
+                settings.filter_edges = crate::sampling::filter::FilterEdges::Cut;
+            }
             settings.hide_emitters = boolean(element, "hide_emitters")?.unwrap_or(false);
             settings.integrator = IntegratorKind::Path;
             settings.rr_depth = match integer(element, "rr_depth")?.unwrap_or(5) {
