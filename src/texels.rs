@@ -23,6 +23,12 @@ pub struct TextureImage {
 }
 
 impl TextureImage {
+    /// Texels of `width` × `height` as they are (not sRGB-decoded, not HDR, rows top first).
+    pub fn plain(file: PathBuf, width: u32, height: u32, texels: Vec<Vec3>) -> Self {
+        let (srgb_decoded, hdr, rows_flipped) = (false, false, false);
+        TextureImage { file, width, height, texels, srgb_decoded, hdr, rows_flipped }
+    }
+
     /// Texel (i, j), the indices wrapped around the image.
     pub fn wrapped_texel(&self, i: i64, j: i64) -> Vec3 {
         let i = i.rem_euclid(self.width as i64) as usize;
@@ -86,15 +92,7 @@ mod tests {
         let texels = (0..width * height)
             .map(|k| Vec3::new((k * 7 % 11) as f32, (k * 5 % 13) as f32, k as f32))
             .collect();
-        let image = TextureImage {
-            file: "ramp".into(),
-            width,
-            height,
-            texels,
-            srgb_decoded: false,
-            hdr: false,
-            rows_flipped: false,
-        };
+        let image = TextureImage::plain("ramp".into(), width, height, texels);
         let h = 1e-3;
         for uv in [Vec2::new(0.37, 0.61), Vec2::new(0.05, 0.9), Vec2::new(0.99, 0.02)] {
             let [along_u, along_v] = image.centred_bilinear_slopes(uv);

@@ -164,15 +164,7 @@ fn data(at: &ImageRef, bytes: &[u8], alpha: bool) -> Result<(Arc<TextureImage>, 
         let rgba = decoded.into_rgba8();
         rgba.pixels().map(|p| texel(p.0.map(f32::from))).collect()
     };
-    let image = Arc::new(TextureImage {
-        file: at.image.clone(),
-        width,
-        height,
-        texels,
-        srgb_decoded: false,
-        hdr: false,
-        rows_flipped: false,
-    });
+    let image = Arc::new(TextureImage::plain(at.image.clone(), width, height, texels));
     Ok((image, alpha))
 }
 
