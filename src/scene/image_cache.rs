@@ -48,8 +48,12 @@ pub(crate) fn shared(
     let (image, flag) = decode(bytes)?;
     let mut decoded = DECODED.lock().unwrap_or_else(PoisonError::into_inner);
     let decoded = decoded.get_or_insert_default();
-    // Images no longer held are forgotten as others are added.
-    decoded.retain(|_, (image, _)| image.strong_count() > 0);
+    // Images no longer held are forgotten as others are added: when the map reaches a power
+    // of two, so that the sweeps cost O(1) an image (a sweep at every image made a scene of
+    // n distinct images cost n²).
+    if decoded.len().is_power_of_two() {
+        decoded.retain(|_, (image, _)| image.strong_count() > 0);
+    }
     decoded.insert(key, (Arc::downgrade(&image), flag));
     Ok((image, flag))
 }
