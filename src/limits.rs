@@ -108,6 +108,32 @@ pub const BYTES_PER_GRID_VOXEL: u64 = 36;
 /// (measured: 22).
 pub const BYTES_PER_SAMPLED_TEXEL: u64 = 24;
 
+/// Bytes per byte of a TOML scene file while it is read, checked before it is parsed: the
+/// parse's tokens and events, its syntax tree with spans (kept for the lines of messages)
+/// and the copy serde reads into the file's structs (measured: 46–72 as allocated, and as
+/// peak RSS of `embray info` 48 for files of many objects, 110 for a long array's unknown
+/// field, whose message reads the text again).
+pub const BYTES_PER_TOML_BYTE: u64 = 128;
+/// Bytes per byte of a TOML scene's text that a render holds at its peak: the reading's
+/// memory that the allocator keeps (measured: 16–35, peak RSS of renders of TOML files of
+/// many materials, objects or lights, beside their other costs).
+pub const BYTES_PER_TEXT_BYTE: u64 = 40;
+/// Bytes per byte of an XML scene's files (Mitsuba's, its includes' and spectrum files',
+/// CENG795's) while they are read and after: the document tree and what the reader makes
+/// of it (measured: 20 for Mitsuba point emitters, 27 for unused BSDFs, 9 for CENG795
+/// vertex data, 7.5 for a spectrum file; peak RSS of renders, beside their other costs).
+pub const BYTES_PER_XML_BYTE: u64 = 32;
+/// Bytes per material: its TOML table as read, its description and its compiled shading
+/// (measured: 3.65 KB a material, peak RSS of renders of 50,000 to 200,000 materials, net
+/// of their text's cost).
+pub const BYTES_PER_MATERIAL: u64 = 4096;
+/// Bytes per light of the scene's `lights` (a point, spot, directional or environment
+/// light; an emissive shape's cost is its emitters'): its parameters with their fields and
+/// lines as read, its description and what the light sampler holds for it (measured: 0.3
+/// KB for TOML point lights, 0.2 KB for Mitsuba's, net of their text's cost; peak RSS of
+/// renders of 8,000 to 200,000).
+pub const BYTES_PER_LIGHT: u64 = 1024;
+
 /// The memory this process may still use: the smallest of the kernel's MemAvailable, the
 /// cgroup's limit (in a container), what `ulimit -v` leaves of the address space and
 /// `EMBRAY_MAX_MEMORY` (bytes: a budget for a shared machine), or `None` when none is known.
@@ -117,7 +143,22 @@ pub fn memory_available() -> Option<u64> {
     // The command line refuses an unusable value before any work (`memory_budget`), so
     // it is never silently dropped there.
     let budget = memory_budget().ok().flatten();
-    [detected_memory(), budget].into_iter().flatten().min()
+    [memory_at_start(), budget].into_iter().flatten().min()
+}
+
+/// What the machine had for this process when it was first asked (`note_memory_at_start`,
+/// at the start of `main`): the estimates count all a render holds, images and meshes
+/// already read included, so they are held against what there was before any of it (asked
+/// again after reading, the images would count twice, and a larger `ulimit -v` could
+/// fail where a smaller one passed).
+fn memory_at_start() -> Option<u64> {
+    static AT_START: std::sync::OnceLock<Option<u64>> = std::sync::OnceLock::new();
+    *AT_START.get_or_init(detected_memory)
+}
+
+/// Notes what memory the machine has now, before anything is read (`memory_available`).
+pub fn note_memory_at_start() {
+    memory_at_start();
 }
 
 /// An environment variable embray reads, set to a value it cannot use.

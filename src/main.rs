@@ -6,6 +6,7 @@ use clap::{CommandFactory, FromArgMatches};
 use std::io::Write;
 
 fn main() -> std::process::ExitCode {
+    embray::limits::note_memory_at_start();
     let mut command = cli::Cli::command();
     // The version names the Embree library found at run time (not the header built
     // against), which starts an Embree device: only when the version is asked for.

@@ -91,8 +91,8 @@ fn ply_grid(path: &std::path::Path, side: u32) {
 }
 
 /// The memory estimate against what a render really holds: `embray render` of scenes
-/// where one count dominates (pixels, mesh triangles, object placements, texture texels,
-/// an EXR environment map's texels), on each backend, its peak resident memory read from
+/// where one count dominates (materials, lights, pixels, mesh triangles, object placements,
+/// texture texels, an EXR environment map's texels), on each backend, its peak resident memory read from
 /// the kernel. The estimate must cover the peak (a render it accepts fits) and stay within
 /// 1.5 times it (a render it refuses would not have fitted with much to spare).
 /// `scripts/memory_model.py` measures the costs per unit these cases check.
@@ -111,7 +111,20 @@ fn the_memory_estimate_covers_the_measured_peak_within_half_again() {
     let out =
         common::command::embray(&["render", "m.toml", "--spp", "1", "-q", "-o", "map.exr"], &dir);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let materials: String =
+        (0..100_000).map(|i| format!("[materials.m{i}]\nalbedo = [0.5, 0.5, 0.5]\n")).collect();
+    let lights: String = (0..32_000)
+        .map(|i| {
+            format!(
+                "\n[[lights]]\ntype = \"point\"\nposition = [{}, 4.0, 4.0]\n\
+                 intensity = [0.01, 0.01, 0.01]\n",
+                i as f64 * 1e-3
+            )
+        })
+        .collect();
     let cases = [
+        ("materials 100k", scene(64, &materials, &floor("white"))),
+        ("lights 32k", scene(64, "", &(floor("white") + &lights))),
         ("pixels 512²", scene(512, "", &floor("white"))),
         ("pixels 1024²", scene(1024, "", &floor("white"))),
         (

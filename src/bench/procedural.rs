@@ -72,6 +72,7 @@ pub fn displaced_sphere_scene(triangles: usize, width: u32, height: u32) -> Scen
     };
     SceneDesc {
         source: format!("displaced sphere ({triangles} triangles)").into(),
+        reading_bytes: 0,
         camera,
         settings: RenderSettings { spp: 4, max_depth: 3, ..Default::default() },
         materials: vec![material],

@@ -3,8 +3,9 @@
 
 use crate::limits::{
     BASE_BYTES, BYTES_PER_EMITTER, BYTES_PER_GRID_VALUE, BYTES_PER_GRID_VOXEL, BYTES_PER_HDR_TEXEL,
-    BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL, BYTES_PER_TEXEL, BYTES_PER_THREAD,
-    MAX_COORDINATE, MAX_WORLD_COORDINATE, memory_available,
+    BYTES_PER_LIGHT, BYTES_PER_MATERIAL, BYTES_PER_OBJECT, BYTES_PER_PIXEL,
+    BYTES_PER_SAMPLED_TEXEL, BYTES_PER_TEXEL, BYTES_PER_THREAD, MAX_COORDINATE,
+    MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc};
@@ -40,7 +41,7 @@ pub enum LimitError {
 }
 
 /// A memory size in GiB, or in MiB below one GiB.
-fn size(bytes: u64) -> String {
+pub(crate) fn size(bytes: u64) -> String {
     match bytes >= 1 << 30 {
         true => format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64),
         false => format!("{:.1} MiB", bytes as f64 / (1u64 << 20) as f64),
@@ -55,6 +56,8 @@ pub struct MemoryEstimate {
     pub height: u32,
     pub pixels: u64,
     pub objects: u64,
+    pub materials: u64,
+    pub lights: u64,
     pub triangles: u64,
     /// Emitting primitives, counted once a placement (each samples its own).
     pub emitters: u64,
@@ -74,11 +77,13 @@ impl std::fmt::Display for MemoryEstimate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{}x{} pixels, {} object placements, {} mesh triangles, {} emitting primitives, {} \
-             grid values, {} texture texels, {} thread{}",
+            "{}x{} pixels, {} object placements, {} materials, {} lights, {} mesh triangles, \
+             {} emitting primitives, {} grid values, {} texture texels, {} thread{}",
             self.width,
             self.height,
             self.objects,
+            self.materials,
+            self.lights,
             self.triangles,
             self.emitters,
             self.grid_values,
@@ -145,12 +150,17 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
     background.into_iter().for_each(|i| count(i, false));
     desc.lights.iter().filter_map(|l| l.image()).for_each(|(i, sampled)| count(i, sampled));
     let objects = desc.objects.len() as u64;
+    let materials = desc.materials.len() as u64;
+    let lights = desc.lights.len() as u64;
     // A render has one thread at least.
     let threads = threads.max(1) as u64;
     // Saturating: counts from a file may be absurd, and an estimate that wrapped would pass.
     let bytes = [
         (pixels, BYTES_PER_PIXEL),
         (objects, BYTES_PER_OBJECT),
+        (materials, BYTES_PER_MATERIAL),
+        (lights, BYTES_PER_LIGHT),
+        (desc.reading_bytes, 1),
         (emitters, BYTES_PER_EMITTER),
         (triangles, bytes_per_triangle),
         (grid_values, BYTES_PER_GRID_VALUE),
@@ -169,6 +179,8 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         height,
         pixels,
         objects,
+        materials,
+        lights,
         triangles,
         emitters,
         grid_values,
@@ -192,6 +204,24 @@ pub fn check_memory(
             let estimate = Box::new(estimate);
             Err(LimitError::Memory { file: desc.source.clone(), estimate, available })
         }
+        _ => Ok(()),
+    }
+}
+
+/// Refuses to read `file` when `needed` bytes (estimated from `what`) exceed what the
+/// process may use: checked before the memory is spent.
+pub(crate) fn check_reading(
+    file: &std::path::Path,
+    needed: u64,
+    what: impl FnOnce() -> String,
+) -> Result<(), crate::scene::SceneError> {
+    match memory_available() {
+        Some(available) if needed > available => Err(crate::scene::SceneError::ReadMemory {
+            file: file.to_path_buf(),
+            needed,
+            what: what(),
+            available,
+        }),
         _ => Ok(()),
     }
 }

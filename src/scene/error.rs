@@ -31,6 +31,13 @@ pub enum SceneError {
     #[error("scene file '{}': {error}", .path.display())]
     Read { path: PathBuf, error: std::io::Error },
 
+    /// Reading the file would need more memory than the process may use.
+    #[error(
+        "{}: reading it needs about {} of memory ({what}), but only {} are available",
+        .file.display(), crate::scene::budget::size(*.needed), crate::scene::budget::size(*.available)
+    )]
+    ReadMemory { file: PathBuf, needed: u64, what: String, available: u64 },
+
     /// TOML syntax error, unknown key or wrong value type. `message` is toml's own report,
     /// which gives the line and column and quotes the offending text.
     #[error("{}: {message}", .file.display())]

@@ -43,6 +43,25 @@ fn shared(
     super::image_cache::shared(&at.image, &bytes, reading, decode)
 }
 
+/// Refuses to decode the `width` × `height` image `at` names, at `per_texel` bytes a texel
+/// while it is decoded, when it and the images held already would not fit in memory.
+fn check_room(at: &ImageRef, width: u64, height: u64, per_texel: u64) -> Result<(), SceneError> {
+    let size = crate::scene::budget::size;
+    let decoding = (width * height).saturating_mul(per_texel);
+    super::image_cache::check_room(decoding).map_err(|(held, available)| {
+        let beside = match held {
+            0 => String::new(),
+            held => format!(", beside {} of images read already,", size(held)),
+        };
+        at.error(format!(
+            "decoding its {width} × {height} texels needs about {} of memory{beside} but only {} are \
+             available",
+            size(decoding),
+            size(available)
+        ))
+    })
+}
+
 /// sRGB's transfer function, from an encoded value in [0, 1] to linear.
 fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
@@ -58,6 +77,7 @@ fn decode(at: &ImageRef, bytes: &[u8]) -> Result<image::DynamicImage, SceneError
             "{width} × {height} texels; a texture takes 1 to {MAX_TEXTURE_TEXELS} texels"
         )));
     }
+    check_room(at, width.into(), height.into(), crate::limits::BYTES_PER_TEXEL)?;
     let mut reader = checked()?;
     let mut limits = image::Limits::default();
     limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 16);
@@ -220,6 +240,7 @@ fn radiance(
             "{width} × {height} texels; a radiance map takes 1 to {MAX_TEXTURE_TEXELS} texels"
         )));
     }
+    check_room(at, width, height, crate::limits::BYTES_PER_HDR_TEXEL)?;
     let (_, _, mut texels) = crate::exr_rgb::read(bytes).map_err(|e| at.error(e))?;
     for (i, c) in texels.iter_mut().enumerate() {
         if !c.is_finite() {

@@ -111,6 +111,7 @@ pub mod build {
     pub fn scene(camera: CameraDesc) -> SceneDesc {
         SceneDesc {
             source: "test".into(),
+            reading_bytes: 0,
             camera,
             settings: RenderSettings::default(),
             materials: Vec::new(),

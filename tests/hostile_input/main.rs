@@ -23,6 +23,7 @@ mod outputs;
 mod process;
 mod scenes;
 mod sdfgrid;
+mod sixth_probe;
 mod texture_values;
 mod tools_and_environment;
 mod unread;

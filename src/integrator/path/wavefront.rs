@@ -50,6 +50,40 @@ struct QueuedShadows {
     blocked: Vec<bool>,
 }
 
+/// Shadow rays queued before they are traced: a bounce of many paths in a scene of many
+/// point lights (a shadow ray each) would otherwise queue paths × lights of them (32,000
+/// lights: 390 MB a worker). Traced in order, so each path's light sums as before.
+const MAX_QUEUED_SHADOWS: usize = 4096;
+
+impl QueuedShadows {
+    /// Traces the queued rays: `blocked` says which are.
+    fn trace(&mut self, path: &PathTracer, stats: &mut RenderStats) {
+        self.blocked.clear();
+        self.blocked.resize(self.rays.len(), true);
+        path.tracer.occluded_batch(&self.rays, &mut self.blocked, stats);
+    }
+
+    /// Adds the light of the traced rays that are not blocked to their paths' `direct`, in
+    /// the order they were queued, and empties the queue.
+    fn accumulate(&mut self, direct: &mut [Vec3]) {
+        for (&(lane, contribution), &blocked) in self.lights.iter().zip(&self.blocked) {
+            if !blocked {
+                direct[lane as usize] += contribution;
+            }
+        }
+        self.rays.clear();
+        self.lights.clear();
+    }
+
+    /// Traces and accumulates the queue once it holds `MAX_QUEUED_SHADOWS` rays or more.
+    fn bound(&mut self, path: &PathTracer, direct: &mut [Vec3], stats: &mut RenderStats) {
+        if self.rays.len() >= MAX_QUEUED_SHADOWS {
+            self.trace(path, stats);
+            self.accumulate(direct);
+        }
+    }
+}
+
 impl ShadowSink for QueuedShadows {
     #[inline]
     fn shadow(&mut self, ray: Ray, contribution: Vec3, stats: &mut RenderStats) {
@@ -129,8 +163,6 @@ impl Wavefront {
             );
             clock.lap(Phase::ClosestHits, &mut stats.phases);
             let shadows = &mut self.shadows;
-            shadows.rays.clear();
-            shadows.lights.clear();
             self.lambert.clear();
             // A ray that found nothing ends its path without drawing.
             let hit_lanes = lanes.iter().zip(&self.hits).filter(|(_, hit)| hit.is_some());
@@ -144,6 +176,7 @@ impl Wavefront {
                 if path.on_hit(state, hit, stream, stats, shadows, &mut self.lambert.next_lane()) {
                     self.lambert.commit(lane);
                 }
+                shadows.bound(path, &mut self.direct, stats);
             }
             clock.lap(Phase::Shading, &mut stats.phases);
             let plain = path.plain_surfaces.any();
@@ -159,17 +192,12 @@ impl Wavefront {
                 } else {
                     path.finish_lambert(state, &outcome, shadows, stats);
                 }
+                shadows.bound(path, &mut self.direct, stats);
             }
             clock.lap(Phase::Outcomes, &mut stats.phases);
-            shadows.blocked.clear();
-            shadows.blocked.resize(shadows.rays.len(), true);
-            path.tracer.occluded_batch(&shadows.rays, &mut shadows.blocked, stats);
+            shadows.trace(path, stats);
             clock.lap(Phase::ShadowRays, &mut stats.phases);
-            for (&(lane, contribution), &blocked) in shadows.lights.iter().zip(&shadows.blocked) {
-                if !blocked {
-                    self.direct[lane as usize] += contribution;
-                }
-            }
+            shadows.accumulate(&mut self.direct);
             clock.lap(Phase::Accumulate, &mut stats.phases);
         }
     }

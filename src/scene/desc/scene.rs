@@ -17,6 +17,9 @@ pub struct SceneDesc {
     pub materials: Vec<MaterialDesc>,
     pub objects: Vec<ObjectDesc>,
     pub lights: Vec<LightDesc>,
+    /// The memory that reading the scene's files leaves held (by the allocator, as its
+    /// reader estimates it from their size): a render's memory counts it.
+    pub reading_bytes: u64,
 }
 
 impl SceneDesc {

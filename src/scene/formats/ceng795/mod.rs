@@ -95,6 +95,9 @@ pub fn load_str_with_warnings(
     text: &str,
     source: &Path,
 ) -> Result<(Vec<CameraScene>, Vec<String>), SceneError> {
+    let reading_bytes = (text.len() as u64).saturating_mul(crate::limits::BYTES_PER_XML_BYTE);
+    let what = || format!("{} bytes of XML", text.len());
+    crate::scene::budget::check_reading(source, reading_bytes, what)?;
     let doc = Document::parse(text).map_err(|e| SceneError::Xml {
         file: source.to_path_buf(),
         element: "the XML document".to_owned(),
@@ -198,6 +201,7 @@ pub fn load_str_with_warnings(
                 image_name: spec.image_name,
                 scene: SceneDesc {
                     source: source.to_path_buf(),
+                    reading_bytes,
                     camera: spec.camera,
                     settings: RenderSettings {
                         spp: spec.spp,

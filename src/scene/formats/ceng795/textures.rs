@@ -36,13 +36,46 @@ enum Role {
     Background,
 }
 
-#[derive(Clone, Debug)]
 struct TextureMap {
     role: Role,
-    pattern: Pattern,
+    pattern: MapPattern,
+}
+
+/// A map's pattern; an image map's image is decoded when an object first lists the map, so
+/// that a scene's unused maps are never read (as Mitsuba skips unused bitmaps).
+enum MapPattern {
+    Ready(Pattern),
+    Image {
+        source: ImageSource,
+        decoded: std::cell::OnceCell<Arc<TextureImage>>,
+        interpolation: Interpolation,
+        normalizer: f32,
+    },
+}
+
+impl MapPattern {
+    /// The pattern, an image map's image decoded the first time.
+    fn pattern(&self, x: &Xml) -> Result<Pattern, SceneError> {
+        let (source, decoded, interpolation, normalizer) = match self {
+            MapPattern::Ready(pattern) => return Ok(pattern.clone()),
+            MapPattern::Image { source, decoded, interpolation, normalizer } => {
+                (source, decoded, interpolation, normalizer)
+            }
+        };
+        let image = match decoded.get() {
+            Some(image) => Arc::clone(image),
+            None => {
+                let at = source.at(x);
+                let image = load_radiance(&at, false)?;
+                Arc::clone(decoded.get_or_init(|| image))
+            }
+        };
+        Ok(Pattern::Image { image, interpolation: *interpolation, normalizer: *normalizer })
+    }
 }
 
 /// An `<Image>` element: where its file is and how to name it in messages.
+#[derive(Clone)]
 struct ImageSource {
     path: std::path::PathBuf,
     item: String,
@@ -107,8 +140,6 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
             }
         }
     }
-    // Images are decoded once however many maps use them, and only if some map does.
-    let mut images: HashMap<String, Arc<TextureImage>> = HashMap::new();
     let mut maps = HashMap::new();
     let mut background = None;
     for node in map_nodes {
@@ -158,29 +189,22 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
         let pattern = match node.attribute("type").map(str::trim) {
             Some("image") => {
                 let image_id_node = x.required(node, "ImageId")?;
-                let image_id = x.text(image_id_node);
-                let image = match images.get(image_id) {
-                    Some(image) => Arc::clone(image),
-                    None => {
-                        let at = image_ref(x, &image_sources, image_id_node)?;
-                        let image = load_radiance(&at, false)?;
-                        images.insert(image_id.to_owned(), Arc::clone(&image));
-                        image
-                    }
-                };
+                let source = image_source(x, &image_sources, image_id_node)?.clone();
                 let interpolation = match x.child(node, "Interpolation")? {
                     Some(n) => parse_choice::<Interpolation>(x, n)?,
                     None => Interpolation::Nearest,
                 };
-                Pattern::Image { image, interpolation, normalizer: positive("Normalizer", 255.0)? }
+                let normalizer = positive("Normalizer", 255.0)?;
+                let decoded = std::cell::OnceCell::new();
+                MapPattern::Image { source, decoded, interpolation, normalizer }
             }
-            Some("perlin") => Pattern::Perlin {
+            Some("perlin") => MapPattern::Ready(Pattern::Perlin {
                 scale: positive("NoiseScale", 1.0)?,
                 conversion: match x.child(node, "NoiseConversion")? {
                     Some(n) => parse_choice::<NoiseConversion>(x, n)?,
                     None => NoiseConversion::Absolute,
                 },
-            },
+            }),
             Some("checkerboard") => {
                 let color = |name: &str, default: f32| match x.child(node, name)? {
                     Some(n) => x.color(n),
@@ -190,12 +214,12 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
                     Some(n) => x.scalar(n)? as f32,
                     None => 0.0,
                 };
-                Pattern::CourseChecker {
+                MapPattern::Ready(Pattern::CourseChecker {
                     scale: positive("Scale", 1.0)?,
                     offset,
                     black: color("BlackColor", 0.0)?,
                     white: color("WhiteColor", 1.0)?,
-                }
+                })
             }
             other => {
                 return Err(x.error(
@@ -209,7 +233,7 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
             }
         };
         if matches!(role, Role::Background) {
-            let Pattern::Image { image, interpolation, normalizer } = &pattern else {
+            let Pattern::Image { image, interpolation, normalizer } = &pattern.pattern(x)? else {
                 return Err(x.error(node, "a replace_background texture map must be an image"));
             };
             if background.is_some() {
@@ -234,11 +258,11 @@ pub(super) fn texture_maps<'a, 'i: 'a>(
 }
 
 /// The image `id_node` (an `<ImageId>`) names.
-fn image_ref<'x>(
-    x: &'x Xml,
-    images: &HashMap<String, ImageSource>,
+fn image_source<'s>(
+    x: &Xml,
+    images: &'s HashMap<String, ImageSource>,
     id_node: Node,
-) -> Result<ImageRef<'x>, SceneError> {
+) -> Result<&'s ImageSource, SceneError> {
     let id = x.text(id_node);
     let Some(source) = images.get(id) else {
         return Err(x.error(
@@ -246,19 +270,25 @@ fn image_ref<'x>(
             format!("image id {} is not defined; images: {}", excerpt(id), id_list(images.keys())),
         ));
     };
-    Ok(ImageRef {
-        image: source.path.clone(),
-        scene: x.file,
-        item: source.item.clone(),
-        line: source.line,
-    })
+    Ok(source)
+}
+
+impl ImageSource {
+    fn at<'x>(&self, x: &'x Xml) -> ImageRef<'x> {
+        ImageRef {
+            image: self.path.clone(),
+            scene: x.file,
+            item: self.item.clone(),
+            line: self.line,
+        }
+    }
 }
 
 impl TextureMaps {
     /// The radiance map `id_node` (an `<ImageId>`) names: an EXR's linear values, or a
     /// PNG/JPEG's 0–255 values as textures keep them.
     pub fn radiance_map(&self, x: &Xml, id_node: Node) -> Result<Arc<TextureImage>, SceneError> {
-        load_radiance(&image_ref(x, &self.images, id_node)?, false)
+        load_radiance(&image_source(x, &self.images, id_node)?.at(x), false)
     }
 
     /// `material` with the texture maps listed in `node`'s `<Textures>` elements attached,
@@ -315,7 +345,7 @@ impl TextureMaps {
                         }
                         textured.bump_map = Some(crate::scene::desc::BumpMapDesc {
                             texture: TextureDesc {
-                                pattern: map.pattern.clone(),
+                                pattern: map.pattern.pattern(x)?,
                                 mode: TextureMode::Replace,
                                 texture_from_object: DAffine3::IDENTITY,
                             },
@@ -337,7 +367,7 @@ impl TextureMaps {
                     ));
                 }
                 *slot = Some(TextureDesc {
-                    pattern: map.pattern.clone(),
+                    pattern: map.pattern.pattern(x)?,
                     mode,
                     texture_from_object: DAffine3::IDENTITY,
                 });

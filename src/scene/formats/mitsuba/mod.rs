@@ -151,7 +151,7 @@ pub fn load(
             return Err(define_error(path, define, problem));
         }
     }
-    let (root, files) = tree::read(path, text, defines)?;
+    let (root, files, reading_bytes) = tree::read(path, text, defines)?;
     let mut warnings = Vec::new();
     transform::axis_warnings(&root, &mut warnings);
     let mut by_id = HashMap::new();
@@ -213,6 +213,7 @@ pub fn load(
     let Builder { materials, objects, lights, .. } = builder;
     let scene = SceneDesc {
         source: path.to_path_buf(),
+        reading_bytes,
         camera: sensor.camera,
         settings,
         materials,

@@ -76,12 +76,13 @@ impl FileResolver {
     }
 }
 
-/// The scene's root element (its children resolved) and the folders files are found in.
+/// The scene's root element (its children resolved), the folders files are found in and
+/// the memory its reading takes (`SceneDesc::reading_bytes`).
 pub(super) fn read(
     path: &Path,
     text: &str,
     defines: &[(String, String)],
-) -> Result<(Element, FileResolver), SceneError> {
+) -> Result<(Element, FileResolver, u64), SceneError> {
     let folder = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     let mut reader = Reader {
         params: defines.iter().cloned().collect(),
@@ -105,7 +106,8 @@ pub(super) fn read(
         );
         return Err(define_error(path, define, problem));
     }
-    Ok((root, reader.resolver))
+    let reading_bytes = reader.reading_bytes();
+    Ok((root, reader.resolver, reading_bytes))
 }
 
 /// Why a scene whose files exceed `MAX_XML_BYTES` is refused.
@@ -147,6 +149,8 @@ impl Reader {
                 line: Line(None),
             });
         }
+        let what = || format!("{} bytes of XML with its includes read so far", self.bytes);
+        crate::scene::budget::check_reading(path, self.reading_bytes(), what)?;
         let options = roxmltree::ParsingOptions {
             allow_dtd: false,
             nodes_limit: MAX_XML_ELEMENTS as u32,
@@ -277,6 +281,11 @@ impl Reader {
         Ok(element)
     }
 
+    /// The memory the files read so far take (`limits::BYTES_PER_XML_BYTE`).
+    fn reading_bytes(&self) -> u64 {
+        self.bytes.saturating_mul(crate::limits::BYTES_PER_XML_BYTE)
+    }
+
     /// Counts `bytes` more read: whether the scene's total is still within
     /// `MAX_XML_BYTES`.
     fn count_bytes(&mut self, bytes: u64) -> bool {
@@ -298,6 +307,8 @@ impl Reader {
         if !self.count_bytes(size) {
             return Err(element.error(bytes_exceeded()));
         }
+        let what = || format!("{} bytes of XML and spectrum files read so far", self.bytes);
+        crate::scene::budget::check_reading(&path, self.reading_bytes(), what)?;
         let list =
             super::spd::spectrum_file_as_list(&path).map_err(|problem| element.error(problem))?;
         element.attrs.retain(|(attr, _)| attr != "filename");

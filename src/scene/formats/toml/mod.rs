@@ -35,13 +35,20 @@ pub(crate) fn load_str_with_warnings(
     text: &str,
     source: &Path,
 ) -> Result<(SceneDesc, Vec<String>), SceneError> {
-    let map = source_map::SourceMap::parse(text, source)?;
-    map.check_finite(source)?;
-    let file: SceneFile = ::toml::from_str(text).map_err(|e| source_map::toml_error(source, &e))?;
+    let text_bytes = (text.len() as u64).saturating_mul(crate::limits::BYTES_PER_TOML_BYTE);
+    let what = || format!("{} bytes of TOML", text.len());
+    crate::scene::budget::check_reading(source, text_bytes, what)?;
+    let map = source_map::SourceMap::new(text);
+    let file: SceneFile = map.read(source)?;
+    let materials = file.materials.len() as u64;
+    let needed = text_bytes.saturating_add(materials * crate::limits::BYTES_PER_MATERIAL);
+    let what = || format!("{} bytes of TOML, {materials} materials", text.len());
+    crate::scene::budget::check_reading(source, needed, what)?;
     let ctx = Ctx { file: source, map };
     let base_dir = source.parent().unwrap_or(Path::new(""));
     let mut warnings = Vec::new();
-    let scene = scene_desc(file, &ctx, base_dir, &mut warnings)?;
+    let mut scene = scene_desc(file, &ctx, base_dir, &mut warnings)?;
+    scene.reading_bytes = (text.len() as u64).saturating_mul(crate::limits::BYTES_PER_TEXT_BYTE);
     Ok((scene, warnings))
 }
 
@@ -49,11 +56,11 @@ pub use objects::MAX_REPEAT_COPIES;
 
 /// Builds the scene; `base_dir` resolves relative mesh paths, `warnings` collects non-fatal
 /// problems (a missing MTL file).
-pub(crate) fn scene_desc(
+pub(crate) fn scene_desc<'a>(
     file: SceneFile,
-    ctx: &Ctx,
-    base_dir: &Path,
-    warnings: &mut Vec<String>,
+    ctx: &'a Ctx<'a>,
+    base_dir: &'a Path,
+    warnings: &'a mut Vec<String>,
 ) -> Result<SceneDesc, SceneError> {
     let camera = camera(&file.camera, ctx)?;
     let mut settings = settings(file.render.as_ref(), &camera, ctx)?;
@@ -64,7 +71,9 @@ pub(crate) fn scene_desc(
         ctx,
         base_dir,
         warnings,
-        materials: Vec::new(),
+        // Exactly as many as the file has (and the default material): a vector doubling to
+        // 100,000 materials would hold twice their size while it moves them.
+        materials: Vec::with_capacity(file.materials.len() + 1),
         named: BTreeMap::new(),
         default_material: None,
         mtl_materials: HashMap::new(),
@@ -119,6 +128,7 @@ pub(crate) fn scene_desc(
     }
     Ok(SceneDesc {
         source: ctx.file.to_path_buf(),
+        reading_bytes: 0,
         camera,
         settings,
         materials: builder.materials,

@@ -2,6 +2,8 @@
 //! line a path starts on, and the scan that rejects every NaN or infinite float.
 
 use crate::scene::error::{Line, SceneError};
+use crate::scene::formats::line_index::LineIndex;
+use std::cell::OnceCell;
 use std::fmt;
 use std::path::Path;
 use toml::Spanned;
@@ -62,35 +64,39 @@ impl fmt::Display for FieldPath {
     }
 }
 
-/// The parsed document with spans, used to find the line of a field.
+/// The scene text, and where its fields are: the document with spans is parsed again when a
+/// line is first asked for (the parse that serde reads is consumed by it), and lines are
+/// found from an index of the line breaks, so asking for every light's fields stays linear.
 pub(crate) struct SourceMap<'a> {
     text: &'a str,
-    doc: Spanned<DeTable<'a>>,
+    doc: OnceCell<Option<Spanned<DeTable<'a>>>>,
+    lines: OnceCell<LineIndex>,
 }
 
 impl<'a> SourceMap<'a> {
-    /// Parses `text`; a syntax error becomes `SceneError::Toml` naming `file`.
-    pub(crate) fn parse(text: &'a str, file: &Path) -> Result<Self, SceneError> {
-        let doc = DeTable::parse(text).map_err(|e| toml_error(file, &e))?;
-        Ok(SourceMap { text, doc })
+    pub(crate) fn new(text: &'a str) -> Self {
+        SourceMap { text, doc: OnceCell::new(), lines: OnceCell::new() }
     }
 
     /// 1-based line of byte `offset`.
     fn line_of_offset(&self, offset: usize) -> usize {
-        let end = offset.min(self.text.len());
-        self.text.as_bytes()[..end].iter().filter(|&&b| b == b'\n').count() + 1
+        self.lines.get_or_init(|| LineIndex::new(self.text)).line_at(offset.min(self.text.len()))
     }
 
     /// The line where the value at `path` starts; for a path that does not exist (a missing
     /// field), the line of its deepest existing parent other than the root.
     pub(crate) fn line(&self, path: &FieldPath) -> Line {
-        let mut span = self.doc.span();
+        // The text parsed before, so it parses again (`None` is never seen).
+        let Some(doc) = self.doc.get_or_init(|| DeTable::parse(self.text).ok()) else {
+            return Line(None);
+        };
+        let mut span = doc.span();
         // `None` only before the first step: the root table.
         let mut value: Option<&DeValue<'a>> = None;
         for segment in &path.segments {
             let next = match (segment, value) {
-                (Segment::Key(key), None) => table_get(self.doc.get_ref(), key),
-                (Segment::Key(key), Some(DeValue::Table(t))) => table_get(t, key),
+                (Segment::Key(key), None) => doc.get_ref().get(key.as_str()),
+                (Segment::Key(key), Some(DeValue::Table(t))) => t.get(key.as_str()),
                 (Segment::Index(i), Some(DeValue::Array(a))) => a.get(*i),
                 _ => None,
             };
@@ -104,9 +110,21 @@ impl<'a> SourceMap<'a> {
         Line(Some(self.line_of_offset(span.start)))
     }
 
-    /// Rejects every NaN or infinite float in the document, naming its path and line.
-    pub(crate) fn check_finite(&self, file: &Path) -> Result<(), SceneError> {
-        self.check_table(self.doc.get_ref(), &FieldPath::default(), file)
+    /// The scene file's text read into `T` (serde): parsed once, every NaN or infinite float
+    /// refused with its path and line before serde sees the document.
+    pub(crate) fn read<T: serde::de::DeserializeOwned>(
+        &self,
+        file: &Path,
+    ) -> Result<T, SceneError> {
+        let doc = DeTable::parse(self.text).map_err(|e| toml_error(file, &e))?;
+        self.check_table(doc.get_ref(), &FieldPath::default(), file)?;
+        let doc = self.doc.get_or_init(|| Some(doc)).as_ref().expect("parsed");
+        T::deserialize(toml::de::Deserializer::from(doc.clone())).map_err(|error| {
+            // A document handed to serde has lost its text, and toml's message its line and
+            // excerpt: they come from reading the text again (errors are rare).
+            let error = toml::from_str::<T>(self.text).err().unwrap_or(error);
+            toml_error(file, &error)
+        })
     }
 
     fn check_table(
@@ -151,10 +169,6 @@ impl<'a> SourceMap<'a> {
     }
 }
 
-fn table_get<'t, 'a>(table: &'t DeTable<'a>, key: &str) -> Option<&'t Spanned<DeValue<'a>>> {
-    table.iter().find(|(k, _)| k.get_ref() == key).map(|(_, v)| v)
-}
-
 /// `Some("NaN" | "inf" | "-inf")` for TOML's special float literals.
 fn non_finite_name(literal: &str) -> Option<&'static str> {
     let (negative, magnitude) = match literal.as_bytes().first() {
@@ -191,7 +205,7 @@ mod tests {
     #[test]
     fn line_of_nested_fields() {
         let text = "[camera]\nlookfrom = [1, 2, 3]\n\n[[objects]]\ntype = 'sphere'\nradius = 2\n";
-        let map = SourceMap::parse(text, Path::new("s.toml")).unwrap();
+        let map = SourceMap::new(text);
         assert_eq!(map.line(&FieldPath::root("camera").key("lookfrom")), Line(Some(2)));
         assert_eq!(map.line(&FieldPath::root("camera").key("lookfrom").index(2)), Line(Some(2)));
         assert_eq!(map.line(&FieldPath::root("objects").index(0).key("radius")), Line(Some(6)));

@@ -69,7 +69,7 @@ pub(crate) struct MaterialToml {
     pub emission: Option<Vec3>,
     pub two_sided_emission: Option<bool>,
     /// What `emission` is multiplied by per point (a pattern of texture coordinates).
-    pub emission_texture: Option<TextureToml>,
+    pub emission_texture: Option<Box<TextureToml>>,
     #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub reflectance: Option<Vec3>,
     pub roughness: Option<RoughnessToml>,
@@ -78,7 +78,7 @@ pub(crate) struct MaterialToml {
     /// "separable".
     pub shadowing: Option<String>,
     pub nonlinear: Option<bool>,
-    pub opacity: Option<OpacityToml>,
+    pub opacity: Option<Box<OpacityToml>>,
     pub one_sided: Option<bool>,
     #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub eta: Option<Vec3>,
@@ -89,16 +89,16 @@ pub(crate) struct MaterialToml {
     #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub absorption: Option<Vec3>,
     /// The parameters of a `principled` or `principledthin` material.
-    pub principled: Option<super::principled::PrincipledToml>,
-    pub texture: Option<TextureToml>,
-    pub specular_texture: Option<TextureToml>,
-    pub normal_map: Option<TextureToml>,
-    pub bump_map: Option<TextureToml>,
+    pub principled: Option<Box<super::principled::PrincipledToml>>,
+    pub texture: Option<Box<TextureToml>>,
+    pub specular_texture: Option<Box<TextureToml>>,
+    pub normal_map: Option<Box<TextureToml>>,
+    pub bump_map: Option<Box<TextureToml>>,
     pub bump_shadowing: Option<bool>,
-    pub phong: Option<PhongToml>,
-    pub brdf: Option<BrdfToml>,
+    pub phong: Option<Box<PhongToml>>,
+    pub brdf: Option<Box<BrdfToml>>,
     /// A blend's share of its second material: a number or a texture's mean channel.
-    pub weight: Option<OpacityToml>,
+    pub weight: Option<Box<OpacityToml>>,
     /// A blend's two materials, by name.
     pub materials: Option<Vec<String>>,
 }

@@ -308,7 +308,7 @@ pub(crate) fn material(
         blend,
         principled: if principled {
             let thin = kind == MaterialKind::PrincipledThin;
-            let table = m.principled.as_ref();
+            let table = m.principled.as_deref();
             Some(Box::new(super::principled::principled(&path, thin, table, ctx, base_dir)?))
         } else {
             None
