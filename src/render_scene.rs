@@ -281,6 +281,8 @@ pub struct RenderScene {
     pub pixel_filter: crate::sampling::filter::FilterSampler,
     /// Camera rays see no light source (`RenderSettings::hide_emitters`).
     pub hide_emitters: bool,
+    /// Which normal decides the side of a surface (`RenderSettings::sides`).
+    pub sides: crate::scene::Sides,
 }
 
 impl RenderScene {

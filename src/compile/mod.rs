@@ -88,6 +88,7 @@ pub fn to_render_scene(
         effects,
         pixel_filter,
         hide_emitters: desc.settings.hide_emitters,
+        sides: desc.settings.sides,
     })
 }
 
@@ -123,5 +124,6 @@ pub fn baked_scene(
         effects: Effects::default(),
         pixel_filter,
         hide_emitters: false,
+        sides: Default::default(),
     }
 }

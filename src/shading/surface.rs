@@ -115,13 +115,35 @@ pub fn shading_facing(shading: Vec3, geometric: Vec3) -> Vec3 {
     }
 }
 
+/// Which side of a surface a ray travelling along `dir` meets (true: the front), and the
+/// geometric and shading (zero: none) normals turned to that side. The geometric normal
+/// decides, the shading normal then turned to its side; or, with `shading_sides`
+/// (`Sides::Shading`, Mitsuba's way), the shading normal decides, and the geometric normal
+/// may face away from the ray.
+#[inline]
+pub fn facing(
+    geometric: Vec3,
+    shading: Vec3,
+    dir: Vec3,
+    shading_sides: bool,
+) -> (bool, Vec3, Vec3) {
+    if shading_sides && shading != Vec3::ZERO {
+        let front = shading.dot(dir) < 0.0;
+        let side = if front { 1.0 } else { -1.0 };
+        return (front, geometric * side, shading * side);
+    }
+    let front = geometric.dot(dir) < 0.0;
+    let geometric = if front { geometric } else { -geometric };
+    (front, geometric, shading_facing(shading, geometric))
+}
+
 pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteraction {
     let instance = &scene.instances[hit.geom_id as usize];
     let geometry = &scene.prototypes[instance.prototype as usize].geometry;
     let placement = &instance.placement;
     let transforms =
         placement.render_from_object(ray.time).zip(placement.object_from_render(ray.time));
-    let mut local = match transforms {
+    let local = match transforms {
         None => {
             // A sphere baked into render space (rotated and uniformly scaled) keeps its
             // own frame for texture coordinates, so that textures turn with it.
@@ -146,13 +168,11 @@ pub fn interaction(scene: &RenderScene, ray: &Ray, hit: &Hit) -> SurfaceInteract
             l
         }
     };
-    let front_face = local.geometric.dot(ray.dir) < 0.0;
-    if !front_face {
-        local.geometric = -local.geometric;
-    }
-    let shading = shading_facing(local.shading, local.geometric);
+    let shading_sides = scene.sides == crate::scene::Sides::Shading;
+    let (front_face, geometric, shading) =
+        facing(local.geometric, local.shading, ray.dir, shading_sides);
     SurfaceInteraction {
-        surface: SurfacePoint { point: local.point, error: local.error, normal: local.geometric },
+        surface: SurfacePoint { point: local.point, error: local.error, normal: geometric },
         shading_normal: shading,
         uv: local.uv,
         material: instance.material,

@@ -346,9 +346,11 @@ impl PathTracer<'_> {
         let Some(sample) = bsdf.sample(wo, u_lobe, Vec2::new(u0, u1)) else {
             return Scattered::End;
         };
-        // The geometric surface must agree with the shading normal about the side.
+        // The geometric surface must agree with the shading normal about the side, unless
+        // the shading normal alone decides (`Sides::Shading`).
         let below = sample.wi.dot(si.surface.normal) < 0.0;
-        if below != sample.transmitted || sample.weight == Vec3::ZERO {
+        let disagree = below != sample.transmitted && !self.spaces.shading_sides;
+        if disagree || sample.weight == Vec3::ZERO {
             return Scattered::End;
         }
         debug_assert!(

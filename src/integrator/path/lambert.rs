@@ -127,11 +127,13 @@ pub(crate) struct LambertOutcome {
     pub near: f32,
 }
 
-/// The rotations the shading frame is built through (`PathTracer::shading_frame`).
+/// The rotations the shading frame is built through (`PathTracer::shading_frame`), and
+/// whether its normal alone decides a direction's side (`Sides::Shading`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct FrameSpaces {
     pub sampling_from_render: Mat3,
     pub render_from_sampling: Mat3,
+    pub shading_sides: bool,
 }
 
 /// The bounce of `lane` (see the module's comment).
@@ -150,7 +152,7 @@ pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> Lamber
     let wi = select3(distant, lane.light_point, to_light / dist2.sqrt());
     let cos_emitted = lane.light_normal.dot(-wi);
     let cos_light = select(lane.light_two_sided != 0.0, cos_emitted.abs(), cos_emitted);
-    let faces = lane.normal.dot(wi) > 0.0;
+    let faces = spaces.shading_sides || lane.normal.dot(wi) > 0.0;
     let wi_local = to_local * wi;
     // Conditions are written as the scalar code has them, so that NaNs fall the same way.
     let lit = !(wo_local.z <= 0.0 || wi_local.z <= 0.0);
@@ -183,7 +185,7 @@ pub(crate) fn lambert_bounce(lane: &LambertLane, spaces: &FrameSpaces) -> Lamber
     let wi_sampled = crate::sampling::cosine_hemisphere(Vec2::new(lane.u0, lane.u1));
     let pdf = wi_sampled.z * FRAC_1_PI;
     let next_dir = frame * wi_sampled;
-    let below = next_dir.dot(lane.normal) < 0.0;
+    let below = !spaces.shading_sides && next_dir.dot(lane.normal) < 0.0;
     let throughput = lane.throughput * lane.diffuse;
     let survive = (throughput * lane.eta_scale).max_element().min(0.95);
     let rouletted = lane.roulette != 0.0;

@@ -13,7 +13,8 @@ use glam::{Mat3, Quat};
 fn spaces() -> FrameSpaces {
     let sampling_from_render =
         Mat3::from_quat(Quat::from_rotation_arc(Vec3::new(0.3, -0.5, 0.8).normalize(), Vec3::Z));
-    FrameSpaces { sampling_from_render, render_from_sampling: sampling_from_render.transpose() }
+    let render_from_sampling = sampling_from_render.transpose();
+    FrameSpaces { sampling_from_render, render_from_sampling, shading_sides: false }
 }
 
 /// A lane whose view is above its surface, lit or not, rouletted or not.

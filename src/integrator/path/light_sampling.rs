@@ -38,11 +38,14 @@ impl PathTracer<'_> {
         let lights = &self.tracer.scene.lights;
         let p = si.surface.point;
         // Light from the side the surface faces; from both for rough glass, where the
-        // shading normal must then agree with the surface about the side.
+        // shading normal must then agree with the surface about the side. Where the shading
+        // normal alone decides (`Sides::Shading`), the BSDF's own cosines do.
         let transmits = bsdf.transmits();
+        let shading_sides = self.spaces.shading_sides;
         let faces = |wi: Vec3| {
             let above = si.surface.normal.dot(wi) > 0.0;
-            above && (!transmits || si.shading_normal.dot(wi) > 0.0)
+            shading_sides
+                || above && (!transmits || si.shading_normal.dot(wi) > 0.0)
                 || transmits && !above && si.shading_normal.dot(wi) < 0.0
         };
         for light in &lights.points {

@@ -116,6 +116,7 @@ impl<'a> PathTracer<'a> {
         let spaces = FrameSpaces {
             sampling_from_render,
             render_from_sampling: sampling_from_render.transpose(),
+            shading_sides: tracer.scene.sides == crate::scene::Sides::Shading,
         };
         let lone_emitter = lights.lone_emitter().filter(|_| lambert_lanes).map(Box::new);
         let plain_surfaces = match lambert_lanes {

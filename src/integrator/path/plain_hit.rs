@@ -15,7 +15,7 @@ use crate::ray::Hit;
 use crate::render_scene::{Geometry, Placement, RenderScene, TriangleMesh};
 use crate::sampling::SampleStream;
 use crate::shading::bsdf::Energy;
-use crate::shading::surface::{interpolated_normal, shading_facing};
+use crate::shading::surface::{facing, interpolated_normal};
 use crate::stats::RenderStats;
 use glam::Vec3;
 
@@ -91,20 +91,17 @@ impl PathTracer<'_> {
         let (ray, mesh) = (&state.ray, plain.mesh);
         let tri = mesh.triangle(hit.prim_id);
         let plane = mesh.plane(hit.prim_id, &tri);
-        let front_face = plane.normal.dot(ray.dir) < 0.0;
+        // As `interaction` shades it.
+        let interpolated = match &mesh.normals {
+            Some(normals) => interpolated_normal(normals, mesh.indices[hit.prim_id as usize], hit),
+            None => Vec3::ZERO,
+        };
+        let (front_face, normal, shading) =
+            facing(plane.normal, interpolated, ray.dir, self.spaces.shading_sides);
         if plain.one_sided && !front_face {
             return None;
         }
         let at = TriangleHit::new(tri, &plane, ray.origin, hit);
-        let normal = if front_face { plane.normal } else { -plane.normal };
-        // As `interaction` shades it.
-        let shading = match &mesh.normals {
-            Some(normals) => {
-                let corners = mesh.indices[hit.prim_id as usize];
-                shading_facing(interpolated_normal(normals, corners, hit), normal)
-            }
-            None => normal,
-        };
         if state.depth == 0 {
             self.record_first_hit(&mut state.result, hit.t, shading);
         }

@@ -53,6 +53,8 @@ pub struct RenderSettings {
     /// Camera rays do not see lights (emitters, the environment, the background): they
     /// only light the scene (Mitsuba's `hide_emitters`).
     pub hide_emitters: bool,
+    /// Which normal decides the side of a surface that light arrives from or leaves to.
+    pub sides: Sides,
     /// The AOVs the scene asks its EXR to carry (Mitsuba's `aov` integrator); `--aovs`
     /// overrides them, and without either the EXR carries depth and normal.
     pub aovs: Option<crate::output::Aovs>,
@@ -68,6 +70,20 @@ pub struct RenderSettings {
     /// Sample positions jittered within their pixel strata (Mitsuba's stratified samplers'
     /// `jitter`); false puts them at stratum centres, as `--no-jitter` does.
     pub jitter: bool,
+}
+
+/// Which normal decides the side of a surface a direction is on, where a smooth-shaded
+/// mesh's shading normal leans away from its triangle's (near its silhouette).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Sides {
+    /// The shading normal and the triangle must agree: light from below the triangle is
+    /// not taken, and a scattered ray that would pass through it ends (no light leaks
+    /// through the surface, at the cost of some light lost near silhouettes).
+    #[default]
+    Both,
+    /// The shading normal alone, as Mitsuba 3 has it: a ray below the triangle but above
+    /// the shading normal passes through the surface and counts.
+    Shading,
 }
 
 /// Where Russian roulette starts unless a scene says.
@@ -86,6 +102,7 @@ impl Default for RenderSettings {
             filter: Default::default(),
             filter_edges: Default::default(),
             hide_emitters: false,
+            sides: Sides::Both,
             aovs: None,
             rr_depth: DEFAULT_RR_DEPTH,
             crop: None,

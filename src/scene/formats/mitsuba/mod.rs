@@ -209,6 +209,7 @@ pub fn load(
     settings.seed = sampler.seed;
     settings.jitter = sampler.jitter;
     settings.filter = sensor.filter;
+    settings.sides = crate::scene::Sides::Shading;
     settings.crop = sensor.crop;
     let Builder { materials, objects, lights, .. } = builder;
     let scene = SceneDesc {

@@ -103,10 +103,16 @@ impl Builder<'_> {
                 let linear = world_from_object.matrix3;
                 let placed = !face_normals && !keeps_angles(linear);
                 let smooth = if placed { None } else { Some(!face_normals) };
+                // Which models have normals in the file (a mirror turns the others inside out).
+                let (_, own) = self.meshes.models(&mesh_ref, None, self.warnings)?;
+                let in_file: Vec<bool> = own.iter().map(|m| m.mesh.normals.is_some()).collect();
                 let (_, mut models) = self.meshes.models(&mesh_ref, smooth, self.warnings)?;
-                if placed {
-                    for model in &mut models {
+                for (model, in_file) in models.iter_mut().zip(in_file) {
+                    if placed {
                         model.mesh = with_normals_placed(Arc::clone(&model.mesh), linear);
+                    }
+                    if linear.determinant() < 0.0 && (face_normals || !in_file) {
+                        model.mesh = Arc::new(flipped(&model.mesh));
                     }
                 }
                 // Mitsuba turns an OBJ's v upside down (flip_tex_coords, on by default), so
@@ -124,8 +130,13 @@ impl Builder<'_> {
             }
             "cube" => vec![ShapeDesc::Mesh(Arc::new(mitsuba_cube_mesh()))],
             "serialized" => {
-                let mesh = Arc::new(self.serialized(element, world_from_object.matrix3)?);
-                vec![ShapeDesc::Mesh(winding::wound_as_normals(mesh))]
+                let linear = world_from_object.matrix3;
+                let (mesh, computed) = self.serialized(element, linear)?;
+                let mesh = winding::wound_as_normals(Arc::new(mesh));
+                match linear.determinant() < 0.0 && computed {
+                    true => vec![ShapeDesc::Mesh(Arc::new(flipped(&mesh)))],
+                    false => vec![ShapeDesc::Mesh(mesh)],
+                }
             }
             "disk" => vec![ShapeDesc::Mesh(Arc::new(disk_mesh()))],
             "sdfgrid" => vec![self.sdf_grid(element, &world_from_object)?],
@@ -210,8 +221,9 @@ impl Builder<'_> {
         }
     }
 
-    /// The mesh of a `serialized` shape.
-    fn serialized(&self, element: &Element, linear: DMat3) -> Result<MeshData, SceneError> {
+    /// The mesh of a `serialized` shape, and whether its normals are computed (or it has
+    /// none: `face_normals`) rather than the file's.
+    fn serialized(&self, element: &Element, linear: DMat3) -> Result<(MeshData, bool), SceneError> {
         let file = property(element, "string", "filename")
             .ok_or_else(|| element.error("the property `filename` is missing"))?;
         let path = self.files.resolve(file.required("value")?);
@@ -225,12 +237,13 @@ impl Builder<'_> {
             .map_err(|problem| file.error(format!("'{}': {problem}", path.display())))?;
         // Mitsuba computes a smooth mesh's missing normals (after `to_world`), as for its OBJ
         // and PLY files.
-        if mesh.normals.is_none() && !face_normals {
+        let computed = mesh.normals.is_none();
+        if computed && !face_normals {
             let normals =
                 VertexNormals::AngleWeighted.of_placed(&mesh.positions, &mesh.indices, linear);
             mesh.normals = Some(normals);
         }
-        Ok(mesh)
+        Ok((mesh, computed))
     }
 
     /// The objects of a `shapegroup`, in the group's own space.

@@ -1,10 +1,13 @@
 //! The `[camera]` and `[render]` tables → `CameraDesc` and `RenderSettings`, validated.
 
+use crate::scene::Sides;
 use crate::scene::desc::{
     CameraDesc, IntegratorKind, LensShape, MAX_LENS_EXTENT, RenderSettings, lens_extent_requirement,
 };
 use crate::scene::error::SceneError;
-use crate::scene::formats::toml::format::{CameraToml, IntegratorToml, LensToml, RenderToml};
+use crate::scene::formats::toml::format::{
+    CameraToml, IntegratorToml, LensToml, RenderToml, SidesToml,
+};
 use crate::scene::formats::toml::source_map::FieldPath;
 use crate::scene::formats::toml::transform_list::fmt_vec;
 use crate::scene::formats::toml::validate::Ctx;
@@ -192,6 +195,10 @@ pub(crate) fn settings(
         };
     }
     settings.hide_emitters = render.hide_emitters.unwrap_or(false);
+    settings.sides = match render.sides {
+        None | Some(SidesToml::Both) => Sides::Both,
+        Some(SidesToml::Shading) => Sides::Shading,
+    };
     if let Some([x0, y0, x1, y1]) = render.crop {
         let ok = x0 < x1 && y0 < y1 && x1 <= camera.width && y1 <= camera.height;
         let requirement = format!(

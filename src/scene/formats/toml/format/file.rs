@@ -77,6 +77,9 @@ pub(crate) struct RenderToml {
     pub background_texture: Option<TextureToml>,
     pub filter: Option<FilterToml>,
     pub hide_emitters: Option<bool>,
+    /// Which normal decides a surface's side: "both" (the shading normal and the
+    /// triangle) or "shading" (the shading normal alone, as Mitsuba).
+    pub sides: Option<SidesToml>,
     pub rr_depth: Option<u32>,
     /// `[x0, y0, x1, y1]`: the window of the image rendered (the second corner excluded).
     #[serde(default, deserialize_with = "super::values::exact_opt")]
@@ -127,4 +130,11 @@ pub(crate) struct TonemapToml {
 #[serde(rename_all = "snake_case")]
 pub(crate) enum TonemapOperatorToml {
     Photographic,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum SidesToml {
+    Both,
+    Shading,
 }

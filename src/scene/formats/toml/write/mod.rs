@@ -272,6 +272,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
     if s.hide_emitters {
         let _ = writeln!(out, "hide_emitters = true");
     }
+    if s.sides == crate::scene::Sides::Shading {
+        let _ = writeln!(out, "sides = \"shading\"");
+    }
     if let Some(t) = &s.background_texture {
         let _ = writeln!(out, "background_texture = {}", texture_toml(t, false)?);
     }
