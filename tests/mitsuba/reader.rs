@@ -248,7 +248,7 @@ fn a_mitsuba_scene_converts_to_toml_and_back() {
 }
 
 /// Integrators read their own parameters only: `rr_depth` (Mitsuba's default 5), `direct`'s
-/// `emitter_samples`; anything else is refused with the parameter and line.
+/// `emitter_samples` (1 or more); anything else is refused with the parameter and line.
 #[test]
 fn integrator_parameters_are_read_or_refused() {
     let scene = |integrator: &str| {
@@ -272,6 +272,15 @@ fn integrator_parameters_are_read_or_refused() {
     )
     .unwrap();
     assert_eq!((direct.settings.light_samples, direct.settings.max_depth), (4, 1));
+    // 0 of either leaves a technique out, which Mitsuba renders (its image lacks what only
+    // the other sees) and embray does not: refused, rather than rendered otherwise.
+    for name in ["emitter_samples", "bsdf_samples"] {
+        let integrator = format!(
+            "<integrator type=\"direct\"><integer name=\"{name}\" value=\"0\"/></integrator>"
+        );
+        let message = load("m-int-zero", &integrator).unwrap_err();
+        assert_contains(&message, &[&format!("{name} is 0, but must be 1 to 65536"), "(line 15)"]);
+    }
     let message = load(
         "m-int-bad",
         "<integrator type=\"path\"><integer name=\"samples_per_pass\" value=\"4\"/></integrator>",

@@ -143,11 +143,18 @@ fn direct_integrator(
         ("emitter_samples", integer(element, "emitter_samples")?.unwrap_or(shading)),
         ("bsdf_samples", integer(element, "bsdf_samples")?.unwrap_or(shading)),
     ] {
-        if !(0..=max).contains(&count) {
-            return Err(element.error(format!("{name} is {count}, but must be 0 to {max}")));
+        // 0 leaves one technique out: Mitsuba's image then lacks what only the other sees
+        // (point lights without emitter samples, mirrors without BSDF samples), which
+        // embray's estimator, both techniques MIS-weighted, does not render.
+        if !(1..=max).contains(&count) {
+            let why = match count {
+                0 => " (embray samples both emitters and the BSDF at every hit)",
+                _ => "",
+            };
+            return Err(element.error(format!("{name} is {count}, but must be 1 to {max}{why}")));
         }
         let (taken, as_taken) = match name {
-            "emitter_samples" => (count.max(1), "one emitter sample"),
+            "emitter_samples" => (count, "one emitter sample"),
             _ => (1, "one BSDF sample"),
         };
         if name == "emitter_samples" {
