@@ -29,7 +29,8 @@ pub enum DenoiseError {
          available (the denoiser adds {} bytes a pixel; render smaller, on fewer --threads, or without --denoise)",
         .needed >> 20, .available >> 20, crate::limits::DENOISE_BYTES_PER_PIXEL
     )]
-    Memory { estimate: crate::scene::budget::MemoryEstimate, needed: u64, available: u64 },
+    /// (The estimate boxed: every denoising error would otherwise carry its size.)
+    Memory { estimate: Box<crate::scene::budget::MemoryEstimate>, needed: u64, available: u64 },
 }
 
 /// Refuses, before anything is rendered, a render of `desc` that could not also be denoised
@@ -44,7 +45,7 @@ pub fn check_memory(
     let needed = estimate.bytes.saturating_add(denoiser);
     match crate::limits::memory_available() {
         Some(available) if needed > available => {
-            Err(DenoiseError::Memory { estimate, needed, available })
+            Err(DenoiseError::Memory { estimate: Box::new(estimate), needed, available })
         }
         _ => Ok(()),
     }
