@@ -15,6 +15,7 @@ mod error;
 pub mod formats;
 pub use crate::input_file::{MAX_INPUT_BYTES, files_read, read_bytes as read_input_bytes};
 mod image_cache;
+mod image_ref;
 mod mesh_file;
 mod round_shapes;
 mod shapes;

@@ -11,26 +11,7 @@ use std::sync::Arc;
 /// 8192 × 4096 image; larger ones are refused before decoding.
 pub const MAX_TEXTURE_TEXELS: u64 = 1 << 25;
 
-/// Where an image is named, for messages.
-pub struct ImageRef<'a> {
-    pub image: PathBuf,
-    pub scene: &'a Path,
-    /// The texture that names it (`materials.wood.texture.file`, `<TextureMap id="2">`).
-    pub item: String,
-    pub line: Line,
-}
-
-impl ImageRef<'_> {
-    fn error(&self, problem: impl Into<String>) -> SceneError {
-        SceneError::Image {
-            image: self.image.clone(),
-            scene: self.scene.to_path_buf(),
-            item: self.item.clone(),
-            problem: problem.into(),
-            line: self.line,
-        }
-    }
-}
+pub use super::image_ref::ImageRef;
 
 /// The image `at` names as `reading` reads it, decoded by `decode` from the file's bytes
 /// unless it is held already (`image_cache`).
@@ -41,25 +22,6 @@ fn shared(
 ) -> Result<(Arc<TextureImage>, bool), SceneError> {
     let bytes = crate::scene::read_input_bytes(&at.image).map_err(|e| at.error(e.to_string()))?;
     super::image_cache::shared(&at.image, &bytes, reading, decode)
-}
-
-/// Refuses to decode the `width` × `height` image `at` names, at `per_texel` bytes a texel
-/// while it is decoded, when it and the images held already would not fit in memory.
-fn check_room(at: &ImageRef, width: u64, height: u64, per_texel: u64) -> Result<(), SceneError> {
-    let size = crate::scene::budget::size;
-    let decoding = (width * height).saturating_mul(per_texel);
-    super::image_cache::check_room(decoding).map_err(|(held, available)| {
-        let beside = match held {
-            0 => String::new(),
-            held => format!(", beside {} of images read already,", size(held)),
-        };
-        at.error(format!(
-            "decoding its {width} × {height} texels needs about {} of memory{beside} but only {} are \
-             available",
-            size(decoding),
-            size(available)
-        ))
-    })
 }
 
 /// sRGB's transfer function, from an encoded value in [0, 1] to linear.
@@ -77,7 +39,7 @@ fn decode(at: &ImageRef, bytes: &[u8]) -> Result<image::DynamicImage, SceneError
             "{width} × {height} texels; a texture takes 1 to {MAX_TEXTURE_TEXELS} texels"
         )));
     }
-    check_room(at, width.into(), height.into(), crate::limits::BYTES_PER_TEXEL)?;
+    at.check_room(width.into(), height.into(), crate::limits::BYTES_PER_TEXEL)?;
     let mut reader = checked()?;
     let mut limits = image::Limits::default();
     limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 16);
@@ -240,7 +202,7 @@ fn radiance(
             "{width} × {height} texels; a radiance map takes 1 to {MAX_TEXTURE_TEXELS} texels"
         )));
     }
-    check_room(at, width, height, crate::limits::BYTES_PER_HDR_TEXEL)?;
+    at.check_room(width, height, crate::limits::BYTES_PER_HDR_TEXEL)?;
     let (_, _, mut texels) = crate::exr_rgb::read(bytes).map_err(|e| at.error(e))?;
     for (i, c) in texels.iter_mut().enumerate() {
         if !c.is_finite() {
