@@ -274,6 +274,7 @@ fn image_source<'s>(
 }
 
 impl ImageSource {
+    /// Where the image is named, for the loader's messages.
     fn at<'x>(&self, x: &'x Xml) -> ImageRef<'x> {
         ImageRef {
             image: self.path.clone(),

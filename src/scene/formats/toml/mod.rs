@@ -35,13 +35,13 @@ pub(crate) fn load_str_with_warnings(
     text: &str,
     source: &Path,
 ) -> Result<(SceneDesc, Vec<String>), SceneError> {
-    let text_bytes = (text.len() as u64).saturating_mul(crate::limits::BYTES_PER_TOML_BYTE);
+    let parsing = (text.len() as u64).saturating_mul(crate::limits::BYTES_PER_TOML_BYTE);
     let what = || format!("{} bytes of TOML", text.len());
-    crate::scene::budget::check_reading(source, text_bytes, what)?;
+    crate::scene::budget::check_reading(source, parsing, what)?;
     let map = source_map::SourceMap::new(text);
     let file: SceneFile = map.read(source)?;
     let materials = file.materials.len() as u64;
-    let needed = text_bytes.saturating_add(materials * crate::limits::BYTES_PER_MATERIAL);
+    let needed = parsing.saturating_add(materials * crate::limits::BYTES_PER_MATERIAL);
     let what = || format!("{} bytes of TOML, {materials} materials", text.len());
     crate::scene::budget::check_reading(source, needed, what)?;
     let ctx = Ctx { file: source, map };

@@ -64,16 +64,17 @@ impl fmt::Display for FieldPath {
     }
 }
 
-/// The scene text, and where its fields are: the document with spans is parsed again when a
-/// line is first asked for (the parse that serde reads is consumed by it), and lines are
-/// found from an index of the line breaks, so asking for every light's fields stays linear.
+/// The scene text, and where its fields are: the document with spans (the one `read` parsed,
+/// serde reading a copy), and an index of the line breaks, so that asking for the line of
+/// every light's fields stays linear in the file.
 pub(crate) struct SourceMap<'a> {
     text: &'a str,
-    doc: OnceCell<Option<Spanned<DeTable<'a>>>>,
+    doc: OnceCell<Spanned<DeTable<'a>>>,
     lines: OnceCell<LineIndex>,
 }
 
 impl<'a> SourceMap<'a> {
+    /// The map of `text`, parsed by `read` (or by the first `line` asked for).
     pub(crate) fn new(text: &'a str) -> Self {
         SourceMap { text, doc: OnceCell::new(), lines: OnceCell::new() }
     }
@@ -86,9 +87,12 @@ impl<'a> SourceMap<'a> {
     /// The line where the value at `path` starts; for a path that does not exist (a missing
     /// field), the line of its deepest existing parent other than the root.
     pub(crate) fn line(&self, path: &FieldPath) -> Line {
-        // The text parsed before, so it parses again (`None` is never seen).
-        let Some(doc) = self.doc.get_or_init(|| DeTable::parse(self.text).ok()) else {
-            return Line(None);
+        let doc = match self.doc.get() {
+            Some(doc) => doc,
+            None => match DeTable::parse(self.text) {
+                Ok(doc) => self.doc.get_or_init(|| doc),
+                Err(_) => return Line(None),
+            },
         };
         let mut span = doc.span();
         // `None` only before the first step: the root table.
@@ -118,7 +122,7 @@ impl<'a> SourceMap<'a> {
     ) -> Result<T, SceneError> {
         let doc = DeTable::parse(self.text).map_err(|e| toml_error(file, &e))?;
         self.check_table(doc.get_ref(), &FieldPath::default(), file)?;
-        let doc = self.doc.get_or_init(|| Some(doc)).as_ref().expect("parsed");
+        let doc = self.doc.get_or_init(|| doc);
         T::deserialize(toml::de::Deserializer::from(doc.clone())).map_err(|error| {
             // A document handed to serde has lost its text, and toml's message its line and
             // excerpt: they come from reading the text again (errors are rare).
