@@ -4,16 +4,25 @@
 /// The most characters of a quoted value a message shows.
 pub const MAX_EXCERPT_CHARS: usize = 80;
 
+/// Characters a terminal acts on rather than shows: control characters (a newline would start
+/// a forged message line, an escape colour the terminal) and the bidirectional formatting
+/// ones (U+202E shows the text after it reversed).
+fn acts_on_terminal(c: char) -> bool {
+    c.is_control()
+        || matches!(c, '\u{200e}' | '\u{200f}' | '\u{061c}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+}
+
+/// `c` as it is, or escaped (`\u{1b}`) if a terminal would act on it.
+fn shown(c: char) -> Vec<char> {
+    if acts_on_terminal(c) { c.escape_default().collect() } else { vec![c] }
+}
+
 /// `text` itself when it is short, else its first `MAX_EXCERPT_CHARS` characters, an
-/// ellipsis and how long it was. Control characters are shown escaped, so the excerpt stays
-/// on one line.
+/// ellipsis and how long it was. Control and bidirectional formatting characters are shown
+/// escaped, so the excerpt stays on one line and reads as written.
 pub fn excerpt(text: &str) -> String {
     let total = text.chars().count();
-    let mut out: String = text
-        .chars()
-        .take(MAX_EXCERPT_CHARS)
-        .flat_map(|c| if c.is_control() { c.escape_default().collect::<Vec<_>>() } else { vec![c] })
-        .collect();
+    let mut out: String = text.chars().take(MAX_EXCERPT_CHARS).flat_map(shown).collect();
     if total > MAX_EXCERPT_CHARS {
         out += &format!("… ({total} characters)");
     }
@@ -27,6 +36,16 @@ pub fn short_number(value: String) -> String {
         Ok(number) if value.len() > 24 => format!("{number:e}"),
         _ => value,
     }
+}
+
+/// `message` as a terminal should get it: every character a terminal would act on escaped
+/// but its line breaks and tabs (a message quoting input that was not excerpted, a path, a
+/// library's report, may hold an escape sequence or U+202E).
+pub fn terminal_safe(message: &str) -> String {
+    message
+        .chars()
+        .flat_map(|c| if matches!(c, '\n' | '\t') { vec![c] } else { shown(c) })
+        .collect()
 }
 
 /// `message` with every line longer than `max_line` characters cut to an excerpt: for
@@ -58,6 +77,16 @@ mod tests {
         assert!(shown.chars().count() < MAX_EXCERPT_CHARS + 40, "{shown}");
         assert!(shown.ends_with("(50000 characters)"));
         assert_eq!(excerpt("a\nb"), "a\\nb");
+        assert_eq!(excerpt("a\u{202e}b"), "a\\u{202e}b");
+    }
+
+    #[test]
+    fn messages_reach_the_terminal_without_escapes_or_reversals() {
+        let message = "line one\n\tmtllib 'a\u{1b}[31m.mtl' \u{202e}gnp.exe";
+        assert_eq!(
+            terminal_safe(message),
+            "line one\n\tmtllib 'a\\u{1b}[31m.mtl' \\u{202e}gnp.exe"
+        );
     }
 
     #[test]

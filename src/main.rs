@@ -31,7 +31,8 @@ fn main() -> std::process::ExitCode {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(error) => {
             // Standard error may itself be unwritable: never panic over the message.
-            let _ = writeln!(std::io::stderr(), "error: {error:#}");
+            let message = embray::excerpt::terminal_safe(&format!("{error:#}"));
+            let _ = writeln!(std::io::stderr(), "error: {message}");
             std::process::ExitCode::FAILURE
         }
     }

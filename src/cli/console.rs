@@ -16,5 +16,5 @@ pub fn out(text: impl Display) -> Result<()> {
 
 /// Writes `text` and a newline to standard error; a failure there has nowhere to be told.
 pub fn note(text: impl Display) {
-    let _ = writeln!(std::io::stderr(), "{text}");
+    let _ = writeln!(std::io::stderr(), "{}", embray::excerpt::terminal_safe(&text.to_string()));
 }

@@ -69,6 +69,6 @@ pub fn load_str_with_warnings(
 
 fn print_warnings(warnings: &[String]) {
     for warning in warnings {
-        let _ = writeln!(std::io::stderr(), "warning: {warning}");
+        let _ = writeln!(std::io::stderr(), "warning: {}", crate::excerpt::terminal_safe(warning));
     }
 }

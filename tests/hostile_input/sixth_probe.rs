@@ -84,3 +84,28 @@ fn a_ceng795_scene_reads_only_the_texture_maps_its_objects_use() {
     accepted_in(&scratch, &["render", "s.xml"]);
     assert!(scratch.path("a.png").exists());
 }
+
+/// Input that reaches a message unexcerpted (a Mitsuba `<ref>`'s id, an OBJ's `mtllib`
+/// name) reaches the terminal with its control and bidirectional formatting characters
+/// escaped: a newline forged a second `error:` line, an escape sequence coloured the
+/// terminal, U+202E reversed what followed.
+#[test]
+fn messages_reach_the_terminal_escaped() {
+    let scratch = Scratch::new();
+    scratch.write(
+        "s.xml",
+        "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n\
+         <ref id=\"a&#10;error: forged&#x202e;x\"/>\n</shape>\n</scene>\n",
+    );
+    let run = crate::harness::refused_in(
+        &scratch,
+        &["render", "s.xml", "-o", "s.png"],
+        &["no object has the id 'a\\nerror: forged\\u{202e}x' (known: none)"],
+    );
+    assert!(!run.stderr.contains("\nerror: forged") && !run.stderr.contains('\u{202e}'));
+    scratch.write("m.obj", "mtllib m\u{1b}[31m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    scratch.write("s.toml", crate::harness::with_mesh("m.obj"));
+    let run = accepted_in(&scratch, &["render", "s.toml", "-o", "s.png"]);
+    assert!(run.stderr.contains("'m\\u{1b}[31m.mtl'"), "{}", run.stderr);
+    assert!(!run.stderr.contains('\u{1b}'), "{}", run.stderr);
+}

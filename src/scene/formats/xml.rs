@@ -12,7 +12,7 @@ use std::path::Path;
 pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Vec<CameraScene>, SceneError> {
     let (scenes, warnings) = load_with_warnings(path, defines)?;
     for warning in &warnings {
-        let _ = writeln!(std::io::stderr(), "warning: {warning}");
+        let _ = writeln!(std::io::stderr(), "warning: {}", crate::excerpt::terminal_safe(warning));
     }
     Ok(scenes)
 }

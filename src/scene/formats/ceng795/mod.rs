@@ -80,7 +80,7 @@ pub fn is_ceng795_path(path: &Path) -> bool {
 pub fn load(path: &Path) -> Result<Vec<CameraScene>, SceneError> {
     let (scenes, warnings) = load_with_warnings(path)?;
     for warning in &warnings {
-        let _ = writeln!(std::io::stderr(), "warning: {warning}");
+        let _ = writeln!(std::io::stderr(), "warning: {}", crate::excerpt::terminal_safe(warning));
     }
     Ok(scenes)
 }

@@ -21,6 +21,7 @@ mod transform;
 mod tree;
 mod values;
 
+use crate::excerpt::excerpt;
 use crate::scene::desc::{LightDesc, MaterialDesc, ObjectDesc, RenderSettings, SceneDesc};
 use crate::scene::error::SceneError;
 use crate::scene::mesh_file::MeshCache;
@@ -108,8 +109,13 @@ impl Ids {
             None => {
                 let mut known: Vec<&str> = self.by_id.keys().map(String::as_str).collect();
                 known.sort();
+                let mut listed: Vec<String> = known.iter().take(10).map(|k| excerpt(k)).collect();
+                if known.len() > 10 {
+                    listed.push(format!("and {} more", known.len() - 10));
+                }
+                let known = if listed.is_empty() { "none".to_owned() } else { listed.join(", ") };
                 Err(element
-                    .error(format!("no object has the id '{id}' (known: {})", known.join(", "))))
+                    .error(format!("no object has the id '{}' (known: {known})", excerpt(id))))
             }
         }
     }
