@@ -53,6 +53,15 @@ fn each_family_reads_with_mitsubas_defaults() {
     assert!((ior - 1.333 / 1.000277).abs() < 1e-6, "{ior}");
     assert_eq!((glass.distribution, glass.roughness), (Distribution::Beckmann, 0.2));
     assert!(!glass.one_sided, "glass is seen from both sides");
+    // `sample_visible` only chooses how directions are drawn: the same material.
+    let drawn_otherwise = material_of(
+        "m-rd-sv",
+        "<bsdf type=\"roughdielectric\"><float name=\"alpha\" value=\"0.2\"/>\
+         <string name=\"int_ior\" value=\"water\"/>\
+         <boolean name=\"sample_visible\" value=\"false\"/></bsdf>",
+    )
+    .unwrap();
+    assert_eq!(drawn_otherwise, glass);
 
     let masked = material_of(
         "m-mask",
@@ -93,8 +102,8 @@ fn what_is_not_modelled_is_refused_by_name_and_line() {
             "specular_reflectance other than 1 is not supported",
         ),
         (
-            "<bsdf type=\"roughdielectric\"><boolean name=\"sample_visible\" value=\"false\"/></bsdf>",
-            "sample_visible = false is not supported",
+            "<bsdf type=\"roughdielectric\"><string name=\"sample_visible\" value=\"no\"/></bsdf>",
+            "sample_visible",
         ),
         (
             "<bsdf type=\"plastic\"><float name=\"int_ior\" value=\"1.2\"/>\

@@ -156,11 +156,9 @@ fn microfacet(element: &Element) -> Result<Roughness, SceneError> {
             return Err(element.error(format!("{name} is {value}, but must be in [0, 1]")));
         }
     }
-    if super::values::boolean(element, "sample_visible")? == Some(false) {
-        return Err(
-            element.error("sample_visible = false is not supported (visible normals are sampled)")
-        );
-    }
+    // `sample_visible` chooses how directions are drawn, not what the BSDF is: read (a
+    // non-boolean is refused) and the visible normals drawn either way, for the same image.
+    super::values::boolean(element, "sample_visible")?;
     let alpha_v = v.filter(|&v| Some(v) != u).map(|v| v as f32);
     Ok(Roughness { distribution, alpha: alpha as f32, alpha_v })
 }
