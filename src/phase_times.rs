@@ -78,7 +78,7 @@ impl PhaseTimes {
 impl AddAssign for PhaseTimes {
     fn add_assign(&mut self, other: Self) {
         for (sum, n) in self.nanos.iter_mut().zip(other.nanos) {
-            *sum += n;
+            *sum = sum.saturating_add(n);
         }
     }
 }

@@ -5,12 +5,13 @@
 use crate::phase_times::PhaseTimes;
 use std::ops::AddAssign;
 
-/// `AddAssign` that adds every listed field.
+/// `AddAssign` that adds every listed count, saturating: counts read from part files may be
+/// anything, and a sum that wrapped would report a small number as the total.
 macro_rules! add_fields {
     ($ty:ident { $($field:ident),+ }) => {
         impl AddAssign for $ty {
             fn add_assign(&mut self, other: Self) {
-                $(self.$field += other.$field;)+
+                $(self.$field = self.$field.saturating_add(other.$field);)+
             }
         }
     };
@@ -83,8 +84,34 @@ fn is_zero(count: &u64) -> bool {
 
 impl RenderStats {
     pub fn total_rays(&self) -> u64 {
-        self.camera.rays + self.shadow.rays + self.indirect.rays
+        self.camera.rays.saturating_add(self.shadow.rays).saturating_add(self.indirect.rays)
     }
 }
 
-add_fields!(RenderStats { camera, shadow, indirect, traversal, bounces, phases, clamped_samples });
+impl AddAssign for RenderStats {
+    fn add_assign(&mut self, other: Self) {
+        self.camera += other.camera;
+        self.shadow += other.shadow;
+        self.indirect += other.indirect;
+        self.traversal += other.traversal;
+        self.bounces += other.bounces;
+        self.phases += other.phases;
+        self.clamped_samples = self.clamped_samples.saturating_add(other.clamped_samples);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Counts read from part files are summed without wrapping (two parts of 2⁶⁴ − 1 rays
+    /// made "168 rays in all").
+    #[test]
+    fn sums_saturate() {
+        let huge = RayKindCounts { rays: u64::MAX, hits: 3 };
+        let mut stats = RenderStats { camera: huge, shadow: huge, ..Default::default() };
+        stats += stats;
+        assert_eq!((stats.camera.rays, stats.camera.hits), (u64::MAX, 6));
+        assert_eq!(stats.total_rays(), u64::MAX);
+    }
+}
