@@ -103,15 +103,18 @@ impl Builder<'_> {
                 let linear = world_from_object.matrix3;
                 let placed = !face_normals && !keeps_angles(linear);
                 let smooth = if placed { None } else { Some(!face_normals) };
-                // Which models have normals in the file (a mirror turns the others inside out).
-                let (_, own) = self.meshes.models(&mesh_ref, None, self.warnings)?;
-                let in_file: Vec<bool> = own.iter().map(|m| m.mesh.normals.is_some()).collect();
+                // Under a mirror, models without normals in the file turn inside out.
+                let mirrored = linear.determinant() < 0.0;
+                let own = match mirrored {
+                    true => self.meshes.models(&mesh_ref, None, self.warnings)?.1,
+                    false => Vec::new(),
+                };
                 let (_, mut models) = self.meshes.models(&mesh_ref, smooth, self.warnings)?;
-                for (model, in_file) in models.iter_mut().zip(in_file) {
+                for (i, model) in models.iter_mut().enumerate() {
                     if placed {
                         model.mesh = with_normals_placed(Arc::clone(&model.mesh), linear);
                     }
-                    if linear.determinant() < 0.0 && (face_normals || !in_file) {
+                    if mirrored && (face_normals || own[i].mesh.normals.is_none()) {
                         model.mesh = Arc::new(flipped(&model.mesh));
                     }
                 }
