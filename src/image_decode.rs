@@ -11,6 +11,11 @@ pub fn reader(bytes: &[u8]) -> Result<ImageReader<Cursor<&[u8]>>, String> {
         ImageReader::new(Cursor::new(bytes)).with_guessed_format().map_err(|e| e.to_string())?;
     match reader.format() {
         None => Err("not a PNG, JPEG or BMP image".into()),
+        // Its texels are linear and unbounded: read only as radiance (`rgbe`), never into
+        // an 8-bit texture or a compared image, which would clamp them.
+        Some(ImageFormat::Hdr) => Err("a Radiance RGBE image, which embray reads only as a \
+                                       radiance map (an environment or a Mitsuba bitmap)"
+            .into()),
         Some(ImageFormat::Jpeg) if !jpeg_is_complete(bytes) => {
             Err("the JPEG ends before its end-of-image marker: the file is cut short".into())
         }
@@ -27,5 +32,15 @@ fn jpeg_is_complete(bytes: &[u8]) -> bool {
     match (last(0xDA), last(0xD9)) {
         (Some(scan), Some(end)) => end > scan,
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_radiance_file_is_refused_where_texels_would_be_clamped() {
+        let file = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 1\n\x80\x80\x80\x81";
+        let err = super::reader(file).err().expect("refused");
+        assert!(err.contains("Radiance RGBE") && err.contains("only as a radiance map"), "{err}");
     }
 }

@@ -48,6 +48,7 @@ pub mod render_scene;
 pub mod render_space;
 pub mod render_stop;
 mod render_tile;
+pub mod rgbe;
 pub mod sample_sums;
 pub mod sampling;
 pub mod scene;

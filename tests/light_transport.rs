@@ -97,8 +97,7 @@ fn mirrored_scene(shared: bool) -> SceneDesc {
     s.settings.max_depth = 6;
     let floor = add_material(&mut s, diffuse(0.7));
     let mut glass = diffuse(0.0);
-    glass.specular =
-        embray::scene::Specular::Dielectric { ior: 1.5, absorption: Vec3::new(0.2, 0.5, 0.9) };
+    glass.specular = embray::scene::Specular::dielectric(1.5, Vec3::new(0.2, 0.5, 0.9));
     let glass = add_material(&mut s, glass);
     let light = add_material(&mut s, emissive(4.0));
     let mirror = |at: DVec3| {

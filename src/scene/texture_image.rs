@@ -178,7 +178,7 @@ pub fn as_luminance(image: &TextureImage) -> Arc<TextureImage> {
 const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 
 /// A radiance map: an EXR file's linear values as they are (R, G, B, or Y for grey
-/// images), or a PNG/JPEG read as `load` reads textures. Non-finite values are refused;
+/// images), a Radiance RGBE file's, or a PNG/JPEG read as `load` reads textures. Non-finite values are refused;
 /// negative ones (left by some HDR tools' filtering) become 0.
 pub fn load_radiance(at: &ImageRef, decode_srgb: bool) -> Result<Arc<TextureImage>, SceneError> {
     let reading = Reading::Radiance { srgb: decode_srgb };
@@ -192,10 +192,12 @@ fn radiance(
     bytes: &[u8],
     decode_srgb: bool,
 ) -> Result<Arc<TextureImage>, SceneError> {
-    if !bytes.starts_with(&EXR_MAGIC) {
+    let rgbe = crate::rgbe::is_rgbe(bytes);
+    if !bytes.starts_with(&EXR_MAGIC) && !rgbe {
         return colour(at, bytes, decode_srgb);
     }
-    let (width, height) = crate::exr_rgb::size(bytes).map_err(|e| at.error(e))?;
+    let size = if rgbe { crate::rgbe::size(bytes) } else { crate::exr_rgb::size(bytes) };
+    let (width, height) = size.map_err(|e| at.error(e))?;
     let texels = width * height;
     if texels == 0 || texels > MAX_TEXTURE_TEXELS {
         return Err(at.error(format!(
@@ -203,7 +205,11 @@ fn radiance(
         )));
     }
     at.check_room(width, height, crate::limits::BYTES_PER_HDR_TEXEL)?;
-    let (_, _, mut texels) = crate::exr_rgb::read(bytes).map_err(|e| at.error(e))?;
+    let texels = match rgbe {
+        true => crate::rgbe::read(bytes),
+        false => crate::exr_rgb::read(bytes).map(|(_, _, texels)| texels),
+    };
+    let mut texels = texels.map_err(|e| at.error(e))?;
     for (i, c) in texels.iter_mut().enumerate() {
         if !c.is_finite() {
             let (x, y) = (i as u64 % width, i as u64 / width);

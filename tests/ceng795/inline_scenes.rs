@@ -186,10 +186,7 @@ fn materials_and_lights_map_to_the_scene_description() {
         }
     );
     assert_eq!(m[1].roughness, 0.1);
-    assert_eq!(
-        m[2].specular,
-        Specular::Dielectric { ior: 1.5, absorption: glam::Vec3::new(0.01, 0.02, 0.03) }
-    );
+    assert_eq!(m[2].specular, Specular::dielectric(1.5, glam::Vec3::new(0.01, 0.02, 0.03)));
     assert_eq!(m[3].albedo, glam::Vec3::new(0.5, 0.5, 1.5));
     assert_eq!(
         s.lights,

@@ -103,7 +103,7 @@ fn white_mirror_and_glass_conserve_energy_in_a_furnace() {
     };
     let glass = MaterialDesc {
         albedo: Vec3::ZERO,
-        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+        specular: Specular::dielectric(1.5, Vec3::ZERO),
         ..Default::default()
     };
     for backend in backends() {

@@ -101,10 +101,10 @@ refused_cases! {
         => ["s.xml", "`filter_type` must be a <string>", "(line 3)"];
     bitmap_format_unknown: ["s.xml" => sphere(r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="t.png"/><string name="format" value="bogus"/></texture></bsdf>"#)], ["info", "s.xml"]
         => ["s.xml", "the format 'bogus' is not known", "(line 3)"];
-    bitmap_rgbe: ["s.xml" => sphere(r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="t.hdr"/></texture></bsdf>"#)], ["info", "s.xml"]
-        => ["s.xml", "Radiance RGBE image", "convert it to OpenEXR", "(line 3)"];
-    envmap_rgbe: ["s.xml" => m3(r#"<emitter type="envmap"><string name="filename" value="sky.hdr"/></emitter>"#)], ["info", "s.xml"]
-        => ["s.xml", "Radiance RGBE image", "(line 3)"];
+    bitmap_rgbe_without_header_end: ["s.xml" => sphere(r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="t.hdr"/></texture></bsdf>"#), "t.hdr" => "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n"], ["info", "s.xml"]
+        => ["s.xml", "t.hdr", "not a readable Radiance RGBE file", "(line 3)"];
+    envmap_rgbe_cut_short: ["s.xml" => m3(r#"<emitter type="envmap"><string name="filename" value="sky.hdr"/></emitter>"#), "sky.hdr" => "#?RADIANCE\n\n-Y 4 +X 4\n\u{80}\u{80}"], ["info", "s.xml"]
+        => ["s.xml", "sky.hdr", "broken Radiance RGBE file", "(line 3)"];
     point_value_and_z: ["s.xml" => m3("<shape type=\"sphere\"><point name=\"center\" value=\"0,0,1\" z=\"-1\"/></shape>")], ["info", "s.xml"]
         => ["s.xml", "<point name=\"center\">", "give `value` or `x`/`y`/`z`, not both", "(line 3)"];
     translate_value_and_z: ["s.xml" => m3("<shape type=\"sphere\"><transform name=\"to_world\">\n<translate value=\"0 0 1\" z=\"-1\"/></transform></shape>")], ["info", "s.xml"]

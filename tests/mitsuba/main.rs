@@ -9,6 +9,7 @@ mod blend;
 mod bsdfs;
 mod emitters_compat;
 mod film_sampler;
+mod glass;
 mod principled;
 mod reader;
 mod shapes_compat;

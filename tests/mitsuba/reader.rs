@@ -90,7 +90,7 @@ fn a_scene_reads_into_the_model_as_mitsuba_defines_it() {
     close(to_world.transform_point3(DVec3::ZERO), DVec3::new(0.0, 1.0, -2.0));
     assert!((to_world.transform_vector3(DVec3::Y).length() - 1.0).abs() < 1e-12);
     let glass = &scene.materials[sphere.material as usize];
-    assert_eq!(glass.specular, Specular::Dielectric { ior: 2.419, absorption: Vec3::ZERO });
+    assert_eq!(glass.specular, Specular::dielectric(2.419, Vec3::ZERO));
     // The rectangle: the referenced conductor, with the area emitter's radiance.
     let gold = &scene.materials[scene.objects[1].material as usize];
     assert_eq!(gold.emission, Vec3::new(2.0, 3.0, 4.0));

@@ -86,7 +86,7 @@ fn mtl_statements_become_materials_and_the_rest_warnings_with_lines() {
         [
             Specular::None,
             Specular::None,
-            Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+            Specular::dielectric(1.5, Vec3::ZERO),
             Specular::Mirror { reflectance: Vec3::ONE },
         ]
     );

@@ -110,13 +110,10 @@ fn material_types_and_their_defaults() {
     assert!((eta.x - 1.6575).abs() < 1e-4, "{eta}");
 
     let glass = material(&scene, "glass");
-    assert_eq!(glass.specular, Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO });
+    assert_eq!(glass.specular, Specular::dielectric(1.5, Vec3::ZERO));
     assert_eq!(glass.albedo, Vec3::ZERO);
     let green = material(&scene, "green_glass");
-    assert_eq!(
-        green.specular,
-        Specular::Dielectric { ior: 1.33, absorption: Vec3::new(0.5, 0.0, 0.5) }
-    );
+    assert_eq!(green.specular, Specular::dielectric(1.33, Vec3::new(0.5, 0.0, 0.5)));
     assert_eq!(green.roughness, 0.1);
 }
 

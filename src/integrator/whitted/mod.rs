@@ -257,11 +257,11 @@ impl<'a> WhittedTracer<'a> {
                 let tint = Vec3::splat(fresnel_dielectric(cos_o, ior));
                 combine.reflect = reflected(tint, stream, &mut reflection);
             }
-            Specular::Dielectric { ior, absorption } => {
+            Specular::Dielectric { ior, absorption, reflectance, transmittance } => {
                 // Entering (front face): from air into the glass; else leaving it.
                 let eta = if si.front_face { ior } else { 1.0 / ior };
                 let fr = fresnel_dielectric(cos_o, eta);
-                combine.reflect = reflected(Vec3::splat(fr), stream, &mut reflection);
+                combine.reflect = reflected(fr * reflectance, stream, &mut reflection);
                 if fr < 1.0 {
                     let sin2_t = (1.0 - cos_o * cos_o) / (eta * eta);
                     let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
@@ -270,7 +270,18 @@ impl<'a> WhittedTracer<'a> {
                     let beyond = if si.front_face { Some(absorption) } else { None };
                     refraction =
                         Some(Node { ray: next, depth_left, camera_ray: false, medium: beyond });
-                    combine.refract = Some(1.0 - fr);
+                    combine.refract = Some((1.0 - fr) * transmittance);
+                }
+            }
+            Specular::ThinDielectric { ior, reflectance, transmittance } => {
+                let fr = fresnel_dielectric(cos_o, ior);
+                let reflects = 2.0 * fr / (1.0 + fr);
+                combine.reflect = reflected(reflects * reflectance, stream, &mut reflection);
+                if reflects < 1.0 {
+                    // Straight through, in the medium the ray was in.
+                    let next = self.tracer.spawn.ray(&si.surface, -wo, ray.time);
+                    refraction = Some(Node { ray: next, depth_left, camera_ray: false, medium });
+                    combine.refract = Some((1.0 - reflects) * transmittance);
                 }
             }
         }
@@ -312,8 +323,8 @@ struct Combine {
     specular: bool,
     /// The reflected child's tint, when it was traced.
     reflect: Option<Vec3>,
-    /// The refracted child's weight 1 − F, when it was traced.
-    refract: Option<f32>,
+    /// The refracted (or passed) child's weight (1 − F, times a tint), when it was traced.
+    refract: Option<Vec3>,
     /// exp(−absorption · distance) of the medium the ray crossed, if it absorbs.
     absorption: Option<Vec3>,
 }

@@ -205,10 +205,22 @@ pub enum Specular {
         reflectance: Vec3,
     },
     /// Glass: Fresnel reflection and refraction with index `ior`; light travelling inside is
-    /// attenuated by exp(−absorption · distance) (Beer's law).
+    /// attenuated by exp(−absorption · distance) (Beer's law). `reflectance` and
+    /// `transmittance` scale what is reflected and refracted (Mitsuba's
+    /// `specular_reflectance` and `specular_transmittance`), not how often.
     Dielectric {
         ior: f32,
         absorption: Vec3,
+        reflectance: Vec3,
+        transmittance: Vec3,
+    },
+    /// A thin sheet of glass of index `ior` (Mitsuba's `thindielectric`): it reflects what
+    /// its two faces and the reflections between them do, and lets the rest straight
+    /// through; `reflectance` and `transmittance` scale the two.
+    ThinDielectric {
+        ior: f32,
+        reflectance: Vec3,
+        transmittance: Vec3,
     },
     /// A dielectric coating of index `ior` over the Lambertian part (Mitsuba's `plastic`,
     /// `roughplastic`): light the coating lets in is scattered by the base and internally
@@ -218,6 +230,13 @@ pub enum Specular {
         ior: f32,
         nonlinear: bool,
     },
+}
+
+impl Specular {
+    /// Untinted glass of index `ior` and `absorption` inside.
+    pub const fn dielectric(ior: f32, absorption: Vec3) -> Self {
+        Specular::Dielectric { ior, absorption, reflectance: Vec3::ONE, transmittance: Vec3::ONE }
+    }
 }
 
 /// A microfacet distribution of normals, by its roughness α.

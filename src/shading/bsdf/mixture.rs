@@ -27,7 +27,7 @@ fn rest_albedo(diffuse: Vec3, specular: Specular) -> Vec3 {
             Specular::Mirror { reflectance } | Specular::Conductor { reflectance, .. } => {
                 reflectance.clamp(Vec3::ZERO, Vec3::ONE)
             }
-            Specular::Dielectric { .. } => Vec3::ONE,
+            Specular::Dielectric { .. } | Specular::ThinDielectric { .. } => Vec3::ONE,
         }
 }
 
@@ -78,7 +78,7 @@ impl Mixture {
                     albedo
                 }
             }
-            Specular::Dielectric { .. } => Vec3::ZERO,
+            Specular::Dielectric { .. } | Specular::ThinDielectric { .. } => Vec3::ZERO,
         };
         let course_lobe = material
             .phong
@@ -99,7 +99,7 @@ impl Mixture {
             Specular::Conductor { eta, k, reflectance } => {
                 luminance(fresnel_conductor(1.0, eta, k) * reflectance)
             }
-            Specular::Dielectric { .. } => f32::INFINITY,
+            Specular::Dielectric { .. } | Specular::ThinDielectric { .. } => f32::INFINITY,
         };
         let diffuse_weight = luminance(diffuse);
         let p_specular = if specular_weight.is_infinite() {
@@ -217,8 +217,8 @@ impl Mixture {
         let u_lobe = (u_lobe - self.p_course) / (1.0 - self.p_course);
         let not_course = 1.0 - self.p_course;
         if u_lobe < self.p_specular {
-            if let Specular::Dielectric { ior, .. } = self.specular {
-                let mut sample = self.sample_dielectric(wo, ior, u.x);
+            if let Specular::Dielectric { ior, reflectance, transmittance, .. } = self.specular {
+                let mut sample = self.sample_dielectric(wo, ior, [reflectance, transmittance], u.x);
                 sample.weight = sample.weight * self.rest_scale(wo.z) / not_course;
                 return Some(sample);
             }
@@ -264,7 +264,9 @@ impl Mixture {
         BsdfSample::smooth(self.frame * wi, value, pdf)
     }
 
-    fn sample_dielectric(&self, wo: Vec3, ior: f32, u: f32) -> BsdfSample {
+    /// Smooth glass: reflection by Fresnel, else refraction, tinted by `tints`
+    /// (reflectance, transmittance).
+    fn sample_dielectric(&self, wo: Vec3, ior: f32, tints: [Vec3; 2], u: f32) -> BsdfSample {
         // Relative index across the interface in the direction of travel.
         let eta = if self.front_face { ior } else { 1.0 / ior };
         let reflectance = fresnel_dielectric(wo.z, eta);
@@ -272,7 +274,7 @@ impl Mixture {
             let wi = Vec3::new(-wo.x, -wo.y, wo.z);
             return BsdfSample {
                 wi: self.frame * wi,
-                weight: Vec3::ONE,
+                weight: tints[0],
                 eta_scale: 1.0,
                 pdf: 0.0,
                 delta: true,
@@ -287,7 +289,7 @@ impl Mixture {
         BsdfSample {
             wi: self.frame * wi.normalize(),
             // Radiance is compressed entering a denser medium: (η_i/η_t)².
-            weight: Vec3::splat(1.0 / (eta * eta)),
+            weight: tints[1] / (eta * eta),
             eta_scale: eta * eta,
             pdf: 0.0,
             delta: true,

@@ -1,6 +1,7 @@
 //! Scattering at a surface, by the kind of material: the mixture most materials are
 //! (`mixture`: Lambertian, mirror, metal, smooth glass, the course's lobes), a dielectric
-//! coating over a Lambertian base (`plastic`), rough glass (`rough_dielectric`), Mitsuba's
+//! coating over a Lambertian base (`plastic`), rough glass (`rough_dielectric`), a thin
+//! sheet of glass (`thin_dielectric`), Mitsuba's
 //! principled models (`principled`, `principled_thin`). A mask's
 //! opacity wraps any of them: the rest of the light passes through unchanged. Directions
 //! are in render space; `frame` maps the local shading frame (normal = +Z) to it.
@@ -13,6 +14,7 @@ mod principled;
 mod principled_terms;
 mod principled_thin;
 mod rough_dielectric;
+mod thin_dielectric;
 
 pub use coupling::Energy;
 
@@ -26,6 +28,7 @@ use plastic::Plastic;
 use principled::Principled;
 use principled_thin::PrincipledThin;
 use rough_dielectric::RoughDielectric;
+use thin_dielectric::ThinDielectric;
 
 /// A sampled scattering direction.
 #[derive(Clone, Copy, Debug)]
@@ -87,6 +90,7 @@ enum Scatter {
     Blend(Box<Blend>),
     Principled(Principled),
     PrincipledThin(PrincipledThin),
+    ThinDielectric(ThinDielectric),
     /// A one-sided material seen from behind.
     Black,
 }
@@ -138,8 +142,13 @@ impl Bsdf {
             Some((u, v)) => (u.max(v) >= SMOOTH_ROUGHNESS, material.microfacet_at((u, v))),
         };
         let scatter = match material.specular {
-            Specular::Dielectric { ior, .. } if rough => {
-                Scatter::RoughDielectric(RoughDielectric::new(ior, front_face, microfacet))
+            Specular::Dielectric { ior, reflectance, transmittance, .. } if rough => {
+                let tints = [reflectance, transmittance];
+                Scatter::RoughDielectric(RoughDielectric::new(ior, front_face, microfacet, tints))
+            }
+            // Two-sided by nature, and never rough (Mitsuba has no rough sheet).
+            Specular::ThinDielectric { ior, reflectance, transmittance } => {
+                Scatter::ThinDielectric(ThinDielectric::new(ior, reflectance, transmittance))
             }
             _ if material.one_sided && !front_face && !material.is_dielectric() => Scatter::Black,
             Specular::Plastic { ior, nonlinear } => {
@@ -244,7 +253,7 @@ impl Bsdf {
                 | Scatter::Principled(_)
                 | Scatter::PrincipledThin(_) => true,
                 Scatter::Blend(b) => !LEAF && b.has_smooth_lobe(),
-                Scatter::Black => false,
+                Scatter::ThinDielectric(_) | Scatter::Black => false,
             }
     }
 
@@ -281,6 +290,7 @@ impl Bsdf {
             Scatter::Blend(b) if !LEAF => b.albedo_bound(wo),
             Scatter::Principled(p) => p.base_color().clamp(Vec3::ZERO, Vec3::ONE),
             Scatter::PrincipledThin(p) => p.base_color().clamp(Vec3::ZERO, Vec3::ONE),
+            Scatter::ThinDielectric(t) => t.albedo(self.frame.transpose() * wo),
             Scatter::Black | Scatter::Blend(_) => Vec3::ZERO,
         };
         met * self.opacity + Vec3::splat(1.0 - self.opacity)
@@ -300,7 +310,7 @@ impl Bsdf {
             Scatter::Blend(b) if !LEAF => b.eval(wo, wi),
             Scatter::Principled(p) => p.eval(local(wo), local(wi)),
             Scatter::PrincipledThin(p) => p.eval(local(wo), local(wi)),
-            Scatter::Black | Scatter::Blend(_) => (Vec3::ZERO, 0.0),
+            Scatter::ThinDielectric(_) | Scatter::Black | Scatter::Blend(_) => (Vec3::ZERO, 0.0),
         };
         let value = match self.unmapped {
             None => value,
@@ -340,6 +350,7 @@ impl Bsdf {
             Scatter::RoughDielectric(d) => d.sample(local(), u_lobe, u)?,
             Scatter::Principled(p) => p.sample(local(), u_lobe, u)?,
             Scatter::PrincipledThin(p) => p.sample(local(), u_lobe, u)?,
+            Scatter::ThinDielectric(t) => t.sample(local(), u_lobe),
             Scatter::Black | Scatter::Blend(_) => return None,
         };
         sample.wi = self.frame * sample.wi;

@@ -15,12 +15,18 @@ pub struct RoughDielectric {
     /// Index of the side the light goes into over the side it comes from.
     eta: f32,
     microfacet: Microfacet,
+    /// What scales the reflected and the refracted light.
+    reflectance: Vec3,
+    transmittance: Vec3,
 }
 
 impl RoughDielectric {
-    /// Glass of index `ior` met from outside (`front_face`) or inside.
-    pub fn new(ior: f32, front_face: bool, microfacet: Microfacet) -> Self {
-        RoughDielectric { eta: if front_face { ior } else { 1.0 / ior }, microfacet }
+    /// Glass of index `ior` met from outside (`front_face`) or inside, its reflection and
+    /// refraction scaled by `tints`.
+    pub fn new(ior: f32, front_face: bool, microfacet: Microfacet, tints: [Vec3; 2]) -> Self {
+        let eta = if front_face { ior } else { 1.0 / ior };
+        let [reflectance, transmittance] = tints;
+        RoughDielectric { eta, microfacet, reflectance, transmittance }
     }
 
     /// Separable Smith shadowing (Mitsuba's), each direction on its own side of `h`.
@@ -44,7 +50,7 @@ impl RoughDielectric {
             let g = self.shadowing(wo, wi, h);
             let value = fresnel * self.microfacet.d(h) * g / (4.0 * wo.z);
             let pdf = fresnel * self.microfacet.pdf_reflect(wo, h);
-            return (Vec3::splat(value), pdf);
+            return (value * self.reflectance, pdf);
         }
         // The half vector of a refraction, on the near side.
         let h = (wo + eta * wi).normalize();
@@ -63,7 +69,7 @@ impl RoughDielectric {
         let value = (1.0 - fresnel) * d * g * o_h * (-i_h) / (wo.z * denom2);
         let jacobian = eta * eta * (-i_h) / denom2;
         let pdf = (1.0 - fresnel) * self.microfacet.pdf(wo, h) * jacobian;
-        (Vec3::splat(value), pdf)
+        (value * self.transmittance, pdf)
     }
 
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {

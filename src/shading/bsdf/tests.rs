@@ -103,7 +103,7 @@ fn white_furnace_no_material_reflects_more_than_it_receives() {
     let white = Vec3::ONE;
     let smooth_glass = Material {
         albedo: white,
-        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+        specular: Specular::dielectric(1.5, Vec3::ZERO),
         ..Default::default()
     };
     let mirror_over_lambert = Material {
@@ -130,10 +130,8 @@ fn white_furnace_no_material_reflects_more_than_it_receives() {
     ];
     // The course's lobe on top of materials that reflect or transmit everything by
     // themselves (hw6's glass sphere: ModifiedPhong normalized, p 200, ks 0.3); every model.
-    let glass = || Material {
-        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
-        ..Default::default()
-    };
+    let glass =
+        || Material { specular: Specular::dielectric(1.5, Vec3::ZERO), ..Default::default() };
     let mirror =
         || Material { specular: Specular::Mirror { reflectance: Vec3::ONE }, ..Default::default() };
     let course_cases = crate::shading::course_brdf::MODELS.iter().flat_map(|brdf| {
@@ -165,10 +163,7 @@ fn white_furnace_no_material_reflects_more_than_it_receives() {
 
 #[test]
 fn glass_reflects_the_fresnel_fraction() {
-    let glass = Material {
-        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
-        ..Default::default()
-    };
+    let glass = Material { specular: Specular::dielectric(1.5, Vec3::ZERO), ..Default::default() };
     let bsdf = Bsdf::new(&glass, Vec3::ZERO, Mat3::IDENTITY, true);
     let wo = Vec3::new(0.6, 0.0, 0.8);
     let mut rng = SplitMix64(5);
@@ -207,10 +202,7 @@ fn course_lobe(material: Material, brdf: CourseBrdf, exponent: f32) -> Material 
 /// Fresnel's share, refraction (1 − a) times the rest.
 #[test]
 fn course_glass_adds_its_specular_term_to_fresnel() {
-    let glass = Material {
-        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
-        ..Default::default()
-    };
+    let glass = Material { specular: Specular::dielectric(1.5, Vec3::ZERO), ..Default::default() };
     let glass = course_lobe(glass, CourseBrdf::ModifiedPhong { normalized: true }, 20.0);
     let bsdf = Bsdf::new(&glass, Vec3::ZERO, Mat3::IDENTITY, true);
     assert!(bsdf.has_smooth_lobe(), "next-event estimation sees the course lobe");

@@ -29,7 +29,7 @@ fn plastic(base: Vec3, alpha: f32, distribution: Distribution, nonlinear: bool) 
 fn rough_glass(alpha: f32, distribution: Distribution) -> Material {
     Material {
         albedo: Vec3::ZERO,
-        specular: Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO },
+        specular: Specular::dielectric(1.5, Vec3::ZERO),
         ggx_alpha: alpha,
         ggx_alpha_v: alpha,
         distribution,

@@ -181,7 +181,7 @@ fn material(
                 let n = x.required(node, "RefractionIndex")?;
                 return Err(x.out_of_range(n, ior, "> 0"));
             }
-            Specular::Dielectric { ior: ior as f32, absorption: color("AbsorptionCoefficient")? }
+            Specular::dielectric(ior as f32, color("AbsorptionCoefficient")?)
         }
         other => {
             return Err(x.error(

@@ -199,7 +199,6 @@ impl Builder<'_> {
             "envmap" => {
                 let file = property(element, "string", "filename")
                     .ok_or_else(|| element.error("the property `filename` is missing"))?;
-                super::bsdfs::refuse_rgbe(file)?;
                 p.push(derived(element, "file", Value::Text(file.required("value")?.to_owned())));
                 if let Some(scale) = float(element, "scale")? {
                     p.push(derived(element, "scale", Value::Numbers(vec![scale; 3])));

@@ -167,7 +167,7 @@ impl Given<'_> {
                 if let Some(kd) = self.kd.filter(|_| nonzero(self.kd)) {
                     notes.push(Note::new(kd.line, "Kd is not used: glass has no diffuse part"));
                 }
-                Specular::Dielectric { ior, absorption: Vec3::ZERO }
+                Specular::dielectric(ior, Vec3::ZERO)
             }
         };
         if lobe != Lobe::Diffuse {

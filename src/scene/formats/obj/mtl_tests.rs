@@ -130,11 +130,11 @@ fn illum_chooses_the_lobe() {
 
     for illum in [4, 6, 7, 9] {
         let (m, warnings) = mapped(&format!("Kd 0 0 0\nKs 1 1 1\nNi 1.33\nillum {illum}"));
-        assert_eq!(m.specular, Specular::Dielectric { ior: 1.33, absorption: Vec3::ZERO });
+        assert_eq!(m.specular, Specular::dielectric(1.33, Vec3::ZERO));
         assert!(warnings.is_empty(), "{warnings:?}");
     }
     let (m, warnings) = mapped("Kd 0.8 0.8 0.8\nillum 7\nNs 1000");
-    assert_eq!(m.specular, Specular::Dielectric { ior: 1.5, absorption: Vec3::ZERO });
+    assert_eq!(m.specular, Specular::dielectric(1.5, Vec3::ZERO));
     assert_eq!(m.roughness, 0.0);
     assert_notes(&warnings, &[("Kd is not used: glass has no diffuse part", 2)]);
     assert_notes(&mapped("illum 12").1, &[("illum 12 is not one of MTL's models", 2)]);

@@ -18,13 +18,12 @@ use crate::scene::desc::{Distribution, MaterialDesc, TextureDesc};
 use crate::scene::error::SceneError;
 pub(super) use area_radiance::area_radiance;
 use glam::{DVec3, Vec3};
-pub(super) use texture::refuse_rgbe;
 use texture::{float_texture, reflectance_texture};
 
 /// The BSDFs this reader knows, for messages.
 pub(super) const SUPPORTED: &str = "diffuse, twosided, mask, normalmap, bumpmap, blendbsdf, \
                                     conductor, roughconductor, dielectric, roughdielectric, \
-                                    plastic, roughplastic, principled, principledthin";
+                                    thindielectric, null, plastic, roughplastic, principled, principledthin";
 
 pub(super) fn bsdf(
     element: &Element,
@@ -59,6 +58,14 @@ pub(super) fn bsdf(
             let roughness_textures = roughness_textures(element, ids, files)?;
             let material = dielectric::dielectric(element, kind, none)?;
             Ok(MaterialDesc { roughness_textures, ..material })
+        }
+        "thindielectric" => dielectric::thin_dielectric(element, none),
+        // Light passes it unchanged, as a mask of opacity 0: a bounce of the path (Mitsuba's
+        // `path` counts it) that blocks shadow rays and takes no light samples.
+        "null" => {
+            check_properties(element, &[])?;
+            let opacity = Some(crate::scene::desc::Opacity::Constant(0.0));
+            Ok(MaterialDesc { opacity, one_sided: false, ..none })
         }
         "plastic" | "roughplastic" => plastic::plastic(element, kind, none, ids, files),
         "principled" | "principledthin" => principled::principled(element, kind, none, ids, files),

@@ -125,7 +125,6 @@ fn read(
         "bitmap" => {
             let file = property(texture, "string", "filename")
                 .ok_or_else(|| texture.error("a bitmap needs a filename"))?;
-            refuse_rgbe(file)?;
             let interpolation = match choice(texture, "filter_type", &["bilinear", "nearest"])? {
                 Some("nearest") => Interpolation::Nearest,
                 _ => Interpolation::BilinearCentered,
@@ -231,21 +230,6 @@ fn radiance(child: Option<&Element>, default: f32) -> Result<Vec3, SceneError> {
         return Err(child.error(format!("a radiance must be >= 0, not {rgb}")));
     }
     Ok(rgb.as_vec3())
-}
-
-/// Refuses a Radiance RGBE (`.hdr`) file named by the `<string name="filename">` `file`
-/// with a message that says so: Mitsuba reads them, embray's image decoders do not.
-pub(in super::super) fn refuse_rgbe(file: &Element) -> Result<(), SceneError> {
-    let name = file.required("value")?;
-    let extension = std::path::Path::new(name).extension().and_then(|e| e.to_str());
-    if extension.is_some_and(|e| e.eq_ignore_ascii_case("hdr") || e.eq_ignore_ascii_case("rgbe")) {
-        return Err(file.error(format!(
-            "'{}' is a Radiance RGBE image, which embray does not read (convert it to \
-             OpenEXR)",
-            crate::excerpt::excerpt(name)
-        )));
-    }
-    Ok(())
 }
 
 /// The `<string>` `name` of `texture`, one of `choices` (as Mitsuba checks it), or `None`.

@@ -33,8 +33,8 @@ pub(super) fn twosided(
             _ => "",
         };
         return Err(element.error(format!(
-            "{why}twosided cannot hold a transmitting BSDF (dielectric, roughdielectric, mask, \
-             principledthin, or principled with spec_trans)"
+            "{why}twosided cannot hold a transmitting BSDF (dielectric, roughdielectric, \
+             thindielectric, mask, null, principledthin, or principled with spec_trans)"
         )));
     }
     Ok(MaterialDesc { name: none.name, ..two_sided(inner) })
@@ -178,7 +178,7 @@ fn nested_bsdfs(
 /// Whether `material` lets light through (Mitsuba's transmission flags, its mask's null
 /// component too), itself or in a blend.
 fn transmits(material: &MaterialDesc) -> bool {
-    matches!(material.specular, Specular::Dielectric { .. })
+    matches!(material.specular, Specular::Dielectric { .. } | Specular::ThinDielectric { .. })
         || material.opacity.is_some()
         || material.principled.as_ref().is_some_and(|p| p.transmits())
         || material.blend.as_ref().is_some_and(|b| b.materials.iter().any(transmits))

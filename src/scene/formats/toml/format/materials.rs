@@ -13,6 +13,9 @@ pub(crate) enum MaterialKind {
     Conductor,
     Dielectric,
     Plastic,
+    /// A thin sheet of glass (Mitsuba's `thindielectric`).
+    #[serde(rename = "thindielectric")]
+    ThinDielectric,
     /// `weight` of the second of two named `materials`, the rest of the first.
     Blend,
     Principled,
@@ -72,6 +75,9 @@ pub(crate) struct MaterialToml {
     pub emission_texture: Option<Box<TextureToml>>,
     #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub reflectance: Option<Vec3>,
+    /// What a thin dielectric lets through is scaled by.
+    #[serde(default, deserialize_with = "super::values::exact_opt")]
+    pub transmittance: Option<Vec3>,
     pub roughness: Option<RoughnessToml>,
     pub distribution: Option<DistributionToml>,
     /// A rough mirror's or conductor's masking-shadowing: "height-correlated" or

@@ -95,10 +95,14 @@ pub(crate) fn material(
             "conductor",
             &["eta", "k", "preset", "reflectance", "roughness", "distribution", "shadowing"],
         ),
-        MaterialKind::Dielectric => {
-            ("dielectric", &["ior", "absorption", "roughness", "distribution"])
-        }
+        MaterialKind::Dielectric => (
+            "dielectric",
+            &["ior", "absorption", "reflectance", "transmittance", "roughness", "distribution"],
+        ),
         MaterialKind::Plastic => ("plastic", &["ior", "nonlinear", "roughness", "distribution"]),
+        MaterialKind::ThinDielectric => {
+            ("thindielectric", &["ior", "reflectance", "transmittance"])
+        }
         MaterialKind::Blend => ("blend", &["weight", "materials"]),
         MaterialKind::Principled => ("principled", &["principled"]),
         MaterialKind::PrincipledThin => ("principledthin", &["principled"]),
@@ -120,6 +124,7 @@ pub(crate) fn material(
         .collect();
     let present = [
         ("reflectance", m.reflectance.is_some()),
+        ("transmittance", m.transmittance.is_some()),
         ("roughness", m.roughness.is_some()),
         ("eta", m.eta.is_some()),
         ("k", m.k.is_some()),
@@ -208,7 +213,23 @@ pub(crate) fn material(
             let ior = ctx.f32(&field, ior)?;
             let absorption =
                 ctx.color(&path.key("absorption"), m.absorption.unwrap_or([0.0; 3]), false)?;
-            Specular::Dielectric { ior, absorption }
+            let transmittance = m.transmittance.unwrap_or([1.0; 3]);
+            Specular::Dielectric {
+                ior,
+                absorption,
+                reflectance: reflectance(ctx)?,
+                transmittance: ctx.color(&path.key("transmittance"), transmittance, true)?,
+            }
+        }
+        MaterialKind::ThinDielectric => {
+            let field = path.key("ior");
+            let ior = ctx.positive(&field, m.ior.unwrap_or(1.5))?;
+            let transmittance = m.transmittance.unwrap_or([1.0; 3]);
+            Specular::ThinDielectric {
+                ior: ctx.f32(&field, ior)?,
+                reflectance: reflectance(ctx)?,
+                transmittance: ctx.color(&path.key("transmittance"), transmittance, true)?,
+            }
         }
         MaterialKind::Plastic => {
             // Polypropylene, Mitsuba's default coating.

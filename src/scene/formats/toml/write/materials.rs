@@ -52,6 +52,7 @@ pub(super) fn write_material(
         Specular::Conductor { .. } => "conductor",
         Specular::Dielectric { .. } => "dielectric",
         Specular::Plastic { .. } => "plastic",
+        Specular::ThinDielectric { .. } => "thindielectric",
     };
     let kind = super::principled::kind(m).unwrap_or(kind);
     let _ = writeln!(out, "type = \"{kind}\"\nalbedo = {}", c3(m.albedo));
@@ -73,11 +74,20 @@ pub(super) fn write_material(
                 c3(reflectance)
             );
         }
-        Specular::Dielectric { ior, absorption } => {
+        Specular::Dielectric { ior, absorption, reflectance, transmittance } => {
             let _ = writeln!(out, "ior = {:?}\nabsorption = {}", ior, c3(absorption));
+            for (name, tint) in [("reflectance", reflectance), ("transmittance", transmittance)] {
+                if tint != Vec3::ONE {
+                    let _ = writeln!(out, "{name} = {}", c3(tint));
+                }
+            }
         }
         Specular::Plastic { ior, nonlinear } => {
             let _ = writeln!(out, "ior = {ior:?}\nnonlinear = {nonlinear}");
+        }
+        Specular::ThinDielectric { ior, reflectance, transmittance } => {
+            let (r, t) = (c3(reflectance), c3(transmittance));
+            let _ = writeln!(out, "ior = {ior:?}\nreflectance = {r}\ntransmittance = {t}");
         }
     }
     // A diffuse material's roughness means nothing to either integrator.
