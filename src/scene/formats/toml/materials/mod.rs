@@ -6,6 +6,7 @@ mod blend;
 mod course;
 mod material;
 mod principled;
+mod specular;
 mod textures;
 
 pub(super) use blend::resolve_blends;
