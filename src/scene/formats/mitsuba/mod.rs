@@ -11,6 +11,7 @@ mod film;
 mod integrator;
 mod ior;
 mod metals;
+mod params;
 mod sampler;
 mod scalars;
 mod sensor;

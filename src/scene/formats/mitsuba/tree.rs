@@ -3,13 +3,12 @@
 //! attributes, `<include>` (its children spliced in), and `<path>` folders for finding files.
 //! Every element keeps its file and line for messages.
 
+use super::params::Params;
 use crate::excerpt::excerpt;
-use crate::limits::{
-    MAX_XML_BYTES, MAX_XML_ELEMENTS, MAX_XML_INCLUDES, MAX_XML_NESTING, MAX_XML_VALUE,
-};
+use crate::limits::{MAX_XML_BYTES, MAX_XML_ELEMENTS, MAX_XML_INCLUDES, MAX_XML_NESTING};
 use crate::scene::error::{Line, SceneError};
 use crate::scene::formats::line_index::LineIndex;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -85,7 +84,7 @@ pub(super) fn read(
 ) -> Result<(Element, FileResolver, u64), SceneError> {
     let folder = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     let mut reader = Reader {
-        params: defines.iter().cloned().collect(),
+        params: Params::new(defines),
         resolver: FileResolver { folders: vec![folder] },
         elements: 0,
         includes: 0,
@@ -120,7 +119,7 @@ fn bytes_exceeded() -> String {
 
 struct Reader {
     /// `$name` values: `-D` first, then `<default>`s.
-    params: HashMap<String, String>,
+    params: Params,
     resolver: FileResolver,
     /// Elements read so far, every file's (`limits::MAX_XML_ELEMENTS`).
     elements: usize,
@@ -240,7 +239,7 @@ impl Reader {
                     let value = child.required("value")?.to_owned();
                     self.named.insert(name.clone());
                     // A `-D` value stays, and so does the first `<default>`, as in Mitsuba.
-                    self.params.entry(name).or_insert(value);
+                    self.params.add(name, value);
                 }
                 "path" => {
                     let folder = self.relative_to(&child, child.required("value")?);
@@ -316,64 +315,9 @@ impl Reader {
         Ok(())
     }
 
-    /// `value` with every `$name` replaced by its parameter, as Mitsuba 3 substitutes: the
-    /// longest names first (with `res` and `res_x` both defined, `$res_x` is the latter; with
-    /// only `res`, `48_x`), an occurrence after a backslash left alone; a `$` left unescaped
-    /// after that names an undefined parameter; `\$` then becomes `$`.
+    /// `value` with its `$name`s replaced (`Params::substitute`).
     fn substitute(&mut self, element: &Element, value: &str) -> Result<String, SceneError> {
-        if !value.contains('$') {
-            return Ok(value.to_owned());
-        }
-        let mut names: Vec<String> = self.params.keys().cloned().collect();
-        names.sort_by(|a, b| b.len().cmp(&a.len()).then_with(|| a.cmp(b)));
-        let escaped = |text: &str, at: usize| at > 0 && text.as_bytes()[at - 1] == b'\\';
-        let mut value = value.to_owned();
-        for name in names {
-            let key = format!("${name}");
-            let replacement = &self.params[&name];
-            let mut from = 0;
-            while let Some(found) = value[from..].find(&key) {
-                let at = from + found;
-                if escaped(&value, at) {
-                    from = at + key.len();
-                    continue;
-                }
-                value.replace_range(at..at + key.len(), replacement);
-                if value.len() > MAX_XML_VALUE {
-                    // Defaults made of defaults double at each: 2^n bytes from n lines.
-                    let limit =
-                        format!("a value grows past {MAX_XML_VALUE} bytes as $names are replaced");
-                    return Err(element.error(limit));
-                }
-                from = at + replacement.len();
-                self.named.insert(name.clone());
-            }
-        }
-        let mut from = 0;
-        while let Some(found) = value[from..].find('$') {
-            let at = from + found;
-            if escaped(&value, at) {
-                from = at + 1;
-                continue;
-            }
-            let name: String = value[at + 1..]
-                .chars()
-                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-                .collect();
-            if name.is_empty() {
-                return Err(element.error(
-                    "a `$` must be followed by a parameter's name (write `\\$` for a dollar sign)",
-                ));
-            }
-            let known: Vec<&str> = self.params.keys().map(String::as_str).collect();
-            return Err(element.error(format!(
-                "${} is not a parameter (give it with -D {}=VALUE or a <default>; known: {})",
-                excerpt(&name),
-                excerpt(&name),
-                if known.is_empty() { "none".to_owned() } else { known.join(", ") }
-            )));
-        }
-        Ok(value.replace("\\$", "$"))
+        self.params.substitute(value, &mut self.named).map_err(|problem| element.error(problem))
     }
 
     /// A folder named in `element`'s file, relative to that file's folder.

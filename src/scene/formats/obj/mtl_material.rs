@@ -146,10 +146,10 @@ impl<'a> Given<'a> {
             if !known {
                 let message = match UNSUPPORTED.iter().find(|(k, _)| *k == canonical) {
                     Some((_, what)) => format!("{} ({what}) is not supported", st.keyword),
-                    None => format!(
-                        "'{}' is not an MTL statement embray knows",
-                        crate::excerpt::excerpt(st.keyword)
-                    ),
+                    None => {
+                        notes.push(Note::unknown(st.line, st.keyword));
+                        continue;
+                    }
                 };
                 notes.push(Note::new(st.line, message));
                 continue;
@@ -160,10 +160,9 @@ impl<'a> Given<'a> {
                     if earlier.1 != st.value {
                         notes.push(Note::new(
                             earlier.2,
-                            format!(
-                                "{} is given again on line {}, which is used",
-                                st.keyword, st.line
-                            ),
+                            // No line in the message: the same statement given twice in
+                            // every material is one warning.
+                            format!("{} is given again later, which is used", st.keyword),
                         ));
                     }
                     *earlier = (canonical.to_owned(), st.value, st.line);

@@ -54,7 +54,7 @@ fn assert_close(a: f32, b: f32) {
 fn assert_notes(warnings: &[String], expected: &[(&str, usize)]) {
     assert_eq!(warnings.len(), expected.len(), "{warnings:#?}");
     for (warning, (part, line)) in warnings.iter().zip(expected) {
-        let place = format!("(material 'm', line {line})");
+        let place = format!("material 'm', line {line})");
         let file = warning.split(": ").next().unwrap();
         assert!(Path::new(file).ends_with("m.mtl"), "{warning}");
         assert!(warning.contains(part) && warning.ends_with(&place), "{warning}: {part}, {place}");
@@ -181,8 +181,8 @@ fn what_is_not_used_is_noted_with_its_line() {
     assert_notes(
         &warnings,
         &[
-            ("Ka is given again on line 4, which is used", 3),
-            ("Ka is given again on line 12, which is used", 4),
+            // Both places in one warning: the message names no line.
+            ("Ka is given again later, which is used (material 'm', line 3; ", 4),
             ("Tf (a transmission filter) is not modelled", 5),
             ("sharpness (the sharpness of reflection maps) is not supported", 6),
             ("map_Ns (a texture of the specular exponent) is not supported", 7),

@@ -37,17 +37,18 @@ pub(super) fn attribute_layouts(
     };
     // The run being read: its prefix, which postfix column, and its properties.
     let mut run: Option<(String, usize, Vec<usize>)> = None;
-    let mut seen_prefixes: Vec<String> = Vec::new();
+    // A set: a header may declare any number of properties (a linear scan was n²).
+    let mut seen_prefixes: std::collections::HashSet<String> = Default::default();
     let flush = |run: &mut Option<(String, usize, Vec<usize>)>,
                  layouts: &mut Vec<AttributeLayout>,
-                 seen: &mut Vec<String>| {
+                 seen: &mut std::collections::HashSet<String>| {
         if let Some((prefix, column, properties)) = run.take() {
             if matches!(properties.len(), 1 | 3) {
                 let suffix = if column == 1 { "_color" } else { "" };
                 layouts
                     .push(AttributeLayout { name: format!("{kind}_{prefix}{suffix}"), properties });
             }
-            seen.push(prefix);
+            seen.insert(prefix);
         }
     };
     for (index, property) in element.properties.iter().enumerate() {
@@ -73,7 +74,7 @@ pub(super) fn attribute_layouts(
             continue;
         }
         flush(&mut run, &mut layouts, &mut seen_prefixes);
-        if seen_prefixes.iter().any(|p| p == prefix) {
+        if seen_prefixes.contains(prefix) {
             continue;
         }
         if let Some(column) = POSTFIX_RUNS.iter().position(|r| r.starts_with(postfix)) {
