@@ -12,7 +12,7 @@ use sha2::{Digest, Sha256};
 use std::path::PathBuf;
 
 /// The format of part files this build writes and reads.
-pub const PART_FORMAT: &str = "embray-part-2";
+pub const PART_FORMAT: &str = "embray-part-3";
 
 /// How the final PNG is made (as the part's `embray render` command line said).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
