@@ -200,7 +200,11 @@ impl SceneTracer<'_> {
                             Some([along_u, along_v]) => Vec2::new(mean(along_u), mean(along_v)),
                             None => rise() / step,
                         };
-                        bumped_normal(slopes * *factor, n, dpdu, dpdv, n)
+                        // As Mitsuba: ∂p/∂u and ∂p/∂v in the shading normal's tangent plane
+                        // first, so that a flat height field gives back the shading normal
+                        // (a smooth mesh's interpolated one, not its triangle's).
+                        let tangent = |d: Vec3| d - n.dot(d) * n;
+                        bumped_normal(slopes * *factor, n, tangent(dpdu), tangent(dpdv), n)
                     }
                     // Texel differences in the image's 0–255 units.
                     BumpScale::CourseTexels => {

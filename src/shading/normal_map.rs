@@ -69,7 +69,11 @@ pub fn uv_derivatives(
                 let to_own = Mat3::from(object_from_render.matrix3);
                 let n = ((si.surface.point - s.center) / s.radius).normalize_or_zero();
                 let own = (to_own * n).normalize_or_zero();
-                let (dpdu, dpdv) = sphere_derivatives(own, s.radius);
+                // The baked radius is in render space; the derivatives are taken in the
+                // object's own space (a uniform scale: any axis measures it), whose radius
+                // `to_own` scales it to: with the render radius, ∂p/∂u was scaled twice.
+                let own_radius = s.radius * (to_own * Vec3::X).length();
+                let (dpdu, dpdv) = sphere_derivatives(own, own_radius);
                 (dpdu, dpdv, Some(to_own.inverse()))
             }
             _ => {

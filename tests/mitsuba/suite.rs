@@ -144,7 +144,9 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 /// decides the side: 95.9 % of channels passed when the triangle had to agree); meshes
 /// mirrored by `to_world`, inside out where Mitsuba computes their normals (49 % passed);
 /// tinted glass, smooth, rough and a thin sheet (refused before); `null` surfaces, a bounce
-/// on the path (69 % passed without them); an environment map from a Radiance `.hdr` file.
+/// on the path (69 % passed without them); an environment map from a Radiance `.hdr` file;
+/// bump maps on a smooth low-polygon mesh and a scaled analytic sphere (81.4 % passed when
+/// the bumped normal was the triangle's and the sphere's ∂p/∂u scaled twice).
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
@@ -165,6 +167,7 @@ fn scenes_written_here_pass_mitsubas_rule() {
         "glass_tints",
         "null_bsdf",
         "hdr_envmap",
+        "bump_smooth_scaled",
     ];
     for name in names {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();
