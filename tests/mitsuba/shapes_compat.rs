@@ -177,6 +177,12 @@ fn a_mesh_attribute_reflectance_outside_0_1_is_refused_by_file_and_attribute() {
     assert_contains(&raw, &["main.xml", "line 16", "`vertex_color`", "'c.ply'", "reaches 255"]);
     let scaled = shape("<float name=\"scale\" value=\"0.00392156\"/>");
     assert!(load("m-ply-colour-scaled", &scaled, &extra).is_ok());
+    // 1/255 to eight places takes 255 to 1.0000002 in f32: past 1 by rounding, accepted.
+    let rounded = shape("<float name=\"scale\" value=\"0.00392157\"/>");
+    assert!(load("m-ply-colour-rounded", &rounded, &extra).is_ok());
+    let past =
+        refused("m-ply-colour-past", &shape("<float name=\"scale\" value=\"0.004\"/>"), &extra);
+    assert_contains(&past, &["reaches 1.02", "scale (1/255: 0.00392157)"]);
 }
 
 /// The bytes of Mitsuba's own single-mesh test file (a rectangle with normals and uvs).

@@ -68,9 +68,11 @@ pub(in super::super) fn mesh_attributes(
                      have (it has: {has})"
                 )));
             };
+            // 1/255 as written (0.00392157) takes 255 to 1.0000002: past 1 by rounding only.
+            let reflectance = 0.0..=1.0 + 1e-4;
             for &(_, scale) in colours.iter().filter(|(colour, _)| *colour == name) {
                 let outside =
-                    attribute.values.iter().map(|&v| v * scale).find(|v| !(0.0..=1.0).contains(v));
+                    attribute.values.iter().map(|&v| v * scale).find(|v| !reflectance.contains(v));
                 if let Some(value) = outside {
                     let file = property(element, "string", "filename")
                         .and_then(|f| f.attr("value"))
@@ -79,7 +81,7 @@ pub(in super::super) fn mesh_attributes(
                         "its BSDF takes a reflectance from the mesh attribute `{name}`{file}, \
                          which reaches {value} (outside [0, 1]; 8-bit colours are not divided \
                          by 255): Mitsuba would use it as it is, embray would clamp it; store \
-                         colours in [0, 1] or give the texture a scale"
+                         colours in [0, 1] or give the texture a scale (1/255: 0.00392157)"
                     )));
                 }
             }
