@@ -76,13 +76,16 @@ impl PngComparison {
 pub fn read_rgb(path: &Path) -> Result<RgbImage, CompareError> {
     let error = |message: String| CompareError::Read { path: path.to_path_buf(), message };
     let bytes = crate::scene::read_input_bytes(path).map_err(|e| error(e.to_string()))?;
-    let mut reader = crate::image_decode::reader(&bytes).map_err(error)?;
+    let reader = || crate::image_decode::reader(&bytes).map_err(error);
     // The header's size is checked before the decoder allocates for it: a render's size at
     // most, as any image embray wrote is.
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(crate::limits::MAX_RESOLUTION);
-    limits.max_image_height = Some(crate::limits::MAX_RESOLUTION);
-    reader.limits(limits);
+    let (width, height) = reader()?.into_dimensions().map_err(|e| error(e.to_string()))?;
+    let most = crate::limits::MAX_RESOLUTION;
+    if width > most || height > most {
+        return Err(error(format!("{width} × {height} pixels; at most {most} a side")));
+    }
+    let mut reader = reader()?;
+    reader.limits(crate::image_decode::limits(width, height));
     reader.decode().map(|i| i.to_rgb8()).map_err(|e| error(e.to_string()))
 }
 

@@ -5,10 +5,19 @@
 use image::{ImageFormat, ImageReader};
 use std::io::Cursor;
 
-/// A reader of `bytes` whose format is known and which, if a JPEG, is complete.
+/// The most a header may make the decoder hold before the image's size is known (a PNG's
+/// ICC profile is inflated as its header is read).
+const HEADER_BYTES: u64 = 16 << 20;
+
+/// A reader of `bytes` whose format is known and which, if a JPEG, is complete; its limits
+/// let it read the header (`into_dimensions`): give it `limits` for the size it says
+/// before decoding.
 pub fn reader(bytes: &[u8]) -> Result<ImageReader<Cursor<&[u8]>>, String> {
-    let reader =
+    let mut reader =
         ImageReader::new(Cursor::new(bytes)).with_guessed_format().map_err(|e| e.to_string())?;
+    let mut header = image::Limits::default();
+    header.max_alloc = Some(HEADER_BYTES);
+    reader.limits(header);
     match reader.format() {
         None => Err("not a PNG, JPEG or BMP image".into()),
         // Its texels are linear and unbounded: read only as radiance (`rgbe`), never into
@@ -21,6 +30,18 @@ pub fn reader(bytes: &[u8]) -> Result<ImageReader<Cursor<&[u8]>>, String> {
         }
         Some(_) => Ok(reader),
     }
+}
+
+/// Decoding limits for an image of `width` × `height` (from its header): what its widest
+/// texel format takes (16-bit RGBA, 8 bytes), plus 16 MiB for everything else the decoder
+/// holds, so that no compressed chunk inflates past them (a 4 × 4 PNG's ICC profile
+/// inflated to 500 MB).
+pub fn limits(width: u32, height: u32) -> image::Limits {
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(width);
+    limits.max_image_height = Some(height);
+    limits.max_alloc = Some(u64::from(width) * u64::from(height) * 8 + HEADER_BYTES);
+    limits
 }
 
 /// Whether a JPEG's last scan is followed by the end-of-image marker (FF D9). Inside scan

@@ -41,9 +41,7 @@ fn decode(at: &ImageRef, bytes: &[u8]) -> Result<image::DynamicImage, SceneError
     }
     at.check_room(width.into(), height.into(), crate::limits::BYTES_PER_TEXEL)?;
     let mut reader = checked()?;
-    let mut limits = image::Limits::default();
-    limits.max_alloc = Some(MAX_TEXTURE_TEXELS * 16);
-    reader.limits(limits);
+    reader.limits(crate::image_decode::limits(width, height));
     reader.decode().map_err(|e| at.error(e.to_string()))
 }
 

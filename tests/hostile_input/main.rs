@@ -23,6 +23,7 @@ mod outputs;
 mod process;
 mod scenes;
 mod sdfgrid;
+mod seventh_probe;
 mod sixth_probe;
 mod texture_values;
 mod tools_and_environment;
