@@ -9,7 +9,8 @@ use glam::{Mat3, Vec2, Vec3};
 pub struct Camera {
     /// Lens centre in render space (exactly zero in `cameraworld`).
     pub position: Vec3,
-    /// Rotation from camera space to render space (identity in `camera` render space).
+    /// Rotation from camera space to render space (identity in `camera` render space),
+    /// after a mirror of x for a mirrored camera (`CameraDesc::mirrored`).
     pub render_from_camera_rotation: Mat3,
     /// Rotation from render space back to world space, for world-space normal AOVs.
     pub world_from_render_rotation: Mat3,

@@ -8,9 +8,15 @@ pub(super) fn place_camera(desc: &CameraDesc, camera_transform: &CameraTransform
     let position = camera_transform.render_from_world.transform_point3(desc.lookfrom);
     let focus_distance =
         desc.focus_distance.unwrap_or_else(|| (desc.lookat - desc.lookfrom).length());
+    // A mirrored camera's x axis reversed: the linear map stays orthogonal (its transpose
+    // its inverse), and every ray the camera makes, lens and orthographic offsets included,
+    // is mirrored with it.
+    let mirror = glam::DMat3::from_diagonal(glam::DVec3::new(-1.0, 1.0, 1.0));
+    let rotation = camera_transform.render_from_camera_rotation();
+    let rotation = if desc.mirrored { rotation * mirror } else { rotation };
     Camera {
         position: position.as_vec3(),
-        render_from_camera_rotation: camera_transform.render_from_camera_rotation().as_mat3(),
+        render_from_camera_rotation: rotation.as_mat3(),
         world_from_render_rotation: camera_transform.world_from_render.matrix3.as_mat3(),
         width: desc.width,
         height: desc.height,

@@ -124,13 +124,6 @@ fn a_spot_clamps_its_beam_to_the_cutoff_and_takes_a_cutoff_up_to_180() {
 }
 
 #[test]
-fn a_mirrored_camera_is_refused_saying_mitsuba_would_flip_the_image() {
-    let text = scene_text("", "").replace("<lookat", "<scale x=\"-1\"/><lookat");
-    let message = refused("mitsuba-mirror-camera", &text);
-    assert_contains(&message, &["main.xml", "to_world", "mirrors", "flipped left to right"]);
-}
-
-#[test]
 fn max_depth_0_renders_black_as_in_mitsuba_and_says_so() {
     let integrator = "<integrator type=\"path\"><integer name=\"max_depth\" value=\"0\"/>\
                       </integrator>";

@@ -129,3 +129,23 @@ fn one_film_and_one_sampler_a_sensor_and_a_named_filter() {
         assert_contains(&message.unwrap_err(), &[&format!("a sensor takes one <{tag}>")]);
     }
 }
+
+/// A mirroring `to_world` is read as a mirrored camera (its image: `mirrored_camera` in
+/// `suite`), which `embray convert` writes and reads back.
+#[test]
+fn a_mirrored_camera_converts_to_toml_and_back() {
+    let mirrored = SENSOR.replace("<lookat ", "<scale x=\"-1\"/><lookat ");
+    assert_ne!(mirrored, SENSOR, "the sensor has a lookat to mirror");
+    let main = format!(
+        "<scene version=\"3.0.0\">\n<default name=\"spp\" value=\"1\"/><default name=\"fov\" \
+         value=\"40\"/>{mirrored}\n<shape type=\"cube\"/>\n</scene>"
+    );
+    let path = files("m-mirrored-camera", &main, &[]);
+    let scene = load_mitsuba(&path, &[]).unwrap();
+    assert!(scene.camera.mirrored);
+    let dir = path.parent().unwrap();
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
+    writer.write(&scene, &dir.join("scene.toml"), "round trip").unwrap();
+    let back = embray::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(back.camera, scene.camera);
+}

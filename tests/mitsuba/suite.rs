@@ -146,7 +146,8 @@ fn a_cornell_box_two_bounces_short_fails_the_rule() {
 /// tinted glass, smooth, rough and a thin sheet (refused before); `null` surfaces, a bounce
 /// on the path (69 % passed without them); an environment map from a Radiance `.hdr` file;
 /// bump maps on a smooth low-polygon mesh and a scaled analytic sphere (81.4 % passed when
-/// the bumped normal was the triangle's and the sphere's ∂p/∂u scaled twice).
+/// the bumped normal was the triangle's and the sphere's ∂p/∂u scaled twice); a camera
+/// whose to_world mirrors, with a principal point offset (refused before; unmirrored, 42 %).
 #[test]
 fn scenes_written_here_pass_mitsubas_rule() {
     let refs = repo_path("tests/data/mitsuba");
@@ -168,6 +169,7 @@ fn scenes_written_here_pass_mitsubas_rule() {
         "null_bsdf",
         "hdr_envmap",
         "bump_smooth_scaled",
+        "mirrored_camera",
     ];
     for name in names {
         let scene = load_mitsuba(&refs.join(format!("{name}.xml")), &[]).unwrap();

@@ -43,6 +43,9 @@ pub struct CameraDesc {
     /// Camera rays see only what lies between these distances along the view axis
     /// (Mitsuba's `near_clip`, `far_clip`); everything by default.
     pub clip: (f64, f64),
+    /// The image flipped left to right: the camera's right axis reversed (Mitsuba's sensor
+    /// whose `to_world` mirrors, as old exporters write it).
+    pub mirrored: bool,
 }
 
 impl CameraDesc {
@@ -62,6 +65,7 @@ impl CameraDesc {
             pixel_aspect: 1.0,
             ortho_half_height: None,
             clip: (0.0, f64::INFINITY),
+            mirrored: false,
         }
     }
 }

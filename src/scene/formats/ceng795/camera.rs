@@ -189,6 +189,7 @@ pub(super) fn camera(x: &Xml, node: Node) -> Result<CameraSpec, SceneError> {
         camera: CameraDesc {
             ortho_half_height: None,
             clip: (0.0, f64::INFINITY),
+            mirrored: false,
             lookfrom: position,
             lookat: position + gaze,
             up,

@@ -109,15 +109,9 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     let dir = to_world.matrix3.col(2).normalize();
     let up = to_world.matrix3.col(1).normalize();
     let left = to_world.matrix3.col(0);
-    if left.dot(up.cross(dir)) <= 0.0 {
-        // Mitsuba renders it, flipped left to right; embray's camera has no mirror.
-        let at = property(element, "transform", "to_world").unwrap_or(element);
-        return Err(at.error(
-            "the camera's to_world mirrors (a negative scale): Mitsuba would render the image \
-             flipped left to right, which embray's camera does not do (flip the image \
-             afterwards instead)",
-        ));
-    }
+    // Mitsuba renders a mirroring to_world flipped left to right (old exporters write
+    // `<scale x="-1"/>` before the `<lookat>`).
+    let mirrored = left.dot(up.cross(dir)) <= 0.0;
     let near = float(element, "near_clip")?.unwrap_or(1e-2);
     let far = float(element, "far_clip")?.unwrap_or(1e4);
     if !(near >= 0.0 && far > near && far.is_finite()) {
@@ -139,6 +133,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
         camera.ortho_half_height = Some(sy / aspect);
         camera.clip = (near, far);
         camera.pixel_aspect = sx / sy;
+        camera.mirrored = mirrored;
         return Ok(Sensor { camera, sampler, filter, crop });
     }
     let x_fov = x_fov(element, aspect)?;
@@ -146,6 +141,7 @@ pub(super) fn sensor(element: &Element, warnings: &mut Vec<String>) -> Result<Se
     let mut camera = CameraDesc::pinhole(origin, origin + dir, vfov, width, height);
     camera.up = up;
     camera.clip = (near, far);
+    camera.mirrored = mirrored;
     // Mitsuba shifts the film sample by the offset, in film widths and heights: the window
     // moves right and down (embray's shift is along right and up at unit distance).
     let offset = |name| float(element, name).map(|v| v.unwrap_or(0.0));

@@ -83,6 +83,7 @@ pub(crate) fn camera(cam: &CameraToml, ctx: &Ctx) -> Result<CameraDesc, SceneErr
     Ok(CameraDesc {
         ortho_half_height: None,
         clip: (near, far),
+        mirrored: cam.mirrored.unwrap_or(false),
         lookfrom,
         lookat,
         up: DVec3::from_array(up),

@@ -48,6 +48,8 @@ pub(crate) struct CameraToml {
     /// Near and far clip distances along the view axis (Mitsuba's `near_clip`, `far_clip`).
     #[serde(default, deserialize_with = "super::values::exact_opt")]
     pub clip: Option<[f64; 2]>,
+    /// The image flipped left to right (a camera whose transform mirrors).
+    pub mirrored: Option<bool>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]

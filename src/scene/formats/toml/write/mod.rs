@@ -208,6 +208,9 @@ fn camera_and_render(scene: &SceneDesc, out: &mut String) -> Result<(), TomlWrit
     if c.pixel_aspect != 1.0 {
         let _ = writeln!(out, "pixel_aspect = {}", f(c.pixel_aspect));
     }
+    if c.mirrored {
+        out.push_str("mirrored = true\n");
+    }
     let (near, far) = c.clip;
     if near > 0.0 || far.is_finite() {
         let _ = writeln!(out, "clip = [{}, {}]", f(near), f(far));
