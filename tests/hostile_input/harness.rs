@@ -147,6 +147,31 @@ pub fn refused(files: &[(&str, &str)], args: &[&str], expected: &[&str]) -> Run 
     refused_in(&scratch, args, expected)
 }
 
+/// Runs `args` with the limit `resource` (`RLIMIT_FSIZE`: a write past it fails with EFBIG,
+/// as a full disk fails with ENOSPC, SIGXFSZ being ignored; `RLIMIT_AS`: `ulimit -v`) at
+/// `bytes`.
+pub fn run_limited(
+    scratch: &Scratch,
+    args: &[&str],
+    resource: libc::__rlimit_resource_t,
+    bytes: u64,
+) -> Run {
+    use std::os::unix::process::CommandExt;
+    let mut command = scratch.command(args);
+    // SAFETY: only async-signal-safe calls (signal, setrlimit) between fork and exec.
+    unsafe {
+        command.pre_exec(move || {
+            libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+            let limit = libc::rlimit { rlim_cur: bytes, rlim_max: bytes };
+            if libc::setrlimit(resource, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    Run::from(command.output().unwrap())
+}
+
 /// Runs `args` in `scratch`; the run must succeed without a panic and leave no temporary
 /// file behind.
 #[track_caller]

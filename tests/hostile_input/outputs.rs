@@ -2,9 +2,8 @@
 //! replaced, links are followed or refused, long names work, a full disk is an error that
 //! leaves every earlier file as it was.
 
-use crate::harness::{Run, Scratch, accepted_in, assert_no_temp_files, refused_in, scene};
+use crate::harness::{Scratch, accepted_in, assert_no_temp_files, refused_in, run_limited, scene};
 use std::os::unix::fs::FileTypeExt;
-use std::os::unix::process::CommandExt;
 use std::path::Path;
 
 fn is_char_device(path: &str) -> bool {
@@ -135,29 +134,12 @@ fn convert_writes_the_toml_and_its_meshes_together() {
     assert!(scratch.path("out/s_meshes/mesh_0.obj").is_file());
 }
 
-/// Runs `args` with a file-size limit of `bytes` (RLIMIT_FSIZE) and SIGXFSZ ignored, so a
-/// write past it fails with EFBIG, as a full disk fails with ENOSPC.
-fn run_with_file_size_limit(scratch: &Scratch, args: &[&str], bytes: u64) -> Run {
-    let mut command = scratch.command(args);
-    // SAFETY: only async-signal-safe calls (signal, setrlimit) between fork and exec.
-    unsafe {
-        command.pre_exec(move || {
-            libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
-            let limit = libc::rlimit { rlim_cur: bytes, rlim_max: bytes };
-            if libc::setrlimit(libc::RLIMIT_FSIZE, &limit) != 0 {
-                return Err(std::io::Error::last_os_error());
-            }
-            Ok(())
-        });
-    }
-    Run::from(command.output().unwrap())
-}
-
 #[test]
 fn a_full_disk_is_an_error_and_keeps_the_earlier_images() {
     let scratch = with_earlier_outputs();
     let before = scratch.snapshot();
-    let run = run_with_file_size_limit(&scratch, &["render", "s.toml", "-o", "out.exr"], 200);
+    let run =
+        run_limited(&scratch, &["render", "s.toml", "-o", "out.exr"], libc::RLIMIT_FSIZE, 200);
     run.assert_no_panic();
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     run.assert_says(&["cannot write", "File too large"]);
@@ -175,7 +157,7 @@ fn a_full_disk_while_writing_a_heat_map_is_an_error() {
     scratch.write("heat.png", "earlier heat map");
     let before = scratch.snapshot();
     let args = ["compare", "a.png", "b.png", "--heatmap", "heat.png"];
-    let run = run_with_file_size_limit(&scratch, &args, 100);
+    let run = run_limited(&scratch, &args, libc::RLIMIT_FSIZE, 100);
     run.assert_no_panic();
     assert_eq!(run.code, Some(1), "{}", run.stderr);
     run.assert_says(&["heat.png", "File too large"]);

@@ -3,8 +3,7 @@
 //! files of a few MB or less), and a PNG whose compressed ICC profile inflated to 500 MB
 //! while its header was read, before any size was checked.
 
-use crate::harness::{Run, Scratch, accepted_in, scene, with_mesh};
-use std::os::unix::process::CommandExt;
+use crate::harness::{Scratch, accepted_in, run_limited, scene, with_mesh};
 use std::time::{Duration, Instant};
 
 /// The bound of each run below: a hang guard, not a speed goal (each took 30 s or more).
@@ -111,22 +110,6 @@ fn png_with_inflating_icc_profile(inflated: usize) -> Vec<u8> {
     png
 }
 
-/// Runs `args` with `bytes` of address space (RLIMIT_AS, as `ulimit -v`).
-fn run_with_address_space(scratch: &Scratch, args: &[&str], bytes: u64) -> Run {
-    let mut command = scratch.command(args);
-    // SAFETY: only an async-signal-safe call (setrlimit) between fork and exec.
-    unsafe {
-        command.pre_exec(move || {
-            let limit = libc::rlimit { rlim_cur: bytes, rlim_max: bytes };
-            if libc::setrlimit(libc::RLIMIT_AS, &limit) != 0 {
-                return Err(std::io::Error::last_os_error());
-            }
-            Ok(())
-        });
-    }
-    Run::from(command.output().unwrap())
-}
-
 /// The profile was inflated (500 MB) as the header was read, before the image's size was
 /// checked: under a 400 MB address space the process aborted. Now a header may hold 16 MiB,
 /// and a profile beyond it is dropped (embray does not manage colour).
@@ -150,8 +133,8 @@ fn an_inflating_icc_profile_is_not_inflated() {
             "texture = { type = \"image\", file = \"bomb.png\" }",
         ),
     );
-    for args in [&["compare", "bomb.png", "ok.png"][..], &["render", "s.toml", "-o", "o.png"]] {
-        let run = run_with_address_space(&scratch, args, 400_000_000);
+    for args in [&["compare", "bomb.png", "ok.png"][..], &["info", "s.toml"]] {
+        let run = run_limited(&scratch, args, libc::RLIMIT_AS, 400_000_000);
         run.assert_no_panic();
         assert_eq!(run.code, Some(0), "{args:?}: {}", run.stderr);
     }

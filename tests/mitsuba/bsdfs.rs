@@ -215,10 +215,7 @@ fn a_textured_roughness_converts_to_toml_and_back() {
     );
     let path = files("m-rough-texture-convert", &main, &[]);
     let scene = load_mitsuba(&path, &[]).unwrap();
-    let dir = path.parent().unwrap();
-    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
-    writer.write(&scene, &dir.join("scene.toml"), "round trip").unwrap();
-    let back = embray::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let back = super::converted(&path, &scene);
     let textures = |s: &embray::scene::SceneDesc| {
         s.materials[s.objects[0].material as usize].roughness_textures.clone().expect("textured")
     };

@@ -85,10 +85,7 @@ fn tinted_glass_thin_sheets_and_null_convert_to_toml_and_back() {
     );
     let path = files("m-glass-convert", &main, &[]);
     let scene = load_mitsuba(&path, &[]).unwrap();
-    let dir = path.parent().unwrap();
-    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
-    writer.write(&scene, &dir.join("scene.toml"), "round trip").unwrap();
-    let back = embray::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let back = super::converted(&path, &scene);
     let scattering = |s: &embray::scene::SceneDesc| -> Vec<(Specular, Option<Opacity>, bool)> {
         let material = |i: usize| -> &MaterialDesc { &s.materials[s.objects[i].material as usize] };
         (0..3)

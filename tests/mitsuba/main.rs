@@ -27,3 +27,13 @@ fn load_mitsuba(path: &Path, defines: &[(&str, &str)]) -> Result<SceneDesc, Stri
     assert_eq!(scenes.len(), 1, "a Mitsuba file is one scene");
     Ok(scenes.remove(0).scene)
 }
+
+/// `scene`, read from the Mitsuba file at `path`, as `embray convert` writes it to TOML
+/// (beside `path`) and reads it back.
+fn converted(path: &Path, scene: &SceneDesc) -> SceneDesc {
+    let dir = path.parent().unwrap();
+    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
+    let toml = dir.join("scene.toml");
+    writer.write(scene, &toml, "round trip").unwrap();
+    embray::scene::load(&toml).unwrap_or_else(|e| panic!("{e}"))
+}

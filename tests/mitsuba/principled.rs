@@ -182,11 +182,7 @@ fn principled_materials_convert_to_toml_and_back() {
         );
         let path = super::reader::files(name, &main, &[]);
         let scene = super::load_mitsuba(&path, &[]).unwrap();
-        let dir = path.parent().unwrap();
-        let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
-        let toml = dir.join("scene.toml");
-        writer.write(&scene, &toml, "round trip").unwrap();
-        let back = embray::scene::load(&toml).unwrap_or_else(|e| panic!("{e}"));
+        let back = super::converted(&path, &scene);
         let material =
             |s: &embray::scene::SceneDesc| s.materials[s.objects[0].material as usize].clone();
         assert!(material(&scene).principled.is_some());
@@ -194,7 +190,7 @@ fn principled_materials_convert_to_toml_and_back() {
             material(&back),
             material(&scene),
             "{}",
-            std::fs::read_to_string(&toml).unwrap()
+            std::fs::read_to_string(path.with_file_name("scene.toml")).unwrap()
         );
     }
 }

@@ -237,11 +237,7 @@ fn a_mitsuba_scene_converts_to_toml_and_back() {
         scene.settings.filter,
         embray::sampling::filter::PixelFilter::Gaussian { stddev: 0.4 }
     );
-    let dir = path.parent().unwrap();
-    let mut writer = embray::scene::toml_writer::TomlWriter::new(dir.join("meshes"));
-    let toml = dir.join("scene.toml");
-    writer.write(&scene, &toml, "round trip").unwrap();
-    let back = embray::scene::load(&toml).unwrap_or_else(|e| panic!("{e}"));
+    let back = super::converted(&path, &scene);
     assert_eq!(back.settings, scene.settings);
     assert_eq!(back.lights, scene.lights);
     assert_eq!(back.materials[back.objects[0].material as usize].albedo, Vec3::new(0.2, 0.4, 0.6));

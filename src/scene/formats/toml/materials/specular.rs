@@ -17,6 +17,12 @@ pub(super) fn specular(
 ) -> Result<Specular, SceneError> {
     let reflectance =
         |ctx: &Ctx| ctx.color(&path.key("reflectance"), m.reflectance.unwrap_or([1.0; 3]), true);
+    // `ior`, > 0, or the type's `default`.
+    let ior = |default: f64| -> Result<f32, SceneError> {
+        let field = path.key("ior");
+        let ior = ctx.positive(&field, m.ior.unwrap_or(default))?;
+        ctx.f32(&field, ior)
+    };
     let transmittance = |ctx: &Ctx| {
         ctx.color(&path.key("transmittance"), m.transmittance.unwrap_or([1.0; 3]), true)
     };
@@ -31,35 +37,23 @@ pub(super) fn specular(
             Specular::Conductor { eta, k, reflectance: reflectance(ctx)? }
         }
         MaterialKind::Dielectric => {
-            let field = path.key("ior");
-            let ior = ctx.positive(&field, m.ior.unwrap_or(1.5))?;
-            let ior = ctx.f32(&field, ior)?;
             let absorption =
                 ctx.color(&path.key("absorption"), m.absorption.unwrap_or([0.0; 3]), false)?;
             Specular::Dielectric {
-                ior,
+                ior: ior(1.5)?,
                 absorption,
                 reflectance: reflectance(ctx)?,
                 transmittance: transmittance(ctx)?,
             }
         }
-        MaterialKind::ThinDielectric => {
-            let field = path.key("ior");
-            let ior = ctx.positive(&field, m.ior.unwrap_or(1.5))?;
-            Specular::ThinDielectric {
-                ior: ctx.f32(&field, ior)?,
-                reflectance: reflectance(ctx)?,
-                transmittance: transmittance(ctx)?,
-            }
-        }
+        MaterialKind::ThinDielectric => Specular::ThinDielectric {
+            ior: ior(1.5)?,
+            reflectance: reflectance(ctx)?,
+            transmittance: transmittance(ctx)?,
+        },
+        // Polypropylene, Mitsuba's default coating.
         MaterialKind::Plastic => {
-            // Polypropylene, Mitsuba's default coating.
-            let field = path.key("ior");
-            let ior = ctx.positive(&field, m.ior.unwrap_or(1.49))?;
-            Specular::Plastic {
-                ior: ctx.f32(&field, ior)?,
-                nonlinear: m.nonlinear.unwrap_or(false),
-            }
+            Specular::Plastic { ior: ior(1.49)?, nonlinear: m.nonlinear.unwrap_or(false) }
         }
     })
 }
