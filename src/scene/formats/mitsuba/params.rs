@@ -5,7 +5,7 @@
 use crate::excerpt::excerpt;
 use crate::limits::MAX_XML_VALUE;
 use std::cmp::Reverse;
-use std::collections::{BTreeMap, HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 pub(super) struct Params {
     values: HashMap<String, String>,
@@ -38,40 +38,54 @@ impl Params {
         }
     }
 
-    /// The first name in replacement order after `after` that follows an unescaped `$` in
-    /// `value`.
-    fn next_name(&self, value: &str, after: Option<Order>) -> Option<Order<'_>> {
-        let mut next: Option<Order> = None;
-        for (at, _) in value.match_indices('$').filter(|&(at, _)| !escaped(value, at)) {
+    /// The names that follow an unescaped `$` in `value[range]`, or up to `back` bytes
+    /// before it, or right after it, added to `found`.
+    fn names_in<'a>(
+        &'a self,
+        value: &str,
+        range: std::ops::Range<usize>,
+        back: usize,
+        found: &mut BTreeSet<Order<'a>>,
+    ) {
+        let mut start = range.start.saturating_sub(back);
+        while !value.is_char_boundary(start) {
+            start -= 1;
+        }
+        let end = (range.end + 1).min(value.len());
+        for (offset, _) in value[start..end].match_indices('$') {
+            let at = start + offset;
+            if escaped(value, at) {
+                continue;
+            }
             let tail = &value[at + 1..];
             for &length in self.lengths.keys().take_while(|&&length| length <= tail.len()) {
                 let Some(candidate) = tail.get(..length) else { continue };
-                let Some((name, _)) = self.values.get_key_value(candidate) else { continue };
-                let order = (Reverse(length), name.as_str());
-                if after.is_none_or(|after| order > after) && next.is_none_or(|next| order < next) {
-                    next = Some(order);
+                if let Some((name, _)) = self.values.get_key_value(candidate) {
+                    found.insert((Reverse(length), name.as_str()));
                 }
             }
         }
-        next
     }
 
     /// `value` with every `$name` replaced by its parameter, as Mitsuba 3 substitutes: the
     /// longest names first (with `res` and `res_x` both defined, `$res_x` is the latter; with
     /// only `res`, `48_x`), an occurrence after a backslash left alone; a `$` left unescaped
     /// after that names an undefined parameter; `\$` then becomes `$`. The names replaced
-    /// are added to `named`.
+    /// are added to `named`. Only names found after a `$` are tried: those in the value, then
+    /// those that replacements bring (a name is tried after the ones before it in order).
     pub fn substitute(&self, value: &str, named: &mut HashSet<String>) -> Result<String, String> {
         if !value.contains('$') {
             return Ok(value.to_owned());
         }
         let mut value = value.to_owned();
-        let mut after = None;
-        while let Some(order) = self.next_name(&value, after) {
+        let mut pending = BTreeSet::new();
+        self.names_in(&value, 0..value.len(), 0, &mut pending);
+        while let Some(order) = pending.pop_first() {
             let name = order.1;
             let key = format!("${name}");
             let replacement = &self.values[name];
             let mut from = 0;
+            let mut brought = BTreeSet::new();
             while let Some(found) = value[from..].find(&key) {
                 let at = from + found;
                 if escaped(&value, at) {
@@ -87,8 +101,11 @@ impl Params {
                 }
                 from = at + replacement.len();
                 named.insert(name.to_owned());
+                // A name replaced later is no longer than this one: one that the
+                // replacement completes begins at most its length before it.
+                self.names_in(&value, at..from, key.len(), &mut brought);
             }
-            after = Some(order);
+            pending.extend(brought.into_iter().filter(|&later| later > order));
         }
         if let Some((at, _)) = value.match_indices('$').find(|&(at, _)| !escaped(&value, at)) {
             let name: String = value[at + 1..]
@@ -149,6 +166,13 @@ mod tests {
         // A value that names a parameter replaced later is replaced in turn.
         let chain = params(&[("long", "$b"), ("b", "2")]);
         assert_eq!(chain.substitute("$long", &mut HashSet::new()).unwrap(), "2");
+        // A replacement may complete a name begun before it (`cc` before `xy` in order).
+        let completed = params(&[("cc", "y"), ("xy", "Z")]);
+        assert_eq!(completed.substitute("$x$cc", &mut HashSet::new()).unwrap(), "Z");
+        // ...but not one already past in order (`ab` before `cc`): as Mitsuba, left unknown.
+        let past = params(&[("cc", "b"), ("ab", "Z")]);
+        let err = past.substitute("$a$cc", &mut HashSet::new()).unwrap_err();
+        assert!(err.contains("$ab is not a parameter"), "{err}");
         let err = short.substitute("$spp", &mut HashSet::new()).unwrap_err();
         assert!(err.contains("$spp is not a parameter") && err.contains("known: res"), "{err}");
         let err = short.substitute("5$", &mut HashSet::new()).unwrap_err();
