@@ -61,7 +61,8 @@ pub(super) fn bsdf(
         }
         "thindielectric" => dielectric::thin_dielectric(element, none),
         // Light passes it unchanged, as a mask of opacity 0: a bounce of the path (Mitsuba's
-        // `path` counts it) that blocks shadow rays and takes no light samples.
+        // `path` counts it) that takes no light samples; shadow rays pass it too (a null
+        // rectangle under a light casts no shadow, in Mitsuba's image as in embray's).
         "null" => {
             check_properties(element, &[])?;
             let opacity = Some(crate::scene::desc::Opacity::Constant(0.0));
