@@ -97,6 +97,9 @@ pub const BYTES_PER_TEXEL: u64 = 20;
 /// Bytes per texel of an EXR image: the texels and, while loading, its channels as
 /// decoded (measured: 25 for a map with R, G, B, Z and normals, as embray writes them).
 pub const BYTES_PER_HDR_TEXEL: u64 = 30;
+/// Bytes per value of a mesh attribute (a PLY's other vertex and face properties): the f32
+/// of the scene's mesh and of its render-space copy.
+pub const BYTES_PER_ATTRIBUTE_VALUE: u64 = 8;
 /// Bytes per value of a signed distance grid: the f32 it is held as.
 pub const BYTES_PER_GRID_VALUE: u64 = 4;
 /// Bytes per voxel of a signed distance grid, beyond its share of the BVH (counted as a

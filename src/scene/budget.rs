@@ -2,10 +2,10 @@
 //! coordinate range and the memory the render will need against the memory the machine has.
 
 use crate::limits::{
-    BASE_BYTES, BYTES_PER_EMITTER, BYTES_PER_GRID_VALUE, BYTES_PER_GRID_VOXEL, BYTES_PER_HDR_TEXEL,
-    BYTES_PER_LIGHT, BYTES_PER_MATERIAL, BYTES_PER_OBJECT, BYTES_PER_PIXEL,
-    BYTES_PER_SAMPLED_TEXEL, BYTES_PER_TEXEL, BYTES_PER_THREAD, MAX_COORDINATE,
-    MAX_WORLD_COORDINATE, memory_available,
+    BASE_BYTES, BYTES_PER_ATTRIBUTE_VALUE, BYTES_PER_EMITTER, BYTES_PER_GRID_VALUE,
+    BYTES_PER_GRID_VOXEL, BYTES_PER_HDR_TEXEL, BYTES_PER_LIGHT, BYTES_PER_MATERIAL,
+    BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL, BYTES_PER_TEXEL, BYTES_PER_THREAD,
+    MAX_COORDINATE, MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc};
@@ -59,6 +59,8 @@ pub struct MemoryEstimate {
     pub materials: u64,
     pub lights: u64,
     pub triangles: u64,
+    /// Values of meshes' attributes (PLY vertex and face properties), each f32.
+    pub attribute_values: u64,
     /// Emitting primitives, counted once a placement (each samples its own).
     pub emitters: u64,
     /// Values of signed distance grids, and their voxels (each counted as a primitive).
@@ -78,13 +80,17 @@ impl std::fmt::Display for MemoryEstimate {
         write!(
             f,
             "{}x{} pixels, {} object placements, {} materials, {} lights, {} mesh triangles, \
-             {} emitting primitives, {} grid values, {} texture texels, {} thread{}",
+             {}{} emitting primitives, {} grid values, {} texture texels, {} thread{}",
             self.width,
             self.height,
             self.objects,
             self.materials,
             self.lights,
             self.triangles,
+            match self.attribute_values {
+                0 => String::new(),
+                n => format!("{n} mesh attribute values, "),
+            },
             self.emitters,
             self.grid_values,
             self.texels,
@@ -103,6 +109,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
     let mut meshes = HashSet::new();
     let mut grids = HashSet::new();
     let (mut triangles, mut grid_values, mut grid_voxels) = (0u64, 0u64, 0u64);
+    let mut attribute_values = 0u64;
     let mut emitters = 0u64;
     for object in &desc.objects {
         // Each placement of an emissive shape samples its own emitters, shared mesh or not.
@@ -122,6 +129,8 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
                 // has three); a mesh of more vertices than that costs as a soup of them.
                 let soup = (mesh.positions.len() as u64).div_ceil(3);
                 triangles += (mesh.indices.len() as u64).max(soup);
+                attribute_values +=
+                    mesh.attributes.iter().map(|a| a.values.len() as u64).sum::<u64>();
             }
         }
         // Counted here, before placement builds a grid's voxels: its values, and each voxel
@@ -163,6 +172,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         (desc.reading_bytes, 1),
         (emitters, BYTES_PER_EMITTER),
         (triangles, bytes_per_triangle),
+        (attribute_values, BYTES_PER_ATTRIBUTE_VALUE),
         (grid_values, BYTES_PER_GRID_VALUE),
         (grid_voxels, bytes_per_triangle.saturating_add(BYTES_PER_GRID_VOXEL)),
         (texels - hdr_texels, BYTES_PER_TEXEL),
@@ -182,6 +192,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         materials,
         lights,
         triangles,
+        attribute_values,
         emitters,
         grid_values,
         grid_voxels,
@@ -224,6 +235,21 @@ pub(crate) fn check_reading(
         }),
         _ => Ok(()),
     }
+}
+
+/// Refuses a scene whose object placements, counted before they are made, would need more
+/// memory than the process may use: a 2 KB scene can ask for ten million copies (a `repeat`
+/// grid, a Mitsuba shapegroup instanced), which the estimate of the finished scene would
+/// refuse only after they were made. `at` says where the last of them were asked for.
+pub(crate) fn check_placements(
+    file: &std::path::Path,
+    placements: u64,
+    at: impl FnOnce() -> String,
+) -> Result<(), crate::scene::SceneError> {
+    let needed = BASE_BYTES.saturating_add(placements.saturating_mul(BYTES_PER_OBJECT));
+    check_reading(file, needed, || {
+        format!("{placements} object placements, the last asked for by {}", at())
+    })
 }
 
 /// Object-space bounds of the meshes seen so far, by `Arc` identity (the scene holds the

@@ -116,6 +116,11 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
             Ok(CachedFile { models, materials: loaded.materials })
         }
         Some("ply") => {
+            // A file of 3-byte vertices holds 24 bytes a position: its length checked
+            // first, the mesh it declares as it is read (`ply::parse`).
+            let length = std::fs::metadata(path).map_or(0, |m| m.len());
+            let what = || format!("a PLY file of {length} bytes");
+            crate::scene::budget::check_reading(path, length, what)?;
             let bytes =
                 crate::input_file::read_bytes(path).map_err(|error| SceneError::PlyRead {
                     ply: path.clone(),
@@ -124,14 +129,17 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
                     error,
                     line: mesh_ref.line,
                 })?;
-            let (mesh, warning) = ply::parse(&bytes).map_err(|problem| SceneError::PlyData {
-                ply: path.clone().into_boxed_path(),
-                ply_line: crate::scene::error::Line(problem.line),
-                scene: mesh_ref.scene.to_path_buf().into_boxed_path(),
-                item: mesh_ref.item.clone(),
-                problem: problem.message,
-                line: mesh_ref.line,
-            })?;
+            let mesh_memory = crate::limits::memory_available()
+                .map(|available| available.saturating_sub(bytes.len() as u64));
+            let (mesh, warning) =
+                ply::parse(&bytes, mesh_memory).map_err(|problem| SceneError::PlyData {
+                    ply: path.clone().into_boxed_path(),
+                    ply_line: crate::scene::error::Line(problem.line),
+                    scene: mesh_ref.scene.to_path_buf().into_boxed_path(),
+                    item: mesh_ref.item.clone(),
+                    problem: problem.message,
+                    line: mesh_ref.line,
+                })?;
             if let Some(warning) = warning {
                 let line = warning.line.map_or(String::new(), |line| format!(" (line {line})"));
                 warnings.push(format!("{}: {}{line}", path.display(), warning.message));

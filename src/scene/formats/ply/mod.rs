@@ -13,11 +13,13 @@
 
 mod attributes;
 mod header;
+mod memory;
 mod values;
 
 use crate::scene::desc::{MeshAttribute, MeshData};
 use glam::{DVec3, Vec2};
 use header::{Element, Encoding, Kind, parse_header, type_name};
+use memory::MeshMemory;
 use values::{Ascii, Binary, ReadError, Values};
 
 /// What is wrong with a PLY file, and the line for an ASCII file (header or body).
@@ -31,8 +33,12 @@ fn problem(line: Option<usize>, message: impl Into<String>) -> PlyProblem {
     PlyProblem { line, message: message.into() }
 }
 
-/// Parses a whole PLY file: its mesh, and a warning if faces were skipped.
-pub(crate) fn parse(bytes: &[u8]) -> Result<(MeshData, Option<PlyProblem>), PlyProblem> {
+/// Parses a whole PLY file: its mesh, and a warning if faces were skipped. The mesh may take
+/// `available` bytes (`None`: no limit is known), checked before they are spent.
+pub(crate) fn parse(
+    bytes: &[u8],
+    available: Option<u64>,
+) -> Result<(MeshData, Option<PlyProblem>), PlyProblem> {
     let header = parse_header(bytes)?;
     let body = &bytes[header.body_start..];
     match header.encoding {
@@ -46,12 +52,12 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<(MeshData, Option<PlyProblem>), PlyP
                 remaining: text.len(),
                 in_record: false,
             };
-            read_body(&header.elements, &mut values)
+            read_body(&header.elements, &mut values, available)
         }
         Encoding::LittleEndian | Encoding::BigEndian => {
             let big_endian = header.encoding == Encoding::BigEndian;
             let mut values = Binary { data: body, pos: 0, big_endian };
-            read_body(&header.elements, &mut values)
+            read_body(&header.elements, &mut values, available)
         }
     }
 }
@@ -123,6 +129,7 @@ fn face_indices(element: &Element) -> Result<usize, PlyProblem> {
 fn read_body(
     elements: &[Element],
     values: &mut dyn Values,
+    available: Option<u64>,
 ) -> Result<(MeshData, Option<PlyProblem>), PlyProblem> {
     let vertex_element = elements
         .iter()
@@ -140,12 +147,22 @@ fn read_body(
         [&vertex_reserved[..], &["texture_u", "texture_v", "texture_s", "texture_t"]].concat();
     let vertex_attributes =
         attributes::attribute_layouts(vertex_element, "vertex", &vertex_reserved);
-    let face_attributes = match elements.iter().find(|e| e.name == "face") {
+    let face_element = elements.iter().find(|e| e.name == "face");
+    let face_attributes = match face_element {
         Some(face) => {
             attributes::attribute_layouts(face, "face", &["vertex_indices", "vertex_index"])
         }
         None => Vec::new(),
     };
+    let channels = |layouts: &[attributes::AttributeLayout]| -> usize {
+        layouts.iter().map(|a| a.properties.len()).sum()
+    };
+    let (normals, uvs) = (layout.normal.is_some(), layout.uv.is_some());
+    let per_vertex = MeshMemory::vertex_bytes(normals, uvs, channels(&vertex_attributes));
+    let per_triangle = MeshMemory::triangle_bytes(channels(&face_attributes));
+    let faces = face_element.map_or(0, |face| face.count as u64);
+    let memory =
+        MeshMemory::new(available, (vertex_count as u64, per_vertex), (faces, per_triangle))?;
     mesh.attributes = vertex_attributes
         .iter()
         .chain(&face_attributes)
@@ -228,6 +245,10 @@ fn read_body(
                             }
                         }
                         if is_polygon && polygon.len() >= 3 {
+                            let triangles = mesh.indices.len() + polygon.len() - 2;
+                            if triangles > mesh.indices.capacity() {
+                                memory.check_growth(triangles, values.line())?;
+                            }
                             for i in 1..polygon.len() - 1 {
                                 mesh.indices.push([polygon[0], polygon[i], polygon[i + 1]]);
                             }

@@ -2,6 +2,11 @@
 
 use super::*;
 
+/// `super::parse` with no memory limit.
+fn parse(bytes: &[u8]) -> Result<(MeshData, Option<PlyProblem>), PlyProblem> {
+    super::parse(bytes, None)
+}
+
 const CUBE_HEADER: &str = "ply\nformat ascii 1.0\ncomment a cube\nelement vertex 8\n\
     property float x\nproperty float y\nproperty float z\nelement face 6\n\
     property list uchar int vertex_indices\nend_header\n";

@@ -93,6 +93,22 @@ impl Builder<'_> {
         ))
     }
 
+    /// Refuses `models` objects times the copies of `grid` when, with the objects made so
+    /// far, they would need more memory than the process may use: before they are made.
+    fn check_copies(
+        &self,
+        path: &FieldPath,
+        grid: Option<Grid>,
+        models: usize,
+    ) -> Result<(), SceneError> {
+        let Some(grid) = grid else { return Ok(()) };
+        let copies = (grid.total() as u64).saturating_mul(models as u64);
+        let placements = (self.objects.len() as u64).saturating_add(copies);
+        let field = path.key("repeat");
+        let at = || format!("{field}{}", self.ctx.line(&field));
+        crate::scene::budget::check_placements(self.ctx.file, placements, at)
+    }
+
     /// Adds the object, or one per copy of `grid`, all sharing `shape`.
     pub(super) fn push(
         &mut self,
@@ -191,6 +207,7 @@ impl Builder<'_> {
         };
         let material = ctx.required(&path, &item, "material", material)?;
         self.check_attributes(&path, &shape, material)?;
+        self.check_copies(&path, grid, 1)?;
         self.push(item, shape, material, placement, grid);
         Ok(())
     }
@@ -208,6 +225,7 @@ impl Builder<'_> {
     ) -> Result<(), SceneError> {
         let mesh_ref = mesh_ref(self.ctx, self.base_dir, path, file);
         let (key, models) = self.meshes.models(&mesh_ref, smooth, self.warnings)?;
+        self.check_copies(path, grid, models.len())?;
         let mut notes = obj::MtlNotes::default();
         for model in models {
             let index = match (material, model.material) {
