@@ -90,6 +90,32 @@ fn ply_grid(path: &std::path::Path, side: u32) {
     std::fs::write(path, bytes).unwrap();
 }
 
+/// A binary PLY of `triangles` separate triangles, each vertex with a normal and texture
+/// coordinates (as exporters write hard-edged or uv-seamed models).
+fn ply_soup(path: &std::path::Path, triangles: u32) {
+    let mut bytes = format!(
+        "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\n\
+         property float y\nproperty float z\nproperty float nx\nproperty float ny\n\
+         property float nz\nproperty float u\nproperty float v\nelement face {triangles}\n\
+         property list uchar int vertex_indices\nend_header\n",
+        3 * triangles
+    )
+    .into_bytes();
+    for t in 0..triangles {
+        let (x, z) = ((t % 1000) as f32 * 1e-3, (t / 1000) as f32 * 1e-3);
+        for (dx, dz) in [(0.0, 0.0), (1e-3, 0.0), (0.0, 1e-3)] {
+            for c in [x + dx, 0.0, z + dz, 0.0, 1.0, 0.0, x, z] {
+                bytes.extend(c.to_le_bytes());
+            }
+        }
+    }
+    for t in 0..triangles {
+        bytes.push(3);
+        [3 * t, 3 * t + 1, 3 * t + 2].iter().for_each(|v| bytes.extend(v.to_le_bytes()));
+    }
+    std::fs::write(path, bytes).unwrap();
+}
+
 /// The memory estimate against what a render really holds: `embray render` of scenes
 /// where one count dominates (materials, lights, pixels, mesh triangles, object placements,
 /// texture texels, an EXR environment map's texels), on each backend, its peak resident memory read from
@@ -100,6 +126,7 @@ fn ply_grid(path: &std::path::Path, side: u32) {
 fn the_memory_estimate_covers_the_measured_peak_within_half_again() {
     let dir = common::command::temp_dir("memory-model");
     ply_grid(&dir.join("grid.ply"), 700);
+    ply_soup(&dir.join("soup.ply"), 300_000);
     let noise = image::RgbImage::from_fn(2048, 2048, |x, y| {
         let h = (x.wrapping_mul(2654435761) ^ y.wrapping_mul(40503)).wrapping_mul(2246822519);
         image::Rgb([h as u8, (h >> 8) as u8, (h >> 16) as u8])
@@ -133,6 +160,14 @@ fn the_memory_estimate_covers_the_measured_peak_within_half_again() {
                 64,
                 "",
                 "\n[[objects]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"grid.ply\"\n",
+            ),
+        ),
+        (
+            "triangle soup 300k with normals and uvs",
+            scene(
+                64,
+                "",
+                "\n[[objects]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"soup.ply\"\n",
             ),
         ),
         (

@@ -5,7 +5,8 @@ use crate::limits::{
     BASE_BYTES, BYTES_PER_ATTRIBUTE_VALUE, BYTES_PER_EMITTER, BYTES_PER_GRID_VALUE,
     BYTES_PER_GRID_VOXEL, BYTES_PER_HDR_TEXEL, BYTES_PER_LIGHT, BYTES_PER_MATERIAL,
     BYTES_PER_OBJECT, BYTES_PER_PIXEL, BYTES_PER_SAMPLED_TEXEL, BYTES_PER_TEXEL, BYTES_PER_THREAD,
-    MAX_COORDINATE, MAX_WORLD_COORDINATE, memory_available,
+    BYTES_PER_VERTEX, BYTES_PER_VERTEX_NORMAL, BYTES_PER_VERTEX_UV, MAX_COORDINATE,
+    MAX_WORLD_COORDINATE, memory_available,
 };
 use crate::render_space::RenderSpace;
 use crate::scene::{ObjectDesc, SceneDesc, ShapeDesc};
@@ -110,6 +111,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
     let mut grids = HashSet::new();
     let (mut triangles, mut grid_values, mut grid_voxels) = (0u64, 0u64, 0u64);
     let mut attribute_values = 0u64;
+    let mut vertex_bytes = 0u64;
     let mut emitters = 0u64;
     for object in &desc.objects {
         // Each placement of an emissive shape samples its own emitters, shared mesh or not.
@@ -125,10 +127,8 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         }
         if let ShapeDesc::Mesh(mesh) = &object.shape {
             if meshes.insert(Arc::as_ptr(mesh)) {
-                // A triangle's cost covers its share of a mesh's vertices (a triangle soup
-                // has three); a mesh of more vertices than that costs as a soup of them.
-                let soup = (mesh.positions.len() as u64).div_ceil(3);
-                triangles += (mesh.indices.len() as u64).max(soup);
+                triangles += mesh.indices.len() as u64;
+                vertex_bytes = vertex_bytes.saturating_add(vertices_beyond_triangles(mesh));
                 attribute_values +=
                     mesh.attributes.iter().map(|a| a.values.len() as u64).sum::<u64>();
             }
@@ -170,6 +170,7 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         (materials, BYTES_PER_MATERIAL),
         (lights, BYTES_PER_LIGHT),
         (desc.reading_bytes, 1),
+        (vertex_bytes, 1),
         (emitters, BYTES_PER_EMITTER),
         (triangles, bytes_per_triangle),
         (attribute_values, BYTES_PER_ATTRIBUTE_VALUE),
@@ -201,6 +202,18 @@ pub fn memory_needed(desc: &SceneDesc, bytes_per_triangle: u64, threads: usize) 
         sampled_texels,
         threads,
     }
+}
+
+/// The bytes of `mesh`'s vertices that its triangles' cost (`BYTES_PER_TRIANGLE_*`, measured
+/// on closed meshes, which have half as many vertices as triangles) does not cover: its
+/// positions beyond half its triangles (a soup has three a triangle), its normals and its
+/// texture coordinates, each in the description and its render-space copy.
+fn vertices_beyond_triangles(mesh: &crate::scene::MeshData) -> u64 {
+    let vertices = mesh.positions.len() as u64;
+    let beyond = vertices.saturating_sub(mesh.indices.len() as u64 / 2);
+    let normals = if mesh.normals.is_some() { vertices } else { 0 };
+    let uvs = if mesh.uvs.is_some() { vertices } else { 0 };
+    beyond * BYTES_PER_VERTEX + normals * BYTES_PER_VERTEX_NORMAL + uvs * BYTES_PER_VERTEX_UV
 }
 
 /// Refuses a render whose estimated memory exceeds what the machine has.

@@ -116,11 +116,8 @@ fn load_file(mesh_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<CachedFile
             Ok(CachedFile { models, materials: loaded.materials })
         }
         Some("ply") => {
-            // A file of 3-byte vertices holds 24 bytes a position: its length checked
-            // first, the mesh it declares as it is read (`ply::parse`).
-            let length = std::fs::metadata(path).map_or(0, |m| m.len());
-            let what = || format!("a PLY file of {length} bytes");
-            crate::scene::budget::check_reading(path, length, what)?;
+            // Its length checked first, the mesh it declares as it is read (`ply::parse`).
+            mesh_ref.check_length(path, 1)?;
             let bytes =
                 crate::input_file::read_bytes(path).map_err(|error| SceneError::PlyRead {
                     ply: path.clone(),

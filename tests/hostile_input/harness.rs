@@ -156,8 +156,16 @@ pub fn run_limited(
     resource: libc::__rlimit_resource_t,
     bytes: u64,
 ) -> Run {
+    run_limited_with(scratch.command(args), resource, bytes)
+}
+
+/// As `run_limited`, for a command already set up (its environment, say).
+pub fn run_limited_with(
+    mut command: std::process::Command,
+    resource: libc::__rlimit_resource_t,
+    bytes: u64,
+) -> Run {
     use std::os::unix::process::CommandExt;
-    let mut command = scratch.command(args);
     // SAFETY: only async-signal-safe calls (signal, setrlimit) between fork and exec.
     unsafe {
         command.pre_exec(move || {

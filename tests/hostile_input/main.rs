@@ -15,6 +15,7 @@ mod fourth_probe;
 mod harness;
 mod inflating;
 mod limits;
+mod memory_before_spending;
 mod meshes;
 mod mitsuba_conflicts;
 mod nesting;

@@ -125,7 +125,11 @@ impl Params {
                 self.known()
             ));
         }
-        Ok(value.replace("\\$", "$"))
+        let mut value = value.replace("\\$", "$");
+        // Grown by doubling: a value kept with twice its length reserved held twice what the
+        // memory check counts.
+        value.shrink_to_fit();
+        Ok(value)
     }
 
     /// The names, sorted, at most the first 20 of them.

@@ -51,6 +51,17 @@ impl ObjRef<'_> {
     fn scan_error(&self, file: &Path, problem: ScanProblem) -> SceneError {
         self.error(file, problem.message, Line(Some(problem.line)))
     }
+
+    /// Refuses to read the mesh file `file` when `bytes_per_byte` times its length is more
+    /// memory than the process may use: checked before it is read whole.
+    pub(crate) fn check_length(&self, file: &Path, bytes_per_byte: u64) -> Result<(), SceneError> {
+        let length = std::fs::metadata(file).map_or(0, |m| m.len());
+        let what = || {
+            let (item, scene, line) = (&self.item, self.scene.display(), self.line);
+            format!("a file of {length} bytes, named by {item} in '{scene}'{line}")
+        };
+        crate::scene::budget::check_reading(file, length.saturating_mul(bytes_per_byte), what)
+    }
 }
 
 pub(crate) struct ObjModel {
@@ -71,6 +82,7 @@ pub(crate) struct LoadedObj {
 /// Without `read_mtl`, no MTL file is opened and the models have no material.
 pub(crate) fn load(obj_ref: &ObjRef, warnings: &mut Vec<String>) -> Result<LoadedObj, SceneError> {
     let obj = obj_ref.obj.as_path();
+    obj_ref.check_length(obj, crate::limits::BYTES_PER_OBJ_BYTE)?;
     let text = crate::input_file::read_text(obj).map(without_bom).map_err(|error| {
         SceneError::ObjRead {
             obj: obj.to_path_buf(),
