@@ -41,11 +41,16 @@ pub enum LimitError {
     },
 }
 
-/// A memory size in GiB, or in MiB below one GiB.
+/// A memory size in GiB, in MiB below one GiB, in KiB below 0.1 MiB and in bytes below
+/// 0.1 KiB (a budget of a few bytes read as "0.0 MiB" on both sides of a refusal).
 pub(crate) fn size(bytes: u64) -> String {
-    match bytes >= 1 << 30 {
-        true => format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64),
-        false => format!("{:.1} MiB", bytes as f64 / (1u64 << 20) as f64),
+    let unit = |shift: u32| bytes as f64 / (1u64 << shift) as f64;
+    match bytes {
+        _ if bytes >= 1 << 30 => format!("{:.1} GiB", unit(30)),
+        _ if unit(20) >= 0.1 => format!("{:.1} MiB", unit(20)),
+        _ if unit(10) >= 0.1 => format!("{:.1} KiB", unit(10)),
+        1 => "1 byte".to_owned(),
+        _ => format!("{bytes} bytes"),
     }
 }
 
@@ -232,39 +237,6 @@ pub fn check_memory(
     }
 }
 
-/// Refuses to read `file` when `needed` bytes (estimated from `what`) exceed what the
-/// process may use: checked before the memory is spent.
-pub(crate) fn check_reading(
-    file: &std::path::Path,
-    needed: u64,
-    what: impl FnOnce() -> String,
-) -> Result<(), crate::scene::SceneError> {
-    match memory_available() {
-        Some(available) if needed > available => Err(crate::scene::SceneError::ReadMemory {
-            file: file.to_path_buf(),
-            needed,
-            what: what(),
-            available,
-        }),
-        _ => Ok(()),
-    }
-}
-
-/// Refuses a scene whose object placements, counted before they are made, would need more
-/// memory than the process may use: a 2 KB scene can ask for ten million copies (a `repeat`
-/// grid, a Mitsuba shapegroup instanced), which the estimate of the finished scene would
-/// refuse only after they were made. `at` says where the last of them were asked for.
-pub(crate) fn check_placements(
-    file: &std::path::Path,
-    placements: u64,
-    at: impl FnOnce() -> String,
-) -> Result<(), crate::scene::SceneError> {
-    let needed = BASE_BYTES.saturating_add(placements.saturating_mul(BYTES_PER_OBJECT));
-    check_reading(file, needed, || {
-        format!("{placements} object placements, the last asked for by {}", at())
-    })
-}
-
 /// Object-space bounds of the meshes seen so far, by `Arc` identity (the scene holds the
 /// `Arc`s, so an address is not reused while the map lives).
 #[derive(Default)]
@@ -373,6 +345,14 @@ pub fn check_coordinates(desc: &SceneDesc, space: RenderSpace) -> Result<(), Lim
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sizes_keep_a_digit_that_is_not_zero() {
+        let sizes = [1, 44, 103, 45_000, 104_858, 1000 << 20, 3 << 30].map(size);
+        let expected =
+            ["1 byte", "44 bytes", "0.1 KiB", "43.9 KiB", "0.1 MiB", "1000.0 MiB", "3.0 GiB"];
+        assert_eq!(sizes, expected);
+    }
 
     #[test]
     fn the_bundled_scene_fits_and_far_scenes_do_not() {

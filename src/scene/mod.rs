@@ -9,6 +9,7 @@
 //! TOML with OBJ meshes.
 pub mod budget;
 pub mod desc;
+pub(crate) mod reading_budget;
 pub use desc::*;
 
 mod error;

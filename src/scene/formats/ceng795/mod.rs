@@ -97,7 +97,7 @@ pub fn load_str_with_warnings(
 ) -> Result<(Vec<CameraScene>, Vec<String>), SceneError> {
     let reading_bytes = (text.len() as u64).saturating_mul(crate::limits::BYTES_PER_XML_BYTE);
     let what = || format!("{} bytes of XML", text.len());
-    crate::scene::budget::check_reading(source, reading_bytes, what)?;
+    crate::scene::reading_budget::check_reading(source, reading_bytes, what)?;
     let doc = Document::parse(text).map_err(|e| SceneError::Xml {
         file: source.to_path_buf(),
         element: "the XML document".to_owned(),

@@ -297,7 +297,7 @@ impl Builder<'_> {
         };
         let name = format!("{} (line {})", element.describe(), element.line);
         let placements = self.objects.len().saturating_add(self.groups[&id].len()) as u64;
-        crate::scene::budget::check_placements(&element.file, placements, || name.clone())?;
+        crate::scene::reading_budget::check_placements(&element.file, placements, || name.clone())?;
         let placed: Vec<ObjectDesc> = self.groups[&id]
             .iter()
             .map(|o| ObjectDesc {

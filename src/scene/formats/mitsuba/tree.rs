@@ -153,7 +153,7 @@ impl Reader {
             });
         }
         let what = || format!("{} bytes of XML with its includes read so far", self.bytes);
-        crate::scene::budget::check_reading(path, self.reading_bytes(), what)?;
+        crate::scene::reading_budget::check_reading(path, self.reading_bytes(), what)?;
         let options = roxmltree::ParsingOptions {
             allow_dtd: false,
             nodes_limit: MAX_XML_ELEMENTS as u32,
@@ -313,7 +313,7 @@ impl Reader {
             return Err(element.error(bytes_exceeded()));
         }
         let what = || format!("{} bytes of XML and spectrum files read so far", self.bytes);
-        crate::scene::budget::check_reading(&path, self.reading_bytes(), what)?;
+        crate::scene::reading_budget::check_reading(&path, self.reading_bytes(), what)?;
         let list =
             super::spd::spectrum_file_as_list(&path).map_err(|problem| element.error(problem))?;
         element.attrs.retain(|(attr, _)| attr != "filename");
@@ -343,7 +343,7 @@ impl Reader {
                     self.substituted
                 )
             };
-            crate::scene::budget::check_reading(&element.file, self.reading_bytes(), what)?;
+            crate::scene::reading_budget::check_reading(&element.file, self.reading_bytes(), what)?;
         }
         Ok(replaced)
     }

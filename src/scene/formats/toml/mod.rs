@@ -37,13 +37,13 @@ pub(crate) fn load_str_with_warnings(
 ) -> Result<(SceneDesc, Vec<String>), SceneError> {
     let parsing = (text.len() as u64).saturating_mul(crate::limits::BYTES_PER_TOML_BYTE);
     let what = || format!("{} bytes of TOML", text.len());
-    crate::scene::budget::check_reading(source, parsing, what)?;
+    crate::scene::reading_budget::check_reading(source, parsing, what)?;
     let map = source_map::SourceMap::new(text);
     let file: SceneFile = map.read(source)?;
     let materials = file.materials.len() as u64;
     let needed = parsing.saturating_add(materials * crate::limits::BYTES_PER_MATERIAL);
     let what = || format!("{} bytes of TOML, {materials} materials", text.len());
-    crate::scene::budget::check_reading(source, needed, what)?;
+    crate::scene::reading_budget::check_reading(source, needed, what)?;
     let ctx = Ctx { file: source, map };
     let base_dir = source.parent().unwrap_or(Path::new(""));
     let mut warnings = Vec::new();

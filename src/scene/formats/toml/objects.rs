@@ -106,7 +106,7 @@ impl Builder<'_> {
         let placements = (self.objects.len() as u64).saturating_add(copies);
         let field = path.key("repeat");
         let at = || format!("{field}{}", self.ctx.line(&field));
-        crate::scene::budget::check_placements(self.ctx.file, placements, at)
+        crate::scene::reading_budget::check_placements(self.ctx.file, placements, at)
     }
 
     /// Adds the object, or one per copy of `grid`, all sharing `shape`.
