@@ -68,8 +68,16 @@ pub(crate) fn read_capped(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
 
 /// The text of `path` (UTF-8).
 pub(crate) fn read_text(path: &Path) -> io::Result<String> {
-    String::from_utf8(read_bytes(path)?).map_err(|_| {
-        io::Error::new(io::ErrorKind::InvalidData, "stream did not contain valid UTF-8")
+    String::from_utf8(read_bytes(path)?).map_err(|error| {
+        let bytes = error.as_bytes();
+        let at = error.utf8_error().valid_up_to();
+        let line = bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
+        let message = format!(
+            "line {line}: byte 0x{:02X} is not UTF-8 (text files are read as UTF-8; a Latin-1 \
+             name or comment must be converted)",
+            bytes[at]
+        );
+        io::Error::new(io::ErrorKind::InvalidData, message)
     })
 }
 

@@ -139,3 +139,18 @@ fn an_inflating_icc_profile_is_not_inflated() {
         assert_eq!(run.code, Some(0), "{args:?}: {}", run.stderr);
     }
 }
+
+/// A Latin-1 byte in a scene, OBJ or MTL file was reported without a line ("stream did not
+/// contain valid UTF-8"): in a 100 MB OBJ the user could not find it.
+#[test]
+fn a_byte_that_is_not_utf8_is_reported_with_its_line() {
+    let scratch = Scratch::new();
+    let mut toml = scene("").into_bytes();
+    toml.extend(b"# caf\xe9\n");
+    scratch.write("s.toml", toml);
+    crate::harness::refused_in(&scratch, &["info", "s.toml"], &["s.toml", "line 24: byte 0xE9"]);
+    scratch.write("m.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\no \xff\nf 1 2 3\n");
+    scratch.write("t.toml", with_mesh("m.obj"));
+    let expected = ["m.obj", "line 4: byte 0xFF is not UTF-8", "t.toml"];
+    crate::harness::refused_in(&scratch, &["info", "t.toml"], &expected);
+}
