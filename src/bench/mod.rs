@@ -6,6 +6,7 @@ pub mod accuracy;
 pub mod convergence;
 pub mod effects_cost;
 pub mod grid;
+pub mod memory;
 pub mod plots;
 pub mod procedural;
 pub mod queries;

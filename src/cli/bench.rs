@@ -201,12 +201,13 @@ pub fn run(command: BenchCommand) -> Result<()> {
 }
 
 fn bench_queries(args: &QueriesArgs) -> Result<()> {
-    use embray::bench::queries;
+    use embray::bench::{memory, queries};
     check_counts(args.runs, None)?;
     let mut scene = load_scene(args.scene.as_deref(), &[])?;
     if let Some(text) = &args.resolution {
         super::preview::set_resolution(&mut scene, super::preview::parse_resolution(text)?);
     }
+    memory::check_queries(&scene).map_err(anyhow::Error::msg)?;
     let rows = queries::measure(&scene, &embray::accel::BackendKind::compiled(), args.runs)?;
     out(queries::markdown(&rows))?;
     Ok(())
@@ -226,7 +227,7 @@ fn bench_effects(args: &EffectsArgs) -> Result<()> {
 }
 
 fn bench_speed(args: &SpeedArgs) -> Result<()> {
-    use embray::bench::{procedural, speed};
+    use embray::bench::{memory, procedural, speed};
     anyhow::ensure!(args.spp > 0, "--spp must be at least 1");
     anyhow::ensure!(args.size > 0, "--size must be at least 1");
     anyhow::ensure!(args.large > 0, "--large must be at least 1 (triangles)");
@@ -242,6 +243,7 @@ fn bench_speed(args: &SpeedArgs) -> Result<()> {
         scenes.push((name.to_string(), embray::scene::load(&path)?));
     }
     if wanted("large") {
+        memory::check_large(args.large).map_err(anyhow::Error::msg)?;
         let large = format!("sphere_{}k", args.large / 1000);
         scenes.push((large, procedural::displaced_sphere_scene(args.large, 256, 256)));
     }

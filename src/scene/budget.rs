@@ -43,7 +43,7 @@ pub enum LimitError {
 
 /// A memory size in GiB, in MiB below one GiB, in KiB below 0.1 MiB and in bytes below
 /// 0.1 KiB (a budget of a few bytes read as "0.0 MiB" on both sides of a refusal).
-pub(crate) fn size(bytes: u64) -> String {
+pub fn size(bytes: u64) -> String {
     let unit = |shift: u32| bytes as f64 / (1u64 << shift) as f64;
     match bytes {
         _ if bytes >= 1 << 30 => format!("{:.1} GiB", unit(30)),

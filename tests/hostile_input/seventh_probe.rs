@@ -154,3 +154,15 @@ fn a_byte_that_is_not_utf8_is_reported_with_its_line() {
     let expected = ["m.obj", "line 4: byte 0xFF is not UTF-8", "t.toml"];
     crate::harness::refused_in(&scratch, &["info", "t.toml"], &expected);
 }
+
+/// `bench speed --large` and `bench queries --resolution` made their scene and rays before
+/// any check: 51 GB asked for, and an abort.
+#[test]
+fn benchmark_sizes_are_held_against_the_memory_before_use() {
+    let scratch = Scratch::new();
+    let large = ["bench", "speed", "--large", "4294967296", "--only", "large", "--runs", "1"];
+    crate::harness::refused_in(&scratch, &large, &["--large 4294967296 needs about", "GiB"]);
+    let queries = ["bench", "queries", "--resolution", "16384x16384", "--runs", "1"];
+    let expected = ["the query benchmark at 16384x16384 needs about", "only 100.0 MiB"];
+    crate::harness::refused_under_memory(&scratch, &queries, 100 << 20, &expected);
+}
