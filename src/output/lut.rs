@@ -49,6 +49,19 @@ fn three(fields: &[&str], what: &str) -> Result<[f32; 3], String> {
 impl Lut3d {
     /// Reads and parses the `.cube` file `path`.
     pub fn read(path: &Path) -> Result<Lut3d, LutError> {
+        // The text and the table, of 12 bytes an entry of at least 6 ("0 0 0\n").
+        let length = std::fs::metadata(path).map_or(0, |m| m.len());
+        let needed = length.saturating_mul(3);
+        if let Some(available) = crate::limits::memory_available().filter(|&a| needed > a) {
+            let size = crate::scene::budget::size;
+            let message = format!(
+                "reading it needs about {} of memory (a file of {length} bytes), but only {} \
+                 are available",
+                size(needed),
+                size(available)
+            );
+            return Err(LutError { path: path.to_path_buf(), line: None, message });
+        }
         let bytes = crate::input_file::read_capped(path, MAX_BYTES).map_err(|e| LutError {
             path: path.to_path_buf(),
             line: None,

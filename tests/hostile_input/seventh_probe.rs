@@ -166,3 +166,21 @@ fn benchmark_sizes_are_held_against_the_memory_before_use() {
     let expected = ["the query benchmark at 16384x16384 needs about", "only 100.0 MiB"];
     crate::harness::refused_under_memory(&scratch, &queries, 100 << 20, &expected);
 }
+
+/// A `.cube` table (up to 256³ entries, 200 MB of text) was read outside the budget: 393 MB
+/// under a budget of 100 MB, then "out of memory" without a size.
+#[test]
+fn a_colour_table_is_held_against_the_memory_before_it_is_read() {
+    let scratch = Scratch::new();
+    let n = 64;
+    let mut cube = format!("LUT_3D_SIZE {n}\n");
+    for i in 0..n * n * n {
+        let [r, g, b] = [i % n, i / n % n, i / (n * n)].map(|c| c as f64 / (n - 1) as f64);
+        cube.push_str(&format!("{r:.6} {g:.6} {b:.6}\n"));
+    }
+    scratch.write("m.cube", cube);
+    scratch.write("s.toml", scene(""));
+    let args = ["render", "s.toml", "-o", "o.png", "--lut", "m.cube"];
+    let expected = ["m.cube: reading it needs about", "only 4.8 MiB"];
+    crate::harness::refused_under_memory(&scratch, &args, 5_000_000, &expected);
+}
