@@ -14,6 +14,7 @@ mod render_args;
 mod render_outputs;
 mod render_part;
 mod slurm;
+mod slurm_render_args;
 mod tonemap;
 
 use anyhow::{Context, Result};

@@ -2,12 +2,13 @@
 //! and `resume` pick up a job folder later (a lost node costs one part, not the render).
 
 use super::console::{note, out};
+use super::slurm_render_args::{check_render_args, identity_source};
 use anyhow::{Context, Result, bail};
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Subcommand};
 use embray::distributed::slurm::{
     self, JOB_FILE, JobFile, PartStatus, SbatchOptions, Submission, TaskState, part_path, status,
 };
-use embray::distributed::{MAX_PARTS, Part, PartIdentity, Split};
+use embray::distributed::{MAX_PARTS, Split};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -125,6 +126,7 @@ fn submit(args: &SubmitArgs) -> Result<()> {
     // Job-only fields are checked before any folder is made (the real paths come after).
     let draft = job_file(args, &scene, parts)?;
     slurm::parts_script(&draft, &std::path::absolute(dir)?).map_err(anyhow::Error::msg)?;
+    let existed = dir.exists();
     for sub in ["parts", "logs"] {
         std::fs::create_dir_all(dir.join(sub))
             .with_context(|| format!("cannot create '{}'", dir.join(sub).display()))?;
@@ -143,7 +145,13 @@ fn submit(args: &SubmitArgs) -> Result<()> {
         dir.display()
     ));
     let all: Vec<u32> = (0..parts).collect();
-    let job = submit_round(&dir, job, &all, &[])?;
+    let job = submit_round(&dir, job, &all, &[]).inspect_err(|error| {
+        // Nothing queued (Slurm down, say): the folder as it was, so that a retry starts anew
+        // rather than finding a job that never ran.
+        if error.downcast_ref::<NothingSubmitted>().is_some() {
+            remove_unsubmitted(&dir, existed);
+        }
+    })?;
     if args.no_wait {
         return Ok(());
     }
@@ -169,68 +177,6 @@ fn job_file(args: &SubmitArgs, scene: &Path, parts: u32) -> Result<JobFile> {
     })
 }
 
-/// What the job's parts must record, from its scene and options as they are now (a part
-/// rendered now records that); asked at most once per command, as following a job asks
-/// for its status every few seconds.
-fn identity_source() -> impl FnMut(&JobFile) -> Result<PartIdentity, String> {
-    let mut known: Option<Result<PartIdentity, String>> = None;
-    move |job| {
-        let identity = || check_render_args(&job.scene, job.parts, job.split, &job.render_args);
-        known.get_or_insert_with(|| identity().map_err(|e| format!("{e:#}"))).clone()
-    }
-}
-
-/// Parses the render options as `embray render` would and checks that the split works for
-/// the scene, so that nothing is submitted that every task would refuse. Returns what each
-/// part will record of the scene and the options.
-fn check_render_args(
-    scene: &Path,
-    parts: u32,
-    split: Split,
-    render_args: &[String],
-) -> Result<PartIdentity> {
-    let read_before_scene = embray::scene::files_read().len();
-    let mut argv = vec!["embray".to_owned(), "render".to_owned()];
-    argv.push(scene.to_string_lossy().into_owned());
-    argv.extend(render_args.iter().cloned());
-    let cli = super::Cli::try_parse_from(&argv).context("the render options (after --)")?;
-    let super::Command::Render(render) = cli.command else {
-        bail!("the render options (after --) are not `embray render` options");
-    };
-    let mut desc = if embray::scene::ceng795::is_ceng795_path(scene) {
-        let cameras = embray::scene::xml::load(scene, &render.defines)?;
-        let mut cameras = super::preview::select_cameras(cameras, render.camera.as_deref(), scene)?;
-        if cameras.len() != 1 {
-            bail!(
-                "'{}' has {} cameras; a split render is one image: choose one with --camera \
-                 (after --)",
-                scene.display(),
-                cameras.len()
-            );
-        }
-        cameras.swap_remove(0).scene
-    } else {
-        super::load_scene(Some(scene), &render.defines)?
-    };
-    render.apply_preview(&mut desc)?;
-    if let Some(problem) = render.part_flag_problem() {
-        bail!("{problem} (after --: a split render's parts are `embray render --part`)");
-    }
-    if let Some(problem) = super::render_args::RenderArgs::part_scene_problem(&desc) {
-        bail!(problem);
-    }
-    let options = render.to_options(&desc)?;
-    let camera = render.camera.as_ref().map(|c| format!("camera '{c}'"));
-    render.check_samples(&desc, options.spp, camera.as_deref())?;
-    let part = Part { index: 0, count: parts, split };
-    let size = (desc.camera.width, desc.camera.height);
-    part.check(size, embray::render::TILE_SIZE, options.spp.max(1))?;
-    // As `render --part` hashes them: the scene and every file it read, in order.
-    let scene_files = embray::scene::files_read().split_off(read_before_scene);
-    let scene_hash = embray::distributed::hash_files(&scene_files)?;
-    Ok(PartIdentity { scene_hash, options: embray::distributed::options_fingerprint(&options) })
-}
-
 fn write_text(path: &Path, text: &str) -> Result<()> {
     embray::output::write_one(path, |w| w.write_all(text.as_bytes()))?;
     Ok(())
@@ -250,7 +196,9 @@ fn submit_round(
     } else {
         let list = slurm::array_ranges(parts);
         let throttle = job.sbatch.max_running.map(|k| format!("%{k}")).unwrap_or_default();
-        let id = slurm::submit(&dir.join("parts.sbatch"), &[format!("--array={list}{throttle}")])?;
+        let script = dir.join("parts.sbatch");
+        let id = slurm::submit(&script, &[format!("--array={list}{throttle}")])
+            .map_err(NothingSubmitted)?;
         note(format!("submitted parts {list} of {} as array job {id}", job.parts));
         dependencies.push(id.clone());
         Some(id)
@@ -268,6 +216,25 @@ fn submit_round(
     job.submissions.push(Submission { array_job, parts: parts.to_vec(), merge_job });
     write_text(&dir.join(JOB_FILE), &job.encode())?;
     Ok(job)
+}
+
+/// A round Slurm refused before queuing any job of it.
+#[derive(Debug, thiserror::Error)]
+#[error(transparent)]
+struct NothingSubmitted(slurm::SchedulerError);
+
+/// Removes what a first submission made in `dir` (and `dir`, unless it `existed`).
+fn remove_unsubmitted(dir: &Path, existed: bool) {
+    for file in [JOB_FILE, "parts.sbatch", "merge.sbatch"] {
+        let _ = std::fs::remove_file(dir.join(file));
+    }
+    // Only if empty: anything else in them is not this command's.
+    for sub in ["parts", "logs"] {
+        let _ = std::fs::remove_dir(dir.join(sub));
+    }
+    if !existed {
+        let _ = std::fs::remove_dir(dir);
+    }
 }
 
 fn resume(dir: &Path, no_wait: bool) -> Result<()> {

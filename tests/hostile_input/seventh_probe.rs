@@ -184,3 +184,31 @@ fn a_colour_table_is_held_against_the_memory_before_it_is_read() {
     let expected = ["m.cube: reading it needs about", "only 4.8 MiB"];
     crate::harness::refused_under_memory(&scratch, &args, 5_000_000, &expected);
 }
+
+/// With Slurm down, a first submission failed but left its job folder (`job.json` with no
+/// submission), which then blocked the retry and read as lost tasks.
+#[test]
+fn a_submission_slurm_refuses_leaves_no_job_folder() {
+    use std::os::unix::fs::PermissionsExt;
+    let scratch = Scratch::new();
+    scratch.write("s.toml", scene(""));
+    let sbatch = "#!/bin/sh\nif [ \"$1\" = --version ]; then echo 'slurm 23.02.6'; exit 0; fi\n\
+                  echo 'sbatch: error: Batch job submission failed: Unable to contact slurm \
+                  controller' >&2\nexit 1\n";
+    let fake = scratch.write("bin/sbatch", sbatch);
+    std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let path = format!("{}:{}", scratch.path("bin").display(), std::env::var("PATH").unwrap());
+    let before = scratch.snapshot();
+    for _ in 0..2 {
+        let args = ["slurm", "s.toml", "--parts", "2", "--split", "samples", "--out", "job"];
+        let args = [&args[..], &["--no-wait", "--", "--spp", "2"]].concat();
+        let run =
+            crate::harness::Run::from(scratch.command(&args).env("PATH", &path).output().unwrap());
+        run.assert_no_panic();
+        assert_eq!(run.code, Some(1), "{}", run.stderr);
+        run.assert_says(&["Unable to contact slurm controller"]);
+        assert!(!run.stderr.contains("already holds a job"), "{}", run.stderr);
+        assert!(!scratch.path("job").exists(), "the job folder was left");
+        assert_eq!(scratch.snapshot(), before);
+    }
+}
