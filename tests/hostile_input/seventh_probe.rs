@@ -1,7 +1,9 @@
 //! Holes a seventh hostile probe found: readers that grew faster than their input (a PLY's
 //! attribute names, an MTL's unknown statements, Mitsuba's `$name`s: 49 s, 33 s and 51 s on
-//! files of a few MB or less), and a PNG whose compressed ICC profile inflated to 500 MB
-//! while its header was read, before any size was checked.
+//! files of a few MB or less), a PNG whose compressed ICC profile inflated to 500 MB while
+//! its header was read, before any size was checked; and, found by the same probe and mended
+//! later, bytes that are not UTF-8 without their line, benchmark sizes and `.cube` tables
+//! outside the memory budget, and a failed Slurm submission's leftover job folder.
 
 use crate::harness::{Scratch, accepted_in, run_limited, scene, with_mesh};
 use std::time::{Duration, Instant};
