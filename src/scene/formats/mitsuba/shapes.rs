@@ -298,15 +298,11 @@ impl Builder<'_> {
         let name = format!("{} (line {})", element.describe(), element.line);
         let placements = self.objects.len().saturating_add(self.groups[&id].len()) as u64;
         crate::scene::reading_budget::check_placements(&element.file, placements, || name.clone())?;
-        let placed: Vec<ObjectDesc> = self.groups[&id]
-            .iter()
-            .map(|o| ObjectDesc {
-                name: format!("{name}: {}", o.name),
-                world_from_object: placement * o.world_from_object,
-                ..o.clone()
-            })
-            .collect();
-        self.objects.extend(placed);
+        self.objects.extend(self.groups[&id].iter().map(|o| ObjectDesc {
+            name: format!("{name}: {}", o.name),
+            world_from_object: placement * o.world_from_object,
+            ..o.clone()
+        }));
         Ok(())
     }
 
