@@ -160,9 +160,12 @@ fn read_body(
     let (normals, uvs) = (layout.normal.is_some(), layout.uv.is_some());
     let per_vertex = MeshMemory::vertex_bytes(normals, uvs, channels(&vertex_attributes));
     let per_triangle = MeshMemory::triangle_bytes(channels(&face_attributes));
-    let faces = face_element.map_or(0, |face| face.count as u64);
-    let memory =
-        MeshMemory::new(available, (vertex_count as u64, per_vertex), (faces, per_triangle))?;
+    // Counts bounded by what the body can hold (a vertex takes 3 bytes at least, a face 1),
+    // so that a file cut short is reported as cut short.
+    let body = values.remaining() as u64;
+    let vertices = (vertex_count as u64).min(body / 3);
+    let faces = face_element.map_or(0, |face| face.count as u64).min(body);
+    let memory = MeshMemory::new(available, (vertices, per_vertex), (faces, per_triangle))?;
     mesh.attributes = vertex_attributes
         .iter()
         .chain(&face_attributes)
